@@ -1,0 +1,60 @@
+# exic: `make run` and `make test` work on a fresh Debian 12 machine.
+# They install what is missing (Debian packages, fpm in a local venv), build, and run.
+
+SHELL := /bin/bash
+APT_PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf5-dev \
+                pkg-config hdf5-tools python3-venv
+VENV    := .venv
+PYTHON  := $(VENV)/bin/python
+FPM     := $(VENV)/bin/fpm
+RELEASE := --profile release --flag "-O3 -march=native -funroll-loops"
+EXAMPLE ?= inputs/examples/bar_wall.inp
+OUTDIR  ?= out
+
+.PHONY: all setup deps venv build run test verify bench plots install clean help
+
+all: build
+
+help:
+	@echo "make run      set up, build (release) and run the main example ($(EXAMPLE))"
+	@echo "make test     set up and run the whole test suite (fpm test, bounds checked)"
+	@echo "make verify   run the verification decks and regenerate doc/verification.md"
+	@echo "make bench    run the benchmarks and regenerate doc/performance figures"
+	@echo "make plots DECK=path.inp   run a deck and draw its histories"
+
+# --- set-up -----------------------------------------------------------------
+deps:
+	@missing=""; for p in $(APT_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing Debian packages:$$missing"; \
+	  SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO=sudo; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing; \
+	fi
+
+$(FPM): tools/requirements.txt | deps
+	@if [ ! -x $(PYTHON) ]; then python3 -m venv $(VENV) 2>/dev/null || /usr/bin/python3 -m venv $(VENV); fi
+	$(PYTHON) -m pip install -q --disable-pip-version-check -r tools/requirements.txt
+	@touch $(FPM)
+
+venv: $(FPM)
+
+setup: deps venv
+
+# --- build and run ----------------------------------------------------------
+build: setup
+	$(FPM) build $(RELEASE)
+
+run: build
+	@mkdir -p $(OUTDIR)
+	$(FPM) run $(RELEASE) -- $(EXAMPLE) -o $(OUTDIR)
+
+test: setup
+	$(FPM) test
+
+install: setup
+	$(FPM) install $(RELEASE) --prefix $(or $(PREFIX),$(CURDIR)/dist)
+
+clean:
+	rm -rf build $(OUTDIR)

@@ -1,0 +1,4 @@
+program exic_main
+   implicit none
+   print '(a)', 'exic'
+end program exic_main

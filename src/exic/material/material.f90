@@ -1,0 +1,32 @@
+!> Material sets: the compressible neo-Hookean solid of the seed's eq. 7.2, or a rigid body.
+module exic_material_material
+   use exic_base_kinds, only: wp
+   implicit none
+   private
+
+   integer, parameter, public :: MAT_UNDEFINED = 0, MAT_SOLID = 1, MAT_RIGID = 2
+
+   public :: material_t, lame_from_young
+
+   !> One MATErial set.
+   type :: material_t
+      integer :: kind = MAT_UNDEFINED
+      real(wp) :: young = 0.0_wp, poisson = 0.0_wp   !< E, nu as given
+      real(wp) :: lambda = 0.0_wp, mu = 0.0_wp       !< Lame constants from E, nu
+      real(wp) :: rho = 0.0_wp                       !< reference density
+      integer :: quadrature = 2                      !< 2: 2x2 Gauss; 1: one point + hourglass control
+      real(wp) :: hourglass = 0.1_wp                 !< hourglass coefficient for quadrature 1
+      character(len=:), allocatable :: where         !< file:line of the MATErial record
+   end type material_t
+
+contains
+
+   !> Lame constants from Young's modulus and Poisson's ratio.
+   pure subroutine lame_from_young(e, nu, lambda, mu)
+      real(wp), intent(in) :: e, nu
+      real(wp), intent(out) :: lambda, mu
+      lambda = e*nu/((1.0_wp + nu)*(1.0_wp - 2.0_wp*nu))
+      mu = e/(2.0_wp*(1.0_wp + nu))
+   end subroutine lame_from_young
+
+end module exic_material_material
