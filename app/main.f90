@@ -1,4 +1,117 @@
+!> The `exic` command: read a deck, run it, write <stem>.his/.ene/.out next to it or under -o DIR.
 program exic_main
+   use exic_base_error, only: error_t, fatal_error
+   use exic_model, only: model_t
+   use exic_io_deck, only: read_deck
+   use exic_driver, only: run_options_t, run_model
+   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    implicit none
-   print '(a)', 'exic'
+
+   type(model_t) :: model
+   type(run_options_t) :: opts
+   type(error_t), allocatable :: err
+   character(len=:), allocatable :: deck, outdir, arg
+   integer :: i, n
+
+   n = command_argument_count()
+   outdir = ''
+   deck = ''
+   i = 1
+   do while (i <= n)
+      arg = argument(i)
+      select case (arg)
+      case ('-h', '--help')
+         call usage()
+         stop
+      case ('--version')
+         write (output_unit, '(a)') 'exic 0.1.0'
+         stop
+      case ('-o')
+         if (i == n) call die('-o needs a directory')
+         i = i + 1
+         outdir = argument(i)
+      case ('-q', '--quiet')
+         opts%quiet = .true.
+      case default
+         if (arg(1:1) == '-') call die('unknown option '//arg//' (see exic --help)')
+         if (len(deck) > 0) call die('only one deck per run (got '//deck//' and '//arg//')')
+         deck = arg
+      end select
+      i = i + 1
+   end do
+   if (len(deck) == 0) then
+      call usage()
+      error stop 2
+   end if
+
+   call read_deck(deck, model, err)
+   if (allocated(err)) call fatal_error(err, 2)
+   if (allocated(model%warnings)) then
+      if (len(model%warnings) > 0) write (error_unit, '(a)') model%warnings
+   end if
+   opts%base = output_base(deck, outdir)
+   if (.not. opts%quiet) write (output_unit, '(a)') 'exic: '//deck//' -> '//opts%base//'.{his,ene,out}'
+   call run_model(model, opts, err)
+   if (allocated(err)) call fatal_error(err, 1)
+   if (.not. opts%quiet) write (output_unit, '(a)') 'exic: done'
+
+contains
+
+   !> Argument `k` as a string of its own length.
+   function argument(k) result(s)
+      integer, intent(in) :: k
+      character(len=:), allocatable :: s
+      integer :: l
+      call get_command_argument(k, length=l)
+      allocate (character(len=l) :: s)
+      call get_command_argument(k, s)
+   end function argument
+
+   !> dir/stem of the outputs: the deck's stem, next to the deck or under `dir`.
+   function output_base(path, dir) result(base)
+      character(len=*), intent(in) :: path, dir
+      character(len=:), allocatable :: base, stem, parent
+      integer :: slash, dot
+      slash = index(path, '/', back=.true.)
+      stem = path(slash + 1:)
+      parent = path(:slash)
+      dot = index(stem, '.', back=.true.)
+      if (dot > 1) stem = stem(:dot - 1)
+      if (len(dir) > 0) then
+         call execute_command_line('mkdir -p "'//dir//'"')
+         base = dir//'/'//stem
+      else
+         base = parent//stem
+      end if
+   end function output_base
+
+   !> Print `msg` and stop with exit code 2.
+   subroutine die(msg)
+      character(len=*), intent(in) :: msg
+      write (error_unit, '(a)') 'exic: '//msg
+      error stop 2
+   end subroutine die
+
+   !> The --help text.
+   subroutine usage()
+      write (output_unit, '(a)') &
+         'usage: exic DECK [-o DIR] [-q]', &
+         '', &
+         'Runs the FEAP-like input deck DECK (see doc/input-language.md): explicit central-difference', &
+         'dynamics of 2-D plane-strain bodies with implicit contact, and writes', &
+         '  <stem>.his  time histories requested by TPLOt (a # header names the columns)', &
+         '  <stem>.ene  energy balance and momentum', &
+         '  <stem>.out  deck echo, mesh and material summary, stable step, energy balance, wall time', &
+         '  <stem>.h5 and <stem>.xdmf  fields, when the deck asks for OUTPut,HDF5', &
+         'next to the deck, or under DIR with -o DIR.', &
+         '', &
+         'options:', &
+         '  -o DIR      write the outputs under DIR (created if missing)', &
+         '  -q          no progress lines on the console', &
+         '  --version   print the version', &
+         '  -h, --help  this text', &
+         '', &
+         'exit codes: 0 success, 1 the run failed (outputs kept up to the failure), 2 bad input'
+   end subroutine usage
+
 end program exic_main

@@ -1,0 +1,444 @@
+!> The implicit contact corrector of the seed's sections 3-4 (eq. 3.19, 4.2-4.7).
+!>
+!> Every candidate constraint i joins a slave node s and a point (1 - alpha) m1 + alpha m2 of a
+!> master segment, with a unit normal n frozen over the step (seed section 4). Its column of G
+!> holds w_k n at the dofs of its nodes k = (s, m1, m2) with weights w = (1, -(1-alpha), -alpha),
+!> so that the gap of eq. 3.19 is g_i = G_i^T x. With x(n+2) = x* + c a(n+1), where
+!> c = dt(n+1) (dt(n) + dt(n+1)) / 2 and x* = x(n+1) + dt(n+1) (v(n) + dt(n)/2 a(n)) (eq. 4.7),
+!> the correction a(n+1) = a~(n+1) + M^-1 G p changes the predicted gap g~ by c S p with
+!> S = G^T M^-1 G, so closing the gaps at t(n+2) means
+!>
+!>     S p = -g~ / c,        p >= 0 (compressive),                        (eq. 4.5-4.7)
+!>
+!> p = -lambda in the seed's sign convention (its lambda is negative in compression).
+!> The active set starts from the violated predicted gaps; tensile multipliers are dropped and
+!> candidates whose corrected gap is still violated are added, for at most `max_passes`
+!> passes. Redundant constraints (dependent columns of G) are removed by the factorization
+!> (see exic_linalg_sparse_ldl) and carry p = 0. Small active sets go to a dense LAPACK
+!> factorization, larger ones to SuiteSparse LDL' with AMD ordering, whose symbolic analysis
+!> is reused while the active pattern is unchanged.
+module exic_contact_corrector
+   use exic_base_kinds, only: wp
+   use exic_base_error, only: error_t, make_error
+   use exic_linalg_sparse_ldl, only: sparse_ldl_t
+   use exic_linalg_dense_spd, only: dense_spd_t
+   implicit none
+   private
+
+   public :: constraints_t, corrector_t
+
+   !> Candidate constraints of one step, in a deterministic order.
+   type :: constraints_t
+      integer :: n = 0
+      integer, allocatable :: node(:, :)     !< (3, n) slave, master 1, master 2
+      real(wp), allocatable :: w(:, :)       !< (3, n) 1, -(1 - alpha), -alpha
+      real(wp), allocatable :: nrm(:, :)     !< (2, n) frozen unit normal (master outward)
+      real(wp), allocatable :: gap(:)        !< (n) predicted gap at t(n+2)
+      real(wp), allocatable :: gap_now(:)    !< (n) gap at t(n+1) with the same normal
+      integer, allocatable :: pair(:)        !< (n) pair index
+      real(wp), allocatable :: p(:)          !< (n) multiplier, >= 0 in compression
+      logical, allocatable :: active(:)      !< (n) carries force after the corrector
+   contains
+      procedure :: reserve => constraints_reserve
+      procedure :: add => constraints_add
+   end type constraints_t
+
+   !> Solver state kept across steps (factorization objects, work arrays).
+   type :: corrector_t
+      integer :: dense_limit = 48            !< active sets up to this size use the dense path
+      integer :: max_passes = 30             !< active-set passes before giving up on the step
+      real(wp) :: gap_tol = 0.0_wp           !< corrected gaps above -gap_tol count as closed
+      type(sparse_ldl_t) :: sparse
+      type(dense_spd_t) :: dense
+      ! statistics
+      integer :: passes = 0                  !< passes of the last call
+      integer :: nredundant = 0              !< constraints removed as redundant in the last call
+      integer :: pass_limit_hits = 0         !< calls that ended at max_passes
+      integer :: nsolves = 0, ndense = 0, nsparse = 0
+      ! work arrays (grown, never shrunk)
+      integer, allocatable :: idx(:), pos(:), ap(:), ai(:), bad(:), mark(:)
+      real(wp), allocatable :: ax(:), s(:, :), rhs(:), sol(:)
+      logical, allocatable :: drop(:)
+      integer, allocatable :: nstart(:), nlist(:)   !< node -> candidates incidence (CSR)
+   contains
+      procedure :: solve => corrector_solve
+   end type corrector_t
+
+contains
+
+   !> Make room for `m` candidates and reset the count.
+   subroutine constraints_reserve(self, m)
+      class(constraints_t), intent(inout) :: self
+      integer, intent(in) :: m
+      self%n = 0
+      if (allocated(self%gap)) then
+         if (size(self%gap) >= m) return
+         deallocate (self%node, self%w, self%nrm, self%gap, self%gap_now, self%pair, self%p, self%active)
+      end if
+      allocate (self%node(3, m), self%w(3, m), self%nrm(2, m), self%gap(m), self%gap_now(m), &
+                self%pair(m), self%p(m), self%active(m))
+   end subroutine constraints_reserve
+
+   !> Append one candidate (grows the arrays when full).
+   subroutine constraints_add(self, s, m1, m2, alpha, nrm, gap, gap_now, pair)
+      class(constraints_t), intent(inout) :: self
+      integer, intent(in) :: s, m1, m2, pair
+      real(wp), intent(in) :: alpha, nrm(2), gap, gap_now
+      type(constraints_t) :: tmp
+      integer :: k
+      if (.not. allocated(self%gap)) call self%reserve(64)
+      if (self%n == size(self%gap)) then
+         k = self%n
+         call tmp%reserve(2*k)
+         tmp%node(:, 1:k) = self%node(:, 1:k)
+         tmp%w(:, 1:k) = self%w(:, 1:k)
+         tmp%nrm(:, 1:k) = self%nrm(:, 1:k)
+         tmp%gap(1:k) = self%gap(1:k)
+         tmp%gap_now(1:k) = self%gap_now(1:k)
+         tmp%pair(1:k) = self%pair(1:k)
+         tmp%n = k
+         call move_alloc(tmp%node, self%node)
+         call move_alloc(tmp%w, self%w)
+         call move_alloc(tmp%nrm, self%nrm)
+         call move_alloc(tmp%gap, self%gap)
+         call move_alloc(tmp%gap_now, self%gap_now)
+         call move_alloc(tmp%pair, self%pair)
+         call move_alloc(tmp%p, self%p)
+         call move_alloc(tmp%active, self%active)
+      end if
+      k = self%n + 1
+      self%n = k
+      self%node(:, k) = [s, m1, m2]
+      self%w(:, k) = [1.0_wp, -(1.0_wp - alpha), -alpha]
+      self%nrm(:, k) = nrm
+      self%gap(k) = gap
+      self%gap_now(k) = gap_now
+      self%pair(k) = pair
+      self%p(k) = 0.0_wp
+      self%active(k) = .false.
+   end subroutine constraints_add
+
+   !> Solve for the multipliers of `cs` and add the correction M^-1 G p to `a`; fcon = G p.
+   !> minv(2, nnode) is the inverse lumped mass per dof (0 on rigid, fixed and inactive dofs).
+   subroutine corrector_solve(self, cs, nnode, minv, c, a, fcon, err)
+      class(corrector_t), intent(inout) :: self
+      type(constraints_t), intent(inout) :: cs
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: minv(2, nnode)
+      real(wp), intent(in) :: c
+      real(wp), intent(inout) :: a(2, nnode)
+      real(wp), intent(inout) :: fcon(2, nnode)
+      type(error_t), allocatable, intent(out) :: err
+      integer :: m, nact, pass, k, i, nbad, inner
+      logical :: changed, negative
+      real(wp) :: g
+
+      m = cs%n
+      self%passes = 0
+      self%nredundant = 0
+      fcon = 0.0_wp
+      if (m == 0) return
+      cs%p(1:m) = 0.0_wp
+      cs%active(1:m) = cs%gap(1:m) < 0.0_wp
+      if (.not. any(cs%active(1:m))) return
+      call grow_i(self%pos, m)
+      call build_incidence(self, cs, nnode)
+
+      pass = 0
+      do
+         ! the active candidates, in candidate order
+         nact = count(cs%active(1:m))
+         call grow_i(self%idx, nact)
+         self%idx(1:nact) = pack([(k, k=1, m)], cs%active(1:m))
+         self%pos(1:m) = 0
+         self%pos(self%idx(1:nact)) = [(k, k=1, nact)]
+         call grow_l(self%drop, nact)
+         call grow_r(self%rhs, nact)
+         call grow_r(self%sol, nact)
+         call grow_i(self%bad, nact)
+         self%drop(1:nact) = .false.
+         self%rhs(1:nact) = -cs%gap(self%idx(1:nact))/c
+         call assemble(self, cs, nnode, minv, nact)
+         ! drop tensile multipliers without changing the pattern
+         inner = 0
+         do
+            pass = pass + 1
+            inner = inner + 1
+            call factor_and_solve(self, nact, nbad, err)
+            if (allocated(err)) return
+            negative = .false.
+            do k = 1, nact
+               if (.not. self%drop(k) .and. self%sol(k) < 0.0_wp) then
+                  self%drop(k) = .true.
+                  negative = .true.
+               end if
+            end do
+            if (.not. negative .or. pass >= self%max_passes) exit
+         end do
+         self%nredundant = nbad
+         ! multipliers and the correction of the accelerations
+         cs%p(1:m) = 0.0_wp
+         do k = 1, nact
+            if (.not. self%drop(k)) cs%p(self%idx(k)) = max(self%sol(k), 0.0_wp)
+         end do
+         call apply(cs, nnode, minv, fcon)
+         ! corrected gaps of every candidate: g = g~ + c G^T M^-1 G p
+         changed = .false.
+         do i = 1, m
+            g = cs%gap(i) + c*gap_change(cs, i, nnode, minv, fcon)
+            if (cs%active(i)) then
+               if (self%drop(self%pos(i)) .and. cs%p(i) == 0.0_wp .and. self%sol(self%pos(i)) < 0.0_wp) then
+                  cs%active(i) = .false.     ! tensile: released
+                  changed = .true.
+               end if
+            else if (g < -self%gap_tol) then
+               cs%active(i) = .true.         ! still violated: added
+               changed = .true.
+            end if
+         end do
+         if (.not. changed) exit
+         if (pass >= self%max_passes) then
+            self%pass_limit_hits = self%pass_limit_hits + 1
+            exit
+         end if
+      end do
+      self%passes = pass
+      do i = 1, m
+         cs%active(i) = cs%p(i) > 0.0_wp
+      end do
+      ! a(n+1) = a~(n+1) + M^-1 G p  (eq. 4.5 with p = -lambda)
+      a = a + minv*fcon
+   end subroutine corrector_solve
+
+   !> fcon = G p: the nodal contact forces.
+   subroutine apply(cs, nnode, minv, fcon)
+      type(constraints_t), intent(in) :: cs
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: minv(2, nnode)
+      real(wp), intent(out) :: fcon(2, nnode)
+      integer :: i, k
+      fcon = 0.0_wp
+      do i = 1, cs%n
+         if (cs%p(i) == 0.0_wp) cycle
+         do k = 1, 3
+            if (cs%w(k, i) == 0.0_wp) cycle
+            fcon(:, cs%node(k, i)) = fcon(:, cs%node(k, i)) + cs%p(i)*cs%w(k, i)*cs%nrm(:, i)
+         end do
+      end do
+      if (.false.) print *, minv(1, 1)
+   end subroutine apply
+
+   !> G_i^T M^-1 f for candidate i: the change of its gap per unit c.
+   pure real(wp) function gap_change(cs, i, nnode, minv, f) result(dg)
+      type(constraints_t), intent(in) :: cs
+      integer, intent(in) :: i, nnode
+      real(wp), intent(in) :: minv(2, nnode), f(2, nnode)
+      integer :: k, nd
+      dg = 0.0_wp
+      do k = 1, 3
+         if (cs%w(k, i) == 0.0_wp) cycle
+         nd = cs%node(k, i)
+         dg = dg + cs%w(k, i)*(cs%nrm(1, i)*minv(1, nd)*f(1, nd) + cs%nrm(2, i)*minv(2, nd)*f(2, nd))
+      end do
+   end function gap_change
+
+   !> Node -> candidates incidence in compressed rows (nstart, nlist).
+   subroutine build_incidence(self, cs, nnode)
+      type(corrector_t), intent(inout) :: self
+      type(constraints_t), intent(in) :: cs
+      integer, intent(in) :: nnode
+      integer :: i, k, nd
+      call grow_i(self%nstart, nnode + 1)
+      call grow_i(self%nlist, 3*cs%n)
+      self%nstart(1:nnode + 1) = 0
+      do i = 1, cs%n
+         do k = 1, 3
+            if (cs%w(k, i) == 0.0_wp) cycle
+            nd = cs%node(k, i)
+            self%nstart(nd + 1) = self%nstart(nd + 1) + 1
+         end do
+      end do
+      self%nstart(1) = 1
+      do nd = 1, nnode
+         self%nstart(nd + 1) = self%nstart(nd + 1) + self%nstart(nd)
+      end do
+      ! fill, using nstart as a running pointer, then shift back
+      do i = 1, cs%n
+         do k = 1, 3
+            if (cs%w(k, i) == 0.0_wp) cycle
+            nd = cs%node(k, i)
+            self%nlist(self%nstart(nd)) = i
+            self%nstart(nd) = self%nstart(nd) + 1
+         end do
+      end do
+      do nd = nnode, 1, -1
+         self%nstart(nd + 1) = self%nstart(nd)
+      end do
+      self%nstart(1) = 1
+   end subroutine build_incidence
+
+   !> S = G^T M^-1 G on the active candidates: dense (small) or compressed columns (full pattern).
+   subroutine assemble(self, cs, nnode, minv, nact)
+      type(corrector_t), intent(inout) :: self
+      type(constraints_t), intent(in) :: cs
+      integer, intent(in) :: nnode, nact
+      real(wp), intent(in) :: minv(2, nnode)
+      integer :: j, cj, k, nd, q, ci, row, nnz, first, l
+      real(wp) :: v
+
+      if (nact <= self%dense_limit) then
+         if (allocated(self%s)) then
+            if (size(self%s, 1) < nact) deallocate (self%s)
+         end if
+         if (.not. allocated(self%s)) allocate (self%s(max(nact, 16), max(nact, 16)))
+         self%s(1:nact, 1:nact) = 0.0_wp
+      end if
+      call grow_i(self%ap, nact + 1)
+      call grow_i(self%mark, nact)
+      self%mark(1:nact) = 0
+      nnz = 0
+      self%ap(1) = 1
+      do j = 1, nact
+         cj = self%idx(j)
+         first = nnz + 1
+         do k = 1, 3
+            if (cs%w(k, cj) == 0.0_wp) cycle
+            nd = cs%node(k, cj)
+            do q = self%nstart(nd), self%nstart(nd + 1) - 1
+               ci = self%nlist(q)
+               row = self%pos(ci)
+               if (row == 0) cycle
+               if (.not. cs%active(ci)) cycle
+               v = cs%w(k, cj)*node_weight(cs, ci, nd)* &
+                   (cs%nrm(1, cj)*minv(1, nd)*cs%nrm(1, ci) + cs%nrm(2, cj)*minv(2, nd)*cs%nrm(2, ci))
+               if (nact <= self%dense_limit) then
+                  self%s(row, j) = self%s(row, j) + v
+               else
+                  if (self%mark(row) /= j) then
+                     self%mark(row) = j
+                     nnz = nnz + 1
+                     call grow_i(self%ai, nnz)
+                     call grow_r(self%ax, nnz)
+                     self%ai(nnz) = row
+                     self%ax(nnz) = v
+                  else
+                     do l = first, nnz
+                        if (self%ai(l) == row) then
+                           self%ax(l) = self%ax(l) + v
+                           exit
+                        end if
+                     end do
+                  end if
+               end if
+            end do
+         end do
+         if (nact > self%dense_limit) call sort_column(self%ai(first:nnz), self%ax(first:nnz))
+         self%ap(j + 1) = nnz + 1
+      end do
+   end subroutine assemble
+
+   !> The weight of node `nd` in candidate `i` (sum over its occurrences).
+   pure real(wp) function node_weight(cs, i, nd) result(w)
+      type(constraints_t), intent(in) :: cs
+      integer, intent(in) :: i, nd
+      integer :: k
+      w = 0.0_wp
+      do k = 1, 3
+         if (cs%node(k, i) == nd) w = w + cs%w(k, i)
+      end do
+   end function node_weight
+
+   !> Insertion sort of one short column by row index.
+   pure subroutine sort_column(ai, ax)
+      integer, intent(inout) :: ai(:)
+      real(wp), intent(inout) :: ax(:)
+      integer :: i, j, ki
+      real(wp) :: kx
+      do i = 2, size(ai)
+         ki = ai(i)
+         kx = ax(i)
+         j = i - 1
+         do while (j >= 1)
+            if (ai(j) <= ki) exit
+            ai(j + 1) = ai(j)
+            ax(j + 1) = ax(j)
+            j = j - 1
+         end do
+         ai(j + 1) = ki
+         ax(j + 1) = kx
+      end do
+   end subroutine sort_column
+
+   !> Factorize the assembled S (without the dropped constraints) and solve for sol.
+   subroutine factor_and_solve(self, nact, nbad, err)
+      type(corrector_t), intent(inout) :: self
+      integer, intent(in) :: nact
+      integer, intent(out) :: nbad
+      type(error_t), allocatable, intent(out) :: err
+      integer :: stat, k
+      self%nsolves = self%nsolves + 1
+      if (nact <= self%dense_limit) then
+         self%ndense = self%ndense + 1
+         call self%dense%factorize(self%s(1:nact, 1:nact), nbad, self%bad, err, self%drop(1:nact))
+         if (allocated(err)) return
+         call self%dense%solve(self%rhs(1:nact), self%sol(1:nact), stat)
+      else
+         self%nsparse = self%nsparse + 1
+         call self%sparse%refactorize(nact, self%ap(1:nact + 1), self%ai(1:self%ap(nact + 1) - 1), &
+                                      self%ax(1:self%ap(nact + 1) - 1), nbad, self%bad, err, &
+                                      self%drop(1:nact))
+         if (allocated(err)) return
+         call self%sparse%solve(self%rhs(1:nact), self%sol(1:nact), stat)
+      end if
+      if (stat /= 0) then
+         call make_error(err, 'contact corrector: the solve of S p = -g/c failed')
+         return
+      end if
+      do k = 1, nbad
+         self%drop(self%bad(k)) = .true.
+         self%sol(self%bad(k)) = 0.0_wp
+      end do
+   end subroutine factor_and_solve
+
+   !> Grow `a` to at least n entries, keeping its contents.
+   subroutine grow_i(a, n)
+      integer, allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      integer, allocatable :: tmp(:)
+      if (allocated(a)) then
+         if (size(a) >= n) return
+         allocate (tmp(max(n, 2*size(a))))
+         tmp(1:size(a)) = a
+         call move_alloc(tmp, a)
+         return
+      end if
+      allocate (a(max(n, 32)))
+   end subroutine grow_i
+
+   !> Grow `a` to at least n entries, keeping its contents.
+   subroutine grow_r(a, n)
+      real(wp), allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      real(wp), allocatable :: tmp(:)
+      if (allocated(a)) then
+         if (size(a) >= n) return
+         allocate (tmp(max(n, 2*size(a))))
+         tmp(1:size(a)) = a
+         call move_alloc(tmp, a)
+         return
+      end if
+      allocate (a(max(n, 32)))
+   end subroutine grow_r
+
+   !> Grow `a` to at least n entries (contents not kept).
+   subroutine grow_l(a, n)
+      logical, allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      if (allocated(a)) then
+         if (size(a) >= n) return
+         deallocate (a)
+      end if
+      allocate (a(max(n, 32)))
+   end subroutine grow_l
+
+end module exic_contact_corrector

@@ -1,0 +1,51 @@
+!> The explicit state of a problem and its element sets.
+module exic_explicit_state
+   use exic_base_kinds, only: wp, i8
+   implicit none
+   private
+
+   public :: element_set_t, state_t
+
+   !> The elements of one material set, with their reference (total Lagrangian) data.
+   type :: element_set_t
+      integer :: mat = 0                        !< material set number
+      integer :: kind = 0                       !< MAT_SOLID or MAT_RIGID
+      integer :: nq = 2                         !< 2: 2x2 Gauss; 1: one point + hourglass
+      integer :: nel = 0
+      integer, allocatable :: elems(:)          !< (nel) global element numbers
+      integer, allocatable :: conn(:, :)        !< (4, nel) global node numbers
+      real(wp), allocatable :: gdn(:, :, :)     !< (8, nq*nq, nel) reference shape derivatives
+      real(wp), allocatable :: wdj(:, :)        !< (nq*nq, nel) weight x det J0
+      real(wp), allocatable :: gamma(:, :)      !< (4, nel) hourglass vectors (nq = 1)
+      real(wp), allocatable :: area0(:)         !< (nel) reference areas
+      real(wp) :: lambda = 0.0_wp, mu = 0.0_wp, rho = 0.0_wp, hourglass = 0.0_wp
+   end type element_set_t
+
+   !> Nodal state at time t(n+1) with v(n+1), a(n+1) once a step is complete.
+   type :: state_t
+      integer :: nnode = 0, nelem = 0
+      real(wp), allocatable :: x0(:, :)         !< (2, nnode) reference coordinates
+      real(wp), allocatable :: u(:, :)          !< (2, nnode) displacement
+      real(wp), allocatable :: v(:, :)          !< (2, nnode) velocity
+      real(wp), allocatable :: a(:, :)          !< (2, nnode) acceleration
+      real(wp), allocatable :: fint(:, :)       !< (2, nnode) internal force P(u)
+      real(wp), allocatable :: fext(:, :)       !< (2, nnode) external force F
+      real(wp), allocatable :: fcon(:, :)       !< (2, nnode) contact force of the last step (-G lambda)
+      real(wp), allocatable :: mass(:)          !< (nnode) lumped mass (rigid nodes included)
+      real(wp), allocatable :: minv(:, :)       !< (2, nnode) inverse mass per dof; 0: prescribed or rigid
+      logical, allocatable :: active(:)         !< (nnode) node used by an element
+      logical, allocatable :: rigid(:)          !< (nnode) node of a rigid body
+      integer, allocatable :: eset(:), eloc(:)  !< (nelem) element set and position in it
+      real(wp) :: t = 0.0_wp
+      real(wp) :: dt_prev = 0.0_wp              !< dt(n)   = t(n+1) - t(n)
+      real(wp) :: dt = 0.0_wp                   !< dt(n+1) = t(n+2) - t(n+1)
+      integer(i8) :: step = 0
+      ! energy balance
+      real(wp) :: kinetic = 0.0_wp, strain = 0.0_wp, hourglass = 0.0_wp
+      real(wp) :: wext = 0.0_wp, wcon = 0.0_wp, total0 = 0.0_wp
+      real(wp) :: momentum(2) = 0.0_wp
+      real(wp) :: jmin = 1.0_wp
+      integer :: nactive = 0                    !< active contact constraints
+   end type state_t
+
+end module exic_explicit_state
