@@ -8,6 +8,10 @@
 !> and prints the smallest n from which each sparse variant is cheaper than dense for every
 !> larger n measured. Run in release mode:
 !>   fpm run --profile release --flag "-O3 -march=native" exic-bench-linalg
+!> Measured on the 2-core development machine (gfortran 12, OpenBLAS as LAPACK), 8 runs:
+!> with the analysis reused, sparse is cheaper at every n >= 1 (0.2-0.3 x dense for
+!> n < 32, 0.005 x at n = 512); with a fresh analysis every step the crossover is n ~ 31
+!> (runs gave 30, 30, 31, 31, 32, 35, 37, 77). Below it the difference is under 1 us.
 program ldl_vs_dense
    use, intrinsic :: iso_fortran_env, only: int64, output_unit
    use exic_base_kinds, only: wp

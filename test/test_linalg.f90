@@ -1,6 +1,7 @@
 !> Tests of the contact linear algebra: sparse LDL' (AMD + SuiteSparse LDL) and the dense
 !> Cholesky path, on S = G^T M^-1 G built from contact-like constraints.
 module test_linalg
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use exic_base_kinds, only: wp, i8
    use exic_base_error, only: error_t
    use exic_linalg_sparse_ldl, only: sparse_ldl_t
@@ -41,6 +42,7 @@ contains
       call test_redundancy(s)
       call test_zero_pivots(s)
       call test_drop_mask(s)
+      call test_pivot_rule(s)
       call test_large_chain(s)
    end subroutine run_linalg_tests
 
@@ -280,6 +282,58 @@ contains
       call check(s, all(x(gone) == 0.0_wp), 'dense: dropped multipliers are zero')
       call compare_reduced(s, a, gone, b, x, 'dense drop')
    end subroutine test_drop_mask
+
+   !> 3d. The rule D(k) <= tol S(k,k) on two nearly parallel constraints, D(2)/S(2,2) = delta,
+   !>     with and without a diagonal scaling (the rule must not depend on it); bad input.
+   subroutine test_pivot_rule(s)
+      type(suite_t), intent(inout) :: s
+      real(wp), parameter :: deltas(2) = [1.0e-12_wp, 1.0e-8_wp], scales(2) = [1.0_wp, 1.0e3_wp]
+      type(csc_t) :: a
+      type(sparse_ldl_t) :: sp
+      type(dense_spd_t) :: de
+      real(wp) :: sd(2, 2), c, d(2), nan
+      integer :: bad(2), nbad, i, j
+      logical :: expect
+      type(error_t), allocatable :: err
+      character(len=60) :: tag
+
+      call section(s, 'linalg: pivot rule and bad input')
+      do i = 1, size(deltas)
+         do j = 1, size(scales)
+            c = sqrt(1.0_wp - deltas(i))
+            d = [scales(j), 1.0_wp/scales(j)]
+            sd = reshape([d(1)**2, c*d(1)*d(2), c*d(1)*d(2), d(2)**2], [2, 2])
+            expect = deltas(i) <= sp%tol
+            write (tag, '(a,es8.1,a,es8.1)') 'delta ', deltas(i), ', scale ', scales(j)
+            call from_dense(sd, a)
+            call sp%refactorize(2, a%ap, a%ai, a%ax, nbad, bad, err)
+            call check(s, .not. allocated(err) .and. ((nbad == 1) .eqv. expect), &
+                       'sparse: '//trim(tag)//merge(': flagged    ', ': not flagged', expect))
+            call de%factorize(sd, nbad, bad, err)
+            call check(s, .not. allocated(err) .and. ((nbad == 1) .eqv. expect), &
+                       'dense:  '//trim(tag)//merge(': flagged    ', ': not flagged', expect))
+         end do
+      end do
+
+      nan = ieee_value(1.0_wp, ieee_quiet_nan)
+      sd = reshape([1.0_wp, 0.5_wp, 0.5_wp, nan], [2, 2])
+      call from_dense(sd, a)
+      call sp%refactorize(2, a%ap, a%ai, a%ax, nbad, bad, err)
+      call check(s, allocated(err) .and. .not. sp%factorized, 'sparse: NaN entry is an error')
+      call de%factorize(sd, nbad, bad, err)
+      call check(s, allocated(err) .and. .not. de%factorized, 'dense: NaN entry is an error')
+      sd = reshape([1.0_wp, nan, nan, 1.0_wp], [2, 2])
+      call from_dense(sd, a)
+      call sp%refactorize(2, a%ap, a%ai, a%ax, nbad, bad, err)
+      call check(s, allocated(err) .and. .not. sp%factorized, 'sparse: NaN off the diagonal is an error')
+      call de%factorize(sd, nbad, bad, err)
+      call check(s, allocated(err) .and. .not. de%factorized, 'dense: NaN off the diagonal is an error')
+      call sp%free()
+      call sp%factorize(a%ax, nbad, bad, err)
+      call check(s, allocated(err), 'sparse: factorize before analyze is an error')
+      call sp%analyze(2, [1, 2, 3], [1, 3], err)
+      call check(s, allocated(err), 'sparse: row index out of range is an error')
+   end subroutine test_pivot_rule
 
    !> 4. A contact line of 1e5 node-on-segment constraints (tridiagonal-like S), with a few
    !>    two-pass duplicates.

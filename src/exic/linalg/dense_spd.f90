@@ -97,7 +97,11 @@ contains
       ! 1. plain Cholesky of the scaled matrix
       ok = .true.
       if (m > 0) then
-         call scaled_copy(self, s, m)
+         call scaled_copy(self, s, m, ok)
+         if (.not. ok) then
+            call make_error(err, 'dense SPD: non-finite entry (NaN or Inf in the matrix)')
+            return
+         end if
          call dpotrf('L', m, self%a, size(self%a, 1), info)
          ok = (info == 0)
          if (ok) then
@@ -112,7 +116,7 @@ contains
       else
          ! 2. rank-revealing pivoted Cholesky of the same scaled matrix
          self%pivoted = .true.
-         call scaled_copy(self, s, m)
+         call scaled_copy(self, s, m, ok)
          call dpstrf('L', m, self%a, size(self%a, 1), self%piv, self%rank, self%tol, &
                      self%work, info)
          if (info < 0) then
@@ -196,17 +200,20 @@ contains
 
    ! ---------------------------------------------------------------------------------------
 
-   !> a(1:m, 1:m) lower = D S D restricted to the kept constraints.
-   subroutine scaled_copy(self, s, m)
+   !> a(1:m, 1:m) lower = D S D restricted to the kept constraints; finite = all entries finite.
+   subroutine scaled_copy(self, s, m, finite)
       type(dense_spd_t), intent(inout) :: self
       real(wp), intent(in) :: s(:, :)
       integer, intent(in) :: m
+      logical, intent(out) :: finite
       integer :: i, k, ik, kk
+      finite = .true.
       do k = 1, m
          kk = self%kept(k)
          do i = k, m
             ik = self%kept(i)
             self%a(i, k) = self%sc(ik)*s(ik, kk)*self%sc(kk)
+            if (.not. ieee_is_finite(self%a(i, k))) finite = .false.
          end do
       end do
    end subroutine scaled_copy
