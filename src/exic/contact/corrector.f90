@@ -45,7 +45,7 @@ module exic_contact_corrector
 
    !> Solver state kept across steps (factorization objects, work arrays).
    type :: corrector_t
-      integer :: dense_limit = 48            !< active sets up to this size use the dense path
+      integer :: dense_limit = 30            !< active sets up to this size use the dense path (measured crossover)
       integer :: max_passes = 30             !< active-set passes before giving up on the step
       real(wp) :: gap_tol = 0.0_wp           !< corrected gaps above -gap_tol count as closed
       type(sparse_ldl_t) :: sparse
