@@ -1,0 +1,62 @@
+!> Small deterministic sorting kernels used by set-up code (edge keys, node lists).
+!>
+!> All sorts are stable merge sorts returning a permutation, so equal keys keep their
+!> input order and results never depend on the platform.
+module exic_base_sort
+   use exic_base_kinds, only: i8
+   implicit none
+   private
+
+   public :: sort_perm_i8, sort_perm_int
+
+contains
+
+   !> Stable sort of `key(1:n)`: on return key(perm(1)) <= key(perm(2)) <= ...
+   pure subroutine sort_perm_i8(n, key, perm)
+      integer, intent(in) :: n
+      integer(i8), intent(in) :: key(n)
+      integer, intent(out) :: perm(n)
+      integer, allocatable :: work(:)
+      integer :: width, lo, mid, hi, i, j, k
+
+      allocate (work(n))
+      do i = 1, n
+         perm(i) = i
+      end do
+      width = 1
+      do while (width < n)
+         lo = 1
+         do while (lo <= n)
+            mid = min(lo + width - 1, n)
+            hi = min(lo + 2*width - 1, n)
+            i = lo; j = mid + 1; k = lo
+            do while (i <= mid .and. j <= hi)
+               if (key(perm(j)) < key(perm(i))) then
+                  work(k) = perm(j); j = j + 1
+               else
+                  work(k) = perm(i); i = i + 1
+               end if
+               k = k + 1
+            end do
+            do while (i <= mid)
+               work(k) = perm(i); i = i + 1; k = k + 1
+            end do
+            do while (j <= hi)
+               work(k) = perm(j); j = j + 1; k = k + 1
+            end do
+            lo = lo + 2*width
+         end do
+         perm = work
+         width = 2*width
+      end do
+   end subroutine sort_perm_i8
+
+   !> Stable sort of default integers `key(1:n)`, returning the permutation as above.
+   pure subroutine sort_perm_int(n, key, perm)
+      integer, intent(in) :: n
+      integer, intent(in) :: key(n)
+      integer, intent(out) :: perm(n)
+      call sort_perm_i8(n, int(key, i8), perm)
+   end subroutine sort_perm_int
+
+end module exic_base_sort

@@ -1,0 +1,323 @@
+!> Broad phase of the contact search: candidate (slave node, master segment) pairs whose
+!> swept bounding boxes overlap over the step t(n+1) -> t(n+2).
+!>
+!> Positions come in two arrays: x0 at t(n+1) (tau = 0) and x1, the predicted positions
+!> at t(n+2) (tau = 1). With linear motion over the step (seed eq. 6.1) the path of every
+!> point lies in the box of its start and end positions, so a slave can reach a segment
+!> only if their swept boxes overlap; master boxes are grown by `margin` on every side.
+!>
+!> Search: a whole-surface test first (union boxes apart: nothing to do), then a uniform
+!> bucket grid over the region where both unions overlap. The cell size is the mean swept
+!> box extent (segment length plus motion plus margin) of the entities, enlarged if needed
+!> so that the grid has at most about 4 x (slaves + segments) cells. Segments are binned
+!> into every cell their box touches; each slave tests only the segments of the cells its
+!> box touches. A pair met in several cells is reported only from the cell holding the
+!> lower-left corner of the two boxes' intersection, so no marks are needed. The work
+!> (counted in `ntests`) grows with the number of entities near each other, not with
+!> n_slave x n_segment.
+!>
+!> Output: cand(1, k) = slave index (position in the slave list), cand(2, k) = segment
+!> index, sorted by slave then segment. A slave node is never paired with a segment that
+!> contains it. Work arrays live in `broad_t` and are only grown, never shrunk.
+module exic_contact_broad
+   use exic_base_kinds, only: wp, i8
+   implicit none
+   private
+
+   public :: broad_t, broad_search, broad_brute, swept_box, surfaces_apart, boxes_overlap
+
+   !> Work space and result of the broad phase; reuse one per contact pair across steps.
+   type :: broad_t
+      integer :: ncand = 0                   !< number of candidate pairs found
+      integer, allocatable :: cand(:, :)     !< (2, >= ncand): slave index, segment index
+      integer(i8) :: ntests = 0              !< box tests done by the last search
+      integer(i8) :: ntests_total = 0        !< box tests summed over all searches
+      integer :: nx = 0, ny = 0              !< grid of the last search (0: skipped)
+      real(wp), allocatable :: sbox(:, :)    !< (4, nslave) xmin, ymin, xmax, ymax
+      real(wp), allocatable :: mbox(:, :)    !< (4, nseg)
+      integer, allocatable :: head(:)        !< (ncell + 1) CSR pointers of the grid
+      integer, allocatable :: items(:)       !< segment indices by cell
+      integer, allocatable :: buf(:)         !< per-slave list of found segments
+   end type broad_t
+
+contains
+
+   !> Swept box (xmin, ymin, xmax, ymax) of nodes `list(1:n)` over positions x0 and x1.
+   pure function swept_box(nnode, x0, x1, n, list) result(box)
+      integer, intent(in) :: nnode, n
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode)
+      integer, intent(in) :: list(n)
+      real(wp) :: box(4)
+      integer :: k
+      box(1:2) = huge(1.0_wp)
+      box(3:4) = -huge(1.0_wp)
+      do k = 1, n
+         box(1:2) = min(box(1:2), x0(:, list(k)), x1(:, list(k)))
+         box(3:4) = max(box(3:4), x0(:, list(k)), x1(:, list(k)))
+      end do
+   end function swept_box
+
+   !> True when boxes a and b (xmin, ymin, xmax, ymax) overlap or touch after growing a
+   !> by `margin`.
+   pure logical function boxes_overlap(a, b, margin) result(ok)
+      real(wp), intent(in) :: a(4), b(4), margin
+      ok = a(1) - margin <= b(3) .and. b(1) <= a(3) + margin .and. &
+           a(2) - margin <= b(4) .and. b(2) <= a(4) + margin
+   end function boxes_overlap
+
+   !> Whole-surface test: true when the swept box of the slave nodes and that of the
+   !> master segment nodes (grown by margin) are apart, so no pair can be in contact.
+   pure logical function surfaces_apart(nnode, x0, x1, nslave, slaves, nseg, seg, margin) &
+      result(apart)
+      integer, intent(in) :: nnode, nslave, nseg
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+      integer, intent(in) :: slaves(nslave), seg(2, nseg)
+      apart = .true.
+      if (nslave == 0 .or. nseg == 0) return
+      apart = .not. boxes_overlap(swept_box(nnode, x0, x1, 2*nseg, reshape(seg, [2*nseg])), &
+                                  swept_box(nnode, x0, x1, nslave, slaves), margin)
+   end function surfaces_apart
+
+   !> Broad phase: fill bw%cand(:, 1:bw%ncand) with the (slave, segment) pairs whose swept
+   !> boxes overlap (master boxes grown by margin), sorted by slave then segment.
+   subroutine broad_search(bw, nnode, x0, x1, nslave, slaves, nseg, seg, margin)
+      type(broad_t), intent(inout) :: bw
+      integer, intent(in) :: nnode, nslave, nseg
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+      integer, intent(in) :: slaves(nslave), seg(2, nseg)
+      real(wp) :: ubs(4), ubm(4), dom(4), h, ext(2), hmean
+      integer :: k
+
+      bw%ncand = 0
+      bw%ntests = 0
+      bw%nx = 0
+      bw%ny = 0
+      if (nslave == 0 .or. nseg == 0) return
+      call grow_real(bw%sbox, nslave)
+      call grow_real(bw%mbox, nseg)
+      hmean = 0.0_wp
+      ubs(1:2) = huge(1.0_wp); ubs(3:4) = -huge(1.0_wp)
+      ubm = ubs
+      do k = 1, nslave
+         bw%sbox(1:2, k) = min(x0(:, slaves(k)), x1(:, slaves(k)))
+         bw%sbox(3:4, k) = max(x0(:, slaves(k)), x1(:, slaves(k)))
+         ubs(1:2) = min(ubs(1:2), bw%sbox(1:2, k))
+         ubs(3:4) = max(ubs(3:4), bw%sbox(3:4, k))
+         hmean = hmean + maxval(bw%sbox(3:4, k) - bw%sbox(1:2, k))
+      end do
+      do k = 1, nseg
+         bw%mbox(1:2, k) = min(x0(:, seg(1, k)), x1(:, seg(1, k)), &
+                               x0(:, seg(2, k)), x1(:, seg(2, k))) - margin
+         bw%mbox(3:4, k) = max(x0(:, seg(1, k)), x1(:, seg(1, k)), &
+                               x0(:, seg(2, k)), x1(:, seg(2, k))) + margin
+         ubm(1:2) = min(ubm(1:2), bw%mbox(1:2, k))
+         ubm(3:4) = max(ubm(3:4), bw%mbox(3:4, k))
+         hmean = hmean + maxval(bw%mbox(3:4, k) - bw%mbox(1:2, k))
+      end do
+      ! whole-surface test
+      if (.not. boxes_overlap(ubs, ubm, 0.0_wp)) return
+      dom(1:2) = max(ubs(1:2), ubm(1:2))
+      dom(3:4) = min(ubs(3:4), ubm(3:4))
+      ! cell size: mean extent, enlarged to keep at most ~4 (nslave + nseg) cells
+      ext = dom(3:4) - dom(1:2)
+      hmean = hmean/real(nslave + nseg, wp)
+      h = max(hmean, sqrt(ext(1)*ext(2)/real(4*(nslave + nseg), wp)), &
+              maxval(ext)/real(4*(nslave + nseg), wp))
+      if (.not. (h > 0.0_wp)) h = 1.0_wp
+      bw%nx = max(1, min(4*(nslave + nseg), int(ext(1)/h) + 1))
+      bw%ny = max(1, min(4*(nslave + nseg), int(ext(2)/h) + 1))
+      call bin_segments(bw, nseg, dom, h)
+      call query_slaves(bw, nslave, slaves, nseg, seg, dom, h)
+      bw%ntests_total = bw%ntests_total + bw%ntests
+   end subroutine broad_search
+
+   !> Cell index (0-based) of coordinate v on an axis starting at lo with n cells of size h.
+   pure integer function cell_of(v, lo, h, n) result(i)
+      real(wp), intent(in) :: v, lo, h
+      integer, intent(in) :: n
+      i = int(min(real(n - 1, wp), max(0.0_wp, (v - lo)/h)))
+   end function cell_of
+
+   !> Put each segment whose box meets the domain into every cell its box touches (CSR).
+   subroutine bin_segments(bw, nseg, dom, h)
+      type(broad_t), intent(inout) :: bw
+      integer, intent(in) :: nseg
+      real(wp), intent(in) :: dom(4), h
+      integer :: k, ix, iy, ix0, ix1, iy0, iy1, ncell, c, pass
+
+      ncell = bw%nx*bw%ny
+      call grow_int(bw%head, ncell + 1)
+      bw%head(1:ncell + 1) = 0
+      do pass = 1, 2
+         do k = 1, nseg
+            if (.not. boxes_overlap(bw%mbox(:, k), dom, 0.0_wp)) cycle
+            ix0 = cell_of(bw%mbox(1, k), dom(1), h, bw%nx)
+            ix1 = cell_of(bw%mbox(3, k), dom(1), h, bw%nx)
+            iy0 = cell_of(bw%mbox(2, k), dom(2), h, bw%ny)
+            iy1 = cell_of(bw%mbox(4, k), dom(2), h, bw%ny)
+            do iy = iy0, iy1
+               do ix = ix0, ix1
+                  c = iy*bw%nx + ix + 1
+                  if (pass == 1) then
+                     bw%head(c + 1) = bw%head(c + 1) + 1
+                  else
+                     bw%items(bw%head(c)) = k
+                     bw%head(c) = bw%head(c) + 1
+                  end if
+               end do
+            end do
+         end do
+         if (pass == 1) then
+            ! head(c) becomes the first slot of cell c
+            bw%head(1) = 1
+            do c = 2, ncell + 1
+               bw%head(c) = bw%head(c) + bw%head(c - 1)
+            end do
+            call grow_int(bw%items, bw%head(ncell + 1) - 1)
+         end if
+      end do
+      ! after filling, head(c) points one past cell c: shift back
+      do c = ncell + 1, 2, -1
+         bw%head(c) = bw%head(c - 1)
+      end do
+      bw%head(1) = 1
+   end subroutine bin_segments
+
+   !> For each slave in order, test the segments of the cells its box touches.
+   subroutine query_slaves(bw, nslave, slaves, nseg, seg, dom, h)
+      type(broad_t), intent(inout) :: bw
+      integer, intent(in) :: nslave, nseg
+      integer, intent(in) :: slaves(nslave), seg(2, nseg)
+      real(wp), intent(in) :: dom(4), h
+      integer :: s, k, ix, iy, ix0, ix1, iy0, iy1, c, p, nfound, node
+      real(wp) :: rx, ry
+
+      call grow_int(bw%buf, 16)
+      do s = 1, nslave
+         if (.not. boxes_overlap(bw%sbox(:, s), dom, 0.0_wp)) cycle
+         node = slaves(s)
+         ix0 = cell_of(bw%sbox(1, s), dom(1), h, bw%nx)
+         ix1 = cell_of(bw%sbox(3, s), dom(1), h, bw%nx)
+         iy0 = cell_of(bw%sbox(2, s), dom(2), h, bw%ny)
+         iy1 = cell_of(bw%sbox(4, s), dom(2), h, bw%ny)
+         nfound = 0
+         do iy = iy0, iy1
+            do ix = ix0, ix1
+               c = iy*bw%nx + ix + 1
+               do p = bw%head(c), bw%head(c + 1) - 1
+                  k = bw%items(p)
+                  bw%ntests = bw%ntests + 1
+                  if (.not. boxes_overlap(bw%mbox(:, k), bw%sbox(:, s), 0.0_wp)) cycle
+                  rx = max(bw%sbox(1, s), bw%mbox(1, k))
+                  ry = max(bw%sbox(2, s), bw%mbox(2, k))
+                  if (cell_of(rx, dom(1), h, bw%nx) /= ix) cycle
+                  if (cell_of(ry, dom(2), h, bw%ny) /= iy) cycle
+                  if (seg(1, k) == node .or. seg(2, k) == node) cycle
+                  if (nfound == size(bw%buf)) call grow_int(bw%buf, 2*nfound)
+                  nfound = nfound + 1
+                  bw%buf(nfound) = k
+               end do
+            end do
+         end do
+         if (nfound == 0) cycle
+         call insertion_sort(nfound, bw%buf)
+         call append(bw, s, nfound, bw%buf)
+      end do
+   end subroutine query_slaves
+
+   !> Sort a short integer list in place.
+   pure subroutine insertion_sort(n, a)
+      integer, intent(in) :: n
+      integer, intent(inout) :: a(:)
+      integer :: i, j, v
+      do i = 2, n
+         v = a(i)
+         j = i - 1
+         do while (j >= 1)
+            if (a(j) <= v) exit
+            a(j + 1) = a(j)
+            j = j - 1
+         end do
+         a(j + 1) = v
+      end do
+   end subroutine insertion_sort
+
+   !> Append the pairs (s, list(1:n)) to the candidate list, growing it when full.
+   subroutine append(bw, s, n, list)
+      type(broad_t), intent(inout) :: bw
+      integer, intent(in) :: s, n, list(:)
+      integer, allocatable :: tmp(:, :)
+      integer :: cap
+      cap = 0
+      if (allocated(bw%cand)) cap = size(bw%cand, 2)
+      if (bw%ncand + n > cap) then
+         allocate (tmp(2, max(2*cap, bw%ncand + n, 64)))
+         if (bw%ncand > 0) tmp(:, 1:bw%ncand) = bw%cand(:, 1:bw%ncand)
+         call move_alloc(tmp, bw%cand)
+      end if
+      bw%cand(1, bw%ncand + 1:bw%ncand + n) = s
+      bw%cand(2, bw%ncand + 1:bw%ncand + n) = list(1:n)
+      bw%ncand = bw%ncand + n
+   end subroutine append
+
+   !> Reference broad phase: every slave against every segment (O(n_slave x n_segment)),
+   !> same box test and exclusion as broad_search; for tests and tiny surfaces.
+   subroutine broad_brute(nnode, x0, x1, nslave, slaves, nseg, seg, margin, ncand, cand)
+      integer, intent(in) :: nnode, nslave, nseg
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+      integer, intent(in) :: slaves(nslave), seg(2, nseg)
+      integer, intent(out) :: ncand
+      integer, allocatable, intent(inout) :: cand(:, :)
+      real(wp) :: sb(4), mb(4)
+      integer :: s, k, node
+      integer, allocatable :: tmp(:, :)
+
+      ncand = 0
+      if (.not. allocated(cand)) allocate (cand(2, 64))
+      do s = 1, nslave
+         node = slaves(s)
+         sb(1:2) = min(x0(:, node), x1(:, node))
+         sb(3:4) = max(x0(:, node), x1(:, node))
+         do k = 1, nseg
+            if (seg(1, k) == node .or. seg(2, k) == node) cycle
+            mb(1:2) = min(x0(:, seg(1, k)), x1(:, seg(1, k)), x0(:, seg(2, k)), x1(:, seg(2, k)))
+            mb(3:4) = max(x0(:, seg(1, k)), x1(:, seg(1, k)), x0(:, seg(2, k)), x1(:, seg(2, k)))
+            if (.not. boxes_overlap(mb, sb, margin)) cycle
+            if (ncand == size(cand, 2)) then
+               allocate (tmp(2, 2*ncand))
+               tmp(:, 1:ncand) = cand
+               call move_alloc(tmp, cand)
+            end if
+            ncand = ncand + 1
+            cand(:, ncand) = [s, k]
+         end do
+      end do
+   end subroutine broad_brute
+
+   !> Make sure a(:, 1:n) exists (4 rows); contents are not kept.
+   subroutine grow_real(a, n)
+      real(wp), allocatable, intent(inout) :: a(:, :)
+      integer, intent(in) :: n
+      if (allocated(a)) then
+         if (size(a, 2) >= n) return
+         deallocate (a)
+      end if
+      allocate (a(4, max(n, 1)))
+   end subroutine grow_real
+
+   !> Make sure a(1:n) exists; contents are kept when it grows.
+   subroutine grow_int(a, n)
+      integer, allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      integer, allocatable :: tmp(:)
+      if (allocated(a)) then
+         if (size(a) >= n) return
+         allocate (tmp(max(n, 2*size(a))))
+         tmp(1:size(a)) = a
+         call move_alloc(tmp, a)
+      else
+         allocate (a(max(n, 1)))
+      end if
+   end subroutine grow_int
+
+end module exic_contact_broad

@@ -1,0 +1,342 @@
+!> Narrow phase of the contact search: swept (seed section 6, eq. 6.1-6.6) and static
+!> node-to-segment detection, with the corner rule and the facing test.
+!>
+!> Over one step tau in [0, 1] runs from t(n+1) (positions x0) to the predicted t(n+2)
+!> (positions x1). Slave node s and master nodes a = m1, b = m2 move linearly (eq. 6.1):
+!>   xs(tau) = xs_i + tau (xs_f - xs_i),   xa(tau), xb(tau) likewise,
+!> and the master normal is interpolated linearly (eq. 6.2):
+!>   n(tau) = n_i + tau (n_f - n_i),   n_i, n_f the outward unit normals at tau = 0, 1.
+!>
+!> Gap function (eq. 6.3), measured from master node 1 as it moves:
+!>   g(tau) = (xs(tau) - xa(tau)) . n(tau).
+!> With d_i = xs_i - xa_i, d_f = xs_f - xa_f, the relative motion e = d_f - d_i
+!> = (xs_f - xs_i) - (xa_f - xa_i) and dn = n_f - n_i:
+!>   g(tau) = (d_i + tau e) . (n_i + tau dn) = A tau^2 + B tau + C        (eq. 6.4)
+!>   A = e . dn,   B = e . n_i + d_i . dn,   C = d_i . n_i.
+!> The seed's eq. 6.5 as printed has e = (xs_f - xs_i) + (xa_f - xa_i); that adds the
+!> master's motion instead of subtracting it and agrees only when master node 1 is fixed.
+!> Scaling n(tau) by a positive factor does not move the zeros of g, so the interpolated
+!> (not re-normalized) normal is fine for finding the crossing time.
+!>
+!> The contact point (eq. 6.6) is the projection at tau_c on the segment,
+!>   alpha = (xs - xa) . (xb - xa) / |xb - xa|^2,
+!> which keeps its sign (the ratio of norms in eq. 6.6 does not). A hit is accepted for
+!> -tol <= alpha <= 1 + tol with tol = ALPHA_TOL + 4 eps max|x| / |xb - xa| (a share of
+!> the segment length plus the rounding of the coordinates).
+!>
+!> The normal returned for the corrector is frozen: the unit normal of the master segment
+!> at the predicted positions, n_f ~ n(t(n+2)) (seed section 4), or the master node normal
+!> when the contact point is at a segment end (see detect_pairs). The returned gap is the
+!> predicted gap at t(n+2): (xs_f - (1 - alpha) xa_f - alpha xb_f) . n.
+module exic_contact_detect
+   use exic_base_kinds, only: wp
+   use exic_contact_spec, only: DETECT_SWEPT, DETECT_STATIC
+   use exic_mesh_boundary, only: segment_normal, average_normal
+   implicit none
+   private
+
+   public :: gap_coefficients, first_crossing, swept_pair, static_pair, alpha_tolerance
+   public :: detect_pairs, detect_contacts, contact_set_t
+
+   !> Accepted contact points may lie this share of the segment length beyond either end;
+   !> a contact point this close to an end is taken to be at the end (master node).
+   real(wp), parameter, public :: ALPHA_TOL = 1.0e-8_wp
+   !> Default facing limit: a slave whose own outward normal ns gives ns . n >= FACING_LIMIT
+   !> with the master normal n is not paired (0: the two must face each other).
+   real(wp), parameter, public :: FACING_LIMIT = 0.0_wp
+
+   !> Accepted contacts of one detection pass, at most one per slave node, in slave order.
+   type :: contact_set_t
+      integer :: n = 0                        !< number of contacts
+      integer, allocatable :: slave(:)        !< slave node number
+      integer, allocatable :: master(:, :)    !< (2, n) master nodes m1, m2 of the segment
+      integer, allocatable :: seg(:)          !< segment index in the master segment list
+      logical, allocatable :: at_end(:)       !< contact point at a segment end (master node)
+      real(wp), allocatable :: alpha(:)       !< contact point (1 - alpha) x_m1 + alpha x_m2
+      real(wp), allocatable :: normal(:, :)   !< (2, n) unit normal, frozen for the corrector
+      real(wp), allocatable :: tau(:)         !< time of contact in the step (1: static)
+      real(wp), allocatable :: gap(:)         !< predicted gap at t(n+2) along `normal`
+   end type contact_set_t
+
+contains
+
+   !> Coefficients of g(tau) = A tau^2 + B tau + C (eq. 6.4, corrected eq. 6.5; see the
+   !> module header) and the end gap g1 = (xs_f - xa_f) . n_f evaluated directly.
+   pure subroutine gap_coefficients(xs0, xs1, xa0, xa1, xb0, xb1, a, b, c, g1)
+      real(wp), intent(in) :: xs0(2), xs1(2), xa0(2), xa1(2), xb0(2), xb1(2)
+      real(wp), intent(out) :: a, b, c, g1
+      real(wp) :: ni(2), nf(2), dn(2), di(2), df(2), e(2)
+      ni = segment_normal(xa0, xb0)
+      nf = segment_normal(xa1, xb1)
+      dn = nf - ni
+      di = xs0 - xa0
+      df = xs1 - xa1
+      e = df - di
+      a = dot_product(e, dn)
+      b = dot_product(e, ni) + dot_product(di, dn)
+      c = dot_product(di, ni)
+      g1 = dot_product(df, nf)
+   end subroutine gap_coefficients
+
+   !> Smallest tau in [0, 1] at which g = a tau^2 + b tau + c, positive at tau = 0 (c > 0),
+   !> becomes zero; g1 is g(1) evaluated directly. Uses the cancellation-free form
+   !> q = -(b + sign(b) sqrt(b^2 - 4ac))/2, roots q/a and c/q, so a -> 0 needs no special
+   !> case beyond a == 0 (linear). No real root (b^2 < 4ac, grazing) means no crossing. When
+   !> g1 <= 0 a crossing must exist; if rounding pushes the computed root just past 1 it
+   !> is taken at tau = 1.
+   pure subroutine first_crossing(a, b, c, g1, hit, tau)
+      real(wp), intent(in) :: a, b, c, g1
+      logical, intent(out) :: hit
+      real(wp), intent(out) :: tau
+      real(wp) :: disc, q, r
+
+      hit = .false.
+      tau = 2.0_wp
+      if (.not. (c > 0.0_wp)) return
+      if (a == 0.0_wp) then
+         if (b < 0.0_wp .and. c <= -b) tau = -c/b
+      else
+         disc = b*b - 4.0_wp*a*c
+         if (disc >= 0.0_wp) then
+            q = -0.5_wp*(b + sign(sqrt(disc), b))
+            ! roots q/a and c/q; only those that can lie in [0, 1] are formed (no overflow)
+            if (abs(q) <= abs(a)) then
+               r = q/a
+               if (r >= 0.0_wp) tau = min(tau, r)
+            end if
+            if (c <= abs(q)) then
+               r = c/q
+               if (r >= 0.0_wp) tau = min(tau, r)
+            end if
+         end if
+      end if
+      if (tau <= 1.0_wp) then
+         hit = .true.
+      else if (g1 <= 0.0_wp) then
+         hit = .true.
+         tau = 1.0_wp
+      else
+         tau = 0.0_wp
+      end if
+   end subroutine first_crossing
+
+   !> Tolerance on alpha for a segment of length len with coordinates up to `scale`.
+   pure real(wp) function alpha_tolerance(len, scale) result(tol)
+      real(wp), intent(in) :: len, scale
+      tol = ALPHA_TOL + 4.0_wp*epsilon(1.0_wp)*scale/len
+   end function alpha_tolerance
+
+   !> Projection parameter of point p on segment xa -> xb, and whether it lies within
+   !> [-tol, 1 + tol] (false for a zero-length segment).
+   pure subroutine project(p, xa, xb, alpha, inside)
+      real(wp), intent(in) :: p(2), xa(2), xb(2)
+      real(wp), intent(out) :: alpha
+      logical, intent(out) :: inside
+      real(wp) :: t(2), tt, tol
+      t = xb - xa
+      tt = dot_product(t, t)
+      alpha = 0.0_wp
+      inside = .false.
+      if (.not. (tt > 0.0_wp)) return
+      alpha = dot_product(p - xa, t)/tt
+      tol = alpha_tolerance(sqrt(tt), maxval(abs([p, xa, xb])))
+      inside = alpha >= -tol .and. alpha <= 1.0_wp + tol
+   end subroutine project
+
+   !> Swept test of slave s against segment a -> b over the step (seed section 6).
+   !>
+   !> Gap positive at tau = 0: contact at the first tau in [0, 1] where g(tau) <= 0.
+   !> Gap in [-depth, 0] at tau = 0 (touching, or slightly behind after an earlier step)
+   !> and g(1) <= 0: contact at tau = 0. Deeper at the start, or moving out: no contact.
+   !> The contact point alpha (eq. 6.6) is the projection at tau_c and must lie within
+   !> [-tol, 1 + tol].
+   pure subroutine swept_pair(xs0, xs1, xa0, xa1, xb0, xb1, depth, hit, tau, alpha)
+      real(wp), intent(in) :: xs0(2), xs1(2), xa0(2), xa1(2), xb0(2), xb1(2), depth
+      logical, intent(out) :: hit
+      real(wp), intent(out) :: tau, alpha
+      real(wp) :: a, b, c, g1
+
+      alpha = 0.0_wp
+      call gap_coefficients(xs0, xs1, xa0, xa1, xb0, xb1, a, b, c, g1)
+      if (c > 0.0_wp) then
+         call first_crossing(a, b, c, g1, hit, tau)
+         if (.not. hit) return
+      else
+         tau = 0.0_wp
+         hit = .false.
+         if (c < -depth .or. g1 > 0.0_wp) return
+         if (all(segment_normal(xa0, xb0) == 0.0_wp)) return
+      end if
+      call project(xs0 + tau*(xs1 - xs0), xa0 + tau*(xa1 - xa0), xb0 + tau*(xb1 - xb0), &
+                   alpha, hit)
+   end subroutine swept_pair
+
+   !> Static test at the end of the step only (tau = 1): gap g = (xs_f - xa_f) . n_f in
+   !> [-depth, 0] and projection alpha within [-tol, 1 + tol].
+   pure subroutine static_pair(xs1, xa1, xb1, depth, hit, alpha, gap)
+      real(wp), intent(in) :: xs1(2), xa1(2), xb1(2), depth
+      logical, intent(out) :: hit
+      real(wp), intent(out) :: alpha, gap
+      real(wp) :: n(2)
+
+      hit = .false.
+      alpha = 0.0_wp
+      n = segment_normal(xa1, xb1)
+      gap = dot_product(xs1 - xa1, n)
+      if (all(n == 0.0_wp) .or. gap > 0.0_wp .or. gap < -depth) return
+      call project(xs1, xa1, xb1, alpha, hit)
+   end subroutine static_pair
+
+   !> True unless the slave's outward normal ns (zero: unknown) fails to face n.
+   pure logical function faces(ns, n, facing)
+      real(wp), intent(in) :: ns(2), n(2), facing
+      faces = .true.
+      if (ns(1) == 0.0_wp .and. ns(2) == 0.0_wp) return
+      faces = dot_product(ns, n) < facing
+   end function faces
+
+   !> Narrow phase over candidate pairs cand(:, 1:ncand) (slave index, segment index),
+   !> sorted by slave: at most one contact per slave, written in slave order.
+   !>
+   !> mode is DETECT_SWEPT or DETECT_STATIC. snrm(:, s) is the outward normal of slave s
+   !> on its own surface (zero to skip the facing test); a pair is kept only if
+   !> snrm . n_f < facing. link(:, k) are the neighbours of segment k (segment_links;
+   !> zero where none). depth bounds the penetration accepted at the start of a swept step
+   !> and at the end of a static one.
+   !>
+   !> Choice among a slave's hits: smallest tau; then the largest predicted gap at t(n+2)
+   !> (the least penetrated segment, closest-point rule); then the segment whose sorted
+   !> node pair is lowest. All keys depend on geometry and node numbers only, so the choice
+   !> does not depend on the order of the segment list. A contact point within ALPHA_TOL of
+   !> a segment end is put at that end (alpha = 0 or 1, at_end true) and gets the master
+   !> node normal: the normalized average of the segment's normal and that of its
+   !> neighbour at that node, the neighbour counting only if it passes the facing test.
+   subroutine detect_pairs(mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, link, &
+                           ncand, cand, depth, facing, ncon, cslave, cseg, cmaster, &
+                           cend, calpha, cnormal, ctau, cgap)
+      integer, intent(in) :: mode, nnode, nslave, nseg, ncand
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), snrm(2, nslave), depth, facing
+      integer, intent(in) :: slaves(nslave), seg(2, nseg), link(2, nseg), cand(2, ncand)
+      integer, intent(out) :: ncon
+      integer, intent(out) :: cslave(nslave), cseg(nslave), cmaster(2, nslave)
+      logical, intent(out) :: cend(nslave)
+      real(wp), intent(out) :: calpha(nslave), cnormal(2, nslave), ctau(nslave), cgap(nslave)
+      integer :: j, j0, s, k, node, ma, mb, best, bkey(2), key(2)
+      real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap
+      logical :: hit
+
+      ncon = 0
+      j0 = 1
+      do while (j0 <= ncand)
+         s = cand(1, j0)
+         node = slaves(s)
+         best = 0
+         btau = 0.0_wp; balpha = 0.0_wp; bgap = 0.0_wp; bkey = 0
+         j = j0
+         do while (j <= ncand)
+            if (cand(1, j) /= s) exit
+            k = cand(2, j)
+            j = j + 1
+            ma = seg(1, k); mb = seg(2, k)
+            if (ma == node .or. mb == node) cycle
+            if (mode == DETECT_STATIC) then
+               call static_pair(x1(:, node), x1(:, ma), x1(:, mb), depth, hit, alpha, gap)
+               tau = 1.0_wp
+            else
+               call swept_pair(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
+                               x1(:, mb), depth, hit, tau, alpha)
+            end if
+            if (.not. hit) cycle
+            nf = segment_normal(x1(:, ma), x1(:, mb))
+            if (.not. faces(snrm(:, s), nf, facing)) cycle
+            gap = dot_product(x1(:, node) - ((1.0_wp - alpha)*x1(:, ma) + alpha*x1(:, mb)), nf)
+            key = [min(ma, mb), max(ma, mb)]
+            if (best /= 0) then
+               if (tau > btau) cycle
+               if (tau == btau) then
+                  if (gap < bgap) cycle
+                  if (gap == bgap) then
+                     if (key(1) > bkey(1)) cycle
+                     if (key(1) == bkey(1) .and. key(2) >= bkey(2)) cycle
+                  end if
+               end if
+            end if
+            best = k; btau = tau; balpha = alpha; bgap = gap; bkey = key
+         end do
+         j0 = j
+         if (best == 0) cycle
+         ncon = ncon + 1
+         cslave(ncon) = node
+         cseg(ncon) = best
+         cmaster(:, ncon) = seg(:, best)
+         ctau(ncon) = btau
+         call finish_contact(nnode, x1, node, snrm(:, s), nseg, seg, link, best, balpha, &
+                             facing, cend(ncon), calpha(ncon), cnormal(:, ncon), cgap(ncon))
+      end do
+   end subroutine detect_pairs
+
+   !> Snap a contact point near a segment end to that end, pick the frozen normal
+   !> (segment normal, or master node normal at an end) and the predicted gap.
+   pure subroutine finish_contact(nnode, x1, node, ns, nseg, seg, link, k, alpha_in, &
+                                  facing, at_end, alpha, n, gap)
+      integer, intent(in) :: nnode, node, nseg, k
+      real(wp), intent(in) :: x1(2, nnode), ns(2), alpha_in, facing
+      integer, intent(in) :: seg(2, nseg), link(2, nseg)
+      logical, intent(out) :: at_end
+      real(wp), intent(out) :: alpha, n(2), gap
+      real(wp) :: nb(2), navg(2)
+      integer :: nbr, ma, mb
+
+      ma = seg(1, k); mb = seg(2, k)
+      alpha = alpha_in
+      nbr = 0
+      at_end = .false.
+      if (alpha <= ALPHA_TOL) then
+         at_end = .true.
+         alpha = 0.0_wp
+         nbr = link(1, k)
+      else if (alpha >= 1.0_wp - ALPHA_TOL) then
+         at_end = .true.
+         alpha = 1.0_wp
+         nbr = link(2, k)
+      end if
+      n = segment_normal(x1(:, ma), x1(:, mb))
+      if (nbr > 0) then
+         if (seg(1, nbr) /= node .and. seg(2, nbr) /= node) then
+            nb = segment_normal(x1(:, seg(1, nbr)), x1(:, seg(2, nbr)))
+            if (faces(ns, nb, facing)) then
+               navg = average_normal(n, nb)
+               if (any(navg /= 0.0_wp)) n = navg
+            end if
+         end if
+      end if
+      gap = dot_product(x1(:, node) - ((1.0_wp - alpha)*x1(:, ma) + alpha*x1(:, mb)), n)
+   end subroutine finish_contact
+
+   !> Narrow phase into a contact set (grown to nslave entries when needed); see
+   !> detect_pairs for the arguments and the rules.
+   subroutine detect_contacts(cs, mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, &
+                              link, ncand, cand, depth, facing)
+      type(contact_set_t), intent(inout) :: cs
+      integer, intent(in) :: mode, nnode, nslave, nseg, ncand
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), snrm(2, nslave), depth, facing
+      integer, intent(in) :: slaves(nslave), seg(2, nseg), link(2, nseg), cand(2, ncand)
+      integer :: cap
+
+      cap = 0
+      if (allocated(cs%slave)) cap = size(cs%slave)
+      if (cap < nslave .or. cap == 0) then
+         if (allocated(cs%slave)) then
+            deallocate (cs%slave, cs%master, cs%seg, cs%at_end, cs%alpha, cs%normal, &
+                        cs%tau, cs%gap)
+         end if
+         cap = max(nslave, 1)
+         allocate (cs%slave(cap), cs%master(2, cap), cs%seg(cap), cs%at_end(cap), &
+                   cs%alpha(cap), cs%normal(2, cap), cs%tau(cap), cs%gap(cap))
+      end if
+      call detect_pairs(mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, link, ncand, &
+                        cand, depth, facing, cs%n, cs%slave, cs%seg, cs%master, cs%at_end, &
+                        cs%alpha, cs%normal, cs%tau, cs%gap)
+   end subroutine detect_contacts
+
+end module exic_contact_detect
