@@ -1,0 +1,109 @@
+!> Throughput of the quadrilateral force kernels: element-steps per second on a 120 x 24 mesh.
+!>
+!> Times q4_force_2x2, q4_force_1pt and q4_stable_dt (each step zeroes the force array first,
+!> as the explicit driver does) in 5 repetitions and prints the median and range.
+!> Build: fpm build --profile release --flag "-O3 -march=native -funroll-loops"
+!> Run:   fpm run exic-bench-element --profile release --flag "..." [-- nsteps]
+program element_rate
+   use exic_base_kinds, only: wp, i8
+   use exic_element_quad4, only: q4_reference, q4_force_2x2, q4_force_1pt, q4_stable_dt
+   implicit none
+   integer, parameter :: nx = 120, ny = 24, nrep = 5
+   integer :: nel, nnode, nsteps, i, j, e, rep, ebad, emin, step, nargs
+   integer, allocatable :: conn(:, :)
+   real(wp), allocatable :: x0(:, :), u(:, :), f(:, :)
+   real(wp), allocatable :: gdn2(:, :, :), wdj2(:, :), gdn1(:, :, :), wdj1(:, :), gam(:, :)
+   real(wp) :: lambda, mu, wint, whg, jmin, dtmin, chk, t(nrep, 3), xx, yy
+   character(len=32) :: arg
+   integer(i8) :: c0, c1, rate
+
+   nsteps = 3000
+   nargs = command_argument_count()
+   if (nargs >= 1) then
+      call get_command_argument(1, arg)
+      read (arg, *) nsteps
+   end if
+   lambda = 33333.0_wp
+   mu = 5000.0_wp
+   nel = nx*ny
+   nnode = (nx + 1)*(ny + 1)
+   allocate (conn(4, nel), x0(2, nnode), u(2, nnode), f(2, nnode))
+   allocate (gdn2(8, 4, nel), wdj2(4, nel), gdn1(8, 1, nel), wdj1(1, nel), gam(4, nel))
+   ! a 30 x 6 bar of slightly distorted squares, bent and stretched
+   do j = 0, ny
+      do i = 0, nx
+         xx = 0.25_wp*i + 0.03_wp*sin(1.7_wp*i + 2.3_wp*j)
+         yy = 0.25_wp*j + 0.03_wp*cos(2.9_wp*i - 1.1_wp*j)
+         x0(:, 1 + i + (nx + 1)*j) = [xx, yy]
+         u(:, 1 + i + (nx + 1)*j) = [0.01_wp*xx + 0.02_wp*yy*sin(0.1_wp*xx), 0.002_wp*xx*xx]
+      end do
+   end do
+   do j = 0, ny - 1
+      do i = 0, nx - 1
+         e = 1 + i + nx*j
+         conn(:, e) = [1 + i + (nx + 1)*j, 2 + i + (nx + 1)*j, 2 + i + (nx + 1)*(j + 1), &
+                       1 + i + (nx + 1)*(j + 1)]
+      end do
+   end do
+   call q4_reference(2, nel, nnode, conn, x0, gdn2, wdj2, gam, ebad)
+   call q4_reference(1, nel, nnode, conn, x0, gdn1, wdj1, gam, ebad)
+
+   call system_clock(count_rate=rate)
+   chk = 0.0_wp
+   do rep = 1, nrep
+      call system_clock(c0)
+      do step = 1, nsteps
+         f = 0.0_wp
+         call q4_force_2x2(nel, nnode, conn, u, gdn2, wdj2, lambda, mu, f, wint, jmin, ebad)
+      end do
+      call system_clock(c1)
+      t(rep, 1) = real(c1 - c0, wp)/real(rate, wp)
+      chk = chk + f(1, nnode) + wint
+      call system_clock(c0)
+      do step = 1, nsteps
+         f = 0.0_wp
+         call q4_force_1pt(nel, nnode, conn, u, gdn1, wdj1, gam, lambda, mu, 0.1_wp, f, wint, whg, &
+                           jmin, ebad)
+      end do
+      call system_clock(c1)
+      t(rep, 2) = real(c1 - c0, wp)/real(rate, wp)
+      chk = chk + f(1, nnode) + wint + whg
+      call system_clock(c0)
+      do step = 1, nsteps
+         call q4_stable_dt(2, nel, nnode, conn, x0 + u, wdj2, lambda, mu, 0.1_wp, dtmin, emin)
+         chk = chk + dtmin
+      end do
+      call system_clock(c1)
+      t(rep, 3) = real(c1 - c0, wp)/real(rate, wp)
+   end do
+   print '(a,i0,a,i0,a,i0,a,i0,a)', 'mesh ', nx, ' x ', ny, ' (', nel, ' elements), ', nsteps, &
+      ' steps, median of 5 runs'
+   call report('q4_force_2x2', t(:, 1))
+   call report('q4_force_1pt', t(:, 2))
+   call report('q4_stable_dt', t(:, 3))
+   print '(a,es12.5)', 'checksum ', chk
+
+contains
+
+   subroutine report(name, times)
+      character(len=*), intent(in) :: name
+      real(wp), intent(in) :: times(:)
+      real(wp) :: s(size(times)), r
+      integer :: a, b
+      s = times
+      do a = 2, size(s)
+         r = s(a)
+         b = a - 1
+         do while (b >= 1)
+            if (s(b) <= r) exit
+            s(b + 1) = s(b)
+            b = b - 1
+         end do
+         s(b + 1) = r
+      end do
+      r = real(nel, wp)*real(nsteps, wp)
+      print '(a,a,f8.3,a,f8.3,a,f8.3,a)', name, ': ', r/s((size(s) + 1)/2)/1e6_wp, &
+         ' M element-steps/s (range ', r/s(size(s))/1e6_wp, ' - ', r/s(1)/1e6_wp, ')'
+   end subroutine report
+
+end program element_rate

@@ -1,0 +1,97 @@
+!> The compressible neo-Hookean solid of the seed's eq. 7.2, in plane strain.
+!>
+!> Cauchy stress (eq. 7.2):
+!>
+!>     sigma = lambda ln(J)/J 1 + mu/J (b - 1),        b = F F^T,  J = det F
+!>
+!> Strain energy per unit reference volume:
+!>
+!>     W = lambda/2 (ln J)^2 + mu/2 (I1 - 3) - mu ln J,   I1 = tr C = tr b
+!>
+!> This W is the one whose derivative gives eq. 7.2 (P = dW/dF, sigma = P F^T / J). The seed's
+!> eq. 7.1 as printed, mu (I1 - 3 - 1/2 ln J), is a misprint: its derivative leaves a residual
+!> stress at F = 1. The correct term is mu (I1 - 3)/2 - mu ln J = mu/2 (I1 - 3 - 2 ln J).
+!>
+!> Plane strain: F = [F11 F12 0; F21 F22 0; 0 0 1], so J = F11 F22 - F12 F21 and I1 carries
+!> C33 = 1. First Piola-Kirchhoff stress (in-plane components):
+!>
+!>     P = J sigma F^-T = lambda ln(J) F^-T + mu (F - F^-T)
+!>
+!> The kernels assume J > 0; callers check J first.
+module exic_material_neohookean
+   use exic_base_kinds, only: wp
+   implicit none
+   private
+
+   public :: nh_cauchy, nh_piola, nh_energy, nh_wave_speed2
+
+contains
+
+   !> Cauchy stress (eq. 7.2), J and the strain energy per reference volume for plane-strain F.
+   elemental subroutine nh_cauchy(lambda, mu, f11, f12, f21, f22, sxx, syy, szz, sxy, jac, w)
+      real(wp), intent(in) :: lambda, mu          !< Lame constants
+      real(wp), intent(in) :: f11, f12, f21, f22  !< in-plane deformation gradient
+      real(wp), intent(out) :: sxx, syy, szz, sxy !< Cauchy stress
+      real(wp), intent(out) :: jac                !< J = det F
+      real(wp), intent(out) :: w                  !< strain energy per reference volume
+      real(wp) :: lnj, rj, b11, b22, b12, p
+
+      jac = f11*f22 - f12*f21
+      lnj = log(jac)
+      rj = 1.0_wp/jac
+      b11 = f11*f11 + f12*f12
+      b22 = f21*f21 + f22*f22
+      b12 = f11*f21 + f12*f22
+      p = lambda*lnj*rj
+      sxx = p + mu*rj*(b11 - 1.0_wp)
+      syy = p + mu*rj*(b22 - 1.0_wp)
+      szz = p
+      sxy = mu*rj*b12
+      w = 0.5_wp*lambda*lnj*lnj + 0.5_wp*mu*(b11 + b22 - 2.0_wp) - mu*lnj
+   end subroutine nh_cauchy
+
+   !> First Piola-Kirchhoff stress P = lambda ln(J) F^-T + mu (F - F^-T), J and the strain energy.
+   elemental subroutine nh_piola(lambda, mu, f11, f12, f21, f22, p11, p12, p21, p22, jac, w)
+      real(wp), intent(in) :: lambda, mu          !< Lame constants
+      real(wp), intent(in) :: f11, f12, f21, f22  !< in-plane deformation gradient
+      real(wp), intent(out) :: p11, p12, p21, p22 !< in-plane first Piola-Kirchhoff stress
+      real(wp), intent(out) :: jac                !< J = det F
+      real(wp), intent(out) :: w                  !< strain energy per reference volume
+      real(wp) :: lnj, c
+
+      jac = f11*f22 - f12*f21
+      lnj = log(jac)
+      ! F^-T = [f22 -f21; -f12 f11] / J
+      c = (lambda*lnj - mu)/jac
+      p11 = mu*f11 + c*f22
+      p12 = mu*f12 - c*f21
+      p21 = mu*f21 - c*f12
+      p22 = mu*f22 + c*f11
+      w = 0.5_wp*lambda*lnj*lnj &
+          + 0.5_wp*mu*(f11*f11 + f12*f12 + f21*f21 + f22*f22 - 2.0_wp) - mu*lnj
+   end subroutine nh_piola
+
+   !> Strain energy per unit reference volume W(F) of the plane-strain neo-Hookean solid.
+   elemental function nh_energy(lambda, mu, f11, f12, f21, f22) result(w)
+      real(wp), intent(in) :: lambda, mu          !< Lame constants
+      real(wp), intent(in) :: f11, f12, f21, f22  !< in-plane deformation gradient
+      real(wp) :: w
+      real(wp) :: lnj
+      lnj = log(f11*f22 - f12*f21)
+      w = 0.5_wp*lambda*lnj*lnj &
+          + 0.5_wp*mu*(f11*f11 + f12*f12 + f21*f21 + f22*f22 - 2.0_wp) - mu*lnj
+   end function nh_energy
+
+   !> Square of the tangent dilatational wave speed at volume ratio J:
+   !> c^2 = (lambda + 2 mu - 2 lambda ln J)/rho0 (spatial moduli lambda/J and (mu - lambda ln J)/J,
+   !> current density rho0/J). Where that falls below mu/rho0 (large dilatation, where the
+   !> tangent loses ellipticity) mu/rho0 is returned so that the value stays positive.
+   elemental function nh_wave_speed2(lambda, mu, rho0, jac) result(c2)
+      real(wp), intent(in) :: lambda, mu !< Lame constants
+      real(wp), intent(in) :: rho0       !< reference density
+      real(wp), intent(in) :: jac        !< volume ratio J > 0
+      real(wp) :: c2
+      c2 = max(lambda + 2.0_wp*mu - 2.0_wp*lambda*log(jac), mu)/rho0
+   end function nh_wave_speed2
+
+end module exic_material_neohookean
