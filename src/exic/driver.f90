@@ -181,9 +181,10 @@ contains
       end if
       call choose_dt(r, err, 'DT')
       if (allocated(err)) return
-      r%st%dt_prev = r%st%dt
       r%st%a = r%st%minv*(r%st%fext - r%st%fint)
-      ! at t(0) the predictor velocity is the initial velocity itself
+      ! at t(0) the predictor velocity is the initial velocity itself and
+      ! x(1) = x(0) + dt v(0) + dt^2/2 a(0): the corrector's c is dt^2/2 (dt(n) = 0)
+      r%st%dt_prev = 0.0_wp
       call r%contact%correct(r%st, r%st%v, err)
       if (allocated(err)) return
       call solver_energies(r%st)
@@ -199,6 +200,12 @@ contains
       integer :: n
 
       call solver_stable_dt(r%st, r%sets, r%dt_stable, r%dt_element)
+      if (r%contact%any_penalty) then
+         if (r%contact%stable_dt(r%st) < r%dt_stable) then
+            r%dt_stable = r%contact%stable_dt(r%st)
+            r%dt_element = 0
+         end if
+      end if
       if (r%cfl_mode) then
          if (r%dt_stable >= huge(1.0_wp)) then
             call make_error(err, 'DT,CFL needs at least one deformable element to set the step', where)

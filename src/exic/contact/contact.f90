@@ -1,64 +1,535 @@
-!> Contact in the time step: surfaces, search and the implicit corrector (seed sections 3-6).
+!> Contact in the time step: surfaces, passes, search and the implicit corrector (seed 3-6).
+!>
+!> Each PAIR becomes one pass (NTOS, SELF) or two (SYMMetric: each surface's nodes against the
+!> other's segments); AUTOmatic makes a surface of every region's free boundary and a symmetric
+!> pair of every two regions. Per step and pass: predicted positions x~(n+2) (eq. 4.4), the
+!> broad phase on swept boxes, swept (or static) node-to-segment detection (eq. 6.1-6.6), and
+!> candidate constraints with the predicted gap of eq. 3.19 at t(n+2) and a frozen normal. All
+!> Lagrange candidates of all passes are solved together by the corrector (eq. 4.5-4.7);
+!> penalty passes add k x penetration forces at t(n+1) instead.
 module exic_contact_contact
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
    use exic_model, only: model_t
+   use exic_material_material, only: MAT_SOLID
    use exic_explicit_state, only: state_t
    use exic_io_history, only: history_files_t
+   use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, PAIR_NTOS, &
+                                PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
+                                DETECT_SWEPT, DETECT_STATIC, pair_spec_t
+   use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, node_normals
+   use exic_contact_broad, only: broad_t, broad_search
+   use exic_contact_detect, only: contact_set_t, detect_contacts, FACING_LIMIT
+   use exic_contact_corrector, only: constraints_t, corrector_t
    implicit none
    private
 
    public :: contact_t
 
-   !> All contact pairs of a model. Inactive (no work at all) when the deck has no CONTact block.
+   !> A contact surface: segments (body on the left of n1 -> n2) and its nodes.
+   type :: surface_t
+      integer :: id = 0
+      integer :: nseg = 0, nnode = 0
+      integer, allocatable :: seg(:, :)        !< (2, nseg)
+      integer, allocatable :: link(:, :)       !< (2, nseg) neighbouring segments
+      integer, allocatable :: nodes(:)         !< (nnode) sorted
+      integer, allocatable :: where(:, :)      !< (2, nseg) positions of seg nodes in `nodes`
+      real(wp), allocatable :: nrm(:, :)       !< (2, nnode) node normals at t(n+1)
+   end type surface_t
+
+   !> One pass: the nodes of surface `slave` against the segments of surface `master`.
+   type :: pass_t
+      integer :: pair = 0                      !< index into pair results
+      integer :: slave = 0, master = 0         !< surface indices
+      integer :: method = METHOD_LAGRANGE
+      integer :: detection = DETECT_SWEPT
+      real(wp) :: k = 0.0_wp                   !< penalty stiffness
+      type(broad_t) :: broad
+      type(contact_set_t) :: hits
+   end type pass_t
+
+   !> Results of one pair for TPLOt `cont` requests.
+   type :: pair_result_t
+      integer :: id = 0
+      real(wp) :: fnormal = 0.0_wp, force(2) = 0.0_wp, penetration = 0.0_wp
+      integer :: nactive = 0
+   end type pair_result_t
+
+   !> All contact of a model. Inactive (no work at all) when the deck has no CONTact block.
    type :: contact_t
       logical :: active = .false.
+      logical :: any_penalty = .false.
+      type(surface_t), allocatable :: surfaces(:)
+      type(pass_t), allocatable :: passes(:)
+      type(pair_result_t), allocatable :: results(:)
+      type(constraints_t) :: cs
+      type(corrector_t) :: corr
+      real(wp) :: lref = 1.0_wp                !< mean segment length
+      real(wp) :: depth = 0.0_wp               !< penetration accepted at the start of a step
+      real(wp), allocatable :: xn(:, :), xp(:, :)
+      real(wp) :: max_penetration = 0.0_wp     !< largest over the run
    contains
       procedure :: init => contact_init
       procedure :: correct => contact_correct
+      procedure :: stable_dt => contact_stable_dt
       procedure :: pair_value => contact_pair_value
       procedure :: describe => contact_describe
    end type contact_t
 
 contains
 
-   !> Build surfaces and pairs from the model's contact block.
+   !> Build surfaces and passes from the model's contact block; refuse bodies that overlap.
    subroutine contact_init(self, model, st, err)
       class(contact_t), intent(inout) :: self
       type(model_t), intent(in) :: model
       type(state_t), intent(in) :: st
       type(error_t), allocatable, intent(out) :: err
+      integer :: k, np, nsurf
+      real(wp) :: len_sum
+      integer :: nlen
+
       self%active = model%contact%active
-      if (self%active) call make_error(err, 'CONTact is not available in this build')
-      if (.false.) print *, st%nnode
+      if (.not. self%active) return
+      call build_surfaces(self, model, err)
+      if (allocated(err)) return
+      call build_passes(self, model, err)
+      if (allocated(err)) return
+      nsurf = size(self%surfaces)
+      len_sum = 0.0_wp
+      nlen = 0
+      do k = 1, nsurf
+         associate (sf => self%surfaces(k))
+            len_sum = len_sum + sum(norm2(st%x0(:, sf%seg(2, :)) - st%x0(:, sf%seg(1, :)), dim=1))
+            nlen = nlen + sf%nseg
+         end associate
+      end do
+      if (nlen > 0) self%lref = len_sum/nlen
+      self%depth = 1.0e-6_wp*self%lref
+      self%corr%gap_tol = 1.0e-13_wp*self%lref
+      allocate (self%xn(2, st%nnode), self%xp(2, st%nnode))
+      np = size(self%passes)
+      do k = 1, np
+         if (self%passes(k)%method == METHOD_PENALTY) self%any_penalty = .true.
+      end do
+      call penalty_stiffness(self, model)
+      call check_overlap(self, st, err)
    end subroutine contact_init
 
-   !> Correct the predicted accelerations st%a so that active gaps close at t(n+2).
+   !> Surfaces of the SURFace records, plus one per region for AUTOmatic.
+   subroutine build_surfaces(self, model, err)
+      type(contact_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: err
+      integer :: ns, nauto, k, r
+      integer, allocatable :: regions(:)
+      logical, allocatable :: sel(:)
+
+      ns = 0
+      if (allocated(model%contact%surfaces)) ns = size(model%contact%surfaces)
+      nauto = 0
+      if (model%contact%automatic) then
+         regions = unique(model%mesh%region)
+         nauto = size(regions)
+      end if
+      allocate (self%surfaces(ns + nauto))
+      allocate (sel(model%mesh%nelem))
+      do k = 1, ns
+         associate (sp => model%contact%surfaces(k), sf => self%surfaces(k))
+            sf%id = sp%id
+            select case (sp%by)
+            case (SURF_REGION)
+               sel = model%mesh%region == sp%ref
+               call free_edges(model%mesh%nelem, model%mesh%conn, sel, sf%seg, err)
+            case (SURF_MATERIAL)
+               sel = model%mesh%mat == sp%ref
+               call free_edges(model%mesh%nelem, model%mesh%conn, sel, sf%seg, err)
+            case (SURF_FACETS)
+               sf%seg = sp%facets
+            end select
+            if (allocated(err)) then
+               err%message = 'SURFace '//itoa(sp%id)//': '//err%message
+               return
+            end if
+            if (size(sf%seg, 2) == 0) then
+               call make_error(err, 'SURFace '//itoa(sp%id)//' has no segments')
+               return
+            end if
+         end associate
+      end do
+      do k = 1, nauto
+         r = regions(k)
+         associate (sf => self%surfaces(ns + k))
+            sf%id = -r - 1          ! automatic surface of region r
+            sel = model%mesh%region == r
+            call free_edges(model%mesh%nelem, model%mesh%conn, sel, sf%seg, err)
+            if (allocated(err)) return
+         end associate
+      end do
+      do k = 1, size(self%surfaces)
+         associate (sf => self%surfaces(k))
+            sf%nseg = size(sf%seg, 2)
+            allocate (sf%link(2, sf%nseg), sf%where(2, sf%nseg))
+            call segment_links(sf%nseg, sf%seg, sf%link)
+            call surface_nodes(sf%nseg, sf%seg, sf%nodes)
+            sf%nnode = size(sf%nodes)
+            call locate_nodes(sf%nseg, sf%seg, sf%nnode, sf%nodes, sf%where)
+            allocate (sf%nrm(2, sf%nnode))
+         end associate
+      end do
+   end subroutine build_surfaces
+
+   !> Passes of the PAIR records (two for SYMMetric) and of AUTOmatic (two per region pair).
+   subroutine build_passes(self, model, err)
+      type(contact_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: err
+      integer :: npair, np, k, i, j, nauto, ns, maxid, npass
+      type(pass_t), allocatable :: p(:)
+
+      npair = 0
+      if (allocated(model%contact%pairs)) npair = size(model%contact%pairs)
+      ns = 0
+      if (allocated(model%contact%surfaces)) ns = size(model%contact%surfaces)
+      nauto = size(self%surfaces) - ns
+      allocate (p(2*npair + nauto*max(nauto - 1, 0)))
+      maxid = 0
+      np = 0
+      allocate (self%results(npair + merge(1, 0, nauto > 0)))
+      do k = 1, npair
+         associate (ps => model%contact%pairs(k))
+            self%results(k)%id = ps%id
+            maxid = max(maxid, ps%id)
+            i = surface_index(self, ps%slave)
+            j = surface_index(self, ps%master)
+            if (i == 0 .or. j == 0) then
+               call make_error(err, 'PAIR '//itoa(ps%id)//' names a surface that is not defined')
+               return
+            end if
+            select case (ps%kind)
+            case (PAIR_NTOS)
+               call add_pass(p, np, k, i, j, ps)
+            case (PAIR_SYMMETRIC)
+               call add_pass(p, np, k, i, j, ps)
+               call add_pass(p, np, k, j, i, ps)
+            case (PAIR_SELF)
+               call add_pass(p, np, k, i, i, ps)
+            end select
+         end associate
+      end do
+      if (nauto > 0) then
+         self%results(npair + 1)%id = maxid + 1
+         do i = ns + 1, ns + nauto
+            do j = ns + 1, ns + nauto
+               if (i /= j) call add_pass(p, np, npair + 1, i, j, model%contact%auto_options)
+            end do
+         end do
+      end if
+      npass = np
+      allocate (self%passes(npass))
+      do k = 1, npass
+         self%passes(k)%pair = p(k)%pair
+         self%passes(k)%slave = p(k)%slave
+         self%passes(k)%master = p(k)%master
+         self%passes(k)%method = p(k)%method
+         self%passes(k)%detection = p(k)%detection
+         self%passes(k)%k = p(k)%k
+      end do
+   end subroutine build_passes
+
+   !> Append a pass with the options of `ps`.
+   subroutine add_pass(p, np, pair, slave, master, ps)
+      type(pass_t), intent(inout) :: p(:)
+      integer, intent(inout) :: np
+      integer, intent(in) :: pair, slave, master
+      type(pair_spec_t), intent(in) :: ps
+      np = np + 1
+      p(np)%pair = pair
+      p(np)%slave = slave
+      p(np)%master = master
+      p(np)%method = ps%method
+      p(np)%detection = ps%detection
+      p(np)%k = ps%penalty
+      if (ps%penalty_scaled) p(np)%k = -ps%penalty   ! scale factor, resolved in penalty_stiffness
+   end subroutine add_pass
+
+   !> PENAlty,SCALe,f: k = f (lambda + 2 mu), the largest constrained modulus of the solids.
+   subroutine penalty_stiffness(self, model)
+      type(contact_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      real(wp) :: modulus
+      integer :: k
+      modulus = 0.0_wp
+      do k = 1, size(model%materials)
+         if (model%materials(k)%kind == MAT_SOLID) &
+            modulus = max(modulus, model%materials(k)%lambda + 2.0_wp*model%materials(k)%mu)
+      end do
+      do k = 1, size(self%passes)
+         if (self%passes(k)%k < 0.0_wp) self%passes(k)%k = -self%passes(k)%k*modulus
+      end do
+   end subroutine penalty_stiffness
+
+   !> Index of the surface with deck id `id` (0 if none).
+   integer function surface_index(self, id) result(k)
+      type(contact_t), intent(in) :: self
+      integer, intent(in) :: id
+      do k = 1, size(self%surfaces)
+         if (self%surfaces(k)%id == id) return
+      end do
+      k = 0
+   end function surface_index
+
+   !> Bodies that overlap at the start are an error naming the worst node, segment and depth.
+   subroutine check_overlap(self, st, err)
+      type(contact_t), intent(inout) :: self
+      type(state_t), intent(in) :: st
+      type(error_t), allocatable, intent(out) :: err
+      integer :: k, j, worst_node, worst_m(2)
+      real(wp) :: worst
+      character(len=200) :: buf
+
+      self%xn = st%x0 + st%u
+      worst = 0.0_wp
+      worst_node = 0
+      do k = 1, size(self%passes)
+         associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
+                    ms => self%surfaces(self%passes(k)%master))
+            call node_normals(st%nnode, self%xn, sl%nseg, sl%seg, sl%nnode, sl%where, sl%nrm)
+            call broad_search(ps%broad, st%nnode, self%xn, self%xn, sl%nnode, sl%nodes, ms%nseg, ms%seg, &
+                              0.5_wp*self%lref)
+            call detect_contacts(ps%hits, DETECT_STATIC, st%nnode, self%xn, self%xn, sl%nnode, sl%nodes, &
+                                 sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
+                                 0.5_wp*self%lref, FACING_LIMIT)
+            do j = 1, ps%hits%n
+               if (-ps%hits%gap(j) > worst) then
+                  worst = -ps%hits%gap(j)
+                  worst_node = ps%hits%slave(j)
+                  worst_m = ps%hits%master(:, j)
+               end if
+            end do
+         end associate
+      end do
+      if (worst > 1.0e-8_wp*self%lref) then
+         write (buf, '(a,i0,a,i0,a,i0,a,es10.3)') 'bodies overlap at the start: node ', worst_node, &
+            ' is inside segment ', worst_m(1), '-', worst_m(2), ' by ', worst
+         call make_error(err, trim(buf)//' (move the bodies apart or fix the mesh)')
+      end if
+   end subroutine check_overlap
+
+   !> Correct the predicted accelerations st%a so that every active gap closes at t(n+2).
+   !> vt is the predictor velocity v~(n+1) (eq. 4.4); st%dt_prev and st%dt are dt(n), dt(n+1).
    subroutine contact_correct(self, st, vt, err)
       class(contact_t), intent(inout) :: self
       type(state_t), intent(inout) :: st
       real(wp), intent(in) :: vt(:, :)
       type(error_t), allocatable, intent(out) :: err
-      if (.not. self%active) then
-         st%nactive = 0
-         return
+      integer :: k, j, i, node
+      real(wp) :: c, dt, gnow, pen
+
+      st%nactive = 0
+      if (.not. self%active) return
+      st%fcon = 0.0_wp
+      dt = st%dt
+      ! positions at t(n+1) and predicted at t(n+2), eq. 4.4
+      self%xn = st%x0 + st%u
+      self%xp = self%xn + dt*vt + (0.5_wp*dt*dt)*st%a
+      do k = 1, size(self%results)
+         self%results(k)%fnormal = 0.0_wp
+         self%results(k)%force = 0.0_wp
+         self%results(k)%nactive = 0
+         self%results(k)%penetration = 0.0_wp
+      end do
+      call self%cs%reserve(64)
+      do k = 1, size(self%passes)
+         associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
+                    ms => self%surfaces(self%passes(k)%master))
+            call node_normals(st%nnode, self%xn, sl%nseg, sl%seg, sl%nnode, sl%where, sl%nrm)
+            if (ps%method == METHOD_PENALTY) then
+               call penalty_pass(self, ps, sl, ms, st)
+               cycle
+            end if
+            call broad_search(ps%broad, st%nnode, self%xn, self%xp, sl%nnode, sl%nodes, ms%nseg, ms%seg, &
+                              self%depth)
+            if (ps%broad%ncand == 0) cycle
+            call detect_contacts(ps%hits, ps%detection, st%nnode, self%xn, self%xp, sl%nnode, sl%nodes, &
+                                 sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
+                                 self%depth, FACING_LIMIT)
+            do j = 1, ps%hits%n
+               node = ps%hits%slave(j)
+               associate (m1 => ps%hits%master(1, j), m2 => ps%hits%master(2, j), &
+                          al => ps%hits%alpha(j), nr => ps%hits%normal(:, j))
+                  ! gap at t(n+1) along the frozen normal (eq. 3.19)
+                  gnow = dot_product(self%xn(:, node) - (1.0_wp - al)*self%xn(:, m1) - al*self%xn(:, m2), nr)
+                  call self%cs%add(node, m1, m2, al, nr, ps%hits%gap(j), gnow, ps%pair)
+               end associate
+            end do
+         end associate
+      end do
+      if (self%cs%n > 0) then
+         ! c = dt(n+1) (dt(n) + dt(n+1)) / 2, eq. 4.7
+         c = 0.5_wp*dt*(st%dt_prev + dt)
+         call self%corr%solve(self%cs, st%nnode, st%minv, c, st%a, st%fcon, err)
+         if (allocated(err)) return
+         do i = 1, self%cs%n
+            associate (r => self%results(self%cs%pair(i)))
+               pen = max(0.0_wp, -self%cs%gap_now(i))
+               r%penetration = max(r%penetration, pen)
+               if (self%cs%p(i) <= 0.0_wp) cycle
+               r%nactive = r%nactive + 1
+               r%fnormal = r%fnormal + self%cs%p(i)
+               r%force = r%force + self%cs%p(i)*self%cs%nrm(:, i)
+            end associate
+         end do
+         st%nactive = st%nactive + count(self%cs%p(1:self%cs%n) > 0.0_wp)
       end if
-      if (.false.) print *, vt(1, 1)
+      do k = 1, size(self%results)
+         self%max_penetration = max(self%max_penetration, self%results(k)%penetration)
+      end do
    end subroutine contact_correct
 
-   !> A TPLOt `cont,pair,comp` value.
+   !> Penalty baseline: f = k (-g) n on the slave at t(n+1), opposite on the master nodes.
+   subroutine penalty_pass(self, ps, sl, ms, st)
+      type(contact_t), intent(inout) :: self
+      type(pass_t), intent(inout) :: ps
+      type(surface_t), intent(in) :: sl, ms
+      type(state_t), intent(inout) :: st
+      integer :: j, node, m1, m2
+      real(wp) :: f(2), al, pen
+      call broad_search(ps%broad, st%nnode, self%xn, self%xn, sl%nnode, sl%nodes, ms%nseg, ms%seg, &
+                        0.25_wp*self%lref)
+      if (ps%broad%ncand == 0) return
+      call detect_contacts(ps%hits, DETECT_STATIC, st%nnode, self%xn, self%xn, sl%nnode, sl%nodes, &
+                           sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
+                           0.25_wp*self%lref, FACING_LIMIT)
+      do j = 1, ps%hits%n
+         pen = -ps%hits%gap(j)
+         if (pen <= 0.0_wp) cycle
+         node = ps%hits%slave(j)
+         m1 = ps%hits%master(1, j)
+         m2 = ps%hits%master(2, j)
+         al = ps%hits%alpha(j)
+         f = ps%k*pen*ps%hits%normal(:, j)
+         st%fcon(:, node) = st%fcon(:, node) + f
+         st%fcon(:, m1) = st%fcon(:, m1) - (1.0_wp - al)*f
+         st%fcon(:, m2) = st%fcon(:, m2) - al*f
+         st%a(:, node) = st%a(:, node) + st%minv(:, node)*f
+         st%a(:, m1) = st%a(:, m1) - st%minv(:, m1)*(1.0_wp - al)*f
+         st%a(:, m2) = st%a(:, m2) - st%minv(:, m2)*al*f
+         associate (r => self%results(ps%pair))
+            r%nactive = r%nactive + 1
+            r%fnormal = r%fnormal + ps%k*pen
+            r%force = r%force + f
+            r%penetration = max(r%penetration, pen)
+         end associate
+         st%nactive = st%nactive + 1
+      end do
+   end subroutine penalty_pass
+
+   !> Critical step of the penalty springs: 2 / sqrt(k (1/m_s + 1/m_master)) over the slave
+   !> nodes (huge when no pass uses penalty). Lagrange contact never limits the step.
+   real(wp) function contact_stable_dt(self, st) result(dt)
+      class(contact_t), intent(in) :: self
+      type(state_t), intent(in) :: st
+      integer :: k, j
+      real(wp) :: mmin, w2
+      dt = huge(1.0_wp)
+      if (.not. (self%active .and. self%any_penalty)) return
+      do k = 1, size(self%passes)
+         associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
+                    ms => self%surfaces(self%passes(k)%master))
+            if (ps%method /= METHOD_PENALTY) cycle
+            mmin = huge(1.0_wp)
+            do j = 1, ms%nnode
+               if (st%minv(1, ms%nodes(j)) > 0.0_wp) mmin = min(mmin, 1.0_wp/st%minv(1, ms%nodes(j)))
+            end do
+            do j = 1, sl%nnode
+               w2 = ps%k*(st%minv(1, sl%nodes(j)) + merge(1.0_wp/mmin, 0.0_wp, mmin < huge(1.0_wp)))
+               if (w2 > 0.0_wp) dt = min(dt, 2.0_wp/sqrt(w2))
+            end do
+         end associate
+      end do
+   end function contact_stable_dt
+
+   !> A TPLOt `cont,pair,comp` value: 1 normal force, 2-3 force x, y on the slave side,
+   !> 4 active constraints, 5 largest penetration at t(n+1).
    real(wp) function contact_pair_value(self, pair, comp) result(val)
       class(contact_t), intent(in) :: self
       integer, intent(in) :: pair, comp
+      integer :: k
       val = 0.0_wp
-      if (.not. self%active .or. pair < 0 .or. comp < 0) return
+      if (.not. self%active) return
+      do k = 1, size(self%results)
+         if (self%results(k)%id /= pair) cycle
+         select case (comp)
+         case (1)
+            val = self%results(k)%fnormal
+         case (2)
+            val = self%results(k)%force(1)
+         case (3)
+            val = self%results(k)%force(2)
+         case (4)
+            val = real(self%results(k)%nactive, wp)
+         case (5)
+            val = self%results(k)%penetration
+         end select
+         return
+      end do
    end function contact_pair_value
 
-   !> Surfaces and pairs in <stem>.out.
+   !> Surfaces and passes in <stem>.out.
    subroutine contact_describe(self, files)
       class(contact_t), intent(in) :: self
       type(history_files_t), intent(inout) :: files
-      if (.not. self%active) call files%say('contact: none')
+      integer :: k
+      character(len=*), parameter :: methods(2) = ['Lagrange (implicit corrector)', 'penalty                      ']
+      character(len=*), parameter :: detections(2) = ['swept ', 'static']
+      if (.not. self%active) then
+         call files%say('contact: none')
+         return
+      end if
+      do k = 1, size(self%surfaces)
+         associate (sf => self%surfaces(k))
+            if (sf%id >= 0) then
+               call files%say('contact surface '//itoa(sf%id)//': '//itoa(sf%nseg)//' segments, '// &
+                              itoa(sf%nnode)//' nodes')
+            else
+               call files%say('contact surface of region '//itoa(-sf%id - 1)//' (automatic): '// &
+                              itoa(sf%nseg)//' segments, '//itoa(sf%nnode)//' nodes')
+            end if
+         end associate
+      end do
+      do k = 1, size(self%passes)
+         associate (ps => self%passes(k))
+            call files%say('contact pass '//itoa(k)//' of pair '//itoa(self%results(ps%pair)%id)// &
+                           ': nodes of surface '//itoa(ps%slave)//' against segments of surface '// &
+                           itoa(ps%master)//', '//trim(methods(ps%method))//', '// &
+                           trim(detections(ps%detection)))
+         end associate
+      end do
    end subroutine contact_describe
+
+   !> Sorted unique values.
+   function unique(a) result(u)
+      integer, intent(in) :: a(:)
+      integer, allocatable :: u(:)
+      integer :: i
+      logical, allocatable :: seen(:)
+      integer :: lo, hi
+      lo = minval(a)
+      hi = maxval(a)
+      allocate (seen(lo:hi), source=.false.)
+      do i = 1, size(a)
+         seen(a(i)) = .true.
+      end do
+      u = pack([(i, i=lo, hi)], seen)
+   end function unique
+
+   !> An integer as text.
+   function itoa(i) result(s)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=16) :: b
+      write (b, '(i0)') i
+      s = trim(b)
+   end function itoa
 
 end module exic_contact_contact

@@ -58,6 +58,7 @@ module exic_contact_corrector
       ! work arrays (grown, never shrunk)
       integer, allocatable :: idx(:), pos(:), ap(:), ai(:), bad(:), mark(:)
       real(wp), allocatable :: ax(:), s(:, :), rhs(:), sol(:)
+      real(wp), allocatable :: fwork(:, :)          !< (2, nnode) G p of the current pass
       logical, allocatable :: drop(:)
       integer, allocatable :: nstart(:), nlist(:)   !< node -> candidates incidence (CSR)
    contains
@@ -118,7 +119,7 @@ contains
       self%active(k) = .false.
    end subroutine constraints_add
 
-   !> Solve for the multipliers of `cs` and add the correction M^-1 G p to `a`; fcon = G p.
+   !> Solve for the multipliers of `cs`, add the correction M^-1 G p to `a` and G p to `fcon`.
    !> minv(2, nnode) is the inverse lumped mass per dof (0 on rigid, fixed and inactive dofs).
    subroutine corrector_solve(self, cs, nnode, minv, c, a, fcon, err)
       class(corrector_t), intent(inout) :: self
@@ -136,13 +137,16 @@ contains
       m = cs%n
       self%passes = 0
       self%nredundant = 0
-      fcon = 0.0_wp
       if (m == 0) return
       cs%p(1:m) = 0.0_wp
       cs%active(1:m) = cs%gap(1:m) < 0.0_wp
       if (.not. any(cs%active(1:m))) return
       call grow_i(self%pos, m)
       call build_incidence(self, cs, nnode)
+      if (allocated(self%fwork)) then
+         if (size(self%fwork, 2) /= nnode) deallocate (self%fwork)
+      end if
+      if (.not. allocated(self%fwork)) allocate (self%fwork(2, nnode))
 
       pass = 0
       do
@@ -181,11 +185,11 @@ contains
          do k = 1, nact
             if (.not. self%drop(k)) cs%p(self%idx(k)) = max(self%sol(k), 0.0_wp)
          end do
-         call apply(cs, nnode, minv, fcon)
+         call apply(cs, nnode, self%fwork)
          ! corrected gaps of every candidate: g = g~ + c G^T M^-1 G p
          changed = .false.
          do i = 1, m
-            g = cs%gap(i) + c*gap_change(cs, i, nnode, minv, fcon)
+            g = cs%gap(i) + c*gap_change(cs, i, nnode, minv, self%fwork)
             if (cs%active(i)) then
                if (self%drop(self%pos(i)) .and. cs%p(i) == 0.0_wp .and. self%sol(self%pos(i)) < 0.0_wp) then
                   cs%active(i) = .false.     ! tensile: released
@@ -207,14 +211,14 @@ contains
          cs%active(i) = cs%p(i) > 0.0_wp
       end do
       ! a(n+1) = a~(n+1) + M^-1 G p  (eq. 4.5 with p = -lambda)
-      a = a + minv*fcon
+      a = a + minv*self%fwork
+      fcon = fcon + self%fwork
    end subroutine corrector_solve
 
    !> fcon = G p: the nodal contact forces.
-   subroutine apply(cs, nnode, minv, fcon)
+   subroutine apply(cs, nnode, fcon)
       type(constraints_t), intent(in) :: cs
       integer, intent(in) :: nnode
-      real(wp), intent(in) :: minv(2, nnode)
       real(wp), intent(out) :: fcon(2, nnode)
       integer :: i, k
       fcon = 0.0_wp
@@ -225,7 +229,6 @@ contains
             fcon(:, cs%node(k, i)) = fcon(:, cs%node(k, i)) + cs%p(i)*cs%w(k, i)*cs%nrm(:, i)
          end do
       end do
-      if (.false.) print *, minv(1, 1)
    end subroutine apply
 
    !> G_i^T M^-1 f for candidate i: the change of its gap per unit c.

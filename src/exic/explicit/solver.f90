@@ -71,14 +71,14 @@ contains
             allocate (s%elems(s%nel), s%conn(4, s%nel))
             s%elems = pack([(i, i=1, ne)], model%mesh%mat == im)
             s%conn = model%mesh%conn(:, s%elems)
-            allocate (s%gdn(8, s%nq**2, s%nel), s%wdj(s%nq**2, s%nel), s%gamma(4, s%nel), s%area0(s%nel))
-            call q4_reference(s%nq, s%nel, s%conn, st%x0, s%gdn, s%wdj, s%gamma, s%area0, ebad)
+            allocate (s%gdn(8, s%nq**2, s%nel), s%wdj(s%nq**2, s%nel), s%gamma(4, s%nel))
+            call q4_reference(s%nq, s%nel, nn, s%conn, st%x0, s%gdn, s%wdj, s%gamma, ebad)
             if (ebad /= 0) then
                write (buf, '(a,i0)') 'element ', s%elems(ebad)
                call make_error(err, trim(buf)//' has a non-positive Jacobian in the reference mesh')
                return
             end if
-            call q4_lumped_mass(s%nel, s%conn, s%gdn, s%wdj, s%rho, st%mass)
+            call q4_lumped_mass(s%nel, nn, s%conn, st%x0, s%rho, st%mass)
             st%active(s%conn) = .true.
             st%eset(s%elems) = k
             st%eloc(s%elems) = [(i, i=1, s%nel)]
@@ -127,10 +127,10 @@ contains
          associate (s => sets(k))
             if (s%kind /= MAT_SOLID) cycle
             if (s%nq == 2) then
-               call q4_force_2x2(s%nel, s%conn, st%u, s%gdn, s%wdj, s%lambda, s%mu, st%fint, w, jm, eb)
+               call q4_force_2x2(s%nel, st%nnode, s%conn, st%u, s%gdn, s%wdj, s%lambda, s%mu, st%fint, w, jm, eb)
                whg = 0.0_wp
             else
-               call q4_force_1pt(s%nel, s%conn, st%u, s%gdn, s%wdj, s%gamma, s%lambda, s%mu, &
+               call q4_force_1pt(s%nel, st%nnode, s%conn, st%u, s%gdn, s%wdj, s%gamma, s%lambda, s%mu, &
                                  s%hourglass, st%fint, w, whg, jm, eb)
             end if
             st%strain = st%strain + w
@@ -157,7 +157,7 @@ contains
       do k = 1, size(sets)
          associate (s => sets(k))
             if (s%kind /= MAT_SOLID) cycle
-            call q4_stable_dt(s%nel, s%conn, x, s%area0, s%lambda, s%mu, s%rho, d, e)
+            call q4_stable_dt(s%nq, s%nel, st%nnode, s%conn, x, s%wdj, s%lambda, s%mu, s%rho, d, e)
             if (d < dtmin) then
                dtmin = d
                emin = s%elems(e)
@@ -194,7 +194,7 @@ contains
       j = st%eloc(e)
       associate (s => sets(st%eset(e)))
          if (s%kind /= MAT_SOLID) return
-         call q4_stress(s%nq, 1, s%conn(:, j:j), st%u, s%gdn(:, :, j:j), s%lambda, s%mu, s1)
+         call q4_stress(s%nq, 1, st%nnode, s%conn(:, j:j), st%u, s%gdn(:, :, j:j), s%lambda, s%mu, s1)
          sig = s1(:, 1)
       end associate
    end subroutine element_stress

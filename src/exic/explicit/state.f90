@@ -17,7 +17,6 @@ module exic_explicit_state
       real(wp), allocatable :: gdn(:, :, :)     !< (8, nq*nq, nel) reference shape derivatives
       real(wp), allocatable :: wdj(:, :)        !< (nq*nq, nel) weight x det J0
       real(wp), allocatable :: gamma(:, :)      !< (4, nel) hourglass vectors (nq = 1)
-      real(wp), allocatable :: area0(:)         !< (nel) reference areas
       real(wp) :: lambda = 0.0_wp, mu = 0.0_wp, rho = 0.0_wp, hourglass = 0.0_wp
    end type element_set_t
 
