@@ -10,8 +10,8 @@
 !> Kill safety: after every output time the HDF5 file is flushed (H5Fflush: data, metadata and
 !> superblock on disk) and only then is the XDMF file rewritten, to a temporary name renamed over
 !> the old one, so a run killed at any moment leaves an HDF5 file readable up to its last flushed
-!> output time and an XDMF file that is complete and lists only flushed times. The file format
-!> (HDF5 1.8-compatible superblock) has no "file open" flag, so no repair step is needed.
+!> output time and an XDMF file that is complete and lists only flushed times. The default
+!> (version 0) superblock has no "file open" flag, so no repair step is needed after a kill.
 !> The layout is documented in doc/fields.md.
 module exic_io_fields
    use exic_base_kinds, only: wp, i8
@@ -46,6 +46,7 @@ module exic_io_fields
       character(len=:), allocatable :: energy_names(:)
       character(len=:), allocatable :: grids        !< XDMF text of every grid written so far
       integer :: grids_len = 0
+      logical :: broken = .false.                   !< an HDF5 write failed half-way
    contains
       procedure :: open => writer_open
       procedure :: write_step => writer_write_step
@@ -87,6 +88,7 @@ contains
       self%t_last = 0.0_wp
       self%nenergy = -1
       self%grids_len = 0
+      self%broken = .false.
       if (allocated(self%energy_names)) deallocate (self%energy_names)
 
       call self%h5%create(path_h5, err)
@@ -138,6 +140,7 @@ contains
       if (.not. allocated(err)) call create_views(self%h5, self%ntime, self%nnode, self%nelem, t, step, err)
       if (.not. allocated(err)) call self%h5%flush(err)
       if (allocated(err)) then
+         self%broken = .true.
          err%message = 'field output at t = '//real_text(t)//': '//err%message
          return
       end if
@@ -220,6 +223,8 @@ contains
       pre = 'field output at t = '//real_text(t)//': '
       if (.not. self%h5%is_open()) then
          call make_error(err, pre//'the writer is not open')
+      else if (self%broken) then
+         call make_error(err, pre//'an earlier output failed half-way; the file takes no more')
       else if (any(shape(u) /= [2, self%nnode]) .or. any(shape(v) /= [2, self%nnode]) .or. &
                any(shape(a) /= [2, self%nnode]) .or. any(shape(fcont) /= [2, self%nnode])) then
          call make_error(err, pre//'u, v, a and contact force must have shape (2, nnode)')
@@ -335,10 +340,18 @@ contains
       end do
       do i = 1, size(names)
          call self%h5%create_series('/energies/'//trim(names(i)), DTYPE_REAL, none, err)
-         if (allocated(err)) return
+         if (.not. allocated(err) .and. i == size(names)) &
+            call self%h5%write_attr('/energies', 'names', join(names), err)
+         if (allocated(err)) then
+            self%broken = .true.
+            return
+         end if
       end do
-      call self%h5%write_attr('/energies', 'names', join(names), err)
-      if (allocated(err)) return
+      if (size(names) == 0) call self%h5%write_attr('/energies', 'names', '', err)
+      if (allocated(err)) then
+         self%broken = .true.
+         return
+      end if
       self%energy_names = names
       self%nenergy = size(names)
    end subroutine create_energy_series
