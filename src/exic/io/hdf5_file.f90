@@ -1,0 +1,786 @@
+!> A small wrapper over the HDF5 Fortran API.
+!>
+!> `hdf5_file_t` owns one file handle. It creates groups, fixed datasets, extendible "series"
+!> (chunked, unlimited last dimension, grown one slab at a time), virtual "views" of one slab of
+!> a series, and attributes. Every HDF5 status is checked; a failure becomes an `error_t` naming
+!> the operation, the object and the file, and every handle opened on the way is closed again.
+!>
+!> Shapes are given in Fortran order. HDF5 stores them reversed, so a Fortran array x(2, n)
+!> reads as shape (n, 2) in C, Python (h5py) and h5dump.
+module exic_io_hdf5_file
+   use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_char
+   use exic_base_kinds, only: wp, i8
+   use exic_base_error, only: error_t, make_error
+   use hdf5, only: hid_t, hsize_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fopen_f, h5fclose_f, &
+                   h5fflush_f, h5gcreate_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
+                   h5sclose_f, h5sselect_hyperslab_f, h5sget_simple_extent_ndims_f, &
+                   h5sget_simple_extent_dims_f, h5dcreate_f, h5dopen_f, h5dclose_f, h5dwrite_f, &
+                   h5dget_space_f, h5dset_extent_f, h5pcreate_f, h5pclose_f, h5pset_chunk_f, &
+                   h5pset_fill_value_f, h5pset_virtual_f, h5oopen_f, h5oclose_f, h5aexists_f, &
+                   h5adelete_f, h5acreate_f, h5awrite_f, h5aclose_f, h5tcopy_f, h5tclose_f, &
+                   h5tset_size_f, h5tset_strpad_f, h5kind_to_type, &
+                   H5_REAL_KIND, H5_INTEGER_KIND, H5F_ACC_TRUNC_F, H5F_ACC_RDWR_F, &
+                   H5F_ACC_RDONLY_F, H5F_SCOPE_GLOBAL_F, H5S_UNLIMITED_F, H5S_SCALAR_F, &
+                   H5S_SELECT_SET_F, H5P_DATASET_CREATE_F, H5T_IEEE_F64LE, H5T_STD_I32LE, &
+                   H5T_STD_I64LE, H5T_FORTRAN_S1, H5T_STR_NULLPAD_F
+   implicit none
+   private
+
+   public :: hdf5_file_t
+   public :: DTYPE_REAL, DTYPE_INT, DTYPE_INT64
+
+   !> Element types of datasets: real(wp) (IEEE 64-bit), default integer (32-bit), integer(i8).
+   integer, parameter :: DTYPE_REAL = 1, DTYPE_INT = 2, DTYPE_INT64 = 3
+
+   !> Target size of one chunk of a series, bytes (several slabs share a chunk when slabs are small).
+   integer, parameter :: CHUNK_BYTES = 65536
+   !> Most slabs in one chunk.
+   integer, parameter :: CHUNK_SLABS_MAX = 64
+
+   !> One open HDF5 file.
+   type :: hdf5_file_t
+      private
+      integer(hid_t) :: fid = -1
+      character(len=:), allocatable :: path
+   contains
+      procedure :: create => file_create
+      procedure :: open => file_open
+      procedure :: is_open => file_is_open
+      procedure :: name => file_name
+      procedure :: create_group => file_create_group
+      procedure :: create_series => file_create_series
+      procedure :: series_length => file_series_length
+      procedure :: create_view => file_create_view
+      procedure :: flush => file_flush
+      procedure :: close => file_close
+      procedure, private :: write_real1, write_real2, write_int1, write_int2
+      procedure, private :: append_real0, append_real1, append_real2, append_int1, append_int64_0
+      procedure, private :: attr_real0, attr_real1, attr_int0, attr_int1, attr_int64_0, attr_string
+      !> Write a fixed dataset: `call f%write(name, x, err)`, x real(wp) or integer, rank 1 or 2.
+      generic :: write => write_real1, write_real2, write_int1, write_int2
+      !> Append one slab to a series: `call f%append(name, x, err)`; x has the series' leading shape.
+      generic :: append => append_real0, append_real1, append_real2, append_int1, append_int64_0
+      !> Write (or replace) an attribute of the object `obj`: `call f%write_attr(obj, name, v, err)`.
+      generic :: write_attr => attr_real0, attr_real1, attr_int0, attr_int1, attr_int64_0, attr_string
+   end type hdf5_file_t
+
+contains
+
+   ! ---------------------------------------------------------------------------- files
+
+   !> Initialise the library (idempotent) and silence its own error printing: exic reports errors.
+   subroutine library_init(err)
+      type(error_t), allocatable, intent(out) :: err
+      integer :: st
+      call h5open_f(st)
+      if (st < 0) then
+         call make_error(err, 'cannot initialise the HDF5 library')
+         return
+      end if
+      call h5eset_auto_f(0, st)
+      if (st < 0) call make_error(err, 'cannot switch off HDF5 error printing')
+   end subroutine library_init
+
+   !> Create (or truncate) the file `path` for writing.
+   subroutine file_create(self, path, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: path
+      type(error_t), allocatable, intent(out) :: err
+      integer :: st
+
+      if (self%fid >= 0) then
+         call make_error(err, "HDF5: cannot create '"//path//"': this handle already has '"// &
+                         self%path//"' open")
+         return
+      end if
+      call library_init(err)
+      if (allocated(err)) return
+      call h5fcreate_f(path, H5F_ACC_TRUNC_F, self%fid, st)
+      if (st < 0) then
+         self%fid = -1
+         call make_error(err, "HDF5: cannot create file '"//path// &
+                         "' (missing directory, no permission, or open in another program)")
+         return
+      end if
+      self%path = path
+   end subroutine file_create
+
+   !> Open the existing file `path`, for writing when `writable`.
+   subroutine file_open(self, path, writable, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: path
+      logical, intent(in) :: writable
+      type(error_t), allocatable, intent(out) :: err
+      integer :: st
+
+      if (self%fid >= 0) then
+         call make_error(err, "HDF5: cannot open '"//path//"': this handle already has '"// &
+                         self%path//"' open")
+         return
+      end if
+      call library_init(err)
+      if (allocated(err)) return
+      if (writable) then
+         call h5fopen_f(path, H5F_ACC_RDWR_F, self%fid, st)
+      else
+         call h5fopen_f(path, H5F_ACC_RDONLY_F, self%fid, st)
+      end if
+      if (st < 0) then
+         self%fid = -1
+         call make_error(err, "HDF5: cannot open file '"//path//"'")
+         return
+      end if
+      self%path = path
+   end subroutine file_open
+
+   !> True while a file is open.
+   pure logical function file_is_open(self)
+      class(hdf5_file_t), intent(in) :: self
+      file_is_open = self%fid >= 0
+   end function file_is_open
+
+   !> The path of the open file ('' when closed).
+   function file_name(self) result(path)
+      class(hdf5_file_t), intent(in) :: self
+      character(len=:), allocatable :: path
+      if (allocated(self%path) .and. self%fid >= 0) then
+         path = self%path
+      else
+         path = ''
+      end if
+   end function file_name
+
+   !> Write everything cached to disk (data and metadata), so that the file is complete and
+   !> readable as it stands even if the process dies before `close`.
+   subroutine file_flush(self, err)
+      class(hdf5_file_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      integer :: st
+      if (.not. check_open(self, 'flush', err)) return
+      call h5fflush_f(self%fid, H5F_SCOPE_GLOBAL_F, st)
+      if (st < 0) call make_error(err, "HDF5: cannot flush file '"//self%path//"'")
+   end subroutine file_flush
+
+   !> Close the file (nothing to do when none is open).
+   subroutine file_close(self, err)
+      class(hdf5_file_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      integer :: st
+      if (self%fid < 0) return
+      call h5fclose_f(self%fid, st)
+      self%fid = -1
+      if (st < 0) call make_error(err, "HDF5: cannot close file '"//self%path//"'")
+   end subroutine file_close
+
+   !> Create the group `name` (a full path such as '/mesh'; its parent must exist).
+   subroutine file_create_group(self, name, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      type(error_t), allocatable, intent(out) :: err
+      integer(hid_t) :: gid
+      integer :: st
+      if (.not. check_open(self, 'create group '//name, err)) return
+      call h5gcreate_f(self%fid, name, gid, st)
+      if (st < 0) then
+         call fail(self, err, 'create group', name)
+         return
+      end if
+      call h5gclose_f(gid, st)
+      if (st < 0) call fail(self, err, 'close group', name)
+   end subroutine file_create_group
+
+   ! ---------------------------------------------------------------------------- fixed datasets
+
+   !> Write the real(wp) vector `x` as the new dataset `name`.
+   subroutine write_real1(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      real(wp), intent(in), target, contiguous :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call write_raw(self, name, DTYPE_REAL, int(shape(x), hsize_t), p, err)
+   end subroutine write_real1
+
+   !> Write the real(wp) matrix `x` as the new dataset `name` (HDF5 shape reversed).
+   subroutine write_real2(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      real(wp), intent(in), target, contiguous :: x(:, :)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call write_raw(self, name, DTYPE_REAL, int(shape(x), hsize_t), p, err)
+   end subroutine write_real2
+
+   !> Write the integer vector `x` as the new dataset `name`.
+   subroutine write_int1(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer, intent(in), target, contiguous :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call write_raw(self, name, DTYPE_INT, int(shape(x), hsize_t), p, err)
+   end subroutine write_int1
+
+   !> Write the integer matrix `x` as the new dataset `name` (HDF5 shape reversed).
+   subroutine write_int2(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer, intent(in), target, contiguous :: x(:, :)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call write_raw(self, name, DTYPE_INT, int(shape(x), hsize_t), p, err)
+   end subroutine write_int2
+
+   !> Create the fixed dataset `name` of shape `dims` and write the data at `p` (none when empty).
+   subroutine write_raw(self, name, dtype, dims, p, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: dtype
+      integer(hsize_t), intent(in) :: dims(:)
+      type(c_ptr), intent(in) :: p
+      type(error_t), allocatable, intent(out) :: err
+      integer(hid_t) :: space, did
+      integer :: st
+
+      if (.not. check_open(self, 'write '//name, err)) return
+      space = -1
+      did = -1
+      steps: block
+         call h5screate_simple_f(size(dims), dims, space, st)
+         if (st < 0) then
+            call fail(self, err, 'create the dataspace of', name)
+            exit steps
+         end if
+         call h5dcreate_f(self%fid, name, file_type(dtype), space, did, st)
+         if (st < 0) then
+            call fail(self, err, 'create dataset', name)
+            exit steps
+         end if
+         if (product(dims) > 0) then
+            call h5dwrite_f(did, mem_type(dtype), p, st)
+            if (st < 0) then
+               call fail(self, err, 'write dataset', name)
+               exit steps
+            end if
+         end if
+      end block steps
+      call close_handles(err, self, name, dset=did, space=space)
+   end subroutine write_raw
+
+   ! ---------------------------------------------------------------------------- series
+
+   !> Create the extendible dataset `name` of Fortran shape (lead..., 0), unlimited in its last
+   !> dimension, chunked so that a chunk holds whole slabs (about CHUNK_BYTES, no compression).
+   subroutine file_create_series(self, name, dtype, lead, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: dtype
+      integer, intent(in) :: lead(:)   !< leading (fixed) dimensions, may be empty
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t) :: dims(size(lead) + 1), maxdims(size(lead) + 1), chunk(size(lead) + 1)
+      integer(hid_t) :: space, dcpl, did
+      integer :: st, rank
+      integer(i8) :: slab_bytes
+
+      if (.not. check_open(self, 'create series '//name, err)) return
+      rank = size(lead) + 1
+      dims(1:rank - 1) = int(lead, hsize_t)
+      dims(rank) = 0
+      maxdims = dims
+      maxdims(rank) = H5S_UNLIMITED_F
+      chunk(1:rank - 1) = int(max(lead, 1), hsize_t)
+      slab_bytes = product(int(max(lead, 1), i8))*elem_bytes(dtype)
+      chunk(rank) = int(max(1_i8, min(int(CHUNK_SLABS_MAX, i8), CHUNK_BYTES/slab_bytes)), hsize_t)
+      space = -1
+      dcpl = -1
+      did = -1
+      steps: block
+         call h5screate_simple_f(rank, dims, space, st, maxdims)
+         if (st < 0) then
+            call fail(self, err, 'create the dataspace of series', name)
+            exit steps
+         end if
+         call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl, st)
+         if (st >= 0) call h5pset_chunk_f(dcpl, rank, chunk, st)
+         if (st < 0) then
+            call fail(self, err, 'set the chunking of series', name)
+            exit steps
+         end if
+         call h5dcreate_f(self%fid, name, file_type(dtype), space, did, st, dcpl_id=dcpl)
+         if (st < 0) call fail(self, err, 'create series', name)
+      end block steps
+      call close_handles(err, self, name, dset=did, space=space, plist=dcpl)
+   end subroutine file_create_series
+
+   !> Number of slabs in the series `name` (its last dimension).
+   subroutine file_series_length(self, name, n, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer, intent(out) :: n
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t), allocatable :: dims(:)
+      integer(hid_t) :: did
+      n = 0
+      call series_dims(self, name, did, dims, err)
+      if (allocated(err)) return
+      n = int(dims(size(dims)))
+      call close_handles(err, self, name, dset=did)
+   end subroutine file_series_length
+
+   !> Open the series `name` and return its handle and current dimensions (Fortran order).
+   subroutine series_dims(self, name, did, dims, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer(hid_t), intent(out) :: did
+      integer(hsize_t), allocatable, intent(out) :: dims(:)
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t), allocatable :: maxdims(:)
+      integer(hid_t) :: space
+      integer :: st, rank
+
+      did = -1
+      space = -1
+      if (.not. check_open(self, 'open series '//name, err)) return
+      steps: block
+         call h5dopen_f(self%fid, name, did, st)
+         if (st < 0) then
+            call fail(self, err, 'open dataset', name)
+            exit steps
+         end if
+         call h5dget_space_f(did, space, st)
+         if (st >= 0) call h5sget_simple_extent_ndims_f(space, rank, st)
+         if (st < 0) then
+            call fail(self, err, 'get the dataspace of', name)
+            exit steps
+         end if
+         allocate (dims(rank), maxdims(rank))
+         call h5sget_simple_extent_dims_f(space, dims, maxdims, st)
+         if (st < 0) call fail(self, err, 'get the dimensions of', name)
+      end block steps
+      call close_handles(err, self, name, space=space)
+      if (allocated(err)) call close_handles(err, self, name, dset=did)
+   end subroutine series_dims
+
+   !> Append the scalar `x` to the real series `name` of shape (n).
+   subroutine append_real0(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      real(wp), intent(in), target :: x
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t) :: slab(0)
+      call append_raw(self, name, DTYPE_REAL, slab, c_loc(x), err)
+   end subroutine append_real0
+
+   !> Append the vector `x` to the real series `name` of shape (size(x), n).
+   subroutine append_real1(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      real(wp), intent(in), target, contiguous :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call append_raw(self, name, DTYPE_REAL, int(shape(x), hsize_t), p, err)
+   end subroutine append_real1
+
+   !> Append the matrix `x` to the real series `name` of shape (size(x,1), size(x,2), n).
+   subroutine append_real2(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      real(wp), intent(in), target, contiguous :: x(:, :)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call append_raw(self, name, DTYPE_REAL, int(shape(x), hsize_t), p, err)
+   end subroutine append_real2
+
+   !> Append the integer vector `x` to the integer series `name` of shape (size(x), n).
+   subroutine append_int1(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer, intent(in), target, contiguous :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call append_raw(self, name, DTYPE_INT, int(shape(x), hsize_t), p, err)
+   end subroutine append_int1
+
+   !> Append the integer(i8) scalar `x` to the 64-bit integer series `name` of shape (n).
+   subroutine append_int64_0(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer(i8), intent(in), target :: x
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t) :: slab(0)
+      call append_raw(self, name, DTYPE_INT64, slab, c_loc(x), err)
+   end subroutine append_int64_0
+
+   !> Grow the series `name` by one slab of Fortran shape `slab` and write the data at `p` into it.
+   subroutine append_raw(self, name, dtype, slab, p, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: dtype
+      integer(hsize_t), intent(in) :: slab(:)
+      type(c_ptr), intent(in) :: p
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t), allocatable :: dims(:), offset(:), count(:)
+      integer(hid_t) :: did, fspace, mspace
+      integer :: st, rank
+
+      call series_dims(self, name, did, dims, err)
+      if (allocated(err)) return
+      fspace = -1
+      mspace = -1
+      rank = size(dims)
+      steps: block
+         if (rank /= size(slab) + 1) then
+            call fail(self, err, 'append a slab of the wrong rank to', name)
+            exit steps
+         end if
+         if (any(dims(1:rank - 1) /= slab)) then
+            call fail(self, err, 'append a slab of the wrong shape to', name)
+            exit steps
+         end if
+         allocate (offset(rank), count(rank))
+         offset = 0
+         offset(rank) = dims(rank)
+         count(1:rank - 1) = slab
+         count(rank) = 1
+         dims(rank) = dims(rank) + 1
+         call h5dset_extent_f(did, dims, st)
+         if (st < 0) then
+            call fail(self, err, 'extend', name)
+            exit steps
+         end if
+         call h5dget_space_f(did, fspace, st)
+         if (st >= 0) call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, offset, count, st)
+         if (st >= 0) call h5screate_simple_f(rank, count, mspace, st)
+         if (st < 0) then
+            call fail(self, err, 'select the new slab of', name)
+            exit steps
+         end if
+         if (product(count) > 0) then
+            call h5dwrite_f(did, mem_type(dtype), p, st, mspace, fspace)
+            if (st < 0) call fail(self, err, 'write the new slab of', name)
+         end if
+      end block steps
+      call close_handles(err, self, name, dset=did, space=fspace, space2=mspace)
+   end subroutine append_raw
+
+   ! ---------------------------------------------------------------------------- views
+
+   !> Create the virtual dataset `name` of Fortran shape `view_dims` that shows one hyperslab of
+   !> the dataset `source` (in this file): the block `view_start`, `view_count` of the view maps,
+   !> element by element in storage order, onto `src_start`, `src_count` of the source (0-based
+   !> starts). Unmapped elements of the view read as zero. Readers see an ordinary dataset.
+   subroutine file_create_view(self, name, source, dtype, view_dims, view_start, view_count, &
+                               src_start, src_count, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name, source
+      integer, intent(in) :: dtype
+      integer, intent(in) :: view_dims(:), view_start(:), view_count(:)
+      integer, intent(in) :: src_start(:), src_count(:)
+      type(error_t), allocatable, intent(out) :: err
+      integer(hid_t) :: vspace, sspace, dcpl, did, space
+      integer :: st
+
+      if (.not. check_open(self, 'create view '//name, err)) return
+      vspace = -1
+      sspace = -1
+      dcpl = -1
+      did = -1
+      space = -1
+      steps: block
+         call h5screate_simple_f(size(view_dims), int(view_dims, hsize_t), vspace, st)
+         if (st >= 0) call h5sselect_hyperslab_f(vspace, H5S_SELECT_SET_F, &
+                                                 int(view_start, hsize_t), int(view_count, hsize_t), st)
+         if (st < 0) then
+            call fail(self, err, 'select the mapped block of view', name)
+            exit steps
+         end if
+         call h5dopen_f(self%fid, source, did, st)
+         if (st >= 0) call h5dget_space_f(did, sspace, st)
+         if (st >= 0) call h5sselect_hyperslab_f(sspace, H5S_SELECT_SET_F, &
+                                                 int(src_start, hsize_t), int(src_count, hsize_t), st)
+         if (st < 0) then
+            call fail(self, err, 'select the source block '//source//' of view', name)
+            exit steps
+         end if
+         call h5dclose_f(did, st)
+         did = -1
+         call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl, st)
+         if (st >= 0) call set_zero_fill(dcpl, dtype, st)
+         if (st >= 0) call h5pset_virtual_f(dcpl, vspace, '.', source, sspace, st)
+         if (st < 0) then
+            call fail(self, err, 'map '//source//' into view', name)
+            exit steps
+         end if
+         call h5screate_simple_f(size(view_dims), int(view_dims, hsize_t), space, st)
+         if (st >= 0) call h5dcreate_f(self%fid, name, file_type(dtype), space, did, st, dcpl_id=dcpl)
+         if (st < 0) call fail(self, err, 'create view', name)
+      end block steps
+      call close_handles(err, self, name, dset=did, space=vspace, space2=sspace, plist=dcpl)
+      call close_handles(err, self, name, space=space)
+   end subroutine file_create_view
+
+   !> Set the fill value of the dataset creation list `dcpl` to zero of type `dtype`.
+   subroutine set_zero_fill(dcpl, dtype, st)
+      integer(hid_t), intent(in) :: dcpl
+      integer, intent(in) :: dtype
+      integer, intent(out) :: st
+      select case (dtype)
+      case (DTYPE_REAL)
+         call h5pset_fill_value_f(dcpl, mem_type(dtype), 0.0_wp, st)
+      case default
+         call h5pset_fill_value_f(dcpl, mem_type(DTYPE_INT), 0, st)
+      end select
+   end subroutine set_zero_fill
+
+   ! ---------------------------------------------------------------------------- attributes
+
+   !> Real scalar attribute.
+   subroutine attr_real0(self, obj, name, value, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: obj, name
+      real(wp), intent(in), target :: value
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t) :: dims(0)
+      call attr_raw(self, obj, name, file_type(DTYPE_REAL), mem_type(DTYPE_REAL), dims, c_loc(value), err)
+   end subroutine attr_real0
+
+   !> Real vector attribute.
+   subroutine attr_real1(self, obj, name, value, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: obj, name
+      real(wp), intent(in), target, contiguous :: value(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(value) > 0) p = c_loc(value)
+      call attr_raw(self, obj, name, file_type(DTYPE_REAL), mem_type(DTYPE_REAL), &
+                    int(shape(value), hsize_t), p, err)
+   end subroutine attr_real1
+
+   !> Integer scalar attribute.
+   subroutine attr_int0(self, obj, name, value, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: obj, name
+      integer, intent(in), target :: value
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t) :: dims(0)
+      call attr_raw(self, obj, name, file_type(DTYPE_INT), mem_type(DTYPE_INT), dims, c_loc(value), err)
+   end subroutine attr_int0
+
+   !> 64-bit integer scalar attribute.
+   subroutine attr_int64_0(self, obj, name, value, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: obj, name
+      integer(i8), intent(in), target :: value
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t) :: dims(0)
+      call attr_raw(self, obj, name, file_type(DTYPE_INT64), mem_type(DTYPE_INT64), dims, c_loc(value), err)
+   end subroutine attr_int64_0
+
+   !> Integer vector attribute.
+   subroutine attr_int1(self, obj, name, value, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: obj, name
+      integer, intent(in), target, contiguous :: value(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(value) > 0) p = c_loc(value)
+      call attr_raw(self, obj, name, file_type(DTYPE_INT), mem_type(DTYPE_INT), &
+                    int(shape(value), hsize_t), p, err)
+   end subroutine attr_int1
+
+   !> String attribute (fixed length, null padded; an empty string is stored as one null byte).
+   subroutine attr_string(self, obj, name, value, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: obj, name, value
+      type(error_t), allocatable, intent(out) :: err
+      character(kind=c_char), allocatable, target :: buf(:)
+      integer(hid_t) :: tid
+      integer(hsize_t) :: dims(0)
+      integer :: st, i, n
+
+      if (.not. check_open(self, 'write attribute '//name, err)) return
+      n = max(1, len(value))
+      allocate (buf(n))
+      buf = achar(0)
+      do i = 1, len(value)
+         buf(i) = value(i:i)
+      end do
+      call h5tcopy_f(H5T_FORTRAN_S1, tid, st)
+      if (st >= 0) call h5tset_size_f(tid, int(n, kind=hsize_t), st)
+      if (st >= 0) call h5tset_strpad_f(tid, H5T_STR_NULLPAD_F, st)
+      if (st < 0) then
+         call fail(self, err, 'make the string type of attribute '//name//' of', obj)
+      else
+         call attr_raw(self, obj, name, tid, tid, dims, c_loc(buf), err)
+      end if
+      call h5tclose_f(tid, st)
+      if (st < 0 .and. .not. allocated(err)) call fail(self, err, 'close a string type of', obj)
+   end subroutine attr_string
+
+   !> Create (replacing any old one) the attribute `name` of object `obj` and write `p` into it.
+   subroutine attr_raw(self, obj, name, ftype, mtype, dims, p, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: obj, name
+      integer(hid_t), intent(in) :: ftype, mtype
+      integer(hsize_t), intent(in) :: dims(:)
+      type(c_ptr), intent(in) :: p
+      type(error_t), allocatable, intent(out) :: err
+      integer(hid_t) :: oid, space, aid
+      integer :: st
+      logical :: exists
+
+      if (.not. check_open(self, 'write attribute '//name, err)) return
+      oid = -1
+      space = -1
+      aid = -1
+      steps: block
+         call h5oopen_f(self%fid, obj, oid, st)
+         if (st < 0) then
+            call fail(self, err, 'open object', obj)
+            exit steps
+         end if
+         call h5aexists_f(oid, name, exists, st)
+         if (st >= 0 .and. exists) call h5adelete_f(oid, name, st)
+         if (st < 0) then
+            call fail(self, err, 'replace attribute '//name//' of', obj)
+            exit steps
+         end if
+         if (size(dims) == 0) then
+            call h5screate_f(H5S_SCALAR_F, space, st)
+         else
+            call h5screate_simple_f(size(dims), dims, space, st)
+         end if
+         if (st >= 0) call h5acreate_f(oid, name, ftype, space, aid, st)
+         if (st < 0) then
+            call fail(self, err, 'create attribute '//name//' of', obj)
+            exit steps
+         end if
+         if (product(dims) > 0) then
+            call h5awrite_f(aid, mtype, p, st)
+            if (st < 0) call fail(self, err, 'write attribute '//name//' of', obj)
+         end if
+      end block steps
+      call close_handles(err, self, obj, space=space, attr=aid, obj_id=oid)
+   end subroutine attr_raw
+
+   ! ---------------------------------------------------------------------------- helpers
+
+   !> HDF5 type stored in the file for `dtype` (little-endian IEEE / two's complement).
+   function file_type(dtype) result(t)
+      integer, intent(in) :: dtype
+      integer(hid_t) :: t
+      select case (dtype)
+      case (DTYPE_REAL)
+         t = H5T_IEEE_F64LE
+      case (DTYPE_INT64)
+         t = H5T_STD_I64LE
+      case default
+         t = H5T_STD_I32LE
+      end select
+   end function file_type
+
+   !> HDF5 memory type of `dtype` as Fortran holds it.
+   function mem_type(dtype) result(t)
+      integer, intent(in) :: dtype
+      integer(hid_t) :: t
+      select case (dtype)
+      case (DTYPE_REAL)
+         t = h5kind_to_type(wp, H5_REAL_KIND)
+      case (DTYPE_INT64)
+         t = h5kind_to_type(i8, H5_INTEGER_KIND)
+      case default
+         t = h5kind_to_type(kind(0), H5_INTEGER_KIND)
+      end select
+   end function mem_type
+
+   !> Bytes of one element of `dtype` in the file.
+   pure integer(i8) function elem_bytes(dtype)
+      integer, intent(in) :: dtype
+      select case (dtype)
+      case (DTYPE_INT)
+         elem_bytes = 4
+      case default
+         elem_bytes = 8
+      end select
+   end function elem_bytes
+
+   !> True when a file is open; otherwise set `err` saying what could not be done.
+   logical function check_open(self, what, err)
+      class(hdf5_file_t), intent(in) :: self
+      character(len=*), intent(in) :: what
+      type(error_t), allocatable, intent(inout) :: err
+      check_open = self%fid >= 0
+      if (.not. check_open) call make_error(err, 'HDF5: cannot '//what//': no file is open')
+   end function check_open
+
+   !> Set `err` to "HDF5: cannot <what> '<obj>' in file '<path>'".
+   subroutine fail(self, err, what, obj)
+      class(hdf5_file_t), intent(in) :: self
+      type(error_t), allocatable, intent(inout) :: err
+      character(len=*), intent(in) :: what, obj
+      call make_error(err, 'HDF5: cannot '//what//" '"//obj//"' in file '"//self%path//"'")
+   end subroutine fail
+
+   !> Close every handle given (those >= 0) and reset it to -1. A failing close sets `err`
+   !> unless an earlier error is already there.
+   subroutine close_handles(err, self, obj, dset, space, space2, plist, attr, obj_id)
+      type(error_t), allocatable, intent(inout) :: err
+      class(hdf5_file_t), intent(in) :: self
+      character(len=*), intent(in) :: obj
+      integer(hid_t), intent(inout), optional :: dset, space, space2, plist, attr, obj_id
+      integer :: st, worst
+
+      worst = 0
+      if (present(dset)) then
+         if (dset >= 0) call h5dclose_f(dset, st)
+         if (dset >= 0) worst = min(worst, st)
+         dset = -1
+      end if
+      if (present(space)) call close_space(space, worst)
+      if (present(space2)) call close_space(space2, worst)
+      if (present(plist)) then
+         if (plist >= 0) call h5pclose_f(plist, st)
+         if (plist >= 0) worst = min(worst, st)
+         plist = -1
+      end if
+      if (present(attr)) then
+         if (attr >= 0) call h5aclose_f(attr, st)
+         if (attr >= 0) worst = min(worst, st)
+         attr = -1
+      end if
+      if (present(obj_id)) then
+         if (obj_id >= 0) call h5oclose_f(obj_id, st)
+         if (obj_id >= 0) worst = min(worst, st)
+         obj_id = -1
+      end if
+      if (worst < 0 .and. .not. allocated(err)) call fail(self, err, 'close the handles of', obj)
+   end subroutine close_handles
+
+   !> Close the dataspace `space` when open; keep the worst status in `worst`.
+   subroutine close_space(space, worst)
+      integer(hid_t), intent(inout) :: space
+      integer, intent(inout) :: worst
+      integer :: st
+      if (space < 0) return
+      call h5sclose_f(space, st)
+      worst = min(worst, st)
+      space = -1
+   end subroutine close_space
+
+end module exic_io_hdf5_file

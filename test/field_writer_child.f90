@@ -1,0 +1,52 @@
+!> Child process of the "killed writer" test in test_fields.
+!>
+!> `field_writer_child STEM N MARKER` writes the synthetic mesh and N output times to STEM.h5 and
+!> STEM.xdmf, creates the file MARKER, and then waits (up to 2 minutes) without closing anything,
+!> so that the test can kill it with SIGTERM. Started without arguments (as `fpm test` does with
+!> every program under test/), it does nothing and succeeds.
+program field_writer_child
+   use, intrinsic :: iso_c_binding, only: c_int
+   use, intrinsic :: iso_fortran_env, only: error_unit
+   use exic_base_error, only: error_t
+   use exic_io_fields, only: field_writer_t
+   use test_fields, only: write_synthetic
+   implicit none
+
+   interface
+      !> unsigned int sleep(unsigned int seconds);
+      function c_sleep(seconds) bind(C, name='sleep') result(left)
+         import :: c_int
+         integer(c_int), value :: seconds
+         integer(c_int) :: left
+      end function c_sleep
+   end interface
+
+   type(field_writer_t) :: w
+   type(error_t), allocatable :: err
+   character(len=4096) :: stem, nsteps_text, marker
+   integer :: nsteps, u, ios, i
+   integer(c_int) :: left
+
+   if (command_argument_count() /= 3) then
+      print '(a)', 'field_writer_child: helper of the field output tests; nothing to do without arguments'
+      stop
+   end if
+   call get_command_argument(1, stem)
+   call get_command_argument(2, nsteps_text)
+   call get_command_argument(3, marker)
+   read (nsteps_text, *, iostat=ios) nsteps
+   if (ios /= 0) error stop 'field_writer_child: N must be an integer'
+
+   call write_synthetic(w, trim(stem), nsteps, err)
+   if (allocated(err)) then
+      write (error_unit, '(a)') 'field_writer_child: '//err%message
+      error stop 2
+   end if
+   open (newunit=u, file=trim(marker), status='replace', action='write')
+   write (u, '(a)') 'ready'
+   close (u)
+   do i = 1, 120
+      left = c_sleep(1_c_int)
+   end do
+   error stop 'field_writer_child: nobody killed me within 2 minutes'
+end program field_writer_child

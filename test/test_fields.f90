@@ -1,0 +1,534 @@
+!> Tests of the field output (HDF5 + XDMF): shapes and values read back by h5dump, the XDMF
+!> file read by meshio, error paths, and a writer killed by SIGTERM.
+!>
+!> The data are analytic fields on a 3 x 2 quad mesh (12 nodes, 6 elements), so every value read
+!> back is compared with the exact number written. The files go to build/test_fields/.
+module test_fields
+   use exic_base_kinds, only: wp, i8
+   use exic_base_error, only: error_t
+   use exic_io_fields, only: field_writer_t
+   use testing, only: suite_t, check, check_close, section
+   implicit none
+   private
+
+   public :: run_fields_tests, synthetic_mesh, synthetic_step, write_synthetic
+   public :: NNODE_T, NELEM_T
+
+   integer, parameter :: NNODE_T = 12, NELEM_T = 6
+   character(len=*), parameter :: DIR = 'build/test_fields'
+   character(len=*), parameter :: ENERGY_NAMES(2) = ['kinetic', 'strain ']
+
+contains
+
+   ! ---------------------------------------------------------------------------- synthetic data
+
+   !> The 3 x 2 mesh: node n at x = mod(n-1, 4), y = 0.5 (n-1)/4; element i + 3j has corners
+   !> i + 4j, +1, +5, +4 (counterclockwise); region 1 below y = 0.5, 2 above; material 10 + region;
+   !> contact edges along the bottom.
+   subroutine synthetic_mesh(x0, conn, region, mat, edges)
+      real(wp), intent(out) :: x0(2, NNODE_T)
+      integer, intent(out) :: conn(4, NELEM_T), region(NELEM_T), mat(NELEM_T), edges(2, 3)
+      integer :: n, i, j, e
+      do n = 1, NNODE_T
+         x0(:, n) = [real(mod(n - 1, 4), wp), 0.5_wp*real((n - 1)/4, wp)]
+      end do
+      do j = 0, 1
+         do i = 1, 3
+            e = i + 3*j
+            n = i + 4*j
+            conn(:, e) = [n, n + 1, n + 5, n + 4]
+            region(e) = j + 1
+            mat(e) = 10 + j + 1
+         end do
+      end do
+      edges = reshape([1, 2, 2, 3, 3, 4], [2, 3])
+   end subroutine synthetic_mesh
+
+   !> Fields of output k (1-based) at t = k/4: u = (t x, t^2 y), v = (x, 2 t y), a = (0, 2 y),
+   !> contact force (n t, -n), active = 1 when n + k is even, sig(c, e) = c + 10 e + 1000 t,
+   !> energies (t^2, 3 t), step 2e9 k (beyond 32-bit integers).
+   subroutine synthetic_step(k, t, step, u, v, a, sig, fcont, active, energies)
+      integer, intent(in) :: k
+      real(wp), intent(out) :: t
+      integer(i8), intent(out) :: step
+      real(wp), intent(out) :: u(2, NNODE_T), v(2, NNODE_T), a(2, NNODE_T), fcont(2, NNODE_T)
+      real(wp), intent(out) :: sig(7, NELEM_T), energies(2)
+      integer, intent(out) :: active(NNODE_T)
+      real(wp) :: x0(2, NNODE_T)
+      integer :: conn(4, NELEM_T), region(NELEM_T), mat(NELEM_T), edges(2, 3)
+      integer :: n, c, e
+
+      call synthetic_mesh(x0, conn, region, mat, edges)
+      t = 0.25_wp*real(k, wp)
+      step = 2000000000_i8*int(k, i8)
+      do n = 1, NNODE_T
+         u(:, n) = [t*x0(1, n), t*t*x0(2, n)]
+         v(:, n) = [x0(1, n), 2.0_wp*t*x0(2, n)]
+         a(:, n) = [0.0_wp, 2.0_wp*x0(2, n)]
+         fcont(:, n) = [real(n, wp)*t, -real(n, wp)]
+         active(n) = merge(1, 0, mod(n + k, 2) == 0)
+      end do
+      do e = 1, NELEM_T
+         do c = 1, 7
+            sig(c, e) = real(c + 10*e, wp) + 1000.0_wp*t
+         end do
+      end do
+      energies = [t*t, 3.0_wp*t]
+   end subroutine synthetic_step
+
+   !> Open `stem`.h5/.xdmf and write outputs 1..nsteps (without closing).
+   subroutine write_synthetic(w, stem, nsteps, err)
+      type(field_writer_t), intent(inout) :: w
+      character(len=*), intent(in) :: stem
+      integer, intent(in) :: nsteps
+      type(error_t), allocatable, intent(out) :: err
+      real(wp) :: x0(2, NNODE_T), t, u(2, NNODE_T), v(2, NNODE_T), a(2, NNODE_T)
+      real(wp) :: fcont(2, NNODE_T), sig(7, NELEM_T), energies(2)
+      integer :: conn(4, NELEM_T), region(NELEM_T), mat(NELEM_T), edges(2, 3), active(NNODE_T)
+      integer(i8) :: step
+      integer :: k
+
+      call synthetic_mesh(x0, conn, region, mat, edges)
+      call w%open(stem//'.h5', stem//'.xdmf', NNODE_T, NELEM_T, x0, conn, region, mat, edges, err)
+      if (allocated(err)) return
+      do k = 1, nsteps
+         call synthetic_step(k, t, step, u, v, a, sig, fcont, active, energies)
+         call w%write_step(t, step, u, v, a, sig, fcont, active, energies, ENERGY_NAMES, err)
+         if (allocated(err)) return
+      end do
+   end subroutine write_synthetic
+
+   ! ---------------------------------------------------------------------------- the tests
+
+   !> Run every field output test.
+   subroutine run_fields_tests(s)
+      type(suite_t), intent(inout) :: s
+      type(field_writer_t) :: w
+      type(error_t), allocatable :: err
+      character(len=*), parameter :: stem = DIR//'/synthetic'
+
+      call section(s, 'fields: write 3 output times')
+      call execute_command_line('mkdir -p '//DIR)
+      call write_synthetic(w, stem, 3, err)
+      call check(s, .not. allocated(err), 'open and write 3 output times', err_text(err))
+      call check(s, w%count() == 3 .and. w%is_open(), 'writer counts 3 output times and is open')
+
+      call section(s, 'fields: h5dump reads the file while the writer still has it open')
+      call check_h5dump_series(s, stem//'.h5', 3, 'HDF5_USE_FILE_LOCKING=FALSE ', 'live')
+
+      call section(s, 'fields: bad calls are errors and leave the file alone')
+      call check_step_errors(s, w)
+
+      call w%close(err)
+      call check(s, .not. allocated(err) .and. .not. w%is_open(), 'close', err_text(err))
+
+      call section(s, 'fields: h5dump shapes and values after close')
+      call check_h5dump_series(s, stem//'.h5', 3, '', 'closed')
+      call check_h5dump_layout(s, stem//'.h5')
+
+      call section(s, 'fields: meshio reads the XDMF time series')
+      call check_meshio(s, stem//'.xdmf', 3, 'closed')
+
+      call section(s, 'fields: plot scripts')
+      call check_plots(s, stem//'.h5')
+
+      call section(s, 'fields: open errors')
+      call check_open_errors(s)
+
+      call section(s, 'fields: a writer killed by SIGTERM leaves readable files')
+      call check_killed_writer(s)
+   end subroutine run_fields_tests
+
+   !> h5dump reads /time, /step and /fields/displacement of a file with `n` outputs: every value.
+   subroutine check_h5dump_series(s, h5, n, env, tag)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: h5, env, tag
+      integer, intent(in) :: n
+      real(wp), allocatable :: vals(:)
+      character(len=:), allocatable :: space
+      real(wp) :: t, u(2, NNODE_T), v(2, NNODE_T), a(2, NNODE_T), fcont(2, NNODE_T)
+      real(wp) :: sig(7, NELEM_T), energies(2), want_t(n), want_u(2, NNODE_T, n)
+      real(wp) :: want_step(n), want_strain(n)
+      integer :: active(NNODE_T), k
+      integer(i8) :: step
+      logical :: ok
+
+      do k = 1, n
+         call synthetic_step(k, t, step, u, v, a, sig, fcont, active, energies)
+         want_t(k) = t
+         want_step(k) = real(step, wp)
+         want_u(:, :, k) = u
+         want_strain(k) = energies(2)
+      end do
+      call h5dump(env, '-d /time '//h5, ok, space, vals)
+      call check(s, ok .and. space == '( '//itoa(n)//' ) / ( H5S_UNLIMITED )', &
+                 tag//': /time has '//itoa(n)//' entries, unlimited', space)
+      call check(s, same(vals, want_t), tag//': /time values', list_text(vals))
+      call h5dump(env, '-d /step '//h5, ok, space, vals)
+      call check(s, ok .and. same(vals, want_step), tag//': /step values (64-bit)', list_text(vals))
+      call h5dump(env, '-d /fields/displacement '//h5, ok, space, vals)
+      call check(s, ok .and. space == '( '//itoa(n)//', 12, 2 ) / ( H5S_UNLIMITED, 12, 2 )', &
+                 tag//': /fields/displacement shape (time, node, component)', space)
+      call check(s, same(vals, reshape(want_u, [2*NNODE_T*n])), tag//': every displacement value')
+      call h5dump(env, '-d /energies/strain '//h5, ok, space, vals)
+      call check(s, ok .and. same(vals, want_strain), tag//': /energies/strain values', list_text(vals))
+   end subroutine check_h5dump_series
+
+   !> Mesh datasets, stress layout and views of the closed 3-output file.
+   subroutine check_h5dump_layout(s, h5)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: h5
+      real(wp), allocatable :: vals(:)
+      character(len=:), allocatable :: space
+      real(wp) :: x0(2, NNODE_T), t, u(2, NNODE_T), v(2, NNODE_T), a(2, NNODE_T)
+      real(wp) :: fcont(2, NNODE_T), sig(7, NELEM_T), energies(2), want(3, NNODE_T)
+      integer :: conn(4, NELEM_T), region(NELEM_T), mat(NELEM_T), edges(2, 3), active(NNODE_T)
+      integer(i8) :: step
+      logical :: ok
+
+      call synthetic_mesh(x0, conn, region, mat, edges)
+      call h5dump('', '-d /mesh/coordinates '//h5, ok, space, vals)
+      call check(s, ok .and. space == '( 12, 2 ) / ( 12, 2 )' .and. &
+                 same(vals, reshape(x0, [2*NNODE_T])), '/mesh/coordinates (12, 2) and values', space)
+      call h5dump('', '-d /mesh/connectivity '//h5, ok, space, vals)
+      call check(s, ok .and. space == '( 6, 4 ) / ( 6, 4 )' .and. &
+                 same(vals, real(reshape(conn - 1, [4*NELEM_T]), wp)), &
+                 '/mesh/connectivity (6, 4), 0-based', list_text(vals))
+      call h5dump('', '-d /mesh/contact_edges '//h5, ok, space, vals)
+      call check(s, ok .and. space == '( 3, 2 ) / ( 3, 2 )' .and. &
+                 same(vals, real(reshape(edges - 1, [6]), wp)), '/mesh/contact_edges (3, 2), 0-based', &
+                 list_text(vals))
+      call h5dump('', '-d /mesh/material '//h5, ok, space, vals)
+      call check(s, ok .and. same(vals, real(mat, wp)), '/mesh/material values', list_text(vals))
+
+      ! one value: stress at output 2 (index 1), element 5 (index 4), von Mises (index 5)
+      call synthetic_step(2, t, step, u, v, a, sig, fcont, active, energies)
+      call h5dump('', '-d /fields/stress '//h5, ok, space, vals)
+      call check(s, ok .and. space == '( 3, 6, 7 ) / ( H5S_UNLIMITED, 6, 7 )', &
+                 '/fields/stress shape (time, element, component)', space)
+      call h5dump('', '-d /fields/stress -s 1,4,5 -c 1,1,1 '//h5, ok, space, vals)
+      call check(s, ok .and. size(vals) == 1, 'h5dump selects one stress value')
+      if (size(vals) == 1) call check_close(s, vals(1), sig(6, 5), 0.0_wp, &
+                                            'von Mises of element 5 at t = 0.5 read by h5dump')
+      call h5dump('', '-d /fields/contact_active '//h5, ok, space, vals)
+      call check(s, ok .and. space == '( 3, 12 ) / ( H5S_UNLIMITED, 12 )', &
+                 '/fields/contact_active shape (time, node)', space)
+
+      ! the view of output 3 pads the displacement with a zero z component
+      call synthetic_step(3, t, step, u, v, a, sig, fcont, active, energies)
+      want(1:2, :) = u
+      want(3, :) = 0.0_wp
+      call h5dump('', '-d /xdmf/000002/displacement '//h5, ok, space, vals)
+      call check(s, ok .and. space == '( 12, 3 ) / ( 12, 3 )' .and. &
+                 same(vals, reshape(want, [3*NNODE_T])), &
+                 'view /xdmf/000002/displacement is u(t3) with z = 0', list_text(vals))
+      call h5dump('', '-d /xdmf/000002/syy '//h5, ok, space, vals)
+      call check(s, ok .and. space == '( 6 ) / ( 6 )' .and. same(vals, sig(2, :)), &
+                 'view /xdmf/000002/syy is syy(t3)', list_text(vals))
+   end subroutine check_h5dump_layout
+
+   !> meshio reads the .xdmf: counts and values; a wrong expected value makes the checker fail.
+   subroutine check_meshio(s, xdmf, n, tag)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: xdmf, tag
+      integer, intent(in) :: n
+      real(wp) :: t, u(2, NNODE_T), v(2, NNODE_T), a(2, NNODE_T), fcont(2, NNODE_T)
+      real(wp) :: sig(7, NELEM_T), energies(2), t1
+      integer :: active(NNODE_T), code
+      integer(i8) :: step
+      character(len=:), allocatable :: args, k
+
+      call synthetic_step(1, t1, step, u, v, a, sig, fcont, active, energies)
+      call synthetic_step(n, t, step, u, v, a, sig, fcont, active, energies)
+      k = itoa(n - 1)
+      args = ' --steps '//itoa(n)//' --points 12 --cells 6 --time 0,'//rtoa(t1)// &
+             ' --time '//k//','//rtoa(t)// &
+             ' --point-value displacement,'//k//',5,0,'//rtoa(u(1, 6))// &
+             ' --point-value displacement,'//k//',5,1,'//rtoa(u(2, 6))// &
+             ' --point-value displacement,'//k//',5,2,0'// &
+             ' --point-value contact_force,'//k//',7,1,'//rtoa(fcont(2, 8))// &
+             ' --point-value contact_active,'//k//',2,0,'//itoa(active(3))// &
+             ' --cell-value von_mises,'//k//',4,'//rtoa(sig(6, 5))// &
+             ' --cell-value J,'//k//',0,'//rtoa(sig(7, 1))// &
+             ' --cell-value material,0,4,12'
+      code = run_python('tools/check_xdmf.py '//xdmf//args)
+      call check(s, code == 0, tag//': meshio: '//itoa(n)//' times, 12 points, 6 cells, values', &
+                 'check_xdmf.py exit code '//itoa(code))
+      code = run_python('tools/check_xdmf.py '//xdmf//' --cell-value von_mises,'//k//',4,'// &
+                        rtoa(sig(6, 5) + 1.0_wp)//' > /dev/null')
+      call check(s, code == 1, tag//': meshio check fails on a wrong value', &
+                 'check_xdmf.py exit code '//itoa(code))
+   end subroutine check_meshio
+
+   !> plot_fields.py and plot_history.py run and write their PNG files; a missing input fails.
+   subroutine check_plots(s, h5)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: h5
+      character(len=*), parameter :: png = DIR//'/synthetic_J.png', plots = DIR//'/plots'
+      character(len=*), parameter :: groups(6) = [character(len=12) :: 'displacement', 'velocity', &
+                                                  'acceleration', 'contact', 'stress', 'energies']
+      integer :: code, i
+      logical :: exists, all_there
+
+      call execute_command_line('rm -rf '//png//' '//plots)
+      code = run_python('tools/plot_fields.py '//h5//' -c J -t 0.3 0.7 -s 2 -o '//png// &
+                        ' > /dev/null')
+      inquire (file=png, exist=exists)
+      call check(s, code == 0 .and. exists, 'plot_fields.py draws J at two times', &
+                 'exit code '//itoa(code))
+      code = run_python('tools/plot_history.py test/data/fields/sample -o '//plots//' > /dev/null')
+      all_there = .true.
+      do i = 1, size(groups)
+         inquire (file=plots//'/sample_'//trim(groups(i))//'.png', exist=exists)
+         all_there = all_there .and. exists
+      end do
+      call check(s, code == 0 .and. all_there, 'plot_history.py draws 5 history groups and energies', &
+                 'exit code '//itoa(code))
+      code = run_python('tools/plot_history.py '//DIR//'/no_such_run -o '//plots//' 2> /dev/null')
+      call check(s, code == 1, 'plot_history.py fails on a missing run', 'exit code '//itoa(code))
+   end subroutine check_plots
+
+   !> write_step errors on an open writer with 3 outputs: nothing is written.
+   subroutine check_step_errors(s, w)
+      type(suite_t), intent(inout) :: s
+      type(field_writer_t), intent(inout) :: w
+      type(field_writer_t) :: closed
+      type(error_t), allocatable :: err
+      real(wp) :: t, u(2, NNODE_T), v(2, NNODE_T), a(2, NNODE_T), fcont(2, NNODE_T)
+      real(wp) :: sig(7, NELEM_T), energies(2), bad(2, NNODE_T - 1)
+      integer :: active(NNODE_T)
+      integer(i8) :: step
+
+      call synthetic_step(4, t, step, u, v, a, sig, fcont, active, energies)
+      call w%write_step(t, step, bad, v, a, sig, fcont, active, energies, ENERGY_NAMES, err)
+      call check(s, allocated(err), 'u of the wrong shape is an error')
+      call w%write_step(0.5_wp, step, u, v, a, sig, fcont, active, energies, ENERGY_NAMES, err)
+      call check(s, has(err, 'must increase'), 'an output time not after the last is an error', &
+                 err_text(err))
+      call w%write_step(t, step, u, v, a, sig, fcont, active, energies, ['kinetic', 'total  '], err)
+      call check(s, has(err, 'strain'), 'a changed energy name is an error naming it', err_text(err))
+      call closed%write_step(t, step, u, v, a, sig, fcont, active, energies, ENERGY_NAMES, err)
+      call check(s, has(err, 'not open'), 'write_step on a writer never opened is an error', &
+                 err_text(err))
+      call check(s, w%count() == 3, 'failed calls leave 3 output times')
+   end subroutine check_step_errors
+
+   !> open errors: missing directory, bad connectivity, files in different directories.
+   subroutine check_open_errors(s)
+      type(suite_t), intent(inout) :: s
+      type(field_writer_t) :: w
+      type(error_t), allocatable :: err
+      real(wp) :: x0(2, NNODE_T)
+      integer :: conn(4, NELEM_T), region(NELEM_T), mat(NELEM_T), edges(2, 3)
+      character(len=*), parameter :: missing = DIR//'/no/such/dir/x'
+
+      call synthetic_mesh(x0, conn, region, mat, edges)
+      call w%open(missing//'.h5', missing//'.xdmf', NNODE_T, NELEM_T, x0, conn, region, mat, &
+                  edges, err)
+      call check(s, has(err, missing//'.h5') .and. .not. w%is_open(), &
+                 'creating a file in a missing directory is an error naming it', err_text(err))
+      conn(3, 4) = NNODE_T + 1
+      call w%open(DIR//'/bad.h5', DIR//'/bad.xdmf', NNODE_T, NELEM_T, x0, conn, region, mat, &
+                  edges, err)
+      call check(s, has(err, 'element 4'), 'a node number out of range is an error naming the element', &
+                 err_text(err))
+      conn(3, 4) = 9
+      call w%open(DIR//'/bad.h5', 'elsewhere/bad.xdmf', NNODE_T, NELEM_T, x0, conn, region, mat, &
+                  edges, err)
+      call check(s, has(err, 'one directory'), '.h5 and .xdmf in different directories is an error', &
+                 err_text(err))
+   end subroutine check_open_errors
+
+   !> Run test/field_writer_child: it writes 4 outputs, then waits; kill it with SIGTERM and read
+   !> what it left with h5dump (no locking override: the lock dies with the process) and meshio.
+   subroutine check_killed_writer(s)
+      type(suite_t), intent(inout) :: s
+      character(len=*), parameter :: stem = DIR//'/killed', marker = DIR//'/killed.ready', &
+                                     status_file = DIR//'/killed.status'
+      character(len=4096) :: argv0
+      character(len=:), allocatable :: child, script
+      logical :: exists
+      integer :: status, u, ios
+
+      call get_command_argument(0, argv0)
+      child = argv0(1:index(argv0, '/', back=.true.))//'field_writer_child'
+      if (index(argv0, '/') == 0) child = './field_writer_child'
+      inquire (file=child, exist=exists)
+      call check(s, exists, 'child program found next to the test driver', child)
+      if (.not. exists) return
+
+      script = 'rm -f '//marker//' '//status_file//' '//stem//'.h5 '//stem//'.xdmf; '// &
+               child//' '//stem//' 4 '//marker//' > '//DIR//'/killed.log 2>&1 & pid=$!; i=0; '// &
+               'while [ ! -e '//marker//' ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; '// &
+               'kill -TERM $pid; wait $pid 2> /dev/null; echo $? > '//status_file
+      call execute_command_line(script)
+      status = -1
+      open (newunit=u, file=status_file, action='read', status='old', iostat=ios)
+      if (ios == 0) then
+         read (u, *, iostat=ios) status
+         close (u)
+      end if
+      call check(s, status == 128 + 15, 'child was killed by SIGTERM after writing 4 outputs', &
+                 'shell status '//itoa(status)//' (see '//DIR//'/killed.log)')
+      call check_h5dump_series(s, stem//'.h5', 4, '', 'killed')
+      call check_meshio(s, stem//'.xdmf', 4, 'killed')
+   end subroutine check_killed_writer
+
+   ! ---------------------------------------------------------------------------- helpers
+
+   !> Run h5dump with `args` (after `env`, e.g. a variable assignment) and collect the first
+   !> DATASPACE text (between braces) and every number of the DATA block, in storage order.
+   subroutine h5dump(env, args, ok, space, vals)
+      character(len=*), intent(in) :: env, args
+      logical, intent(out) :: ok
+      character(len=:), allocatable, intent(out) :: space
+      real(wp), allocatable, intent(out) :: vals(:)
+      character(len=*), parameter :: out = DIR//'/h5dump.txt'
+      character(len=:), allocatable :: line
+      integer :: code, u, ios, i, j
+      logical :: in_data
+
+      space = ''
+      allocate (vals(0))
+      call execute_command_line(env//'h5dump -A 0 -y -w 0 -m %.17g '//args//' > '//out//' 2>&1', &
+                                exitstat=code)
+      ok = code == 0
+      open (newunit=u, file=out, action='read', status='old', iostat=ios)
+      if (ios /= 0) then
+         ok = .false.
+         return
+      end if
+      in_data = .false.
+      do
+         call read_line(u, line, ios)
+         if (ios /= 0) exit
+         if (in_data) then
+            if (adjustl(line) == '}') exit
+            call append_numbers(line, vals)
+         else if (index(line, 'DATASPACE') > 0 .and. len(space) == 0) then
+            i = index(line, '{')
+            j = index(line, '}', back=.true.)
+            if (i > 0 .and. j > i) space = trim(adjustl(line(i + 1:j - 1)))
+         else if (index(line, 'DATA {') > 0) then
+            in_data = .true.
+         end if
+      end do
+      close (u)
+   end subroutine h5dump
+
+   !> Append the comma/blank separated numbers of `line` to `vals`.
+   subroutine append_numbers(line, vals)
+      character(len=*), intent(in) :: line
+      real(wp), allocatable, intent(inout) :: vals(:)
+      character(len=len(line)) :: work
+      integer :: i, j, ios
+      real(wp) :: x
+
+      work = line
+      do i = 1, len(work)
+         if (work(i:i) == ',') work(i:i) = ' '
+      end do
+      i = 1
+      do
+         do while (i <= len(work))
+            if (work(i:i) /= ' ') exit
+            i = i + 1
+         end do
+         if (i > len(work)) exit
+         j = index(work(i:), ' ')
+         if (j == 0) then
+            j = len(work)
+         else
+            j = i + j - 2
+         end if
+         read (work(i:j), *, iostat=ios) x
+         if (ios == 0) vals = [vals, x]
+         i = j + 1
+      end do
+   end subroutine append_numbers
+
+   !> Read one whole line of any length.
+   subroutine read_line(u, line, ios)
+      integer, intent(in) :: u
+      character(len=:), allocatable, intent(out) :: line
+      integer, intent(out) :: ios
+      character(len=256) :: buf
+      integer :: n
+      line = ''
+      do
+         read (u, '(a)', advance='no', iostat=ios, size=n) buf
+         line = line//buf(1:n)
+         if (ios /= 0) exit
+      end do
+      if (is_iostat_eor(ios)) ios = 0
+   end subroutine read_line
+
+   !> Run a Python script line with .venv/bin/python when present, else python3; its exit code.
+   integer function run_python(cmd) result(code)
+      character(len=*), intent(in) :: cmd
+      logical :: venv
+      inquire (file='.venv/bin/python', exist=venv)
+      code = -1
+      if (venv) then
+         call execute_command_line('.venv/bin/python '//cmd, exitstat=code)
+      else
+         call execute_command_line('python3 '//cmd, exitstat=code)
+      end if
+   end function run_python
+
+   !> Exact equality of two vectors of the same size.
+   logical function same(x, y)
+      real(wp), intent(in) :: x(:), y(:)
+      same = size(x) == size(y)
+      if (same) same = all(x == y)
+   end function same
+
+   !> True when err is set and its message contains `text`.
+   logical function has(err, text)
+      type(error_t), allocatable, intent(in) :: err
+      character(len=*), intent(in) :: text
+      has = allocated(err)
+      if (has) has = index(err%message, text) > 0
+   end function has
+
+   !> The message of err, or 'no error'.
+   function err_text(err) result(s)
+      type(error_t), allocatable, intent(in) :: err
+      character(len=:), allocatable :: s
+      if (allocated(err)) then
+         s = err%message
+      else
+         s = 'no error'
+      end if
+   end function err_text
+
+   !> Up to 8 values as text.
+   function list_text(x) result(s)
+      real(wp), intent(in) :: x(:)
+      character(len=:), allocatable :: s
+      integer :: i
+      s = 'got '//itoa(size(x))//' values:'
+      do i = 1, min(size(x), 8)
+         s = s//' '//rtoa(x(i))
+      end do
+   end function list_text
+
+   !> Integer as text.
+   function itoa(i) result(s)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function itoa
+
+   !> Real as text with 17 significant digits.
+   function rtoa(x) result(s)
+      real(wp), intent(in) :: x
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      write (buf, '(es24.16)') x
+      s = trim(adjustl(buf))
+   end function rtoa
+
+end module test_fields
