@@ -1,0 +1,516 @@
+!> The solution program of a deck (BATCh ... END, input language section 5) and the data read
+!> after its END (TPLOt requests, INITial node-vector records), in the order of the commands.
+!>
+!> Each command is stored as `name, option, v(1:3)` with name and option the first 4 characters
+!> in lower case. Normalised forms:
+!> - `tran` option `expl` or `cent`;
+!> - `dt` option '' (v(1) = dt) or `cfl` (v(1) = c, 0.9 when blank); `DT dt` (a number in the
+!>   option field) is read as `DT,,dt` with a warning;
+!> - `loop` v(1) = n, jump = index of its `next`; `next` jump = index of its `loop`;
+!> - `time` v(1) = tmax (0: none); `form` option `expl`; `tplo` v(1) = inc (>= 1);
+!> - `init` option `rate`, `velo`, `regi` or `mate`: every INITial command carries
+!>   data(2, nnode) and given(nnode), read after END (rate/velo) or computed (regi/mate:
+!>   v(1) = r or m, v(2:3) = vx, vy; every node of those elements is given);
+!> - `outp` option `hdf5`, v(1) = dt_out; `prin` option `ener`, v(1) = n.
+module exic_io_deck_batch
+   use exic_base_kinds, only: wp
+   use exic_base_error, only: error_t, make_error
+   use exic_mesh_mesh, only: mesh_t
+   use exic_model, only: model_t
+   use exic_io_program, only: command_t, request_t, REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, &
+                              REQ_REAC, REQ_CONT
+   use exic_io_records, only: keyword_is, keyword_key
+   use exic_io_expression, only: evaluate
+   use exic_io_reader, only: reader_t, next_record, next_nonblank, field, word, has_field, &
+                             real_field, int_field, fail, warn, where, end_set, unknown_keyword, &
+                             itoa, rtoa, check_command
+   use exic_io_deck_mesh, only: genvec_t, node_record
+   use exic_io_deck_finish, only: used_nodes, nearest_node
+   implicit none
+   private
+
+   public :: read_batch, read_batch_data
+
+   !> Deepest LOOP nesting.
+   integer, parameter :: MAX_LOOP_DEPTH = 8
+
+   character(len=12), parameter :: commands(11) = [character(len=12) :: 'TRANsient', 'DT', &
+                                                   'LOOP', 'NEXT', 'TIME', 'FORM', 'TPLOt', &
+                                                   'INITial', 'OUTPut', 'PRINt', 'END']
+   character(len=12), parameter :: requests(8) = [character(len=12) :: 'disp', 'velo', 'acce', &
+                                                  'stre', 'reac', 'cont', 'show', 'ener']
+
+contains
+
+   !> Read the commands after the BATCh record `ib` up to END into model%program.
+   subroutine read_batch(rd, ib, model, err)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: ib
+      type(model_t), intent(inout) :: model
+      type(error_t), allocatable, intent(out) :: err
+      type(command_t), allocatable :: prog(:), tmp(:)
+      integer :: i, n, depth, stack(MAX_LOOP_DEPTH)
+      type(command_t) :: c
+      logical :: cut
+
+      allocate (prog(16))
+      n = 0
+      depth = 0
+      do
+         call next_nonblank(rd, i)
+         if (i == 0) then
+            call fail(rd, i, 'BATCh opened at '//where(rd, ib)//' is not closed: expected END', err)
+            return
+         end if
+         call check_command(rd, i, cut)
+         if (keyword_is(word(rd, i, 1), 'end')) exit
+         call parse_command(rd, i, model, c, err)
+         if (allocated(err)) return
+         if (n == size(prog)) then
+            allocate (tmp(2*n))
+            tmp(1:n) = prog(1:n)
+            call move_alloc(tmp, prog)
+         end if
+         n = n + 1
+         prog(n) = c
+         if (c%name == 'loop') then
+            if (depth == MAX_LOOP_DEPTH) then
+               call fail(rd, i, 'LOOP nested deeper than 8: expected at most 8 open LOOPs', err)
+               return
+            end if
+            depth = depth + 1
+            stack(depth) = n
+         else if (c%name == 'next') then
+            if (depth == 0) then
+               call fail(rd, i, 'NEXT without LOOP: expected a LOOP before it', err)
+               return
+            end if
+            prog(n)%jump = stack(depth)
+            prog(stack(depth))%jump = n
+            depth = depth - 1
+         end if
+      end do
+      if (depth > 0) then
+         call make_error(err, prog(stack(depth))%where//': LOOP without NEXT: expected NEXT '// &
+                         'before the END at '//where(rd, i))
+         return
+      end if
+      model%program = prog(1:n)
+   end subroutine read_batch
+
+   !> One solution command.
+   subroutine parse_command(rd, i, model, c, err)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: i
+      type(model_t), intent(in) :: model
+      type(command_t), intent(out) :: c
+      type(error_t), allocatable, intent(out) :: err
+      character(len=:), allocatable :: w, opt
+      integer :: k, j
+
+      w = word(rd, i, 1)
+      opt = word(rd, i, 2)
+      c%where = where(rd, i)
+      do k = 1, size(commands)
+         if (keyword_is(w, commands(k))) exit
+      end do
+      if (k > size(commands)) then
+         call unknown_keyword(rd, i, 'solution command', field(rd, i, 1), commands, err)
+         return
+      end if
+      c%name = keyword_key(commands(k))
+      c%option = opt
+      do j = 1, 3
+         call real_field(rd, i, 2 + j, trim(commands(k))//',option,v1,v2,v3', c%v(j), err)
+         if (allocated(err)) return
+      end do
+      select case (c%name)
+      case ('tran')
+         if (keyword_is(opt, 'expl') .or. keyword_is(opt, 'cent')) then
+            c%option = keyword_key(opt)
+         else
+            call fail(rd, i, 'TRANsient,'//field(rd, i, 2)//' is not supported: expected '// &
+                      'TRANsient,EXPLicit or TRANsient,CENTral', err)
+         end if
+      case ('dt')
+         call parse_dt(rd, i, c, err)
+      case ('loop')
+         call positive_int(rd, i, c%v(1), 'LOOP,,n', err)
+      case ('next')
+         continue
+      case ('time')
+         if (len(opt) > 0) then
+            call fail(rd, i, 'TIME,'//field(rd, i, 2)//' is not supported: expected TIME or '// &
+                      'TIME,,tmax', err)
+         else if (c%v(1) < 0.0_wp) then
+            call fail(rd, i, 'TIME,,tmax: expected tmax >= 0', err)
+         end if
+      case ('form')
+         if (len(opt) == 0 .or. keyword_is(opt, 'expl')) then
+            c%option = 'expl'
+         else
+            call fail(rd, i, 'FORM,'//field(rd, i, 2)//' is not supported: expected FORM,EXPLicit', err)
+         end if
+      case ('tplo')
+         if (c%v(1) == 0.0_wp) c%v(1) = 1.0_wp
+         call positive_int(rd, i, c%v(1), 'TPLOt,,inc', err)
+      case ('init')
+         call parse_init(rd, i, model, c, err)
+      case ('outp')
+         if (.not. keyword_is(opt, 'hdf5')) then
+            call fail(rd, i, 'OUTPut,'//field(rd, i, 2)//' is not supported: expected '// &
+                      'OUTPut,HDF5,dt_out', err)
+         else if (.not. (c%v(1) > 0.0_wp)) then
+            call fail(rd, i, 'OUTPut,HDF5,dt_out: expected dt_out > 0', err)
+         else
+            c%option = 'hdf5'
+         end if
+      case ('prin')
+         if (.not. keyword_is(opt, 'ener')) then
+            call fail(rd, i, 'PRINt,'//field(rd, i, 2)//' is not supported: expected PRINt,ENERgy,n', err)
+         else
+            c%option = 'ener'
+            call positive_int(rd, i, c%v(1), 'PRINt,ENERgy,n', err)
+         end if
+      end select
+   end subroutine parse_command
+
+   !> v must be an integer >= 1.
+   subroutine positive_int(rd, i, v, what, err)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i
+      real(wp), intent(in) :: v
+      character(len=*), intent(in) :: what
+      type(error_t), allocatable, intent(out) :: err
+      if (v < 1.0_wp .or. v /= anint(v) .or. v > 2.0e9_wp) &
+         call fail(rd, i, what//' = '//rtoa(v)//': expected an integer >= 1', err)
+   end subroutine positive_int
+
+   !> DT,,dt | DT,CFL,c | DT dt (warning).
+   subroutine parse_dt(rd, i, c, err)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: i
+      type(command_t), intent(inout) :: c
+      type(error_t), allocatable, intent(out) :: err
+      character(len=12), parameter :: opts(1) = [character(len=12) :: 'CFL']
+      type(error_t), allocatable :: e
+      real(wp) :: v
+      if (keyword_is(c%option, 'cfl')) then
+         c%option = 'cfl'
+         if (.not. has_field(rd, i, 3)) c%v(1) = 0.9_wp
+         if (.not. (c%v(1) > 0.0_wp .and. c%v(1) <= 1.0_wp)) &
+            call fail(rd, i, 'DT,CFL,c: c = '//rtoa(c%v(1))//': expected 0 < c <= 1', err)
+         return
+      end if
+      if (len_trim(c%option) > 0) then
+         call evaluate(field(rd, i, 2), rd%params, v, e)
+         if (allocated(e)) then
+            call unknown_keyword(rd, i, 'DT option', field(rd, i, 2), opts, err)
+            return
+         end if
+         call warn(rd, i, 'DT '//field(rd, i, 2)//' read as DT,,'//field(rd, i, 2)// &
+                   ' (a number belongs in the third field)')
+         c%option = ''
+         c%v(1) = v
+      end if
+      if (.not. (c%v(1) > 0.0_wp)) call fail(rd, i, 'DT,,dt: dt = '//rtoa(c%v(1))// &
+                                             ': expected dt > 0 (or DT,CFL,c)', err)
+   end subroutine parse_dt
+
+   !> INITial,RATE|VELOcity (data after END) or INITial,REGIon|MATErial,id,vx,vy (computed now).
+   subroutine parse_init(rd, i, model, c, err)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i
+      type(model_t), intent(in) :: model
+      type(command_t), intent(inout) :: c
+      type(error_t), allocatable, intent(out) :: err
+      character(len=12), parameter :: opts(4) = [character(len=12) :: 'RATE', 'VELOcity', &
+                                                 'REGIon', 'MATErial']
+      integer :: e, id, nn
+      logical :: hit, region
+      nn = model%mesh%nnode
+      allocate (c%data(2, nn), c%given(nn))
+      c%data = 0.0_wp
+      c%given = .false.
+      if (keyword_is(c%option, 'rate') .or. keyword_is(c%option, 'velo')) then
+         c%option = keyword_key(c%option)
+         return
+      end if
+      if (.not. (keyword_is(c%option, 'regi') .or. keyword_is(c%option, 'mate'))) then
+         if (keyword_is(c%option, 'disp')) then
+            call fail(rd, i, 'INITial,DISPlacement is not supported: expected INITial,RATE, '// &
+                      'VELOcity, REGIon or MATErial', err)
+         else
+            call unknown_keyword(rd, i, 'INITial option', field(rd, i, 2), opts, err)
+         end if
+         return
+      end if
+      region = keyword_is(c%option, 'regi')
+      c%option = keyword_key(c%option)
+      call int_field(rd, i, 3, 'INITial,'//field(rd, i, 2)//',id,vx,vy', id, err)
+      if (allocated(err)) return
+      hit = .false.
+      do e = 1, model%mesh%nelem
+         if (region .and. model%mesh%region(e) /= id) cycle
+         if (.not. region .and. model%mesh%mat(e) /= id) cycle
+         hit = .true.
+         c%given(model%mesh%conn(:, e)) = .true.
+      end do
+      if (.not. hit) then
+         if (region) then
+            call fail(rd, i, 'INITial,REGIon: region '//itoa(id)//' has no elements: expected '// &
+                      'an existing region', err)
+         else
+            call fail(rd, i, 'INITial,MATErial: material '//itoa(id)//' has no elements: '// &
+                      'expected an existing material', err)
+         end if
+         return
+      end if
+      c%data(1, :) = merge(c%v(2), 0.0_wp, c%given)
+      c%data(2, :) = merge(c%v(3), 0.0_wp, c%given)
+   end subroutine parse_init
+
+   !> Read the data sets after the BATCh END in command order, then STOP. `map` sends a node to
+   !> its survivor after TIE.
+   subroutine read_batch_data(rd, model, map, err)
+      type(reader_t), intent(inout) :: rd
+      type(model_t), intent(inout) :: model
+      integer, intent(in) :: map(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(request_t), allocatable :: req(:)
+      integer :: k, nreq, i
+      logical :: cut
+
+      allocate (req(16))
+      nreq = 0
+      do k = 1, size(model%program)
+         associate (c => model%program(k))
+            if (c%name == 'tplo') then
+               call read_requests(rd, model, map, req, nreq, err)
+            else if (c%name == 'init' .and. (c%option == 'rate' .or. c%option == 'velo')) then
+               call read_init_data(rd, model%mesh, map, c, err)
+            end if
+         end associate
+         if (allocated(err)) return
+      end do
+      model%requests = req(1:nreq)
+      call next_nonblank(rd, i)
+      if (i == 0) then
+         call fail(rd, i, 'expected STOP at the end of the deck', err)
+         return
+      end if
+      call check_command(rd, i, cut)
+      if (.not. keyword_is(word(rd, i, 1), 'stop')) then
+         if (cut) then
+            call fail(rd, i, 'expected STOP (the blank record at '//where(rd, i - 1)// &
+                      ' ended the data set before this record)', err)
+         else
+            call fail(rd, i, 'expected STOP after the data of the BATCh commands (one data '// &
+                      'set per TPLOt and INITial,RATE|VELOcity, each ended by a blank record)', err)
+         end if
+      end if
+   end subroutine read_batch_data
+
+   !> INITial,RATE|VELOcity node-vector records `n, ng, vx, vy` up to a blank record.
+   subroutine read_init_data(rd, mesh, map, c, err)
+      type(reader_t), intent(inout) :: rd
+      type(mesh_t), intent(in) :: mesh
+      integer, intent(in) :: map(:)
+      type(command_t), intent(inout) :: c
+      type(error_t), allocatable, intent(out) :: err
+      type(genvec_t) :: g
+      integer, allocatable :: nodes(:)
+      real(wp), allocatable :: vals(:, :)
+      integer :: i, cnt, k, n
+      do
+         call next_record(rd, i)
+         if (i == 0) return
+         if (rd%src%rec(i)%blank) then
+            call end_set(rd, i)
+            return
+         end if
+         cnt = 0
+         call node_record(rd, i, 1, 'INITial data record n, ng, vx, vy', mesh%nnode, .false., g, &
+                          nodes, vals, cnt, err)
+         if (allocated(err)) return
+         do k = 1, cnt
+            n = nodes(k)
+            if (.not. mesh%defined(n)) then
+               call fail(rd, i, 'INITial data: node '//itoa(n)//' has no coordinates: expected a '// &
+                         'node of the mesh', err)
+               return
+            end if
+            n = map(n)
+            c%data(:, n) = vals(:, k)
+            c%given(n) = .true.
+         end do
+      end do
+   end subroutine read_init_data
+
+   !> TPLOt request records up to a blank record, resolved against the final mesh.
+   subroutine read_requests(rd, model, map, req, nreq, err)
+      type(reader_t), intent(inout) :: rd
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: map(:)
+      type(request_t), allocatable, intent(inout) :: req(:)
+      integer, intent(inout) :: nreq
+      type(error_t), allocatable, intent(out) :: err
+      type(request_t), allocatable :: tmp(:)
+      type(request_t) :: r
+      integer :: i
+      logical :: skip
+      do
+         call next_record(rd, i)
+         if (i == 0) return
+         if (rd%src%rec(i)%blank) then
+            call end_set(rd, i)
+            return
+         end if
+         call parse_request(rd, i, model, map, r, skip, err)
+         if (allocated(err)) return
+         if (skip) cycle
+         if (nreq == size(req)) then
+            allocate (tmp(2*nreq))
+            tmp(1:nreq) = req(1:nreq)
+            call move_alloc(tmp, req)
+         end if
+         nreq = nreq + 1
+         req(nreq) = r
+      end do
+   end subroutine read_requests
+
+   !> One request: `disp|velo|acce,node,dof` | `...,,dof,x,y` | `stre,elem,comp` |
+   !> `stre,,comp,x,y` | `reac,node,dof` | `cont,pair,comp`; `show` (and `ener`) are skipped.
+   subroutine parse_request(rd, i, model, map, r, skip, err)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: i
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: map(:)
+      type(request_t), intent(out) :: r
+      logical, intent(out) :: skip
+      type(error_t), allocatable, intent(out) :: err
+      character(len=:), allocatable :: w, what
+      logical :: used(model%mesh%nnode)
+      integer :: id, e
+
+      skip = .false.
+      w = word(rd, i, 1)
+      r%where = where(rd, i)
+      if (keyword_is(w, 'show')) then
+         skip = .true.
+         return
+      else if (keyword_is(w, 'ener')) then
+         call warn(rd, i, 'TPLOt request ener ignored: energies are always written to <stem>.ene')
+         skip = .true.
+         return
+      else if (keyword_is(w, 'disp')) then
+         r%kind = REQ_DISP
+      else if (keyword_is(w, 'velo')) then
+         r%kind = REQ_VELO
+      else if (keyword_is(w, 'acce')) then
+         r%kind = REQ_ACCE
+      else if (keyword_is(w, 'stre')) then
+         r%kind = REQ_STRE
+      else if (keyword_is(w, 'reac')) then
+         r%kind = REQ_REAC
+      else if (keyword_is(w, 'cont')) then
+         r%kind = REQ_CONT
+      else
+         call unknown_keyword(rd, i, 'TPLOt request', field(rd, i, 1), requests, err)
+         return
+      end if
+      what = 'TPLOt request '//w//',id,comp[,x,y]'
+      call int_field(rd, i, 2, what, id, err)
+      if (.not. allocated(err)) call int_field(rd, i, 3, what, r%comp, err)
+      if (allocated(err)) return
+      select case (r%kind)
+      case (REQ_DISP, REQ_VELO, REQ_ACCE, REQ_REAC)
+         if (r%comp /= 1 .and. r%comp /= 2) then
+            call fail(rd, i, what//': dof '//itoa(r%comp)//': expected dof 1 or 2', err)
+            return
+         end if
+      case (REQ_STRE)
+         if (r%comp < 1 .or. r%comp > 7) then
+            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1..7 (sxx syy szz '// &
+                      'sxy p mises J)', err)
+            return
+         end if
+      case (REQ_CONT)
+         if (r%comp < 1 .or. r%comp > 5) then
+            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1..5', err)
+            return
+         end if
+         call check_pair(id)
+         r%id = id
+         return
+      end select
+      used = used_nodes(model%mesh)
+      if (id == 0 .and. r%kind /= REQ_REAC) then
+         r%by_point = .true.
+         if (.not. (has_field(rd, i, 4) .and. has_field(rd, i, 5))) then
+            call fail(rd, i, what//': expected x, y in fields 4 and 5 when the id field is empty', err)
+            return
+         end if
+         call real_field(rd, i, 4, what, r%xy(1), err)
+         if (.not. allocated(err)) call real_field(rd, i, 5, what, r%xy(2), err)
+         if (allocated(err)) return
+         if (r%kind == REQ_STRE) then
+            r%id = nearest_element(model%mesh, r%xy)
+         else
+            r%id = nearest_node(model%mesh, used, r%xy)
+         end if
+         return
+      end if
+      if (r%kind == REQ_STRE) then
+         if (id < 1 .or. id > model%mesh%nelem) then
+            call fail(rd, i, what//': element '//itoa(id)//' is unknown: expected an element '// &
+                      'number in 1..'//itoa(model%mesh%nelem), err)
+            return
+         end if
+         r%id = id
+         return
+      end if
+      e = 0
+      if (id >= 1 .and. id <= model%mesh%nnode) e = map(id)
+      if (e == 0) then
+         call fail(rd, i, what//': node '//itoa(id)//' is unknown: expected a node of the mesh', err)
+         return
+      end if
+      if (.not. used(e)) then
+         call fail(rd, i, what//': node '//itoa(id)//' is unknown: expected a node of an element', err)
+         return
+      end if
+      r%id = e
+   contains
+      subroutine check_pair(id)
+         integer, intent(in) :: id
+         if (.not. model%contact%active) then
+            call fail(rd, i, what//': the deck has no CONTact block: expected one for a cont request', err)
+         else if (id < 1) then
+            call fail(rd, i, what//': pair '//itoa(id)//': expected a pair id >= 1', err)
+         else if (.not. model%contact%automatic) then
+            if (.not. any(model%contact%pairs%id == id)) call fail(rd, i, what//': pair '// &
+               itoa(id)//' is unknown: expected a PAIR id of the CONTact block', err)
+         end if
+      end subroutine check_pair
+   end subroutine parse_request
+
+   !> Element whose node-average centroid is nearest to p (lowest number on a tie).
+   pure integer function nearest_element(mesh, p)
+      type(mesh_t), intent(in) :: mesh
+      real(wp), intent(in) :: p(2)
+      real(wp) :: c(2), d, dbest
+      integer :: e
+      nearest_element = 0
+      dbest = huge(1.0_wp)
+      do e = 1, mesh%nelem
+         c = 0.25_wp*sum(mesh%x(:, mesh%conn(:, e)), dim=2)
+         d = (c(1) - p(1))**2 + (c(2) - p(2))**2
+         if (d < dbest) then
+            dbest = d
+            nearest_element = e
+         end if
+      end do
+   end function nearest_element
+
+end module exic_io_deck_batch

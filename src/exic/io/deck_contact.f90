@@ -1,0 +1,361 @@
+!> The CONTact ... END CONTact block of a deck (input language, section 4), parsed into a
+!> contact_spec_t. Surfaces are only described here; their edges are built later.
+!>
+!> Records (blank records are skipped, except that a blank ends a FACEts list):
+!> `SURFace,id` then one of `REGIon,r` | `MATErial,m` | `FACEts` + records `f, ng, n1, n2`
+!> (gaps generated as for ELEMents: copies of the previous facet with non-zero nodes + ng);
+!> `PAIR,id,NTOS|SYMMetric,s,m` | `PAIR,id,SELF,s`; `AUTOmatic`; method records after a PAIR
+!> or AUTOmatic: `LAGRange`, `PENAlty,k`, `PENAlty,SCALe,f` (f defaults to 0.1),
+!> `DETEction,SWEPt|STATic`. `END CONTact` (or `END`) closes the block.
+module exic_io_deck_contact
+   use exic_base_kinds, only: wp
+   use exic_base_error, only: error_t
+   use exic_contact_spec, only: contact_spec_t, surface_spec_t, pair_spec_t, SURF_REGION, &
+                                SURF_MATERIAL, SURF_FACETS, PAIR_NTOS, PAIR_SYMMETRIC, PAIR_SELF, &
+                                METHOD_LAGRANGE, METHOD_PENALTY, DETECT_SWEPT, DETECT_STATIC
+   use exic_io_records, only: keyword_is
+   use exic_io_reader, only: reader_t, next_record, field, word, has_field, real_field, int_field, &
+                             fail, where, end_set, unknown_keyword, itoa, rtoa, nfields
+   implicit none
+   private
+
+   public :: cmd_contact
+
+   character(len=12), parameter :: words(9) = [character(len=12) :: 'SURFace', 'REGIon', &
+                                               'MATErial', 'FACEts', 'PAIR', 'AUTOmatic', &
+                                               'LAGRange', 'PENAlty', 'DETEction']
+
+contains
+
+   !> Read the block opened by the CONTact record `icmd` into `spec`.
+   subroutine cmd_contact(rd, icmd, spec, err)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: icmd
+      type(contact_spec_t), intent(inout) :: spec
+      type(error_t), allocatable, intent(out) :: err
+      integer :: i, nsurf, npair, target, cur
+      character(len=:), allocatable :: w
+      type(surface_spec_t), allocatable :: surf(:)
+      type(pair_spec_t), allocatable :: pair(:)
+
+      if (spec%active) then
+         call fail(rd, icmd, 'a second CONTact block: expected one CONTact block per deck', err)
+         return
+      end if
+      allocate (surf(4), pair(4))
+      nsurf = 0
+      npair = 0
+      target = 0         ! 0: none, > 0: pair index, -1: AUTOmatic
+      cur = 0            ! surface awaiting its description
+      do
+         call next_record(rd, i)
+         if (i == 0) then
+            call fail(rd, i, 'CONTact block opened at '//where(rd, icmd)//' is not closed: '// &
+                      'expected END CONTact', err)
+            return
+         end if
+         if (rd%src%rec(i)%blank) cycle
+         w = word(rd, i, 1)
+         if (keyword_is(w, 'end')) exit
+         if (keyword_is(w, 'surf')) then
+            call new_surface(i, err)
+         else if (keyword_is(w, 'regi') .or. keyword_is(w, 'mate') .or. keyword_is(w, 'face')) then
+            call describe(i, w, err)
+         else if (keyword_is(w, 'pair')) then
+            call new_pair(i, err)
+         else if (keyword_is(w, 'auto')) then
+            spec%automatic = .true.
+            spec%auto_options%automatic = .true.
+            spec%auto_options%where = where(rd, i)
+            target = -1
+            if (nfields(rd, i) >= 2) call method(i, 2, err)
+         else if (keyword_is(w, 'lagr') .or. keyword_is(w, 'pena') .or. keyword_is(w, 'dete')) then
+            call method(i, 1, err)
+         else
+            call unknown_keyword(rd, i, 'CONTact record', field(rd, i, 1), words, err)
+         end if
+         if (allocated(err)) return
+      end do
+      call close_block(i, err)
+      if (allocated(err)) return
+      spec%active = .true.
+      spec%surfaces = surf(1:nsurf)
+      spec%pairs = pair(1:npair)
+   contains
+      subroutine new_surface(i, err)
+         integer, intent(in) :: i
+         type(error_t), allocatable, intent(out) :: err
+         type(surface_spec_t), allocatable :: tmp(:)
+         integer :: id, k
+         call int_field(rd, i, 2, 'SURFace,id', id, err)
+         if (allocated(err)) return
+         if (id < 1) then
+            call fail(rd, i, 'SURFace,id: expected id >= 1', err)
+            return
+         end if
+         do k = 1, nsurf
+            if (surf(k)%id == id) then
+               call fail(rd, i, 'SURFace '//itoa(id)//' is already defined at '//surf(k)%where// &
+                         ': expected each surface id once', err)
+               return
+            end if
+         end do
+         if (nsurf == size(surf)) then
+            allocate (tmp(2*nsurf))
+            tmp(1:nsurf) = surf(1:nsurf)
+            call move_alloc(tmp, surf)
+         end if
+         nsurf = nsurf + 1
+         surf(nsurf)%id = id
+         surf(nsurf)%where = where(rd, i)
+         cur = nsurf
+         target = 0
+      end subroutine new_surface
+
+      subroutine describe(i, w, err)
+         integer, intent(in) :: i
+         character(len=*), intent(in) :: w
+         type(error_t), allocatable, intent(out) :: err
+         if (cur == 0) then
+            call fail(rd, i, field(rd, i, 1)//' outside a surface: expected SURFace,id before it', err)
+            return
+         end if
+         if (surf(cur)%by /= 0) then
+            call fail(rd, i, 'SURFace '//itoa(surf(cur)%id)//' is already described: expected '// &
+                      'one of REGIon, MATErial or FACEts', err)
+            return
+         end if
+         if (keyword_is(w, 'face')) then
+            surf(cur)%by = SURF_FACETS
+            call read_facets(rd, surf(cur), err)
+         else
+            if (keyword_is(w, 'regi')) then
+               surf(cur)%by = SURF_REGION
+               call int_field(rd, i, 2, 'SURFace REGIon,r', surf(cur)%ref, err)
+            else
+               surf(cur)%by = SURF_MATERIAL
+               call int_field(rd, i, 2, 'SURFace MATErial,m', surf(cur)%ref, err)
+            end if
+            if (allocated(err)) return
+            if (surf(cur)%ref < 0 .or. (surf(cur)%by == SURF_MATERIAL .and. surf(cur)%ref < 1)) &
+               call fail(rd, i, field(rd, i, 1)//': expected a '// &
+                         'region >= 0 or a material >= 1', err)
+         end if
+      end subroutine describe
+
+      subroutine new_pair(i, err)
+         integer, intent(in) :: i
+         type(error_t), allocatable, intent(out) :: err
+         character(len=12), parameter :: kinds(3) = [character(len=12) :: 'NTOS', 'SYMMetric', 'SELF']
+         character(len=*), parameter :: what = 'PAIR,id,NTOS|SYMMetric,slave,master or PAIR,id,SELF,s'
+         type(pair_spec_t), allocatable :: tmp(:)
+         type(pair_spec_t) :: p
+         integer :: k
+         call int_field(rd, i, 2, what, p%id, err)
+         if (allocated(err)) return
+         if (p%id < 1) then
+            call fail(rd, i, what//': expected id >= 1', err)
+            return
+         end if
+         do k = 1, npair
+            if (pair(k)%id == p%id) then
+               call fail(rd, i, 'PAIR '//itoa(p%id)//' is already defined at '//pair(k)%where// &
+                         ': expected each pair id once', err)
+               return
+            end if
+         end do
+         if (keyword_is(word(rd, i, 3), 'ntos')) then
+            p%kind = PAIR_NTOS
+         else if (keyword_is(word(rd, i, 3), 'symm')) then
+            p%kind = PAIR_SYMMETRIC
+         else if (keyword_is(word(rd, i, 3), 'self')) then
+            p%kind = PAIR_SELF
+         else
+            call unknown_keyword(rd, i, 'PAIR kind', field(rd, i, 3), kinds, err)
+            return
+         end if
+         call int_field(rd, i, 4, what, p%slave, err)
+         if (allocated(err)) return
+         if (p%kind == PAIR_SELF) then
+            p%master = p%slave
+         else
+            call int_field(rd, i, 5, what, p%master, err)
+            if (allocated(err)) return
+         end if
+         if (p%slave < 1 .or. p%master < 1) then
+            call fail(rd, i, what//': expected surface ids >= 1', err)
+            return
+         end if
+         p%where = where(rd, i)
+         if (npair == size(pair)) then
+            allocate (tmp(2*npair))
+            tmp(1:npair) = pair(1:npair)
+            call move_alloc(tmp, pair)
+         end if
+         npair = npair + 1
+         pair(npair) = p
+         target = npair
+         cur = 0
+      end subroutine new_pair
+
+      !> A method record whose keyword is field k0 of record i.
+      subroutine method(i, k0, err)
+         integer, intent(in) :: i, k0
+         type(error_t), allocatable, intent(out) :: err
+         character(len=12), parameter :: methods(3) = [character(len=12) :: 'LAGRange', &
+                                                       'PENAlty', 'DETEction']
+         character(len=12), parameter :: detections(2) = [character(len=12) :: 'SWEPt', 'STATic']
+         type(pair_spec_t) :: p
+         character(len=:), allocatable :: w
+         if (target == 0) then
+            call fail(rd, i, field(rd, i, k0)//' here: expected PAIR or AUTOmatic before a '// &
+                      'method record', err)
+            return
+         end if
+         if (target > 0) then
+            p = pair(target)
+         else
+            p = spec%auto_options
+         end if
+         w = word(rd, i, k0)
+         if (keyword_is(w, 'lagr')) then
+            p%method = METHOD_LAGRANGE
+         else if (keyword_is(w, 'pena')) then
+            p%method = METHOD_PENALTY
+            if (keyword_is(word(rd, i, k0 + 1), 'scal')) then
+               p%penalty_scaled = .true.
+               p%penalty = 0.1_wp
+               if (has_field(rd, i, k0 + 2)) call real_field(rd, i, k0 + 2, 'PENAlty,SCALe,f', &
+                                                             p%penalty, err)
+            else
+               p%penalty_scaled = .false.
+               call real_field(rd, i, k0 + 1, 'PENAlty,k', p%penalty, err)
+            end if
+            if (allocated(err)) return
+            if (.not. (p%penalty > 0.0_wp)) then
+               call fail(rd, i, 'PENAlty '//rtoa(p%penalty)//': expected PENAlty,k or '// &
+                         'PENAlty,SCALe,f with a value > 0', err)
+               return
+            end if
+         else if (keyword_is(w, 'dete')) then
+            if (keyword_is(word(rd, i, k0 + 1), 'swep')) then
+               p%detection = DETECT_SWEPT
+            else if (keyword_is(word(rd, i, k0 + 1), 'stat')) then
+               p%detection = DETECT_STATIC
+            else
+               call unknown_keyword(rd, i, 'DETEction option', field(rd, i, k0 + 1), detections, err)
+               return
+            end if
+         else
+            call unknown_keyword(rd, i, 'method record', field(rd, i, k0), methods, err)
+            return
+         end if
+         if (target > 0) then
+            pair(target) = p
+         else
+            spec%auto_options = p
+         end if
+      end subroutine method
+
+      subroutine close_block(i, err)
+         integer, intent(in) :: i
+         type(error_t), allocatable, intent(out) :: err
+         integer :: k
+         if (has_field(rd, i, 2) .and. .not. keyword_is(word(rd, i, 2), 'cont')) then
+            call fail(rd, i, 'END '//field(rd, i, 2)//' inside the CONTact block: expected '// &
+                      'END CONTact', err)
+            return
+         end if
+         do k = 1, nsurf
+            if (surf(k)%by == 0) then
+               call fail(rd, i, 'SURFace '//itoa(surf(k)%id)//' (at '//surf(k)%where//') has no '// &
+                         'description: expected REGIon,r, MATErial,m or FACEts', err)
+               return
+            end if
+         end do
+         do k = 1, npair
+            if (.not. any(surf(1:nsurf)%id == pair(k)%slave)) then
+               call fail(rd, i, 'PAIR '//itoa(pair(k)%id)//' (at '//pair(k)%where// &
+                         ') names surface '//itoa(pair(k)%slave)//': expected a defined SURFace', err)
+               return
+            end if
+            if (.not. any(surf(1:nsurf)%id == pair(k)%master)) then
+               call fail(rd, i, 'PAIR '//itoa(pair(k)%id)//' (at '//pair(k)%where// &
+                         ') names surface '//itoa(pair(k)%master)//': expected a defined SURFace', err)
+               return
+            end if
+         end do
+         if (npair == 0 .and. .not. spec%automatic) then
+            call fail(rd, icmd, 'CONTact block without PAIR or AUTOmatic: expected at least one', err)
+         end if
+      end subroutine close_block
+   end subroutine cmd_contact
+
+   !> FACEts records `f, ng, n1, n2` up to a blank record, with ELEMents-style generation.
+   subroutine read_facets(rd, s, err)
+      type(reader_t), intent(inout) :: rd
+      type(surface_spec_t), intent(inout) :: s
+      type(error_t), allocatable, intent(out) :: err
+      character(len=*), parameter :: what = 'FACEts record f, ng, n1, n2'
+      integer, allocatable :: fac(:, :), tmp(:, :)
+      integer :: i, f, ng, nd(2), m, mg, mnd(2), e, k, nf
+      allocate (fac(2, 16))
+      fac = 0
+      m = 0
+      mg = 0
+      mnd = 0
+      do
+         call next_record(rd, i)
+         if (i == 0) exit
+         if (rd%src%rec(i)%blank) then
+            call end_set(rd, i)
+            exit
+         end if
+         call int_field(rd, i, 1, what, f, err)
+         if (.not. allocated(err)) call int_field(rd, i, 2, what, ng, err)
+         do k = 1, 2
+            if (.not. allocated(err)) call int_field(rd, i, 2 + k, what, nd(k), err)
+         end do
+         if (allocated(err)) return
+         if (f <= m) then
+            call fail(rd, i, what//': facet '//itoa(f)//': expected a facet number above '// &
+                      itoa(m)//' (facets in increasing order)', err)
+            return
+         end if
+         if (any(nd < 1) .or. nd(1) == nd(2)) then
+            call fail(rd, i, what//': expected two different node numbers >= 1', err)
+            return
+         end if
+         if (f > size(fac, 2)) then
+            allocate (tmp(2, max(2*size(fac, 2), f)))
+            tmp = 0
+            tmp(:, 1:size(fac, 2)) = fac
+            call move_alloc(tmp, fac)
+         end if
+         if (m > 0) then
+            do e = m + 1, f - 1
+               where (mnd /= 0) mnd = mnd + max(mg, 1)
+               fac(:, e) = mnd
+            end do
+         end if
+         fac(:, f) = nd
+         m = f
+         mg = ng
+         mnd = nd
+      end do
+      nf = m
+      if (nf == 0) then
+         call fail(rd, i, 'FACEts: expected at least one record f, ng, n1, n2', err)
+         return
+      end if
+      do e = 1, nf
+         if (fac(1, e) == 0) then
+            call fail(rd, i, 'FACEts: facet '//itoa(e)//' is missing: expected facets numbered '// &
+                      'from 1 without gaps', err)
+            return
+         end if
+      end do
+      s%facets = fac(:, 1:nf)
+   end subroutine read_facets
+
+end module exic_io_deck_contact

@@ -1,0 +1,438 @@
+!> What happens at the mesh END of a deck: the mesh is sized to its highest node and element
+!> numbers and checked, EBOUndary then CBOUndary sets and the mesh-phase initial velocities are
+!> applied, and TIE records merge coincident nodes.
+!>
+!> Checks (each error names file:line of the record that made the item): every element number
+!> 1..nelem defined; every element node defined; every element's material has a MATErial set;
+!> every element counter-clockwise with positive area and a positive cross product of the two
+!> edges at each corner (so a clockwise, inverted or non-convex element is an error); regions
+!> and materials named by INITial or CONTact exist; FACEts nodes are element nodes.
+!> Tolerances scale with the mesh size h = the larger side of the bounding box of the nodes used
+!> by elements: EBOUndary and CBOUndary LINEar 1e-6 h (CBOUndary GAP overrides), TIE 1e-8 h.
+module exic_io_deck_finish
+   use exic_base_kinds, only: wp
+   use exic_base_error, only: error_t, make_error
+   use exic_mesh_mesh, only: mesh_t
+   use exic_mesh_tie, only: tie_map, apply_tie
+   use exic_material_material, only: MAT_UNDEFINED
+   use exic_contact_spec, only: contact_spec_t, SURF_REGION, SURF_MATERIAL, SURF_FACETS
+   use exic_model, only: model_t
+   use exic_io_records, only: keyword_is
+   use exic_io_reader, only: reader_t, fail, warn, where, itoa, rtoa, word, field, int_field, &
+                             unknown_keyword, has_field
+   use exic_io_deck_mesh, only: builder_t, CB_NODE, CB_LINE, INIT_NODE, INIT_REGION, INIT_MATERIAL
+   implicit none
+   private
+
+   public :: finish_mesh, check_contact, cmd_tie, used_nodes, mesh_size, nearest_node
+
+contains
+
+   !> Nodes used by at least one element (the active nodes).
+   function used_nodes(mesh) result(used)
+      type(mesh_t), intent(in) :: mesh
+      logical :: used(mesh%nnode)
+      integer :: e, k
+      used = .false.
+      do e = 1, mesh%nelem
+         do k = 1, 4
+            if (mesh%conn(k, e) >= 1 .and. mesh%conn(k, e) <= mesh%nnode) used(mesh%conn(k, e)) = .true.
+         end do
+      end do
+   end function used_nodes
+
+   !> Larger side of the bounding box of the nodes marked in `mask` (1 when that is zero).
+   pure real(wp) function mesh_size(mesh, mask)
+      type(mesh_t), intent(in) :: mesh
+      logical, intent(in) :: mask(:)
+      real(wp) :: dx, dy
+      mesh_size = 1.0_wp
+      if (.not. any(mask)) return
+      dx = maxval(mesh%x(1, :), mask) - minval(mesh%x(1, :), mask)
+      dy = maxval(mesh%x(2, :), mask) - minval(mesh%x(2, :), mask)
+      mesh_size = max(dx, dy)
+      if (mesh_size <= 0.0_wp) mesh_size = 1.0_wp
+   end function mesh_size
+
+   !> The node of `mask` nearest to p (lowest number on a tie); 0 when the mask is empty.
+   pure integer function nearest_node(mesh, mask, p)
+      type(mesh_t), intent(in) :: mesh
+      logical, intent(in) :: mask(:)
+      real(wp), intent(in) :: p(2)
+      real(wp) :: d, dbest
+      integer :: n
+      nearest_node = 0
+      dbest = huge(1.0_wp)
+      do n = 1, mesh%nnode
+         if (.not. mask(n)) cycle
+         d = (mesh%x(1, n) - p(1))**2 + (mesh%x(2, n) - p(2))**2
+         if (d < dbest) then
+            dbest = d
+            nearest_node = n
+         end if
+      end do
+   end function nearest_node
+
+   !> Size the mesh, check it, and apply the deferred sets. `iend` is the END record; `counts`
+   !> holds numnp, numel, nummat of the control record (0 = count) and `ictl` its record.
+   subroutine finish_mesh(rd, b, iend, counts, ictl, model, err)
+      type(reader_t), intent(inout) :: rd
+      type(builder_t), intent(inout) :: b
+      integer, intent(in) :: iend, counts(3), ictl
+      type(model_t), intent(inout) :: model
+      type(error_t), allocatable, intent(out) :: err
+      integer :: nn, ne, e, k, n, m
+
+      nn = b%m%nnode
+      ne = b%m%nelem
+      if (ne == 0) then
+         call fail(rd, iend, 'the mesh has no elements: expected ELEMents or BLOCk before END', err)
+         return
+      end if
+      associate (mesh => model%mesh)
+         mesh%nnode = nn
+         mesh%nelem = ne
+         mesh%x = b%m%x(:, 1:nn)
+         mesh%defined = b%m%defined(1:nn)
+         mesh%bc = b%m%bc(:, 1:nn)
+         mesh%force = b%m%force(:, 1:nn)
+         mesh%disp = b%m%disp(:, 1:nn)
+         mesh%v0 = b%m%v0(:, 1:nn)
+         mesh%conn = b%m%conn(:, 1:ne)
+         mesh%mat = b%m%mat(1:ne)
+         mesh%region = b%m%region(1:ne)
+      end associate
+      m = 0
+      do k = 1, b%nmat
+         if (b%mat_rec(k) > 0) m = k
+      end do
+      allocate (model%materials(m))
+      if (m > 0) model%materials = b%mats(1:m)
+      do e = 1, ne
+         if (.not. b%edef(e)) then
+            call fail(rd, iend, 'element '//itoa(e)//' is missing: expected elements numbered 1..'// &
+                      itoa(ne)//' without gaps', err)
+            return
+         end if
+         do k = 1, 4
+            n = model%mesh%conn(k, e)
+            if (n < 1 .or. n > nn) then
+               call fail(rd, b%erec(e), 'element '//itoa(e)//' uses node '//itoa(n)// &
+                         ', which has no coordinates: expected a node defined by COORdinates or BLOCk', err)
+               return
+            end if
+            if (.not. model%mesh%defined(n)) then
+               call fail(rd, b%erec(e), 'element '//itoa(e)//' uses node '//itoa(n)// &
+                         ', which has no coordinates: expected a node defined by COORdinates or BLOCk', err)
+               return
+            end if
+         end do
+         m = model%mesh%mat(e)
+         if (m > size(model%materials)) then
+            call fail(rd, b%erec(e), 'element '//itoa(e)//' uses material '//itoa(m)// &
+                      ', which has no MATErial set: expected MATErial,'//itoa(m), err)
+            return
+         end if
+         if (b%mat_rec(m) == 0 .or. model%materials(m)%kind == MAT_UNDEFINED) then
+            call fail(rd, b%erec(e), 'element '//itoa(e)//' uses material '//itoa(m)// &
+                      ', which has no MATErial set: expected MATErial,'//itoa(m), err)
+            return
+         end if
+      end do
+      call check_orientation(rd, b, model%mesh, err)
+      if (allocated(err)) return
+      call check_counts(rd, ictl, counts, nn, ne, size(model%materials), err)
+      if (allocated(err)) return
+      call apply_ebound(rd, b, model%mesh)
+      call apply_cbound(rd, b, model%mesh)
+      call apply_initial(rd, b, model%mesh, err)
+   end subroutine finish_mesh
+
+   !> Non-zero counts of the control record are upper bounds.
+   subroutine check_counts(rd, ictl, counts, nn, ne, nm, err)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: ictl, counts(3), nn, ne, nm
+      type(error_t), allocatable, intent(out) :: err
+      if (counts(1) > 0 .and. nn > counts(1)) then
+         call fail(rd, ictl, 'the mesh has '//itoa(nn)//' nodes: expected at most numnp = '// &
+                   itoa(counts(1))//' (0 = count)', err)
+      else if (counts(2) > 0 .and. ne > counts(2)) then
+         call fail(rd, ictl, 'the mesh has '//itoa(ne)//' elements: expected at most numel = '// &
+                   itoa(counts(2))//' (0 = count)', err)
+      else if (counts(3) > 0 .and. nm > counts(3)) then
+         call fail(rd, ictl, 'the deck has material sets up to '//itoa(nm)// &
+                   ': expected at most nummat = '//itoa(counts(3))//' (0 = count)', err)
+      end if
+   end subroutine check_counts
+
+   !> Every element counter-clockwise: positive area and positive corner cross products.
+   subroutine check_orientation(rd, b, mesh, err)
+      type(reader_t), intent(in) :: rd
+      type(builder_t), intent(in) :: b
+      type(mesh_t), intent(in) :: mesh
+      type(error_t), allocatable, intent(out) :: err
+      integer :: e, k, c(4)
+      real(wp) :: xe(2, 4), area, cross, e1(2), e2(2)
+      character(len=:), allocatable :: nodes
+      do e = 1, mesh%nelem
+         c = mesh%conn(:, e)
+         xe = mesh%x(:, c)
+         area = 0.5_wp*((xe(1, 3) - xe(1, 1))*(xe(2, 4) - xe(2, 2)) - &
+                        (xe(2, 3) - xe(2, 1))*(xe(1, 4) - xe(1, 2)))
+         do k = 1, 4
+            e1 = xe(:, modulo(k, 4) + 1) - xe(:, k)
+            e2 = xe(:, modulo(k + 2, 4) + 1) - xe(:, k)
+            cross = e1(1)*e2(2) - e1(2)*e2(1)
+            if (cross <= 0.0_wp .or. area <= 0.0_wp) then
+               nodes = itoa(c(1))//' '//itoa(c(2))//' '//itoa(c(3))//' '//itoa(c(4))
+               if (area <= 0.0_wp) then
+                  call fail(rd, b%erec(e), 'element '//itoa(e)//' (nodes '//nodes// &
+                            ') has non-positive area '//rtoa(area)//': expected counter-clockwise'// &
+                            ' nodes', err)
+               else
+                  call fail(rd, b%erec(e), 'element '//itoa(e)//' (nodes '//nodes// &
+                            ') is clockwise or not convex at node '//itoa(c(k))// &
+                            ': expected a convex counter-clockwise quadrilateral', err)
+               end if
+               return
+            end if
+         end do
+      end do
+   end subroutine check_orientation
+
+   !> EBOUndary sets, in input order (ADD: > 0 fixes, < 0 releases, 0 keeps; SET: replaces).
+   subroutine apply_ebound(rd, b, mesh)
+      type(reader_t), intent(inout) :: rd
+      type(builder_t), intent(in) :: b
+      type(mesh_t), intent(inout) :: mesh
+      logical :: used(mesh%nnode)
+      real(wp) :: tol
+      integer :: k, n, hits
+      used = used_nodes(mesh)
+      tol = 1.0e-6_wp*mesh_size(mesh, used)
+      do k = 1, b%nebou
+         hits = 0
+         do n = 1, mesh%nnode
+            if (.not. mesh%defined(n)) cycle
+            if (abs(mesh%x(b%ebou(k)%dir, n) - b%ebou(k)%x) > tol) cycle
+            call set_codes(mesh%bc(:, n), b%ebou(k)%code, b%ebou(k)%set)
+            if (used(n)) hits = hits + 1
+         end do
+         if (hits == 0) call warn(rd, b%ebou(k)%rec, 'EBOUndary matched no node of the mesh')
+      end do
+   end subroutine apply_ebound
+
+   !> CBOUndary items after the edge sets (SET replaces, ADD combines).
+   subroutine apply_cbound(rd, b, mesh)
+      type(reader_t), intent(inout) :: rd
+      type(builder_t), intent(in) :: b
+      type(mesh_t), intent(inout) :: mesh
+      logical :: used(mesh%nnode)
+      real(wp) :: h, tol, d(2), t, dist, p(2), len2
+      integer :: k, n, hits
+      used = used_nodes(mesh)
+      h = mesh_size(mesh, used)
+      do k = 1, b%ncbou
+         associate (cb => b%cbou(k))
+            tol = 1.0e-6_wp*h
+            if (cb%gap >= 0.0_wp) tol = cb%gap
+            if (cb%kind == CB_NODE) then
+               n = nearest_node(mesh, used, cb%p(:, 1))
+               if (n == 0) cycle
+               dist = norm2(mesh%x(:, n) - cb%p(:, 1))
+               if (dist > 1.0e-3_wp*h) call warn(rd, cb%rec, 'CBOUndary NODE: the nearest node '// &
+                                                 itoa(n)//' is '//rtoa(dist)//' away')
+               call set_codes(mesh%bc(:, n), cb%code, cb%set)
+            else
+               d = cb%p(:, 2) - cb%p(:, 1)
+               len2 = dot_product(d, d)
+               hits = 0
+               do n = 1, mesh%nnode
+                  if (.not. used(n)) cycle
+                  t = 0.0_wp
+                  if (len2 > 0.0_wp) t = dot_product(mesh%x(:, n) - cb%p(:, 1), d)/len2
+                  t = min(1.0_wp, max(0.0_wp, t))
+                  p = cb%p(:, 1) + t*d
+                  if (norm2(mesh%x(:, n) - p) > tol) cycle
+                  call set_codes(mesh%bc(:, n), cb%code, cb%set)
+                  hits = hits + 1
+               end do
+               if (hits == 0) call warn(rd, cb%rec, 'CBOUndary LINEar matched no node of the mesh')
+            end if
+         end associate
+      end do
+   end subroutine apply_cbound
+
+   !> Combine boundary codes: SET replaces (non-zero = 1); ADD: > 0 fixes, < 0 releases.
+   pure subroutine set_codes(bc, code, set)
+      integer, intent(inout) :: bc(2)
+      integer, intent(in) :: code(2)
+      logical, intent(in) :: set
+      integer :: k
+      do k = 1, 2
+         if (set) then
+            bc(k) = merge(1, 0, code(k) /= 0)
+         else if (code(k) > 0) then
+            bc(k) = 1
+         else if (code(k) < 0) then
+            bc(k) = 0
+         end if
+      end do
+   end subroutine set_codes
+
+   !> Mesh-phase INITial,VELOcity items in input order.
+   subroutine apply_initial(rd, b, mesh, err)
+      type(reader_t), intent(in) :: rd
+      type(builder_t), intent(in) :: b
+      type(mesh_t), intent(inout) :: mesh
+      type(error_t), allocatable, intent(out) :: err
+      integer :: k, e, n
+      logical :: hit
+      do k = 1, b%ninit
+         associate (it => b%init(k))
+            select case (it%kind)
+            case (INIT_NODE)
+               n = it%id
+               if (n > mesh%nnode) then
+                  call fail(rd, it%rec, 'INITial,VELOcity: node '//itoa(n)// &
+                            ' is not in the mesh: expected a node number in 1..'//itoa(mesh%nnode), err)
+                  return
+               end if
+               if (.not. mesh%defined(n)) then
+                  call fail(rd, it%rec, 'INITial,VELOcity: node '//itoa(n)// &
+                            ' has no coordinates: expected a defined node', err)
+                  return
+               end if
+               mesh%v0(:, n) = it%v
+            case (INIT_REGION, INIT_MATERIAL)
+               hit = .false.
+               do e = 1, mesh%nelem
+                  if (it%kind == INIT_REGION .and. mesh%region(e) /= it%id) cycle
+                  if (it%kind == INIT_MATERIAL .and. mesh%mat(e) /= it%id) cycle
+                  hit = .true.
+                  do n = 1, 4
+                     mesh%v0(:, mesh%conn(n, e)) = it%v
+                  end do
+               end do
+               if (.not. hit) then
+                  if (it%kind == INIT_REGION) then
+                     call fail(rd, it%rec, 'INITial,VELOcity: region '//itoa(it%id)// &
+                               ' has no elements: expected an existing region', err)
+                  else
+                     call fail(rd, it%rec, 'INITial,VELOcity: material '//itoa(it%id)// &
+                               ' has no elements: expected an existing material', err)
+                  end if
+                  return
+               end if
+            end select
+         end associate
+      end do
+   end subroutine apply_initial
+
+   !> Regions and materials named by the contact surfaces exist; FACEts nodes are element nodes.
+   subroutine check_contact(spec, mesh, err)
+      type(contact_spec_t), intent(in) :: spec
+      type(mesh_t), intent(in) :: mesh
+      type(error_t), allocatable, intent(out) :: err
+      logical :: used(mesh%nnode)
+      integer :: k, f, j, n
+      if (.not. spec%active) return
+      used = used_nodes(mesh)
+      do k = 1, size(spec%surfaces)
+         associate (s => spec%surfaces(k))
+            select case (s%by)
+            case (SURF_REGION)
+               if (.not. any(mesh%region == s%ref)) then
+                  call make_error(err, s%where//': SURFace '//itoa(s%id)//': region '// &
+                                  itoa(s%ref)//' has no elements: expected an existing region')
+                  return
+               end if
+            case (SURF_MATERIAL)
+               if (.not. any(mesh%mat == s%ref)) then
+                  call make_error(err, s%where//': SURFace '//itoa(s%id)//': material '// &
+                                  itoa(s%ref)//' has no elements: expected an existing material')
+                  return
+               end if
+            case (SURF_FACETS)
+               do f = 1, size(s%facets, 2)
+                  do j = 1, 2
+                     n = s%facets(j, f)
+                     if (n > mesh%nnode) then
+                        call make_error(err, s%where//': SURFace '//itoa(s%id)//': facet '// &
+                                        itoa(f)//' uses node '//itoa(n)//': expected a node of the mesh')
+                        return
+                     end if
+                     if (.not. used(n)) then
+                        call make_error(err, s%where//': SURFace '//itoa(s%id)//': facet '// &
+                                        itoa(f)//' uses node '//itoa(n)//': expected a node of the mesh')
+                        return
+                     end if
+                  end do
+               end do
+            end select
+         end associate
+      end do
+   end subroutine check_contact
+
+   !> TIE record `i` (after END): `TIE` merges all coincident element nodes; `TIE,REGIon,r1,r2`
+   !> and `TIE,MATErial,m1,m2` the nodes of elements of those regions/materials (r1 may equal
+   !> r2); `TIE,NODE,n1,n2` the nodes n1..n2. `map` accumulates the merges (node -> survivor).
+   subroutine cmd_tie(rd, i, model, map, err)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: i
+      type(model_t), intent(inout) :: model
+      integer, intent(inout) :: map(:)
+      type(error_t), allocatable, intent(out) :: err
+      character(len=12), parameter :: opts(3) = [character(len=12) :: 'REGIon', 'MATErial', 'NODE']
+      logical :: used(model%mesh%nnode), cand(model%mesh%nnode)
+      integer :: step(model%mesh%nnode), a, c, e, n, k, merged
+      character(len=:), allocatable :: w
+      real(wp) :: tol
+
+      used = used_nodes(model%mesh)
+      cand = used
+      w = word(rd, i, 2)
+      if (len(w) > 0) then
+         call int_field(rd, i, 3, 'TIE,'//field(rd, i, 2)//',n1,n2', a, err)
+         if (.not. allocated(err)) call int_field(rd, i, 4, 'TIE,'//field(rd, i, 2)//',n1,n2', c, err)
+         if (allocated(err)) return
+         if (.not. has_field(rd, i, 4)) c = a
+         cand = .false.
+         if (keyword_is(w, 'regi') .or. keyword_is(w, 'mate')) then
+            do e = 1, model%mesh%nelem
+               if (keyword_is(w, 'regi')) then
+                  k = model%mesh%region(e)
+               else
+                  k = model%mesh%mat(e)
+               end if
+               if (k == a .or. k == c) cand(model%mesh%conn(:, e)) = .true.
+            end do
+         else if (keyword_is(w, 'node')) then
+            do n = max(1, a), min(c, model%mesh%nnode)
+               cand(n) = used(n)
+            end do
+         else
+            call unknown_keyword(rd, i, 'TIE option', field(rd, i, 2), opts, err)
+            return
+         end if
+      end if
+      tol = 1.0e-8_wp*mesh_size(model%mesh, used)
+      call tie_map(model%mesh%nnode, model%mesh%x, cand, tol, step)
+      call apply_tie(model%mesh, step)
+      merged = count([(step(n) /= n, n=1, model%mesh%nnode)])
+      if (merged == 0) call warn(rd, i, 'TIE merged no nodes')
+      do n = 1, size(map)
+         map(n) = step(map(n))
+      end do
+      if (model%contact%active) then
+         do k = 1, size(model%contact%surfaces)
+            if (allocated(model%contact%surfaces(k)%facets)) then
+               associate (fac => model%contact%surfaces(k)%facets)
+                  fac = reshape(step(reshape(fac, [size(fac)])), shape(fac))
+               end associate
+            end if
+         end do
+      end if
+   end subroutine cmd_tie
+
+end module exic_io_deck_finish

@@ -1,0 +1,161 @@
+!> MATErial data sets of a deck (input language, section 3, MATErial).
+!>
+!> ```
+!> MATErial,ma
+!>   SOLId | RIGId                   element type record
+!>   ELAStic NEOHookean E nu         (ELAStic ISOTropic E nu: read as NEOHookean, with a warning)
+!>   DENSity rho
+!>   QUADrature 1|2                  [ext]
+!>   HOURglass h                     [ext]
+!>   MASS LUMPed                     (explicit runs always use lumped mass)
+!>   PLANe STRAin | FINIte           accepted (exic's only setting)
+!> ```
+!> A set is checked when its blank record is read: element type given; for SOLId E > 0,
+!> -1 < nu < 0.5 and rho > 0; for RIGId rho >= 0.
+module exic_io_deck_material
+   use exic_base_kinds, only: wp
+   use exic_base_error, only: error_t
+   use exic_material_material, only: material_t, lame_from_young, MAT_SOLID, MAT_RIGID, &
+                                     MAT_UNDEFINED
+   use exic_io_records, only: keyword_is
+   use exic_io_reader, only: reader_t, next_record, field, word, real_field, int_field, fail, &
+                             warn, where, end_set, unknown_keyword, rtoa, itoa
+   implicit none
+   private
+
+   public :: cmd_material
+
+   character(len=16), parameter :: props(9) = [character(len=16) :: 'SOLId', 'RIGId', &
+                                               'ELAStic', 'DENSity', 'QUADrature', 'HOURglass', &
+                                               'MASS', 'PLANe', 'FINIte']
+
+contains
+
+   !> Read `MATErial,ma` (record `icmd`) and its data set into `mat`; `ma` is the set number.
+   subroutine cmd_material(rd, icmd, ma, mat, err)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: icmd
+      integer, intent(out) :: ma
+      type(material_t), intent(out) :: mat
+      type(error_t), allocatable, intent(out) :: err
+      integer :: i, ielas, idens
+      logical :: has_e, has_rho
+
+      call int_field(rd, icmd, 2, 'MATErial,ma', ma, err)
+      if (allocated(err)) return
+      if (ma < 1) then
+         call fail(rd, icmd, 'MATErial,ma: expected a material set number ma >= 1', err)
+         return
+      end if
+      mat%where = where(rd, icmd)
+      has_e = .false.
+      has_rho = .false.
+      ielas = icmd
+      idens = icmd
+      do
+         call next_record(rd, i)
+         if (i == 0) exit
+         if (rd%src%rec(i)%blank) then
+            call end_set(rd, i)
+            exit
+         end if
+         call property(i, err)
+         if (allocated(err)) return
+      end do
+      call check(err)
+   contains
+      subroutine property(i, err)
+         integer, intent(in) :: i
+         type(error_t), allocatable, intent(out) :: err
+         character(len=:), allocatable :: w
+         integer :: q
+         w = word(rd, i, 1)
+         if (keyword_is(w, 'soli') .or. keyword_is(w, 'rigi')) then
+            if (mat%kind /= MAT_UNDEFINED) then
+               call fail(rd, i, 'MATErial '//itoa(ma)//': a second element type record: '// &
+                         'expected one SOLId or RIGId', err)
+            else if (keyword_is(w, 'soli')) then
+               mat%kind = MAT_SOLID
+            else
+               mat%kind = MAT_RIGID
+            end if
+         else if (keyword_is(w, 'elas')) then
+            if (keyword_is(word(rd, i, 2), 'isot')) then
+               call warn(rd, i, 'ELAStic ISOTropic is read as ELAStic NEOHookean (exic''s only '// &
+                         'solid law)')
+            else if (.not. keyword_is(word(rd, i, 2), 'neoh')) then
+               call fail(rd, i, 'ELAStic law "'//field(rd, i, 2)//'" is not supported: expected '// &
+                         'ELAStic NEOHookean E nu', err)
+               return
+            end if
+            call real_field(rd, i, 3, 'ELAStic NEOHookean E nu', mat%young, err)
+            if (.not. allocated(err)) call real_field(rd, i, 4, 'ELAStic NEOHookean E nu', &
+                                                      mat%poisson, err)
+            has_e = .true.
+            ielas = i
+         else if (keyword_is(w, 'dens')) then
+            call real_field(rd, i, 2, 'DENSity rho', mat%rho, err)
+            has_rho = .true.
+            idens = i
+         else if (keyword_is(w, 'quad')) then
+            call int_field(rd, i, 2, 'QUADrature 1|2', q, err)
+            if (allocated(err)) return
+            if (q /= 1 .and. q /= 2) then
+               call fail(rd, i, 'QUADrature '//itoa(q)//': expected 1 (one point + hourglass '// &
+                         'control) or 2 (2x2 Gauss)', err)
+               return
+            end if
+            mat%quadrature = q
+         else if (keyword_is(w, 'hour')) then
+            call real_field(rd, i, 2, 'HOURglass h', mat%hourglass, err)
+            if (allocated(err)) return
+            if (mat%hourglass < 0.0_wp) call fail(rd, i, 'HOURglass '//rtoa(mat%hourglass)// &
+                                                  ': expected a coefficient >= 0', err)
+         else if (keyword_is(w, 'mass')) then
+            if (keyword_is(word(rd, i, 2), 'cons')) then
+               call warn(rd, i, 'MASS CONSistent ignored: explicit runs use a lumped mass')
+            else if (.not. keyword_is(word(rd, i, 2), 'lump')) then
+               call fail(rd, i, 'MASS "'//field(rd, i, 2)//'": expected MASS LUMPed', err)
+            end if
+         else if (keyword_is(w, 'plan')) then
+            if (.not. keyword_is(word(rd, i, 2), 'stra')) call fail(rd, i, 'PLANe "'// &
+               field(rd, i, 2)//'" is not supported: expected PLANe STRAin', err)
+         else if (keyword_is(w, 'fini')) then
+            continue
+         else
+            call unknown_keyword(rd, i, 'MATErial record', field(rd, i, 1), props, err)
+         end if
+      end subroutine property
+
+      subroutine check(err)
+         type(error_t), allocatable, intent(out) :: err
+         select case (mat%kind)
+         case (MAT_UNDEFINED)
+            call fail(rd, icmd, 'MATErial '//itoa(ma)//' has no element type record: expected '// &
+                      'SOLId or RIGId', err)
+         case (MAT_SOLID)
+            if (.not. has_e) then
+               call fail(rd, icmd, 'MATErial '//itoa(ma)//' (SOLId): expected ELAStic NEOHookean '// &
+                         'E nu', err)
+            else if (.not. (mat%young > 0.0_wp)) then
+               call fail(rd, ielas, 'MATErial '//itoa(ma)//': E = '//rtoa(mat%young)// &
+                         ': expected E > 0', err)
+            else if (.not. (mat%poisson > -1.0_wp .and. mat%poisson < 0.5_wp)) then
+               call fail(rd, ielas, 'MATErial '//itoa(ma)//': nu = '//rtoa(mat%poisson)// &
+                         ': expected -1 < nu < 0.5', err)
+            else if (.not. (mat%rho > 0.0_wp)) then
+               call fail(rd, idens, 'MATErial '//itoa(ma)//': rho = '//rtoa(mat%rho)// &
+                         ': expected DENSity rho > 0', err)
+            else
+               call lame_from_young(mat%young, mat%poisson, mat%lambda, mat%mu)
+            end if
+         case (MAT_RIGID)
+            if (mat%rho < 0.0_wp) call fail(rd, idens, 'MATErial '//itoa(ma)//': rho = '// &
+                                            rtoa(mat%rho)//': expected DENSity rho >= 0', err)
+            if (has_e) call warn(rd, ielas, 'ELAStic ignored for a RIGId material')
+         end select
+         if (.not. has_rho .and. mat%kind == MAT_RIGID) mat%rho = 0.0_wp
+      end subroutine check
+   end subroutine cmd_material
+
+end module exic_io_deck_material

@@ -1,0 +1,305 @@
+!> A cursor over the records of a deck, with the parameter table, warnings and field access.
+!>
+!> Every error made here is `file:line: <what was expected>`. A data set ends at a blank
+!> record (a comment-only line is one); when a record that starts like data (digit, sign or
+!> `.`) is then met where a command is expected, a warning names both lines (spec section 1).
+module exic_io_reader
+   use exic_base_kinds, only: wp
+   use exic_base_error, only: error_t, make_error
+   use exic_io_records, only: source_t, to_lower, keyword_is, nearest_keyword
+   use exic_io_expression, only: param_table_t, set_param, evaluate, is_valid_name
+   implicit none
+   private
+
+   public :: reader_t, next_record, next_nonblank, back_one, nfields, field, word, has_field
+   public :: real_field, int_field, fail, warn, where, end_set, looks_like_data, check_command
+   public :: read_parameters, unknown_keyword, itoa, rtoa
+
+   !> The deck's records and the reading state.
+   type :: reader_t
+      type(source_t) :: src
+      integer :: pos = 0                        !< index of the record last returned
+      type(param_table_t) :: params
+      character(len=:), allocatable :: warnings !< newline-separated "file:line: warning: ..."
+      integer :: set_end = -1                   !< index of the blank record that last ended a set
+   end type reader_t
+
+contains
+
+   !> Advance to the next record; `i` = 0 at the end of input.
+   subroutine next_record(rd, i)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(out) :: i
+      if (rd%pos >= rd%src%n) then
+         rd%pos = rd%src%n + 1
+         i = 0
+      else
+         rd%pos = rd%pos + 1
+         i = rd%pos
+      end if
+   end subroutine next_record
+
+   !> Advance to the next non-blank record; `i` = 0 at the end of input.
+   subroutine next_nonblank(rd, i)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(out) :: i
+      do
+         call next_record(rd, i)
+         if (i == 0) return
+         if (.not. rd%src%rec(i)%blank) return
+      end do
+   end subroutine next_nonblank
+
+   !> Step back one record, so the next call returns the current record again.
+   subroutine back_one(rd)
+      type(reader_t), intent(inout) :: rd
+      rd%pos = min(rd%pos, rd%src%n + 1) - 1
+   end subroutine back_one
+
+   !> Number of fields of record `i`.
+   pure integer function nfields(rd, i)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i
+      nfields = rd%src%rec(i)%nf
+   end function nfields
+
+   !> Field `k` of record `i` as written ('' when absent).
+   pure function field(rd, i, k) result(s)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i, k
+      character(len=:), allocatable :: s
+      s = ''
+      if (i < 1 .or. i > rd%src%n) return
+      if (k >= 1 .and. k <= rd%src%rec(i)%nf) s = rd%src%rec(i)%f(k)%s
+   end function field
+
+   !> Field `k` of record `i` in lower case ('' when absent).
+   pure function word(rd, i, k) result(s)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i, k
+      character(len=:), allocatable :: s
+      s = to_lower(field(rd, i, k))
+   end function word
+
+   !> True when record `i` has a non-empty field `k`.
+   pure logical function has_field(rd, i, k)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i, k
+      has_field = len(field(rd, i, k)) > 0
+   end function has_field
+
+   !> 'file:line' of record `i` (the last record when `i` = 0).
+   function where(rd, i) result(s)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      integer :: j
+      j = i
+      if (j < 1 .or. j > rd%src%n) j = rd%src%n
+      if (j < 1) then
+         s = '?:0'
+      else
+         s = rd%src%rec(j)%file//':'//itoa(rd%src%rec(j)%line)
+      end if
+   end function where
+
+   !> Make `err` = 'file:line: msg' for record `i` (`i` = 0: end of input, at the last line).
+   subroutine fail(rd, i, msg, err)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i
+      character(len=*), intent(in) :: msg
+      type(error_t), allocatable, intent(out) :: err
+      integer :: j
+      j = i
+      if (j < 1 .or. j > rd%src%n) j = rd%src%n
+      if (j < 1) then
+         call make_error(err, msg)
+      else if (i < 1 .or. i > rd%src%n) then
+         call make_error(err, 'end of input: '//msg, rd%src%rec(j)%file, rd%src%rec(j)%line)
+      else
+         call make_error(err, msg, rd%src%rec(j)%file, rd%src%rec(j)%line)
+      end if
+   end subroutine fail
+
+   !> Add 'file:line: warning: msg' for record `i`.
+   subroutine warn(rd, i, msg)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: i
+      character(len=*), intent(in) :: msg
+      character(len=:), allocatable :: line
+      line = where(rd, i)//': warning: '//msg
+      if (.not. allocated(rd%warnings)) then
+         rd%warnings = line
+      else if (len(rd%warnings) == 0) then
+         rd%warnings = line
+      else
+         rd%warnings = rd%warnings//new_line('a')//line
+      end if
+   end subroutine warn
+
+   !> Record that the blank record `i` ended a data set.
+   subroutine end_set(rd, i)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: i
+      rd%set_end = i
+   end subroutine end_set
+
+   !> True when record `i` starts like data: a digit, a sign or '.'.
+   pure logical function looks_like_data(rd, i)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i
+      character(len=:), allocatable :: t
+      looks_like_data = .false.
+      if (i < 1 .or. i > rd%src%n) return
+      t = adjustl(rd%src%rec(i)%text)
+      if (len_trim(t) == 0) return
+      looks_like_data = scan(t(1:1), '0123456789+-.') > 0
+   end function looks_like_data
+
+   !> Called where record `i` is read as a command: when it starts like data right after a blank
+   !> record that ended a data set, warn that the set was probably cut short by a comment line.
+   !> `cut` tells whether that happened (the caller's error message can then say so).
+   subroutine check_command(rd, i, cut)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: i
+      logical, intent(out) :: cut
+      cut = .false.
+      if (i < 1) return
+      if (rd%set_end == i - 1 .and. looks_like_data(rd, i)) then
+         cut = .true.
+         call warn(rd, i, 'record starts like data but a command is expected here: the blank '// &
+                   'record at '//where(rd, i - 1)//' ended the data set before it '// &
+                   '(a comment-only line is a blank record)')
+      end if
+   end subroutine check_command
+
+   !> Error for an unknown keyword `w` of record `i`, naming the nearest of `table`.
+   subroutine unknown_keyword(rd, i, what, w, table, err)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i
+      character(len=*), intent(in) :: what, w
+      character(len=*), intent(in) :: table(:)
+      type(error_t), allocatable, intent(out) :: err
+      call fail(rd, i, 'unknown '//what//' "'//w//'": expected a known keyword; nearest known '// &
+                'keyword: '//nearest_keyword(w, table), err)
+   end subroutine unknown_keyword
+
+   !> Numeric field `k` of record `i` (empty or absent: 0). `what` names the record's layout.
+   subroutine real_field(rd, i, k, what, v, err)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i, k
+      character(len=*), intent(in) :: what
+      real(wp), intent(out) :: v
+      type(error_t), allocatable, intent(out) :: err
+      type(error_t), allocatable :: e
+      call evaluate(field(rd, i, k), rd%params, v, e)
+      if (allocated(e)) call fail(rd, i, what//': field '//itoa(k)//' '//e%message, err)
+   end subroutine real_field
+
+   !> Integer field `k` of record `i` (nint of its value; a non-integral value is an error).
+   subroutine int_field(rd, i, k, what, n, err)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i, k
+      character(len=*), intent(in) :: what
+      integer, intent(out) :: n
+      type(error_t), allocatable, intent(out) :: err
+      real(wp) :: v
+      n = 0
+      call real_field(rd, i, k, what, v, err)
+      if (allocated(err)) return
+      if (abs(v) > 2.0e9_wp) then
+         call fail(rd, i, what//': field '//itoa(k)//' = '//rtoa(v)//': expected an integer '// &
+                   'of reasonable size', err)
+      else if (abs(v - anint(v)) > 1.0e-9_wp*max(1.0_wp, abs(v))) then
+         call fail(rd, i, what//': field '//itoa(k)//' = '//rtoa(v)//': expected an integer', err)
+      else
+         n = nint(v)
+      end if
+   end subroutine int_field
+
+   !> Read a PARAmeter data set: records `name = expression` (several per record may be separated
+   !> by commas; blanks inside a record are removed, as FEAP does), ended by a blank record.
+   subroutine read_parameters(rd, err)
+      type(reader_t), intent(inout) :: rd
+      type(error_t), allocatable, intent(out) :: err
+      integer :: i
+      do
+         call next_record(rd, i)
+         if (i == 0) return
+         if (rd%src%rec(i)%blank) then
+            call end_set(rd, i)
+            return
+         end if
+         call parameter_record(rd, i, err)
+         if (allocated(err)) return
+      end do
+   end subroutine read_parameters
+
+   !> One PARAmeter record.
+   subroutine parameter_record(rd, i, err)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: i
+      type(error_t), allocatable, intent(out) :: err
+      character(len=:), allocatable :: t, piece, name
+      type(error_t), allocatable :: e
+      integer :: k, p, q
+      real(wp) :: v
+
+      t = ''
+      do k = 1, len(rd%src%rec(i)%text)
+         if (rd%src%rec(i)%text(k:k) /= ' ') t = t//rd%src%rec(i)%text(k:k)
+      end do
+      p = 1
+      do while (p <= len(t))
+         q = index(t(p:), ',')
+         if (q == 0) then
+            piece = t(p:)
+            p = len(t) + 1
+         else
+            piece = t(p:p + q - 2)
+            p = p + q
+         end if
+         if (len(piece) == 0) cycle
+         q = index(piece, '=')
+         if (q == 0) then
+            call fail(rd, i, 'PARAmeter record "'//piece//'": expected name = expression', err)
+            return
+         end if
+         name = to_lower(piece(1:q - 1))
+         if (.not. is_valid_name(name)) then
+            call fail(rd, i, 'PARAmeter name "'//name//'": expected a letter followed by at most'// &
+                      ' 15 letters, digits or _', err)
+            return
+         end if
+         call evaluate(piece(q + 1:), rd%params, v, e)
+         if (.not. allocated(e) .and. len(piece) == q) then
+            call fail(rd, i, 'PARAmeter '//name//': expected an expression after "="', err)
+            return
+         end if
+         if (allocated(e)) then
+            call fail(rd, i, 'PARAmeter '//name//': '//e%message, err)
+            return
+         end if
+         call set_param(rd%params, name, v)
+      end do
+   end subroutine parameter_record
+
+   !> Integer as text.
+   pure function itoa(i) result(s)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function itoa
+
+   !> Real as short text.
+   pure function rtoa(v) result(s)
+      real(wp), intent(in) :: v
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      write (buf, '(g0.8)') v
+      s = trim(adjustl(buf))
+   end function rtoa
+
+end module exic_io_reader
