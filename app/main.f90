@@ -41,7 +41,7 @@ program exic_main
    end do
    if (len(deck) == 0) then
       call usage()
-      error stop 2
+      stop 2, quiet=.true.
    end if
 
    call read_deck(deck, model, err)
@@ -89,7 +89,7 @@ contains
    subroutine die(msg)
       character(len=*), intent(in) :: msg
       write (error_unit, '(a)') 'exic: '//msg
-      error stop 2
+      stop 2, quiet=.true.
    end subroutine die
 
    !> The --help text.

@@ -5,6 +5,7 @@ program exic_tests
    use test_contact_geom, only: run_contact_geom_tests
    use test_element, only: run_element_tests
    use test_fields, only: run_fields_tests
+   use test_physics, only: run_physics_tests
    implicit none
    type(suite_t) :: s
 
@@ -13,6 +14,7 @@ program exic_tests
    call run_contact_geom_tests(s)
    call run_element_tests(s)
    call run_fields_tests(s)
+   call run_physics_tests(s)
    print '(i0,a,i0,a)', s%passed, ' passed, ', s%failed, ' failed'
    if (s%failed > 0) error stop 1
 end program exic_tests

@@ -92,19 +92,19 @@ contains
       character(len=:), allocatable :: msg, deck, init
       character(len=64), allocatable :: names(:)
       real(wp), allocatable :: d(:, :)
-      integer :: stage, i, j, node, n, k, kd, ku, kh, kj, nrow
+      integer :: stage, i, j, node, n, k, kd, ku, kh, nrow
       real(wp), parameter :: omega = 0.3_wp, rate = 0.12_wp
       real(wp) :: x, y, vx, vy, early, late, worst, jdev, hgmax, umax
       character(len=120) :: line
       character(len=1) :: q
 
-      ! node-vector records: every node of the 8 x 8 block (node (i,j) = 1 + j*9 + i)
+      ! node-vector records: every node of the 16 x 16 block (node (i,j) = 1 + j*17 + i)
       init = ''
-      do j = 0, 8
-         do i = 0, 8
-            node = 1 + j*9 + i
-            x = real(i, wp)/8.0_wp - 0.5_wp
-            y = real(j, wp)/8.0_wp - 0.5_wp
+      do j = 0, 16
+         do i = 0, 16
+            node = 1 + j*17 + i
+            x = real(i, wp)/16.0_wp - 0.5_wp
+            y = real(j, wp)/16.0_wp - 0.5_wp
             vx = -omega*y + rate*x
             vy = omega*x + rate*y
             write (line, '(i0,a,es23.16,a,es23.16)') node, ',0,', vx, ',', vy
@@ -115,7 +115,7 @@ contains
       deck = 'FEAP * * spinning block'//nl//'0 0 0 2 2 4'//nl// &
              'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1 0.3'//nl// &
              '    DENSity 1'//nl//'    QUADrature '//q//nl//nl// &
-             'BLOCk'//nl//'  CARTesian,8,8,1,1,1'//nl//'    1,-0.5,-0.5'//nl//'    2,0.5,-0.5'//nl// &
+             'BLOCk'//nl//'  CARTesian,16,16,1,1,1'//nl//'    1,-0.5,-0.5'//nl//'    2,0.5,-0.5'//nl// &
              '    3,0.5,0.5'//nl//'    4,-0.5,0.5'//nl//nl// &
              'END'//nl//'BATCh'//nl//'  TRANsient,EXPLicit'//nl//'  DT,CFL,0.9'//nl// &
              '  TPLOt,,10'//nl//'  INITial,VELOcity'//nl// &
@@ -146,13 +146,12 @@ contains
                  'largest |J - 1| '//real_str(jdev))
       if (nq == 1) then
          call read_table(run_dir//'/energy_q'//q//'.ene', names, d)
+         ! hourglass energy at every output against the strain energy the block stores (its
+         ! largest value): the strain energy itself breathes through near-zero minima
          umax = maxval(d(ku, :))
-         hgmax = 0.0_wp
-         do k = 1, nrow
-            if (d(ku, k) > 0.05_wp*umax) hgmax = max(hgmax, d(kh, k)/d(ku, k))
-         end do
-         call check(s, hgmax < 0.01_wp, 'hourglass energy below 1 % of strain energy', &
-                    'largest ratio '//real_str(hgmax))
+         hgmax = maxval(d(kh, :))
+         call check(s, hgmax < 0.01_wp*umax, 'hourglass energy below 1 % of strain energy', &
+                    'largest hourglass '//real_str(hgmax)//', largest strain '//real_str(umax))
       end if
    end subroutine energy_test
 
@@ -226,16 +225,16 @@ contains
              'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1 0.3'//nl//'    DENSity 1'//nl//nl// &
              'BLOCk'//nl//'  CARTesian,20,2,0,0,1'//nl//'    1,0,0'//nl//'    2,1,0'//nl//'    3,1,0.1'//nl// &
              '    4,0,0.1'//nl//nl//'EBOUndary'//nl//'  1,1,1,1'//nl//nl// &
-             'INITial,VELOcity'//nl//'  MATErial,1,3,0'//nl//nl// &
+             'INITial,VELOcity'//nl//'  MATErial,1,1.2,0'//nl//nl// &
              'END'//nl//'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,2000'//nl// &
              '    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//'  disp,1,1'//nl//nl//'STOP'
       call run_deck('crush', deck, stage, msg)
       call check(s, stage == 2 .and. index(msg, 'element') > 0 .and. index(msg, 'inverted') > 0 &
                  .and. index(msg, 't =') > 0, 'inversion stops the run naming the element and time', msg)
       call read_table(run_dir//'/crush.his', names, d)
-      call check(s, size(d, 2) >= 2 .and. all(d == d), 'histories kept up to the failing step, no NaN')
+      call check(s, size(d, 2) >= 10 .and. all(d == d), 'histories kept up to the failing step, no NaN')
       call read_table(run_dir//'/crush.ene', names, d)
-      call check(s, size(d, 2) >= 2 .and. all(d == d), 'energies kept up to the failing step, no NaN')
+      call check(s, size(d, 2) >= 10 .and. all(d == d), 'energies kept up to the failing step, no NaN')
    end subroutine inversion_test
 
    function real_str(x) result(str)

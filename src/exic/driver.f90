@@ -198,6 +198,7 @@ contains
       character(len=*), intent(in) :: where
       character(len=200) :: buf
       integer :: n
+      real(wp) :: target
 
       call solver_stable_dt(r%st, r%sets, r%dt_stable, r%dt_element)
       if (r%contact%any_penalty) then
@@ -211,7 +212,12 @@ contains
             call make_error(err, 'DT,CFL needs at least one deformable element to set the step', where)
             return
          end if
-         r%st%dt = r%cfl*r%dt_stable
+         ! Hysteresis: the step shrinks at once when the stable step falls below it, and grows
+         ! only when it is more than 15 % below c x the stable step. A step that followed every
+         ! breath of the mesh would vary in time with the motion, and such a modulated
+         ! central-difference step pumps energy into the mode that modulates it.
+         target = r%cfl*r%dt_stable
+         if (r%st%dt <= 0.0_wp .or. r%st%dt > target .or. r%st%dt < 0.85_wp*target) r%st%dt = target
          ! land exactly on tmax with steps no larger than the stable one
          if (r%tmax > r%st%t) then
             n = ceiling((r%tmax - r%st%t)/r%st%dt*(1.0_wp - 1.0e-12_wp))

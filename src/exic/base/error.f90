@@ -43,10 +43,11 @@ contains
       type(error_t), intent(in) :: err
       integer, intent(in), optional :: code
       write (error_unit, '(a)') 'exic: error: '//err%message
+      flush (error_unit)
       if (present(code)) then
-         error stop code
+         stop code, quiet=.true.
       else
-         error stop 1
+         stop 1, quiet=.true.
       end if
    end subroutine fatal_error
 

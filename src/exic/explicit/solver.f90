@@ -41,8 +41,8 @@ contains
       st%nelem = ne
       st%x0 = model%mesh%x
       allocate (st%u(2, nn), st%v(2, nn), st%a(2, nn), st%fint(2, nn), st%fcon(2, nn), &
-                st%mass(nn), st%minv(2, nn), st%active(nn), st%rigid(nn), source=0.0_wp)
-      deallocate (st%active, st%rigid)
+                st%minv(2, nn), source=0.0_wp)
+      allocate (st%mass(nn), source=0.0_wp)
       allocate (st%active(nn), st%rigid(nn), source=.false.)
       st%fext = model%mesh%force
 
@@ -79,10 +79,10 @@ contains
                return
             end if
             call q4_lumped_mass(s%nel, nn, s%conn, st%x0, s%rho, st%mass)
-            st%active(s%conn) = .true.
+            st%active(reshape(s%conn, [4*s%nel])) = .true.
             st%eset(s%elems) = k
             st%eloc(s%elems) = [(i, i=1, s%nel)]
-            if (s%kind == MAT_RIGID) st%rigid(s%conn) = .true.
+            if (s%kind == MAT_RIGID) st%rigid(reshape(s%conn, [4*s%nel])) = .true.
          end associate
       end do
 

@@ -18,7 +18,8 @@ module exic_io_history
 
    !> The three text files of one run.
    type :: history_files_t
-      integer :: his = -1, ene = -1, out = -1
+      integer :: his = 0, ene = 0, out = 0
+      logical :: opened = .false.   !< units are valid (newunit numbers are negative)
       character(len=:), allocatable :: his_path, ene_path, out_path
       real(wp) :: last_flush = 0.0_wp
       real(wp) :: flush_interval = 0.5_wp
@@ -48,6 +49,7 @@ contains
       if (allocated(err)) return
       call open_new(self%out_path, self%out, err)
       if (allocated(err)) return
+      self%opened = .true.
       write (self%ene, '(a)') '# '//ENERGY_COLUMNS
       self%last_flush = wall_time()
    end subroutine files_open
@@ -101,7 +103,7 @@ contains
    subroutine files_say(self, text)
       class(history_files_t), intent(inout) :: self
       character(len=*), intent(in) :: text
-      if (self%out < 0) return
+      if (.not. self%opened) return
       write (self%out, '(a)') text
    end subroutine files_say
 
@@ -111,21 +113,21 @@ contains
       real(wp) :: now
       now = wall_time()
       if (now - self%last_flush < self%flush_interval) return
-      if (self%his >= 0) flush (self%his)
-      if (self%ene >= 0) flush (self%ene)
-      if (self%out >= 0) flush (self%out)
+      if (.not. self%opened) return
+      flush (self%his)
+      flush (self%ene)
+      flush (self%out)
       self%last_flush = now
    end subroutine files_maybe_flush
 
    !> Close every file (which flushes it).
    subroutine files_close(self)
       class(history_files_t), intent(inout) :: self
-      if (self%his >= 0) close (self%his)
-      if (self%ene >= 0) close (self%ene)
-      if (self%out >= 0) close (self%out)
-      self%his = -1
-      self%ene = -1
-      self%out = -1
+      if (.not. self%opened) return
+      close (self%his)
+      close (self%ene)
+      close (self%out)
+      self%opened = .false.
    end subroutine files_close
 
 end module exic_io_history
