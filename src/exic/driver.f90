@@ -5,7 +5,7 @@ module exic_driver
    use exic_base_clock, only: wall_time
    use exic_base_progress, only: progress_t
    use exic_model, only: model_t
-   use exic_io_program, only: REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, REQ_REAC, REQ_CONT
+   use exic_io_program, only: REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, REQ_REAC, REQ_CONT, REQ_MOME
    use exic_io_history, only: history_files_t
    use exic_explicit_state, only: state_t, element_set_t
    use exic_explicit_solver, only: solver_init, solver_forces, solver_stable_dt, solver_energies, &
@@ -42,6 +42,7 @@ module exic_driver
       integer(i8) :: last_row_step = -1
       logical :: dt_warned = .false.
       real(wp), allocatable :: values(:)        !< one history row
+      integer, allocatable :: region_of_node(:) !< region of the elements that use each node
       real(wp), allocatable :: du(:, :), a_old(:, :), vt(:, :), fcon_old(:, :)   !< step work arrays
       real(wp) :: wall_start = 0.0_wp
    end type run_t
@@ -174,6 +175,7 @@ contains
       allocate (r%du(2, r%st%nnode), r%a_old(2, r%st%nnode), r%vt(2, r%st%nnode), &
                 r%fcon_old(2, r%st%nnode), source=0.0_wp)
       call history_header(r, model)
+      call node_regions(r, model)
       call solver_forces(r%st, r%sets, ebad)
       if (ebad /= 0) then
          call inverted_error(r, ebad, err)
@@ -314,13 +316,24 @@ contains
                       real_text(r%st%t)//', step '//int_text(int(r%st%step)))
    end subroutine inverted_error
 
+   !> Region of every node (of the last element that uses it; -huge for unused nodes).
+   subroutine node_regions(r, model)
+      type(run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      integer :: e
+      allocate (r%region_of_node(r%st%nnode), source=-huge(1))
+      do e = 1, model%mesh%nelem
+         r%region_of_node(model%mesh%conn(:, e)) = model%mesh%region(e)
+      end do
+   end subroutine node_regions
+
    !> The '#' header of <stem>.his.
    subroutine history_header(r, model)
       type(run_t), intent(inout) :: r
       type(model_t), intent(in) :: model
       character(len=32), allocatable :: labels(:)
-      character(len=4), parameter :: names(6) = ['disp', 'velo', 'acce', 'stre', 'reac', 'cont']
-      character(len=1), parameter :: tags(6) = ['n', 'n', 'n', 'e', 'n', 'p']
+      character(len=4), parameter :: names(7) = ['disp', 'velo', 'acce', 'stre', 'reac', 'cont', 'mome']
+      character(len=1), parameter :: tags(7) = ['n', 'n', 'n', 'e', 'n', 'p', 'r']
       integer :: k, nreq
 
       nreq = 0
@@ -370,6 +383,8 @@ contains
                r%values(k) = st%fint(q%comp, q%id) - st%fext(q%comp, q%id)
             case (REQ_CONT)
                r%values(k) = r%contact%pair_value(q%id, q%comp)
+            case (REQ_MOME)
+               r%values(k) = region_momentum(r, model, q%id, q%comp)
             end select
          end associate
       end do
@@ -383,6 +398,19 @@ contains
       end associate
       r%last_row_step = r%st%step
    end subroutine write_rows
+
+   !> Linear momentum component `comp` of the nodes of region `region` (TPLOt `mome` [ext]).
+   real(wp) function region_momentum(r, model, region, comp) result(p)
+      type(run_t), intent(in) :: r
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: region, comp
+      integer :: i
+      p = 0.0_wp
+      do i = 1, r%st%nnode
+         if (r%region_of_node(i) == region) p = p + r%st%mass(i)*r%st%v(comp, i)
+      end do
+      if (.false.) p = p + size(model%program)
+   end function region_momentum
 
    !> PRINt,ENERgy: a one-line energy balance on the console.
    subroutine print_energy(r)

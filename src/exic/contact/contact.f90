@@ -52,6 +52,7 @@ module exic_contact_contact
    type :: pair_result_t
       integer :: id = 0
       real(wp) :: fnormal = 0.0_wp, force(2) = 0.0_wp, penetration = 0.0_wp
+      real(wp) :: pmax = 0.0_wp                !< largest multiplier (nodal normal force)
       integer :: nactive = 0
    end type pair_result_t
 
@@ -337,6 +338,7 @@ contains
          self%results(k)%force = 0.0_wp
          self%results(k)%nactive = 0
          self%results(k)%penetration = 0.0_wp
+         self%results(k)%pmax = 0.0_wp
       end do
       call self%cs%reserve(64)
       do k = 1, size(self%passes)
@@ -376,6 +378,7 @@ contains
                if (self%cs%p(i) <= 0.0_wp) cycle
                r%nactive = r%nactive + 1
                r%fnormal = r%fnormal + self%cs%p(i)
+               r%pmax = max(r%pmax, self%cs%p(i))
                r%force = r%force + self%cs%p(i)*self%cs%nrm(:, i)
             end associate
          end do
@@ -417,6 +420,7 @@ contains
          associate (r => self%results(ps%pair))
             r%nactive = r%nactive + 1
             r%fnormal = r%fnormal + ps%k*pen
+            r%pmax = max(r%pmax, ps%k*pen)
             r%force = r%force + f
             r%penetration = max(r%penetration, pen)
          end associate
@@ -450,7 +454,7 @@ contains
    end function contact_stable_dt
 
    !> A TPLOt `cont,pair,comp` value: 1 normal force, 2-3 force x, y on the slave side,
-   !> 4 active constraints, 5 largest penetration at t(n+1).
+   !> 4 active constraints, 5 largest penetration at t(n+1), 6 largest multiplier [ext].
    real(wp) function contact_pair_value(self, pair, comp) result(val)
       class(contact_t), intent(in) :: self
       integer, intent(in) :: pair, comp
@@ -470,6 +474,8 @@ contains
             val = real(self%results(k)%nactive, wp)
          case (5)
             val = self%results(k)%penetration
+         case (6)
+            val = self%results(k)%pmax
          end select
          return
       end do

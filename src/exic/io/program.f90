@@ -6,7 +6,7 @@ module exic_io_program
 
    ! TPLOt request kinds
    integer, parameter, public :: REQ_DISP = 1, REQ_VELO = 2, REQ_ACCE = 3, REQ_STRE = 4, &
-                                 REQ_REAC = 5, REQ_CONT = 6
+                                 REQ_REAC = 5, REQ_CONT = 6, REQ_MOME = 7
 
    public :: command_t, request_t
 

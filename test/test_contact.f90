@@ -1,0 +1,223 @@
+!> The explicit-implicit contact corrector against 1-D wave theory and its own claims.
+!>
+!> 1-D cases use nu = 0 (lambda = 0), so plane strain is exactly 1-D, and strains below 0.1 %,
+!> so the neo-Hookean bars behave as linear ones: wave speed c = sqrt(E/rho), impedance
+!> Z = rho c, contact force rho c v0 H for a bar on a rigid wall. The exact answers for two
+!> bars are derived by characteristics in doc/contact-verification.md.
+module test_contact
+   use exic_base_kinds, only: wp
+   use testing, only: suite_t, check, check_close, section
+   use deck_runner, only: run_dir, run_deck, read_table, column
+   implicit none
+   private
+
+   public :: run_contact_tests, bar_deck
+
+   character(len=*), parameter :: nl = new_line('a')
+   real(wp), parameter :: young = 1.0e4_wp, rho0 = 0.1_wp, v0 = 0.1_wp
+   real(wp), parameter :: blen = 30.0_wp, bhgt = 4.0_wp
+
+contains
+
+   subroutine run_contact_tests(s)
+      type(suite_t), intent(inout) :: s
+      call section(s, 'contact: bar against a rigid wall, 30 x 6')
+      call wall_test(s, 30, 6, 0.04_wp)
+      call section(s, 'contact: bar against a rigid wall, 60 x 12')
+      call wall_test(s, 60, 12, 0.025_wp)
+      call section(s, 'contact: two equal bars')
+      call two_bar_test(s, rho0, rho0, 'NTOS', 'two_bars')
+      call section(s, 'contact: two bars of densities 0.5 and 1.0')
+      call two_bar_test(s, 0.5_wp, 1.0_wp, 'NTOS', 'unlike_bars')
+      call section(s, 'contact: two-pass contact of matching meshes (redundant constraints, corners)')
+      call two_bar_test(s, rho0, rho0, 'SYMMetric', 'two_pass')
+   end subroutine run_contact_tests
+
+   !> A deck of bar 1 (region 1, material 1) from x = 0 to blen, and either a rigid wall
+   !> (wall = .true.) or a second bar of density rho2 from blen to 2 blen moving at -v0.
+   function bar_deck(title, nx, ny, wall, rho1, rho2, pair_kind, tmax, extra) result(deck)
+      character(len=*), intent(in) :: title, pair_kind, extra
+      integer, intent(in) :: nx, ny
+      logical, intent(in) :: wall
+      real(wp), intent(in) :: rho1, rho2, tmax
+      character(len=:), allocatable :: deck
+      character(len=400) :: b
+      deck = 'FEAP * * '//title//nl//'0 0 0 2 2 4'//nl
+      write (b, '(a,es23.16,a,es23.16,a,es23.16,a,es23.16)') 'PARAmeters'//nl//'  young = ', young, &
+         nl//'  v0 = ', v0, nl//'  rhoa = ', rho1, nl//'  rhob = ', rho2
+      deck = deck//trim(b)//nl
+      write (b, '(a,es23.16,a,es23.16,a,i0,a,i0)') '  len = ', blen, nl//'  hgt = ', bhgt, &
+         nl//'  nx = ', nx, nl//'  ny = ', ny
+      deck = deck//trim(b)//nl//nl
+      deck = deck//'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean young 0'//nl// &
+             '    DENSity rhoa'//nl//nl
+      if (wall) then
+         deck = deck//'MATErial,2'//nl//'  RIGId'//nl//'    DENSity rhoa'//nl//nl
+      else
+         deck = deck//'MATErial,2'//nl//'  SOLId'//nl//'    ELAStic NEOHookean young 0'//nl// &
+                '    DENSity rhob'//nl//nl
+      end if
+      deck = deck//'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,nx,ny,0,0,1'//nl//'    1,0,0'//nl// &
+             '    2,len,0'//nl//'    3,len,hgt'//nl//'    4,0,hgt'//nl//nl
+      if (wall) then
+         deck = deck//'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,2,4,0,0,2'//nl//'    1,len,-hgt'//nl// &
+                '    2,len+hgt,-hgt'//nl//'    3,len+hgt,2*hgt'//nl//'    4,len,2*hgt'//nl//nl
+      else
+         deck = deck//'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,nx,ny,0,0,2'//nl//'    1,len,0'//nl// &
+                '    2,2*len,0'//nl//'    3,2*len,hgt'//nl//'    4,len,hgt'//nl//nl
+      end if
+      deck = deck//'INITial,VELOcity'//nl//'  REGIon,1,v0,0'//nl
+      if (.not. wall) deck = deck//'  REGIon,2,-v0,0'//nl
+      deck = deck//nl//'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl// &
+             '    REGIon,2'//nl//'  PAIR,1,'//pair_kind//',1,2'//nl//extra//'END CONTact'//nl//nl// &
+             'END'//nl//'BATCh'//nl//'  TRANsient,EXPLicit'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl
+      write (b, '(a,es23.16)') '    TIME,,', tmax
+      deck = deck//'  LOOP,,10000000'//nl//trim(b)//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl// &
+             'END'//nl
+      ! the bar's tip: node (nx, ny/2) of the first block
+      write (b, '(a,i0,a,i0,a,i0,a)') '  disp,', 1 + (ny/2)*(nx + 1) + nx, ',1'//nl//'  velo,', &
+         1 + (ny/2)*(nx + 1) + nx, ',1'//nl//'  acce,', 1 + (ny/2)*(nx + 1) + nx, ',1'
+      deck = deck//trim(b)//nl//'  cont,1,1'//nl//'  cont,1,4'//nl//'  cont,1,5'//nl//'  cont,1,6'//nl// &
+             '  mome,1,1'//nl//'  mome,2,1'//nl//nl//'STOP'
+   end function bar_deck
+
+   !> Seed example 7.1 in 1-D form: force rho c v0 H for 2L/c, momentum reversed, no penetration,
+   !> tip velocity and acceleration zero two steps after contact (seed section 5).
+   subroutine wall_test(s, nx, ny, mom_tol)
+      type(suite_t), intent(inout) :: s
+      integer, intent(in) :: nx, ny
+      real(wp), intent(in) :: mom_tol
+      character(len=:), allocatable :: msg, name
+      character(len=64), allocatable :: names(:), enames(:)
+      real(wp), allocatable :: d(:, :), e(:, :)
+      integer :: stage, k, n, k_on, k_off, kv, ka, kf, kn, kp, kx, kk, ku, ne
+      real(wp) :: c, force, fmean, t_on, t_off, mass, px, loss, worst_v, worst_a, dt, pen, pmax
+      character(len=8) :: tag
+      real(wp) :: tmax
+
+      write (tag, '(i0,a,i0)') nx, 'x', ny
+      name = 'wall_'//trim(tag)
+      c = sqrt(young/rho0)
+      tmax = 3.0_wp*blen/c
+      call run_deck(name, bar_deck('bar on a rigid wall', nx, ny, .true., rho0, rho0, 'NTOS', tmax, ''), &
+                    stage, msg)
+      call check(s, stage == 0, 'bar-on-wall deck runs ('//trim(tag)//')', msg)
+      if (stage /= 0) return
+      call read_table(run_dir//'/'//name//'.his', names, d)
+      call read_table(run_dir//'/'//name//'.ene', enames, e)
+      n = size(d, 2)
+      kv = 3; ka = 4; kf = 5; kn = 6; kp = 7
+      force = rho0*c*v0*bhgt
+      ! contact from the first row with active constraints to the last
+      k_on = 0; k_off = 0
+      do k = 1, n
+         if (d(kn, k) > 0.0_wp) then
+            if (k_on == 0) k_on = k
+            k_off = k
+         end if
+      end do
+      call check(s, k_on == 1 .and. k_off > 1 .and. k_off < n, 'contact starts at t = 0 and ends ('//trim(tag)//')')
+      if (k_off <= k_on) return
+      t_on = d(1, k_on)
+      t_off = 0.5_wp*(d(1, k_off) + d(1, k_off + 1))
+      fmean = sum(d(kf, k_on + 1:k_off))/real(k_off - k_on, wp)
+      call check_close(s, fmean, force, 0.03_wp*force, 'mean contact force = rho c v0 H within 3 % ('//trim(tag)//')')
+      call check_close(s, t_off - t_on, 2.0_wp*blen/c, 0.03_wp*2.0_wp*blen/c, &
+                       'contact lasts 2L/c within 3 % ('//trim(tag)//')')
+      mass = rho0*blen*bhgt
+      kx = column(enames, 'momentum_x')
+      px = e(kx, size(e, 2))
+      call check_close(s, px, -mass*v0, mom_tol*mass*v0, 'momentum after separation = -m v0 ('//trim(tag)//')')
+      kk = column(enames, 'kinetic'); ku = column(enames, 'strain')
+      ne = size(e, 2)
+      loss = 1.0_wp - (e(kk, ne) + e(ku, ne))/(e(kk, 1) + e(ku, 1))
+      print '(a,a,es10.3,a,es10.3,a,es10.3,a,es10.3)', '      figures ', trim(tag)//': force/exact-1 ', &
+         fmean/force - 1.0_wp, ', duration/exact-1 ', (t_off - t_on)/(2.0_wp*blen/c) - 1.0_wp, &
+         ', momentum/exact-1 ', px/(-mass*v0) - 1.0_wp, ', energy lost ', loss
+      print '(a,es10.3)', '      expected energy loss ~ 1/(2N) = ', 0.5_wp/real(nx, wp)
+      pen = maxval(d(kp, :))
+      call check(s, pen < 1.0e-10_wp*blen, 'largest penetration below 1e-10 L ('//trim(tag)//')', &
+                 'largest '//rstr(pen))
+      ! seed section 5: two steps after contact the tip's normal velocity and acceleration vanish
+      dt = e(3, 2)
+      worst_v = maxval(abs(d(kv, k_on + 2:k_off)))
+      worst_a = maxval(abs(d(ka, k_on + 2:k_off)))
+      call check(s, worst_v <= 1.0e-8_wp*v0, 'tip velocity zero from two steps after contact ('//trim(tag)//')', &
+                 'largest |v|/v0 '//rstr(worst_v/v0))
+      call check(s, worst_a <= 1.0e-8_wp*v0/dt, 'tip acceleration zero from two steps after contact ('//trim(tag)//')', &
+                 'largest |a| dt/v0 '//rstr(worst_a*dt/v0))
+      ! Lagrange contact does not cut the step: dt during contact equals dt before it
+      call check(s, minval(e(3, 2:k_off + 1)) == maxval(e(3, 2:k_off + 1)), &
+                 'time step unchanged by contact ('//trim(tag)//')')
+      pmax = maxval(d(7 + 1, :))
+      call check(s, pmax <= 10.0_wp*force, 'no multiplier above 10x the exact contact force ('//trim(tag)//')', &
+                 'largest '//rstr(pmax))
+   end subroutine wall_test
+
+   !> Two bars meeting at x = blen, bar 1 at +v0 with density rho1 <= rho2, bar 2 at -v0 with
+   !> density rho2. Exact (doc/contact-verification.md): force 2 v0 Z1 Z2/(Z1 + Z2) H for 2L/c1
+   !> (bar 1 is the faster), then p1 = m1 v0 (Z1 - 3 Z2)/(Z1 + Z2), p2 = p1(0) + p2(0) - p1.
+   subroutine two_bar_test(s, rho1, rho2, kind, name)
+      type(suite_t), intent(inout) :: s
+      real(wp), intent(in) :: rho1, rho2
+      character(len=*), intent(in) :: kind, name
+      character(len=:), allocatable :: msg
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: d(:, :)
+      integer :: stage, k, n, k_on, k_off
+      real(wp) :: c1, c2, z1, z2, force, fmean, t_off, m1, p1_exact, pmax, dur
+
+      c1 = sqrt(young/rho1)
+      c2 = sqrt(young/rho2)
+      z1 = rho1*c1
+      z2 = rho2*c2
+      force = 2.0_wp*v0*z1*z2/(z1 + z2)*bhgt
+      dur = 2.0_wp*blen/max(c1, c2)
+      call run_deck(name, bar_deck('two bars', 30, 6, .false., rho1, rho2, kind, 3.0_wp*blen/min(c1, c2), ''), &
+                    stage, msg)
+      call check(s, stage == 0, name//' deck runs', msg)
+      if (stage /= 0) return
+      call read_table(run_dir//'/'//name//'.his', names, d)
+      n = size(d, 2)
+      k_on = 0; k_off = 0
+      do k = 1, n
+         if (d(6, k) > 0.0_wp) then
+            if (k_on == 0) k_on = k
+            k_off = k
+         end if
+      end do
+      call check(s, k_on == 1 .and. k_off > 1 .and. k_off < n, name//': contact starts at t = 0 and ends')
+      if (k_off <= k_on) return
+      t_off = 0.5_wp*(d(1, k_off) + d(1, k_off + 1))
+      fmean = sum(d(5, 2:k_off))/real(k_off - 1, wp)
+      call check_close(s, fmean, force, 0.03_wp*force, name//': mean contact force within 3 % of the exact one')
+      call check_close(s, t_off, dur, 0.03_wp*dur, name//': bars part after 2L/c (faster bar) within 3 %')
+      pmax = maxval(d(8, :))
+      call check(s, pmax <= 10.0_wp*force, name//': no multiplier above 10x the exact contact force', &
+                 'largest '//rstr(pmax))
+      m1 = rho1*blen*bhgt
+      p1_exact = m1*v0*(z1 - 3.0_wp*z2)/(z1 + z2)
+      call momentum_check(s, name, p1_exact, m1*v0 - rho2*blen*bhgt*v0 - p1_exact, m1*v0)
+   end subroutine two_bar_test
+
+   !> Final momentum of each bar from its nodes' velocities in the last history rows.
+   subroutine momentum_check(s, name, p1_exact, p2_exact, scale)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name
+      real(wp), intent(in) :: p1_exact, p2_exact, scale
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: d(:, :)
+      call read_table(run_dir//'/'//name//'.his', names, d)
+      call check_close(s, d(9, size(d, 2)), p1_exact, 0.04_wp*scale, name//': momentum of bar 1 after separation (4 %)')
+      call check_close(s, d(10, size(d, 2)), p2_exact, 0.04_wp*scale, name//': momentum of bar 2 after separation (4 %)')
+   end subroutine momentum_check
+
+   function rstr(x) result(str)
+      real(wp), intent(in) :: x
+      character(len=:), allocatable :: str
+      character(len=24) :: b
+      write (b, '(es12.5)') x
+      str = trim(adjustl(b))
+   end function rstr
+
+end module test_contact
