@@ -23,7 +23,7 @@ module exic_io_deck_batch
    use exic_io_expression, only: evaluate
    use exic_io_reader, only: reader_t, next_record, next_nonblank, field, word, has_field, &
                              real_field, int_field, fail, warn, where, end_set, unknown_keyword, &
-                             itoa, rtoa, check_command
+                             itoa, rtoa, check_command, check_data_record, is_command
    use exic_io_deck_mesh, only: genvec_t, node_record
    use exic_io_deck_finish, only: used_nodes, nearest_node
    implicit none
@@ -330,6 +330,8 @@ contains
             return
          end if
          cnt = 0
+         call check_data_record(rd, i, 'INITial', err)
+         if (allocated(err)) return
          call node_record(rd, i, 1, 'INITial data record n, ng, vx, vy', mesh%nnode, .false., g, &
                           nodes, vals, cnt, err)
          if (allocated(err)) return
@@ -415,6 +417,10 @@ contains
          r%kind = REQ_REAC
       else if (keyword_is(w, 'cont')) then
          r%kind = REQ_CONT
+      else if (is_command(w)) then
+         call fail(rd, i, field(rd, i, 1)//' inside the TPLOt requests: expected a blank record '// &
+                   'to end the requests', err)
+         return
       else
          call unknown_keyword(rd, i, 'TPLOt request', field(rd, i, 1), requests, err)
          return
