@@ -44,6 +44,7 @@ contains
       call test_disk(s)
       call test_polar_ring(s)
       call test_bad_decks(s)
+      call test_mutations(s)
    end subroutine run_deck_tests
 
    !> Read a deck of test/data/deck/ and check that it reads without error.
@@ -744,5 +745,60 @@ contains
          call check(s, has(msg, word), tag//': says "'//word//'"', msg)
       end subroutine bad
    end subroutine test_bad_decks
+
+   !> Every truncation, single-line deletion and single-line duplication of the good decks reads
+   !> without crashing, and every error it gives names a file and a line.
+   subroutine test_mutations(s)
+      type(suite_t), intent(inout) :: s
+      character(len=16), parameter :: decks(6) = [character(len=16) :: 'bar.inp', 'gen.inp', &
+                                                  'init.inp', 'batch.inp', 'contact.inp', 'tie_regi.inp']
+      character(len=L) :: lines(120)
+      integer :: d, n, k, u, ios, mode, nerr
+      logical :: named
+      type(model_t) :: m
+      type(error_t), allocatable :: err
+      call section(s, 'deck: mutated decks never crash')
+      call execute_command_line('cp '//dir//'tie_body.inp '//tmp)
+      do d = 1, size(decks)
+         open (newunit=u, file=dir//trim(decks(d)), status='old', action='read')
+         n = 0
+         do
+            read (u, '(a)', iostat=ios) lines(n + 1)
+            if (ios /= 0) exit
+            n = n + 1
+         end do
+         close (u)
+         do mode = 1, 3
+            named = .true.
+            nerr = 0
+            do k = 1, n
+               select case (mode)
+               case (1)
+                  call write_lines(tmp//'mut.inp', lines(1:k))
+               case (2)
+                  call write_lines(tmp//'mut.inp', [character(len=L) :: lines(1:k - 1), lines(k + 1:n)])
+               case (3)
+                  call write_lines(tmp//'mut.inp', [character(len=L) :: lines(1:k), lines(k:n)])
+               end select
+               call read_deck(tmp//'mut.inp', m, err)
+               if (allocated(err)) then
+                  nerr = nerr + 1
+                  named = named .and. has_file_line(err%message)
+               end if
+            end do
+            call check(s, named .and. nerr > 0, trim(decks(d))//': '//itoa(n)//' mutations of kind '// &
+                       itoa(mode)//', '//itoa(nerr)//' errors, each with file:line')
+         end do
+      end do
+   contains
+      logical function has_file_line(msg)
+         character(len=*), intent(in) :: msg
+         integer :: p
+         p = index(msg, '.inp:')
+         has_file_line = .false.
+         if (p == 0 .or. p + 5 > len(msg)) return
+         has_file_line = scan(msg(p + 5:p + 5), '0123456789') == 1
+      end function has_file_line
+   end subroutine test_mutations
 
 end module test_deck
