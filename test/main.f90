@@ -6,6 +6,8 @@ program exic_tests
    use test_element, only: run_element_tests
    use test_fields, only: run_fields_tests
    use test_physics, only: run_physics_tests
+   use test_contact, only: run_contact_tests
+   use test_deck, only: run_deck_tests
    implicit none
    type(suite_t) :: s
 
@@ -15,6 +17,8 @@ program exic_tests
    call run_element_tests(s)
    call run_fields_tests(s)
    call run_physics_tests(s)
+   call run_contact_tests(s)
+   call run_deck_tests(s)
    print '(i0,a,i0,a)', s%passed, ' passed, ', s%failed, ' failed'
    if (s%failed > 0) error stop 1
 end program exic_tests

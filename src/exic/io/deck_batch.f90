@@ -18,12 +18,12 @@ module exic_io_deck_batch
    use exic_mesh_mesh, only: mesh_t
    use exic_model, only: model_t
    use exic_io_program, only: command_t, request_t, REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, &
-                              REQ_REAC, REQ_CONT
+                              REQ_REAC, REQ_CONT, REQ_MOME
    use exic_io_records, only: keyword_is, keyword_key
    use exic_io_expression, only: evaluate
    use exic_io_reader, only: reader_t, next_record, next_nonblank, field, word, has_field, &
                              real_field, int_field, fail, warn, where, end_set, unknown_keyword, &
-                             itoa, rtoa, check_command
+                             itoa, rtoa, check_command, check_data_record, is_command
    use exic_io_deck_mesh, only: genvec_t, node_record
    use exic_io_deck_finish, only: used_nodes, nearest_node
    implicit none
@@ -37,8 +37,8 @@ module exic_io_deck_batch
    character(len=12), parameter :: commands(11) = [character(len=12) :: 'TRANsient', 'DT', &
                                                    'LOOP', 'NEXT', 'TIME', 'FORM', 'TPLOt', &
                                                    'INITial', 'OUTPut', 'PRINt', 'END']
-   character(len=12), parameter :: requests(8) = [character(len=12) :: 'disp', 'velo', 'acce', &
-                                                  'stre', 'reac', 'cont', 'show', 'ener']
+   character(len=12), parameter :: requests(9) = [character(len=12) :: 'disp', 'velo', 'acce', &
+                                                  'stre', 'reac', 'cont', 'mome', 'show', 'ener']
 
 contains
 
@@ -330,6 +330,8 @@ contains
             return
          end if
          cnt = 0
+         call check_data_record(rd, i, 'INITial', err)
+         if (allocated(err)) return
          call node_record(rd, i, 1, 'INITial data record n, ng, vx, vy', mesh%nnode, .false., g, &
                           nodes, vals, cnt, err)
          if (allocated(err)) return
@@ -415,6 +417,12 @@ contains
          r%kind = REQ_REAC
       else if (keyword_is(w, 'cont')) then
          r%kind = REQ_CONT
+      else if (keyword_is(w, 'mome')) then
+         r%kind = REQ_MOME
+      else if (is_command(w)) then
+         call fail(rd, i, field(rd, i, 1)//' inside the TPLOt requests: expected a blank record '// &
+                   'to end the requests', err)
+         return
       else
          call unknown_keyword(rd, i, 'TPLOt request', field(rd, i, 1), requests, err)
          return
@@ -436,11 +444,20 @@ contains
             return
          end if
       case (REQ_CONT)
-         if (r%comp < 1 .or. r%comp > 5) then
-            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1..5', err)
+         if (r%comp < 1 .or. r%comp > 6) then
+            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1..6 (normal force, '// &
+                      'force x, force y, active constraints, penetration, largest multiplier)', err)
             return
          end if
          call check_pair(id)
+         r%id = id
+         return
+      case (REQ_MOME)
+         if (r%comp /= 1 .and. r%comp /= 2) then
+            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1 (x) or 2 (y)', err)
+         else if (.not. any(model%mesh%region == id)) then
+            call fail(rd, i, what//': region '//itoa(id)//' has no elements: expected a region number', err)
+         end if
          r%id = id
          return
       end select

@@ -9,13 +9,14 @@
 !> `DETEction,SWEPt|STATic`. `END CONTact` (or `END`) closes the block.
 module exic_io_deck_contact
    use exic_base_kinds, only: wp
-   use exic_base_error, only: error_t
+   use exic_base_error, only: error_t, make_error
    use exic_contact_spec, only: contact_spec_t, surface_spec_t, pair_spec_t, SURF_REGION, &
                                 SURF_MATERIAL, SURF_FACETS, PAIR_NTOS, PAIR_SYMMETRIC, PAIR_SELF, &
                                 METHOD_LAGRANGE, METHOD_PENALTY, DETECT_SWEPT, DETECT_STATIC
    use exic_io_records, only: keyword_is
    use exic_io_reader, only: reader_t, next_record, field, word, has_field, real_field, int_field, &
-                             fail, where, end_set, unknown_keyword, itoa, rtoa, nfields
+                             fail, where, end_set, unknown_keyword, itoa, rtoa, nfields, &
+                             check_data_record
    implicit none
    private
 
@@ -268,20 +269,20 @@ contains
          end if
          do k = 1, nsurf
             if (surf(k)%by == 0) then
-               call fail(rd, i, 'SURFace '//itoa(surf(k)%id)//' (at '//surf(k)%where//') has no '// &
-                         'description: expected REGIon,r, MATErial,m or FACEts', err)
+               call make_error(err, surf(k)%where//': SURFace '//itoa(surf(k)%id)//' has no '// &
+                               'description: expected REGIon,r, MATErial,m or FACEts after it')
                return
             end if
          end do
          do k = 1, npair
             if (.not. any(surf(1:nsurf)%id == pair(k)%slave)) then
-               call fail(rd, i, 'PAIR '//itoa(pair(k)%id)//' (at '//pair(k)%where// &
-                         ') names surface '//itoa(pair(k)%slave)//': expected a defined SURFace', err)
+               call make_error(err, pair(k)%where//': PAIR '//itoa(pair(k)%id)//' names surface '// &
+                               itoa(pair(k)%slave)//': expected a defined SURFace')
                return
             end if
             if (.not. any(surf(1:nsurf)%id == pair(k)%master)) then
-               call fail(rd, i, 'PAIR '//itoa(pair(k)%id)//' (at '//pair(k)%where// &
-                         ') names surface '//itoa(pair(k)%master)//': expected a defined SURFace', err)
+               call make_error(err, pair(k)%where//': PAIR '//itoa(pair(k)%id)//' names surface '// &
+                               itoa(pair(k)%master)//': expected a defined SURFace')
                return
             end if
          end do
@@ -311,6 +312,8 @@ contains
             call end_set(rd, i)
             exit
          end if
+         call check_data_record(rd, i, 'FACEts', err)
+         if (allocated(err)) return
          call int_field(rd, i, 1, what, f, err)
          if (.not. allocated(err)) call int_field(rd, i, 2, what, ng, err)
          do k = 1, 2

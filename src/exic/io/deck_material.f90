@@ -19,7 +19,8 @@ module exic_io_deck_material
                                      MAT_UNDEFINED
    use exic_io_records, only: keyword_is
    use exic_io_reader, only: reader_t, next_record, field, word, real_field, int_field, fail, &
-                             warn, where, end_set, unknown_keyword, rtoa, itoa
+                             warn, where, end_set, unknown_keyword, rtoa, itoa, &
+                             check_data_record
    implicit none
    private
 
@@ -123,7 +124,9 @@ contains
          else if (keyword_is(w, 'fini')) then
             continue
          else
-            call unknown_keyword(rd, i, 'MATErial record', field(rd, i, 1), props, err)
+            call check_data_record(rd, i, 'MATErial', err)
+            if (.not. allocated(err)) call unknown_keyword(rd, i, 'MATErial record', &
+                                                          field(rd, i, 1), props, err)
          end if
       end subroutine property
 

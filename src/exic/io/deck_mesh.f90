@@ -12,7 +12,7 @@ module exic_io_deck_mesh
    use exic_io_records, only: keyword_is
    use exic_io_reader, only: reader_t, next_record, next_nonblank, back_one, nfields, field, word, &
                              has_field, real_field, int_field, fail, warn, where, end_set, &
-                             unknown_keyword, itoa, looks_like_data
+                             unknown_keyword, itoa, looks_like_data, check_data_record
    implicit none
    private
 
@@ -22,6 +22,8 @@ module exic_io_deck_mesh
              cmd_cbound, cmd_nodal_values, cmd_global, cmd_initial
 
    integer, parameter, public :: CB_NODE = 1, CB_LINE = 2
+   !> Largest node or element number accepted (guards against a typo allocating huge arrays).
+   integer, parameter, public :: MAX_NUMBER = 100000000
    integer, parameter, public :: INIT_NODE = 1, INIT_REGION = 2, INIT_MATERIAL = 3
 
    !> One EBOUndary record, applied after END.
@@ -261,12 +263,13 @@ contains
          end if
          if (allocated(err)) return
       end do
-      if (n < 1 .or. (nmax > 0 .and. n > nmax)) then
+      if (n < 1 .or. n > MAX_NUMBER .or. (nmax > 0 .and. n > nmax)) then
          if (nmax > 0) then
             call fail(rd, i, what//': node '//itoa(n)//': expected a node number in 1..'// &
                       itoa(nmax), err)
          else
-            call fail(rd, i, what//': node '//itoa(n)//': expected a node number >= 1', err)
+            call fail(rd, i, what//': node '//itoa(n)//': expected a node number in 1..'// &
+                      itoa(MAX_NUMBER), err)
          end if
          return
       end if
@@ -301,6 +304,8 @@ contains
             return
          end if
          old = cnt
+         call check_data_record(rd, i, what(1:index(what, ' ') - 1), err)
+         if (allocated(err)) return
          call node_record(rd, i, 1, what, 0, codes, g, nodes, vals, cnt, err)
          if (allocated(err)) return
          if (present(recs)) then
@@ -393,6 +398,8 @@ contains
             call end_set(rd, i)
             return
          end if
+         call check_data_record(rd, i, 'ELEMents', err)
+         if (allocated(err)) return
          call int_field(rd, i, 1, what, n, err)
          if (allocated(err)) return
          call int_field(rd, i, 2, what, ng, err)
@@ -403,6 +410,11 @@ contains
             call int_field(rd, i, 3 + k, what, nd(k), err)
             if (allocated(err)) return
          end do
+         if (n > MAX_NUMBER) then
+            call fail(rd, i, what//': element '//itoa(n)//': expected an element number up to '// &
+                      itoa(MAX_NUMBER), err)
+            return
+         end if
          if (n < 1 .or. n <= m) then
             call fail(rd, i, what//': element '//itoa(n)//': expected an element number above '// &
                       itoa(m)//' (elements in increasing order)', err)
@@ -521,6 +533,11 @@ contains
          call fail(rd, i, what//': expected node1 >= 0 and mat >= 0', err)
          return
       end if
+      if (real(node1, wp) + real(nr + 1, wp)*real(ns + 1, wp) > MAX_NUMBER .or. &
+          real(elmt1, wp) + real(nr, wp)*real(ns, wp) > MAX_NUMBER) then
+         call fail(rd, i, what//': expected node and element numbers up to '//itoa(MAX_NUMBER), err)
+         return
+      end if
       call master_nodes(rd, mat, master, given, err)
       if (allocated(err)) return
       if (.not. all(given(1:4))) then
@@ -589,6 +606,10 @@ contains
             call end_set(rd, i)
             return
          end if
+         if (.not. looks_like_data(rd, i) .and. any(given)) then
+            call check_data_record(rd, i, 'BLOCk master node', err)
+            if (allocated(err)) return
+         end if
          if (.not. looks_like_data(rd, i)) then
             if (keyword_is(word(rd, i, 1), 'quad')) then
                call int_field(rd, i, 2, 'BLOCk QUADrilateral n', nq, err)
@@ -648,6 +669,8 @@ contains
             call end_set(rd, i)
             return
          end if
+         call check_data_record(rd, i, 'EBOUndary', err)
+         if (allocated(err)) return
          call int_field(rd, i, 1, what, eb%dir, err)
          if (.not. allocated(err)) call real_field(rd, i, 2, what, eb%x, err)
          if (.not. allocated(err)) call int_field(rd, i, 3, what, eb%code(1), err)
@@ -732,7 +755,9 @@ contains
             end if
             cycle
          else
-            call unknown_keyword(rd, i, 'CBOUndary record', field(rd, i, 1), cbou_words, err)
+            call check_data_record(rd, i, 'CBOUndary', err)
+            if (.not. allocated(err)) call unknown_keyword(rd, i, 'CBOUndary record', &
+                                                          field(rd, i, 1), cbou_words, err)
             return
          end if
          if (b%ncbou == size(b%cbou)) then
@@ -802,6 +827,8 @@ contains
          end if
          if (keyword_is(word(rd, i, 1), 'plan') .and. keyword_is(word(rd, i, 2), 'stra')) cycle
          if (keyword_is(word(rd, i, 1), 'fini')) cycle
+         call check_data_record(rd, i, 'GLOBal', err)
+         if (allocated(err)) return
          call fail(rd, i, 'GLOBal option "'//trim(rd%src%rec(i)%text)//'" is not supported: '// &
                    'expected PLANe STRAin', err)
          return
@@ -852,7 +879,9 @@ contains
          else if (keyword_is(word(rd, i, 1), 'mate')) then
             what = 'INITial,VELOcity record MATErial, m, vx, vy'
          else
-            call unknown_keyword(rd, i, 'INITial record', field(rd, i, 1), kinds, err)
+            call check_data_record(rd, i, 'INITial,VELOcity', err)
+            if (.not. allocated(err)) call unknown_keyword(rd, i, 'INITial record', &
+                                                          field(rd, i, 1), kinds, err)
             return
          end if
          call int_field(rd, i, 2, what, id, err)

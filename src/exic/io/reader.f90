@@ -13,7 +13,15 @@ module exic_io_reader
 
    public :: reader_t, next_record, next_nonblank, back_one, nfields, field, word, has_field
    public :: real_field, int_field, fail, warn, where, end_set, looks_like_data, check_command
-   public :: read_parameters, unknown_keyword, itoa, rtoa
+   public :: read_parameters, unknown_keyword, itoa, rtoa, check_data_record, is_command
+
+   !> Every command keyword of the language (mesh, solution and top level), used to tell a
+   !> command that was read inside a data set.
+   character(len=12), parameter :: all_commands(31) = [character(len=12) :: 'PARAmeters', &
+      'COORdinates', 'ELEMents', 'REGIon', 'BLOCk', 'BOUNdary', 'EBOUndary', 'CBOUndary', &
+      'FORCe', 'DISPlacement', 'GLOBal', 'MATErial', 'INITial', 'CONTact', 'END', 'FEAP', 'TIE', &
+      'BATCh', 'STOP', 'INCLude', 'LOOP', 'NEXT', 'TRANsient', 'TIME', 'FORM', 'TPLOt', 'OUTPut', &
+      'PRINt', 'DT', 'SURFace', 'PAIR']
 
    !> The deck's records and the reading state.
    type :: reader_t
@@ -184,6 +192,32 @@ contains
                 'keyword: '//nearest_keyword(w, table), err)
    end subroutine unknown_keyword
 
+   !> True when `w` is a command keyword of the language.
+   pure logical function is_command(w)
+      character(len=*), intent(in) :: w
+      integer :: k
+      is_command = .false.
+      do k = 1, size(all_commands)
+         if (keyword_is(w, all_commands(k))) is_command = .true.
+      end do
+   end function is_command
+
+   !> Record `i` is read as data of the set `setname`: when its first field is a command keyword
+   !> rather than a number or expression, the set was not ended by a blank record; say so.
+   subroutine check_data_record(rd, i, setname, err)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i
+      character(len=*), intent(in) :: setname
+      type(error_t), allocatable, intent(out) :: err
+      type(error_t), allocatable :: e
+      real(wp) :: v
+      if (looks_like_data(rd, i)) return
+      call evaluate(field(rd, i, 1), rd%params, v, e)
+      if (.not. allocated(e)) return
+      if (is_command(field(rd, i, 1))) call fail(rd, i, field(rd, i, 1)//' inside the '// &
+         setname//' data set: expected a blank record to end the set before the next command', err)
+   end subroutine check_data_record
+
    !> Numeric field `k` of record `i` (empty or absent: 0). `what` names the record's layout.
    subroutine real_field(rd, i, k, what, v, err)
       type(reader_t), intent(in) :: rd
@@ -262,6 +296,8 @@ contains
          if (len(piece) == 0) cycle
          q = index(piece, '=')
          if (q == 0) then
+            call check_data_record(rd, i, 'PARAmeters', err)
+            if (allocated(err)) return
             call fail(rd, i, 'PARAmeter record "'//piece//'": expected name = expression', err)
             return
          end if
