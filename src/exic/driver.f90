@@ -9,8 +9,9 @@ module exic_driver
    use exic_io_history, only: history_files_t
    use exic_explicit_state, only: state_t, element_set_t
    use exic_explicit_solver, only: solver_init, solver_forces, solver_stable_dt, solver_energies, &
-                                   element_stress
+                                   element_stress, all_stresses
    use exic_contact_contact, only: contact_t
+   use exic_io_fields, only: field_writer_t
    implicit none
    private
 
@@ -28,6 +29,11 @@ module exic_driver
       type(element_set_t), allocatable :: sets(:)
       type(contact_t) :: contact
       type(history_files_t) :: files
+      type(field_writer_t) :: fields
+      character(len=:), allocatable :: base    !< output path without extension
+      real(wp) :: field_dt = 0.0_wp             !< OUTPut,HDF5 interval (0: no field output)
+      real(wp) :: field_next = 0.0_wp           !< time of the next field output
+      real(wp) :: field_last = -huge(1.0_wp)    !< time of the last field output
       type(progress_t) :: progress
       logical :: started = .false.
       logical :: cfl_mode = .true.
@@ -45,6 +51,8 @@ module exic_driver
       integer, allocatable :: region_of_node(:) !< region of the elements that use each node
       real(wp), allocatable :: du(:, :), a_old(:, :), vt(:, :), fcon_old(:, :)   !< step work arrays
       real(wp) :: wall_start = 0.0_wp
+      real(wp) :: time_forces = 0.0_wp          !< wall time in the element loop and stable step
+      real(wp) :: time_steps = 0.0_wp           !< wall time in FORM (whole steps)
    end type run_t
 
 contains
@@ -57,6 +65,7 @@ contains
       type(run_t) :: r
 
       r%wall_start = wall_time()
+      r%base = opts%base
       call r%files%open(opts%base, err)
       if (.not. allocated(err)) call write_preamble(r, model)
       if (.not. allocated(err)) call solver_init(model, r%st, r%sets, err)
@@ -113,6 +122,8 @@ contains
                call ensure_started(r, model, err)
                if (allocated(err)) return
                call record(r, model)
+               call field_output(r, err)
+               if (allocated(err)) return
                if (c%v(1) > 0.0_wp) then
                   r%tmax = c%v(1)
                   if (r%st%t >= r%tmax*(1.0_wp - 1.0e-12_wp) .and. depth > 0) then
@@ -132,7 +143,8 @@ contains
                where (r%st%minv == 0.0_wp .and. .not. spread(r%st%rigid, 1, 2)) r%st%v = 0.0_wp
                if (r%started) call solver_energies(r%st)
             case ('outp')
-               continue
+               call open_fields(r, model, c%v(1), err)
+               if (allocated(err)) return
             case ('prin')
                r%print_inc = max(1, nint(c%v(1)))
             case default
@@ -250,7 +262,9 @@ contains
       type(run_t), intent(inout) :: r
       type(error_t), allocatable, intent(out) :: err
       integer :: ebad
+      real(wp) :: t0, t1
 
+      t0 = wall_time()
       associate (st => r%st, du => r%du, a_old => r%a_old, vt => r%vt, fcon_old => r%fcon_old)
          ! x(n+1) = x(n) + dt(n) v(n) + dt(n)^2/2 a(n)
          du = st%dt*st%v + (0.5_wp*st%dt*st%dt)*st%a
@@ -261,12 +275,14 @@ contains
          a_old = st%a
          fcon_old = st%fcon
 
+         t1 = wall_time()
          call solver_forces(st, r%sets, ebad)
          if (ebad /= 0) then
             call inverted_error(r, ebad, err)
             return
          end if
          call choose_dt(r, err, 'DT')
+         r%time_forces = r%time_forces + (wall_time() - t1)
          if (allocated(err)) return
          ! predictor, eq. 4.3-4.4
          st%a = st%minv*(st%fext - st%fint)
@@ -280,6 +296,7 @@ contains
          st%wcon = st%wcon + 0.5_wp*sum((fcon_old + st%fcon)*du)
       end associate
       call solver_energies(r%st)
+      r%time_steps = r%time_steps + (wall_time() - t0)
       call check_health(r, err)
       if (allocated(err)) return
       if (r%print_inc > 0) then
@@ -287,6 +304,43 @@ contains
       end if
       call r%progress%update(r%st%t, r%tmax, r%st%step)
    end subroutine explicit_step
+
+   !> OUTPut,HDF5,dt_out: open <stem>.h5 and <stem>.xdmf with the mesh.
+   subroutine open_fields(r, model, dt_out, err)
+      type(run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: dt_out
+      type(error_t), allocatable, intent(out) :: err
+      if (r%fields%is_open()) return
+      r%field_dt = dt_out
+      r%field_next = r%st%t
+      call r%fields%open(r%base//'.h5', r%base//'.xdmf', model%mesh%nnode, model%mesh%nelem, &
+                         model%mesh%x, model%mesh%conn, model%mesh%region, model%mesh%mat, &
+                         r%contact%edges(), err)
+   end subroutine open_fields
+
+   !> Write the fields when an output time is due (every dt_out, the first at once).
+   subroutine field_output(r, err)
+      type(run_t), intent(inout) :: r
+      type(error_t), allocatable, intent(out) :: err
+      real(wp), allocatable :: sig(:, :)
+      integer, allocatable :: flag(:)
+      real(wp) :: energies(5)
+      character(len=16), parameter :: names(5) = [character(len=16) :: 'kinetic', 'strain', &
+                                                   'external_work', 'contact_work', 'hourglass']
+      if (.not. r%fields%is_open()) return
+      if (r%st%t < r%field_next*(1.0_wp - 1.0e-12_wp)) return
+      do while (r%field_next <= r%st%t*(1.0_wp + 1.0e-12_wp))
+         r%field_next = r%field_next + r%field_dt
+      end do
+      allocate (sig(7, r%st%nelem), flag(r%st%nnode))
+      call all_stresses(r%st, r%sets, sig)
+      flag = merge(1, 0, r%st%fcon(1, :) /= 0.0_wp .or. r%st%fcon(2, :) /= 0.0_wp)
+      energies = [r%st%kinetic, r%st%strain + r%st%hourglass, r%st%wext, r%st%wcon, r%st%hourglass]
+      call r%fields%write_step(r%st%t, r%st%step, r%st%u, r%st%v, r%st%a, sig, r%st%fcon, flag, &
+                               energies, names, err)
+      r%field_last = r%st%t
+   end subroutine field_output
 
    !> Stop on NaN or runaway energy.
    subroutine check_health(r, err)
@@ -473,8 +527,18 @@ contains
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(in) :: err
       real(wp) :: wall
+      type(error_t), allocatable :: ferr
       if (r%started .and. .not. allocated(err)) then
          if (r%last_row_step /= r%st%step) call write_rows(r, model)
+         ! the final state is always written
+         if (r%fields%is_open() .and. r%st%t > r%field_last) then
+            r%field_next = r%st%t
+            call field_output(r, ferr)
+         end if
+      end if
+      if (r%fields%is_open()) then
+         if (.not. allocated(ferr)) call r%fields%close(ferr)
+         if (allocated(ferr)) call r%files%say('error: '//ferr%message)
       end if
       wall = wall_time() - r%wall_start
       call r%files%say('')
@@ -488,7 +552,23 @@ contains
       end if
       if (allocated(err)) call r%files%say('error: '//err%message)
       call r%files%say('wall time '//real_text(wall)//' s')
-      call r%files%say('files written: '//r%files%his_path//' '//r%files%ene_path//' '//r%files%out_path)
+      if (r%st%step > 0) then
+         call r%files%say('time in steps '//real_text(r%time_steps)//' s: elements and stable step '// &
+            real_text(r%time_forces)//' s, contact search '//real_text(r%contact%time_search)// &
+            ' s, contact corrector '//real_text(r%contact%time_corrector)//' s')
+         call r%files%say('steps per second '//real_text(real(r%st%step, wp)/max(r%time_steps, 1.0e-9_wp))// &
+            ', element-steps per second '//real_text(real(r%st%step, wp)*r%st%nelem/max(r%time_steps, 1.0e-9_wp)))
+      end if
+      if (r%contact%active) then
+         call r%files%say('contact: largest penetration over the run '//real_text(r%contact%max_penetration)// &
+            ', redundant constraints removed '//int_text(r%contact%nredundant))
+      end if
+      if (r%field_dt > 0.0_wp) then
+         call r%files%say('files written: '//r%files%his_path//' '//r%files%ene_path//' '// &
+                          r%files%out_path//' '//r%base//'.h5 '//r%base//'.xdmf')
+      else
+         call r%files%say('files written: '//r%files%his_path//' '//r%files%ene_path//' '//r%files%out_path)
+      end if
       call r%files%close()
    end subroutine finish
 

@@ -10,6 +10,7 @@
 module exic_contact_contact
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
+   use exic_base_clock, only: wall_time
    use exic_model, only: model_t
    use exic_material_material, only: MAT_SOLID
    use exic_explicit_state, only: state_t
@@ -69,12 +70,16 @@ module exic_contact_contact
       real(wp) :: depth = 0.0_wp               !< penetration accepted at the start of a step
       real(wp), allocatable :: xn(:, :), xp(:, :)
       real(wp) :: max_penetration = 0.0_wp     !< largest over the run
+      real(wp) :: time_search = 0.0_wp         !< wall time in search (broad + narrow phase)
+      real(wp) :: time_corrector = 0.0_wp      !< wall time in the corrector (assembly + solve)
+      integer :: nredundant = 0                !< redundant constraints removed over the run
    contains
       procedure :: init => contact_init
       procedure :: correct => contact_correct
       procedure :: stable_dt => contact_stable_dt
       procedure :: pair_value => contact_pair_value
       procedure :: describe => contact_describe
+      procedure :: edges => contact_edges
    end type contact_t
 
 contains
@@ -324,10 +329,11 @@ contains
       real(wp), intent(in) :: vt(:, :)
       type(error_t), allocatable, intent(out) :: err
       integer :: k, j, i, node
-      real(wp) :: c, dt, gnow, pen
+      real(wp) :: c, dt, gnow, pen, t0, t1
 
       st%nactive = 0
       if (.not. self%active) return
+      t0 = wall_time()
       st%fcon = 0.0_wp
       dt = st%dt
       ! positions at t(n+1) and predicted at t(n+2), eq. 4.4
@@ -366,11 +372,15 @@ contains
             end do
          end associate
       end do
+      t1 = wall_time()
+      self%time_search = self%time_search + (t1 - t0)
       if (self%cs%n > 0) then
          ! c = dt(n+1) (dt(n) + dt(n+1)) / 2, eq. 4.7
          c = 0.5_wp*dt*(st%dt_prev + dt)
          call self%corr%solve(self%cs, st%nnode, st%minv, c, st%a, st%fcon, err)
+         self%time_corrector = self%time_corrector + (wall_time() - t1)
          if (allocated(err)) return
+         self%nredundant = self%nredundant + self%corr%nredundant
          do i = 1, self%cs%n
             associate (r => self%results(self%cs%pair(i)))
                pen = max(0.0_wp, -self%cs%gap_now(i))
@@ -512,6 +522,22 @@ contains
          end associate
       end do
    end subroutine contact_describe
+
+   !> Every contact segment of every surface, (2, nedge); empty without contact.
+   function contact_edges(self) result(e)
+      class(contact_t), intent(in) :: self
+      integer, allocatable :: e(:, :)
+      integer :: k, n
+      n = 0
+      if (self%active) n = sum([(self%surfaces(k)%nseg, k=1, size(self%surfaces))])
+      allocate (e(2, n))
+      n = 0
+      if (.not. self%active) return
+      do k = 1, size(self%surfaces)
+         e(:, n + 1:n + self%surfaces(k)%nseg) = self%surfaces(k)%seg
+         n = n + self%surfaces(k)%nseg
+      end do
+   end function contact_edges
 
    !> Sorted unique values.
    function unique(a) result(u)

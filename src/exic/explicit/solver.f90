@@ -18,7 +18,7 @@ module exic_explicit_solver
    implicit none
    private
 
-   public :: solver_init, solver_forces, solver_stable_dt, solver_energies, element_stress
+   public :: solver_init, solver_forces, solver_stable_dt, solver_energies, element_stress, all_stresses
    public :: STEP_OK, STEP_INVERTED
 
    integer, parameter :: STEP_OK = 0, STEP_INVERTED = 1
@@ -198,5 +198,25 @@ contains
          sig = s1(:, 1)
       end associate
    end subroutine element_stress
+
+   !> Stress components of every element, sig(7, nelem); rigid elements get zeros and J = 1.
+   subroutine all_stresses(st, sets, sig)
+      type(state_t), intent(in) :: st
+      type(element_set_t), intent(in) :: sets(:)
+      real(wp), intent(out) :: sig(:, :)
+      integer :: k
+      real(wp), allocatable :: s1(:, :)
+      sig = 0.0_wp
+      sig(7, :) = 1.0_wp
+      do k = 1, size(sets)
+         associate (s => sets(k))
+            if (s%kind /= MAT_SOLID) cycle
+            allocate (s1(7, s%nel))
+            call q4_stress(s%nq, s%nel, st%nnode, s%conn, st%u, s%gdn, s%lambda, s%mu, s1)
+            sig(:, s%elems) = s1
+            deallocate (s1)
+         end associate
+      end do
+   end subroutine all_stresses
 
 end module exic_explicit_solver
