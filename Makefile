@@ -50,7 +50,9 @@ run: build
 	@mkdir -p $(OUTDIR)
 	$(FPM) run $(RELEASE) -- $(EXAMPLE) -o $(OUTDIR)
 
+# fpm 0.12 can leave a stale test executable when `fpm run` rebuilt the library first: relink it
 test: setup
+	@find build -path '*/test/exic-test' -type f -delete 2>/dev/null || true
 	$(FPM) test
 
 install: setup

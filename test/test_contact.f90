@@ -31,7 +31,151 @@ contains
       call two_bar_test(s, 0.5_wp, 1.0_wp, 'NTOS', 'unlike_bars')
       call section(s, 'contact: two-pass contact of matching meshes (redundant constraints, corners)')
       call two_bar_test(s, rho0, rho0, 'SYMMetric', 'two_pass')
+      call section(s, 'contact: node-on-node against node-on-segment meshes (seed 7.2, 6 x 30 and 6 x 31)')
+      call mesh_pair_test(s)
+      call section(s, 'contact: swept against static detection, thin target')
+      call thin_target_test(s)
+      call section(s, 'contact: penalty baseline')
+      call penalty_test(s)
    end subroutine run_contact_tests
+
+   !> Seed example 7.2: bar 30 x 4 (30 x 6) at 50 against a free vertical bar 4 x 30 meshed
+   !> 6 x 30 (node on node) or 6 x 31 (node on segment); lambda = 33333, mu = 5000, rho = 0.1.
+   function seed72_deck(nv, pair_kind) result(deck)
+      integer, intent(in) :: nv
+      character(len=*), intent(in) :: pair_kind
+      character(len=:), allocatable :: deck
+      character(len=8) :: b
+      write (b, '(i0)') nv
+      deck = 'FEAP * * seed example 7.2, vertical bar 6 x '//trim(b)//nl//'0 0 0 2 2 4'//nl// &
+             'PARAmeters'//nl//'  lam = 33333'//nl//'  mu = 5000'//nl// &
+             '  young = mu*(3*lam+2*mu)/(lam+mu)'//nl//'  nu = lam/(2*(lam+mu))'//nl//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean young nu'//nl//'    DENSity 0.1'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,30,6,0,0,1'//nl//'    1,0,13'//nl//'    2,30,13'//nl// &
+             '    3,30,17'//nl//'    4,0,17'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,6,'//trim(b)//',0,0,1'//nl//'    1,30,0'//nl// &
+             '    2,34,0'//nl//'    3,34,30'//nl//'    4,30,30'//nl//nl// &
+             'INITial,VELOcity'//nl//'  REGIon,1,50,0'//nl//nl// &
+             'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
+             '  PAIR,1,'//pair_kind//',1,2'//nl//'END CONTact'//nl//nl//'END'//nl// &
+             'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,1000000'//nl// &
+             '    TIME,,0.12'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
+             '  disp,124,1'//nl//'  cont,1,1'//nl//'  cont,1,6'//nl//nl//'STOP'
+   end function seed72_deck
+
+   !> The tip displacement histories of the node-on-node and node-on-segment meshes agree
+   !> within 1 % of the peak (seed section 7.2: "indistinguishable").
+   subroutine mesh_pair_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: a(:, :), b(:, :)
+      integer :: stage, k, j
+      real(wp) :: ub, worst, peak, w, f1d
+      call run_deck('seed72_30', seed72_deck(30, 'NTOS'), stage, msg)
+      call check(s, stage == 0, 'seed 7.2 with a 6 x 30 vertical bar runs', msg)
+      if (stage /= 0) return
+      call run_deck('seed72_31', seed72_deck(31, 'NTOS'), stage, msg)
+      call check(s, stage == 0, 'seed 7.2 with a 6 x 31 vertical bar runs', msg)
+      if (stage /= 0) return
+      call read_table(run_dir//'/seed72_30.his', names, a)
+      call read_table(run_dir//'/seed72_31.his', names, b)
+      peak = maxval(abs(a(2, :)))
+      worst = 0.0_wp
+      j = 1
+      do k = 1, size(a, 2)
+         do while (j < size(b, 2) - 1 .and. b(1, j + 1) < a(1, k))
+            j = j + 1
+         end do
+         if (a(1, k) > b(1, size(b, 2))) exit
+         w = (a(1, k) - b(1, j))/(b(1, j + 1) - b(1, j))
+         ub = (1.0_wp - w)*b(2, j) + w*b(2, j + 1)
+         worst = max(worst, abs(a(2, k) - ub))
+      end do
+      call check(s, worst <= 0.01_wp*peak, 'tip displacement histories agree within 1 % of the peak', &
+                 'largest difference '//rstr(worst)//', peak '//rstr(peak))
+      print '(a,es10.3)', '      figures seed 7.2 vs 7.2b: largest tip displacement difference / peak ', worst/peak
+      ! multipliers stay bounded (two-pass, corners of the striking bar on the face)
+      f1d = 0.1_wp*sqrt((33333.0_wp + 2.0_wp*5000.0_wp)/0.1_wp)*50.0_wp*4.0_wp
+      call check(s, maxval(a(4, :)) <= 10.0_wp*f1d .and. maxval(b(4, :)) <= 10.0_wp*f1d, &
+                 'no multiplier above 10x the 1-D contact force (two-pass, corners)', &
+                 'largest '//rstr(max(maxval(a(4, :)), maxval(b(4, :))))//', 1-D force '//rstr(f1d))
+   end subroutine mesh_pair_test
+
+   !> A block at 1/4 of its wave speed against a rigid plate thinner than one step of travel (and
+   !> the travel deeper than the search depth, 0.1 of the mean segment length):
+   !> SWEPt detection stops it at the plate, STATic detection (documented) lets it through.
+   function thin_target_deck(detection) result(deck)
+      character(len=*), intent(in) :: detection
+      character(len=:), allocatable :: deck
+      deck = 'FEAP * * block against a thin plate'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 400 0'//nl//'    DENSity 1'//nl//nl// &
+             'MATErial,2'//nl//'  RIGId'//nl//'    DENSity 1'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,2,2,0,0,1'//nl//'    1,-0.005,0'//nl// &
+             '    2,0.995,0'//nl//'    3,0.995,1'//nl//'    4,-0.005,1'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,1,4,0,0,2'//nl//'    1,1,-1'//nl// &
+             '    2,1.005,-1'//nl//'    3,1.005,2'//nl//'    4,1,2'//nl//nl// &
+             'INITial,VELOcity'//nl//'  REGIon,1,5,0'//nl//nl// &
+             'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
+             '  PAIR,1,NTOS,1,2'//nl//'    DETEction,'//detection//nl//'END CONTact'//nl//nl//'END'//nl// &
+             'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,100'//nl// &
+             '    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
+             '  disp,6,1'//nl//'  cont,1,4'//nl//nl//'STOP'
+   end function thin_target_deck
+
+   subroutine thin_target_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: d(:, :), e(:, :)
+      integer :: stage
+      call run_deck('thin_swept', thin_target_deck('SWEPt'), stage, msg)
+      call check(s, stage == 0, 'thin target, swept detection, runs', msg)
+      if (stage /= 0) return
+      call read_table(run_dir//'/thin_swept.ene', names, e)
+      call check(s, 5.0_wp*e(3, 2) > 0.01_wp, 'one step of travel (v dt) exceeds the plate thickness', &
+                 'v dt = '//rstr(5.0_wp*e(3, 2)))
+      call read_table(run_dir//'/thin_swept.his', names, d)
+      call check(s, maxval(d(2, :)) <= 0.005_wp + 1.0e-10_wp, 'swept detection stops the face at the plate', &
+                 'largest face displacement '//rstr(maxval(d(2, :)))//' (plate at 0.005)')
+      call run_deck('thin_static', thin_target_deck('STATic'), stage, msg)
+      call check(s, stage == 0, 'thin target, static detection, runs', msg)
+      if (stage /= 0) return
+      call read_table(run_dir//'/thin_static.his', names, d)
+      call check(s, d(2, size(d, 2)) > 0.05_wp, &
+                 'static detection misses the crossing: the block passes through (documented)', &
+                 'final face displacement '//rstr(d(2, size(d, 2))))
+   end subroutine thin_target_test
+
+   !> Penalty: finite penetration that falls as k grows, and a stable step that falls as k grows.
+   subroutine penalty_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: d(:, :), e(:, :)
+      integer :: stage, k
+      real(wp) :: pen(3), dtmin(3), kk(3)
+      character(len=40) :: extra
+      character(len=16) :: tag
+      kk = [1.0e4_wp, 1.0e5_wp, 1.0e6_wp]
+      do k = 1, 3
+         write (extra, '(a,es10.3)') '    PENAlty,', kk(k)
+         write (tag, '(a,i0)') 'penalty_', k
+         call run_deck(trim(tag), bar_deck('bar on a wall, penalty', 30, 6, 'wall', rho0, rho0, 'NTOS', &
+                       2.5_wp*blen/sqrt(young/rho0), trim(extra)//nl), stage, msg)
+         call check(s, stage == 0, 'penalty run k = '//rstr(kk(k)), msg)
+         if (stage /= 0) return
+         call read_table(run_dir//'/'//trim(tag)//'.his', names, d)
+         call read_table(run_dir//'/'//trim(tag)//'.ene', names, e)
+         pen(k) = maxval(d(7, :))
+         dtmin(k) = minval(e(3, 2:size(e, 2) - 5))
+         print '(a,es10.3,a,es10.3,a,es10.3)', '      figures penalty k = ', kk(k), ': largest penetration ', &
+            pen(k), ', smallest step ', dtmin(k)
+      end do
+      call check(s, all(pen > 0.0_wp), 'penalty leaves a finite penetration')
+      call check(s, pen(2) < pen(1) .and. pen(3) < pen(2), 'penetration falls as k grows')
+      call check(s, dtmin(2) <= dtmin(1) .and. dtmin(3) < dtmin(2), 'the stable step falls as k grows')
+   end subroutine penalty_test
 
    !> A deck of bar 1 (region 1, material 1) from x = 0 to blen moving at +v0, and (mode) 'wall':
    !> a rigid wall at x = blen; 'bars': a second bar of density rho2 from blen to 2 blen moving at

@@ -212,12 +212,15 @@ contains
       character(len=*), intent(in) :: where
       character(len=200) :: buf
       integer :: n
-      real(wp) :: target
+      real(wp) :: target, dtp
 
       call solver_stable_dt(r%st, r%sets, r%dt_stable, r%dt_element)
       if (r%contact%any_penalty) then
-         if (r%contact%stable_dt(r%st) < r%dt_stable) then
-            r%dt_stable = r%contact%stable_dt(r%st)
+         ! a penalty spring adds its frequency to that of the elements at its nodes:
+         ! omega^2 <= omega_elements^2 + omega_penalty^2, i.e. 1/dt^2 adds up
+         dtp = r%contact%stable_dt(r%st)
+         if (dtp < huge(1.0_wp)) then
+            r%dt_stable = 1.0_wp/sqrt(1.0_wp/r%dt_stable**2 + 1.0_wp/dtp**2)
             r%dt_element = 0
          end if
       end if
