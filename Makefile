@@ -8,7 +8,7 @@ VENV    := .venv
 PYTHON  := $(VENV)/bin/python
 FPM     := $(VENV)/bin/fpm
 RELEASE := --profile release --flag "-O3 -march=native -funroll-loops"
-EXAMPLE ?= inputs/examples/bar_wall.inp
+EXAMPLE ?= inputs/examples/impact.inp
 OUTDIR  ?= out
 
 .PHONY: all setup deps venv build run test verify bench plots install clean help
