@@ -11,9 +11,11 @@
 !>     S p = -g~ / c,        p >= 0 (compressive),                        (eq. 4.5-4.7)
 !>
 !> p = -lambda in the seed's sign convention (its lambda is negative in compression).
-!> The active set starts from the violated predicted gaps; tensile multipliers are dropped and
-!> candidates whose corrected gap is still violated are added, for at most `max_passes`
-!> passes. Redundant constraints (dependent columns of G) are removed by the factorization
+!> The active set starts from the violated predicted gaps. Each pass solves, drops the
+!> constraints with tensile multipliers (re-solving until none is left), then releases those
+!> from the active set and adds every candidate whose corrected gap is still violated,
+!> including released ones; for at most `max_passes` passes (the count of steps that hit
+!> the limit is reported in <stem>.out). Redundant constraints (dependent columns of G) are removed by the factorization
 !> (see exic_linalg_sparse_ldl) and carry p = 0. Small active sets go to a dense LAPACK
 !> factorization, larger ones to SuiteSparse LDL' with AMD ordering, whose symbolic analysis
 !> is reused while the active pattern is unchanged.
@@ -60,6 +62,7 @@ module exic_contact_corrector
       real(wp), allocatable :: ax(:), s(:, :), rhs(:), sol(:)
       real(wp), allocatable :: fwork(:, :)          !< (2, nnode) G p of the current pass
       logical, allocatable :: drop(:)
+      logical, allocatable :: tensile(:)            !< dropped for a tensile multiplier
       integer, allocatable :: nstart(:), nlist(:)   !< node -> candidates incidence (CSR)
    contains
       procedure :: solve => corrector_solve
@@ -157,6 +160,8 @@ contains
          self%pos(1:m) = 0
          self%pos(self%idx(1:nact)) = [(k, k=1, nact)]
          call grow_l(self%drop, nact)
+         call grow_l(self%tensile, nact)
+         self%tensile(1:nact) = .false.
          call grow_r(self%rhs, nact)
          call grow_r(self%sol, nact)
          call grow_i(self%bad, nact)
@@ -174,6 +179,7 @@ contains
             do k = 1, nact
                if (.not. self%drop(k) .and. self%sol(k) < 0.0_wp) then
                   self%drop(k) = .true.
+                  self%tensile(k) = .true.
                   negative = .true.
                end if
             end do
@@ -191,7 +197,7 @@ contains
          do i = 1, m
             g = cs%gap(i) + c*gap_change(cs, i, nnode, minv, self%fwork)
             if (cs%active(i)) then
-               if (self%drop(self%pos(i)) .and. cs%p(i) == 0.0_wp .and. self%sol(self%pos(i)) < 0.0_wp) then
+               if (self%tensile(self%pos(i))) then
                   cs%active(i) = .false.     ! tensile: released
                   changed = .true.
                end if
