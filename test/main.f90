@@ -7,6 +7,7 @@ program exic_tests
    use test_fields, only: run_fields_tests
    use test_physics, only: run_physics_tests
    use test_contact, only: run_contact_tests
+   use test_run_output, only: run_run_output_tests
    use test_deck, only: run_deck_tests
    implicit none
    type(suite_t) :: s
@@ -18,6 +19,7 @@ program exic_tests
    call run_fields_tests(s)
    call run_physics_tests(s)
    call run_contact_tests(s)
+   call run_run_output_tests(s)
    call run_deck_tests(s)
    print '(i0,a,i0,a)', s%passed, ' passed, ', s%failed, ' failed'
    if (s%failed > 0) error stop 1

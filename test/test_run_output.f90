@@ -1,0 +1,205 @@
+!> Field output of real runs: read back with h5dump against the run's own histories, and a run
+!> killed with SIGTERM halfway through.
+module test_run_output
+   use exic_base_kinds, only: wp
+   use testing, only: suite_t, check, section
+   use deck_runner, only: run_dir, run_deck, read_table, write_text
+   implicit none
+   private
+
+   public :: run_run_output_tests
+
+   character(len=*), parameter :: nl = new_line('a')
+
+contains
+
+   subroutine run_run_output_tests(s)
+      type(suite_t), intent(inout) :: s
+      call section(s, 'run output: HDF5 fields of a run against its own history file')
+      call readback_test(s)
+      call section(s, 'run output: a run killed by SIGTERM halfway')
+      call killed_run_test(s)
+   end subroutine run_run_output_tests
+
+   !> A 12 x 2 bar hitting a rigid wall at a fixed step 1e-3: fields every `every` steps,
+   !> histories every step.
+   function bar_deck(nsteps, every) result(deck)
+      integer, intent(in) :: nsteps, every
+      character(len=:), allocatable :: deck
+      character(len=16) :: a, b
+      write (a, '(i0)') nsteps
+      write (b, '(i0)') every
+      deck = 'FEAP * * field output of a run'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'MATErial,2'//nl//'  RIGId'//nl//'    DENSity 1'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,12,2,0,0,1'//nl//'    1,0,0'//nl//'    2,6,0'//nl// &
+             '    3,6,1'//nl//'    4,0,1'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,1,2,0,0,2'//nl//'    1,6,-1'//nl//'    2,7,-1'//nl// &
+             '    3,7,2'//nl//'    4,6,2'//nl//nl// &
+             'INITial,VELOcity'//nl//'  REGIon,1,0.5,0'//nl//nl// &
+             'CONTact'//nl//'  AUTOmatic'//nl//'END CONTact'//nl//nl//'END'//nl// &
+             'BATCh'//nl//'  DT,,1e-3'//nl//'  TPLOt,,1'//nl//'  OUTPut,HDF5,'//trim(b)//'e-3'//nl// &
+             '  LOOP,,'//trim(a)//nl//'    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
+             '  disp,13,1'//nl//'  disp,20,2'//nl//nl//'STOP'
+   end function bar_deck
+
+   !> Datasets and shapes with h5dump, and one displacement value against <stem>.his.
+   subroutine readback_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, h5
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: his(:, :), times(:), one(:)
+      integer :: stage, status, nt, k, row
+      real(wp) :: value
+
+      call run_deck('fields_run', bar_deck(60, 5), stage, msg)
+      call check(s, stage == 0, 'deck with OUTPut,HDF5 runs', msg)
+      if (stage /= 0) return
+      h5 = run_dir//'/fields_run.h5'
+      call execute_command_line('h5dump -H '//h5//' > '//run_dir//'/fields_run.h5dump 2>&1', exitstat=status)
+      call check(s, status == 0, 'h5dump reads the run''s .h5')
+      call check(s, has_line(run_dir//'/fields_run.h5dump', 'DATASET "displacement"') .and. &
+                 has_line(run_dir//'/fields_run.h5dump', 'DATASET "stress"') .and. &
+                 has_line(run_dir//'/fields_run.h5dump', 'DATASET "contact_force"') .and. &
+                 has_line(run_dir//'/fields_run.h5dump', 'DATASET "connectivity"'), &
+                 'mesh, displacement, stress and contact-force datasets are there')
+      call read_h5_vector(h5, '/time', times)
+      nt = size(times)
+      ! 60 steps with output every 5: t = 0, 5 dt, ..., 60 dt
+      call check(s, nt == 13, 'one output time every 5 steps', 'output times: '//itoa(nt))
+      call check(s, has_line(run_dir//'/fields_run.h5dump', '( '//itoa(nt)//', 45, 2 )'), &
+                 'displacement shape (times, 45 nodes, 2)')
+      call check(s, has_line(run_dir//'/fields_run.h5dump', '( '//itoa(nt)//', 26, 7 )'), &
+                 'stress shape (times, 26 elements, 7)')
+      ! the x-displacement of node 13 (the struck tip) at output k against the history row at that time
+      k = nt/2
+      call read_h5_vector(h5, '/fields/displacement -s "'//itoa(k - 1)//',12,0" -c "1,1,1"', one)
+      call check(s, size(one) == 1, 'h5dump reads one displacement value')
+      if (size(one) /= 1) return
+      value = one(1)
+      call read_table(run_dir//'/fields_run.his', names, his)
+      row = minloc(abs(his(1, :) - times(k)), dim=1)
+      call check(s, abs(his(1, row) - times(k)) <= 1.0e-12_wp*max(1.0_wp, times(k)) .and. &
+                 abs(value - his(2, row)) <= 1.0e-14_wp*max(abs(value), 1.0e-30_wp) + 1.0e-300_wp, &
+                 'field value equals the history value at the same time', &
+                 'h5 '//rtoa(value)//', his '//rtoa(his(2, row))//' at t '//rtoa(times(k)))
+   end subroutine readback_test
+
+   !> A run killed by SIGTERM once it has written some output times leaves a readable .h5 with
+   !> every output time written before the kill.
+   subroutine killed_run_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: child, argv0, script, base
+      character(len=4096) :: arg
+      real(wp), allocatable :: times(:)
+      integer :: status, seen
+      logical :: exists
+
+      call get_command_argument(0, arg)
+      argv0 = trim(arg)
+      child = argv0(1:index(argv0, '/', back=.true.))//'deck_run_child'
+      inquire (file=child, exist=exists)
+      call check(s, exists, 'child program found next to the test driver', child)
+      if (.not. exists) return
+      base = run_dir//'/killed_run'
+      call write_text(base//'.inp', bar_deck(20000000, 2))
+      call execute_command_line('rm -f '//base//'.h5 '//base//'.xdmf '//base//'.seen')
+      ! start the run, wait until its .h5 lists at least 20 output times, then kill it
+      script = 'export HDF5_USE_FILE_LOCKING=FALSE; '//child//' '//base//'.inp '//base//' > '//base// &
+               '.log 2>&1 & pid=$!; n=0; i=0; while [ $i -lt 600 ]; do sleep 0.1; i=$((i+1)); '// &
+               'n=$(h5dump -d /time -y -w 0 '//base//'.h5 2>/dev/null | tr -cs "0-9.eE+-" "\n" | grep -c "[0-9]"); '// &
+               '[ "$n" -ge 24 ] && break; done; kill -TERM $pid; wait $pid; echo $? > '//base//'.status; '// &
+               'echo $n > '//base//'.seen'
+      call execute_command_line('bash -c '''//script//'''', exitstat=status)
+      seen = int(last_number(base//'.seen'))
+      call check(s, int(last_number(base//'.status')) == 128 + 15, 'the run was killed by SIGTERM while running')
+      call execute_command_line('h5dump -H '//base//'.h5 > /dev/null 2>&1', exitstat=status)
+      call check(s, status == 0, 'h5dump reads the killed run''s .h5')
+      call read_h5_vector(base//'.h5', '/time', times)
+      call check(s, size(times) >= 20 .and. all(times(2:) > times(:size(times) - 1)), &
+                 'every output time written before the kill is there', &
+                 'times in file '//itoa(size(times))//', seen before the kill >= '//itoa(seen/1))
+      call execute_command_line('h5dump -d /fields/displacement '//base//'.h5 > /dev/null 2>&1', exitstat=status)
+      call check(s, status == 0, 'the displacement field of every output time reads back')
+   end subroutine killed_run_test
+
+   !> Values of a 1-D dataset, read with h5dump.
+   subroutine read_h5_vector(h5, dset, v)
+      character(len=*), intent(in) :: h5, dset
+      real(wp), allocatable, intent(out) :: v(:)
+      character(len=*), parameter :: tmp = run_dir//'/h5vector.txt'
+      integer :: u, ios, n
+      real(wp) :: x
+      real(wp) :: buf(100000)
+      call execute_command_line('h5dump -d '//dset//' -y -w 0 -m "%.17g" '//h5// &
+                                ' 2>/dev/null | sed -n "/DATA {/,/}/p" | tr -s ", " "\n\n" | '// &
+                                'grep -E "^-?[0-9]" > '//tmp)
+      n = 0
+      open (newunit=u, file=tmp, status='old', action='read')
+      do
+         read (u, *, iostat=ios) x
+         if (ios /= 0) exit
+         n = n + 1
+         buf(n) = x
+      end do
+      close (u)
+      v = buf(1:n)
+   end subroutine read_h5_vector
+
+   !> The last number on the lines of a file (0 if none).
+   real(wp) function last_number(path) result(x)
+      character(len=*), intent(in) :: path
+      character(len=512) :: line
+      integer :: u, ios, k
+      real(wp) :: y
+      x = 0.0_wp
+      open (newunit=u, file=path, status='old', action='read', iostat=ios)
+      if (ios /= 0) return
+      do
+         read (u, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         do k = len_trim(line), 1, -1
+            if (index(' ,:(', line(k:k)) > 0) exit
+         end do
+         read (line(k + 1:), *, iostat=ios) y
+         if (ios == 0) x = y
+      end do
+      close (u)
+   end function last_number
+
+   !> True when a line of the file contains `text`.
+   logical function has_line(path, text) result(found)
+      character(len=*), intent(in) :: path, text
+      character(len=1024) :: line
+      integer :: u, ios
+      found = .false.
+      open (newunit=u, file=path, status='old', action='read', iostat=ios)
+      if (ios /= 0) return
+      do
+         read (u, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         if (index(line, text) > 0) then
+            found = .true.
+            exit
+         end if
+      end do
+      close (u)
+   end function has_line
+
+   function itoa(i) result(str)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: str
+      character(len=16) :: b
+      write (b, '(i0)') i
+      str = trim(b)
+   end function itoa
+
+   function rtoa(x) result(str)
+      real(wp), intent(in) :: x
+      character(len=:), allocatable :: str
+      character(len=32) :: b
+      write (b, '(es23.16)') x
+      str = trim(adjustl(b))
+   end function rtoa
+
+end module test_run_output
