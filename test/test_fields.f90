@@ -12,7 +12,7 @@ module test_fields
    private
 
    public :: run_fields_tests, synthetic_mesh, synthetic_step, write_synthetic
-   public :: NNODE_T, NELEM_T
+   public :: NNODE_T, NELEM_T, run_python
 
    integer, parameter :: NNODE_T = 12, NELEM_T = 6
    character(len=*), parameter :: DIR = 'build/test_fields'

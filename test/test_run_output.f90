@@ -4,6 +4,7 @@ module test_run_output
    use exic_base_kinds, only: wp
    use testing, only: suite_t, check, section
    use deck_runner, only: run_dir, run_deck, read_table, write_text
+   use test_fields, only: run_python
    implicit none
    private
 
@@ -83,6 +84,11 @@ contains
                  abs(value - his(2, row)) <= 1.0e-14_wp*max(abs(value), 1.0e-30_wp) + 1.0e-300_wp, &
                  'field value equals the history value at the same time', &
                  'h5 '//rtoa(value)//', his '//rtoa(his(2, row))//' at t '//rtoa(times(k)))
+      ! an independent reader: meshio loads the .xdmf time series (node 13 is point 12)
+      status = run_python('tools/check_xdmf.py '//run_dir//'/fields_run.xdmf --steps '//itoa(nt)// &
+                          ' --points 45 --cells 26 --point-value displacement,'//itoa(k - 1)//',12,0,'// &
+                          rtoa(his(2, row))//' --tol 1e-15')
+      call check(s, status == 0, 'meshio reads the run''s .xdmf: times, points, cells and the same value')
    end subroutine readback_test
 
    !> A run killed by SIGTERM once it has written some output times leaves a readable .h5 with
