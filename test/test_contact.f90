@@ -37,7 +37,62 @@ contains
       call thin_target_test(s)
       call section(s, 'contact: penalty baseline')
       call penalty_test(s)
+      call section(s, 'contact: bodies overlapping at the start')
+      call overlap_test(s)
+      call section(s, 'contact: self contact of a U-shaped body')
+      call self_contact_test(s)
    end subroutine run_contact_tests
+
+   !> The arms of a U (three tied blocks of one region) swing toward each other: with SELF
+   !> contact they meet and push apart without passing through each other.
+   subroutine self_contact_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, deck
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: d(:, :)
+      integer :: stage
+      deck = 'FEAP * * U-shaped body closing on itself'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 100 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'BLOCk'//nl//'  CARTesian,6,2,0,0,1'//nl//'    1,0,0'//nl//'    2,3,0'//nl//'    3,3,1'//nl// &
+             '    4,0,1'//nl//nl// &
+             'BLOCk'//nl//'  CARTesian,2,4,0,0,1'//nl//'    1,0,1'//nl//'    2,1,1'//nl//'    3,1,3'//nl// &
+             '    4,0,3'//nl//nl// &
+             'BLOCk'//nl//'  CARTesian,2,4,0,0,1'//nl//'    1,2,1'//nl//'    2,3,1'//nl//'    3,3,3'//nl// &
+             '    4,2,3'//nl//nl// &
+             'INITial,VELOcity'//nl//'  25,1,1,0'//nl//'  36,0,1,0'//nl//'  40,1,-1,0'//nl//'  51,0,-1,0'//nl//nl// &
+             'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,0'//nl//'  PAIR,1,SELF,1'//nl//'END CONTact'//nl//nl// &
+             'END'//nl//'TIE'//nl//'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,100000'//nl// &
+             '    TIME,,1.5'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
+             '  disp,36,1'//nl//'  disp,49,1'//nl//'  cont,1,1'//nl//'  cont,1,5'//nl//nl//'STOP'
+      call run_deck('self_u', deck, stage, msg)
+      call check(s, stage == 0, 'U-shaped self-contact deck runs', msg)
+      if (stage /= 0) return
+      call read_table(run_dir//'/self_u.his', names, d)
+      ! node 36: top-right corner of the left arm (1, 3); node 49: top-left of the right arm (2, 3)
+      call check(s, maxval(d(4, :)) > 0.0_wp, 'the arms meet (self contact carries force)')
+      call check(s, maxval(d(2, :)) > 0.4_wp .and. d(2, size(d, 2)) < maxval(d(2, :)), &
+                 'the left arm swings in and is pushed back', 'largest tip displacement '//rstr(maxval(d(2, :))))
+      call check(s, maxval(d(5, :)) < 1.0e-3_wp, 'residual penetration below 1e-3 of a segment', &
+                 'largest '//rstr(maxval(d(5, :))))
+   end subroutine self_contact_test
+
+   !> Two blocks that overlap by 0.05 at the start: an error naming the node and the depth.
+   subroutine overlap_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, deck
+      integer :: stage
+      deck = 'FEAP * * overlapping blocks'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,2,2,0,0,1'//nl//'    1,0,0'//nl//'    2,1,0'//nl// &
+             '    3,1,1'//nl//'    4,0,1'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,2,2,0,0,1'//nl//'    1,0.95,0.2'//nl//'    2,2,0.2'//nl// &
+             '    3,2,1.2'//nl//'    4,0.95,1.2'//nl//nl// &
+             'CONTact'//nl//'  AUTOmatic'//nl//'END CONTact'//nl//nl//'END'//nl// &
+             'BATCh'//nl//'  LOOP,,10'//nl//'    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//'STOP'
+      call run_deck('overlap', deck, stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'overlap') > 0 .and. index(msg, 'node') > 0 .and. &
+                 index(msg, '5.000E-02') > 0, 'overlapping bodies are refused, naming the node and the depth', msg)
+   end subroutine overlap_test
 
    !> Seed example 7.2: bar 30 x 4 (30 x 6) at 50 against a free vertical bar 4 x 30 meshed
    !> 6 x 30 (node on node) or 6 x 31 (node on segment); lambda = 33333, mu = 5000, rho = 0.1.
