@@ -54,7 +54,7 @@ contains
 
       list = run_dir//'/inputs.lst'
       call execute_command_line('mkdir -p '//run_dir)
-      call execute_command_line('ls inputs/paper/*.inp inputs/verify/*.inp > '//list//' 2>/dev/null')
+      call execute_command_line('ls inputs/*/*.inp > '//list//' 2>/dev/null')
       open (newunit=u, file=list, status='old', action='read', iostat=ios)
       call check(s, ios == 0, 'the list of decks is made')
       if (ios /= 0) return
