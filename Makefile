@@ -18,9 +18,10 @@ all: build
 help:
 	@echo "make run      set up, build (release) and run the main example ($(EXAMPLE))"
 	@echo "make test     set up and run the whole test suite (fpm test, bounds checked)"
-	@echo "make verify   run the verification decks and regenerate doc/verification.md"
+	@echo "make verify   run the decks of inputs/ and regenerate doc/verification.md"
 	@echo "make bench    run the benchmarks and regenerate doc/performance figures"
-	@echo "make plots DECK=path.inp   run a deck and draw its histories"
+	@echo "make plots DECK=path.inp [OUTDIR=out]   run a deck, draw its histories and contours"
+	@echo "              into OUTDIR/plots"
 
 # --- set-up -----------------------------------------------------------------
 deps:
@@ -54,6 +55,16 @@ run: build
 test: setup
 	@find build -path '*/test/exic-test' -type f -delete 2>/dev/null || true
 	$(FPM) test
+
+# the release binary that `build` made
+EXIC = $$($(FPM) run $(RELEASE) --runner echo exic 2>/dev/null | tail -n 1)
+
+verify: build
+	$(PYTHON) tools/verify.py --exic "$(EXIC)"
+
+plots: build
+	@if [ -z "$(DECK)" ]; then echo "usage: make plots DECK=path/to/deck.inp [OUTDIR=out]"; exit 2; fi
+	$(PYTHON) tools/plots.py "$(DECK)" -o "$(OUTDIR)" --exic "$(EXIC)"
 
 install: setup
 	$(FPM) install $(RELEASE) --prefix $(or $(PREFIX),$(CURDIR)/dist)

@@ -9,6 +9,7 @@ program exic_tests
    use test_contact, only: run_contact_tests
    use test_run_output, only: run_run_output_tests
    use test_deck, only: run_deck_tests
+   use test_inputs, only: run_inputs_tests
    implicit none
    type(suite_t) :: s
 
@@ -21,6 +22,7 @@ program exic_tests
    call run_contact_tests(s)
    call run_run_output_tests(s)
    call run_deck_tests(s)
+   call run_inputs_tests(s)
    print '(i0,a,i0,a)', s%passed, ' passed, ', s%failed, ' failed'
    if (s%failed > 0) error stop 1
 end program exic_tests

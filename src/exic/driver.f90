@@ -565,7 +565,7 @@ contains
       if (r%contact%active) then
          call r%files%say('contact: largest penetration over the run '//real_text(r%contact%max_penetration)// &
             ', redundant constraints removed '//int_text(r%contact%nredundant)// &
-            ', steps that ended at the active-set pass limit '//int_text(r%contact%corr%pass_limit_hits))
+            ', steps whose corrector reached its pass limit '//int_text(r%contact%corr%pass_limit_hits))
       end if
       if (r%field_dt > 0.0_wp) then
          call r%files%say('files written: '//r%files%his_path//' '//r%files%ene_path//' '// &

@@ -35,6 +35,13 @@ module exic_contact_contact
    real(wp), parameter :: FACING = -0.5_wp
    !> Viscous damping of penalty contact as a fraction of critical (LS-DYNA's customary 10 %).
    real(wp), parameter :: PENALTY_DAMPING = 0.1_wp
+   !> Share of the mean segment length up to which a slave node found behind a master segment at
+   !> the start of a step is still caught (and pushed back by the corrector). The corrector closes
+   !> each gap along a normal frozen over the step (seed section 4), so a node that slides past
+   !> a master node onto a segment of another slope, or along a curved surface, ends the step
+   !> behind it by the slope change times the slide: far above rounding, yet a tiny share of the
+   !> segment. A node deeper than this is taken to be on the far side of the surface.
+   real(wp), parameter :: DEPTH_SHARE = 0.1_wp
 
    !> A contact surface: segments (body on the left of n1 -> n2) and its nodes.
    type :: surface_t
@@ -76,7 +83,7 @@ module exic_contact_contact
       type(constraints_t) :: cs
       type(corrector_t) :: corr
       real(wp) :: lref = 1.0_wp                !< mean segment length
-      real(wp) :: depth = 0.0_wp               !< penetration accepted at the start of a step
+      real(wp) :: depth = 0.0_wp               !< penetration accepted at the start of a step (DEPTH_SHARE x lref)
       real(wp), allocatable :: xn(:, :), xp(:, :)
       real(wp) :: max_penetration = 0.0_wp     !< largest over the run
       real(wp) :: time_search = 0.0_wp         !< wall time in search (broad + narrow phase)
@@ -119,7 +126,7 @@ contains
          end associate
       end do
       if (nlen > 0) self%lref = len_sum/nlen
-      self%depth = 0.1_wp*self%lref
+      self%depth = DEPTH_SHARE*self%lref
       self%corr%gap_tol = 1.0e-13_wp*self%lref
       allocate (self%xn(2, st%nnode), self%xp(2, st%nnode))
       np = size(self%passes)

@@ -11,11 +11,9 @@
 !>     S p = -g~ / c,        p >= 0 (compressive),                        (eq. 4.5-4.7)
 !>
 !> p = -lambda in the seed's sign convention (its lambda is negative in compression).
-!> The active set starts from the violated predicted gaps. Each pass solves, drops the
-!> constraints with tensile multipliers (re-solving until none is left), then releases those
-!> from the active set and adds every candidate whose corrected gap is still violated,
-!> including released ones; for at most `max_passes` passes (the count of steps that hit
-!> the limit is reported in <stem>.out). Redundant constraints (dependent columns of G) are removed by the factorization
+!> The active set starts from the violated predicted gaps and is settled by block principal
+!> pivoting (see corrector_solve): tensile multipliers leave it and candidates whose corrected
+!> gap is still violated join it, for at most `max_passes` passes. Redundant constraints (dependent columns of G) are removed by the factorization
 !> (see exic_linalg_sparse_ldl) and carry p = 0. Small active sets go to a dense LAPACK
 !> factorization, larger ones to SuiteSparse LDL' with AMD ordering, whose symbolic analysis
 !> is reused while the active pattern is unchanged.
@@ -62,7 +60,7 @@ module exic_contact_corrector
       real(wp), allocatable :: ax(:), s(:, :), rhs(:), sol(:)
       real(wp), allocatable :: fwork(:, :)          !< (2, nnode) G p of the current pass
       logical, allocatable :: drop(:)
-      logical, allocatable :: tensile(:)            !< dropped for a tensile multiplier
+      logical, allocatable :: infeasible(:)        !< (m) candidates that switch sides
       integer, allocatable :: nstart(:), nlist(:)   !< node -> candidates incidence (CSR)
    contains
       procedure :: solve => corrector_solve
@@ -124,6 +122,14 @@ contains
 
    !> Solve for the multipliers of `cs`, add the correction M^-1 G p to `a` and G p to `fcon`.
    !> minv(2, nnode) is the inverse lumped mass per dof (0 on rigid, fixed and inactive dofs).
+   !>
+   !> The multipliers solve the complementarity problem p >= 0, g >= 0, p g = 0 for the
+   !> corrected gaps g = g~ + c S p, by block principal pivoting (Judice and Pires): solve
+   !> S p = -g~/c on the active set F; the infeasible candidates are those of F with p < 0 and
+   !> those outside F with g < -gap_tol; all of them switch sides while their number falls (or
+   !> for three more passes), then only the last one in candidate order (Murty's rule, finite
+   !> for the positive definite S of independent constraints). Constraints the factorization
+   !> finds redundant carry p = 0 and are never infeasible.
    subroutine corrector_solve(self, cs, nnode, minv, c, a, fcon, err)
       class(corrector_t), intent(inout) :: self
       type(constraints_t), intent(inout) :: cs
@@ -133,8 +139,7 @@ contains
       real(wp), intent(inout) :: a(2, nnode)
       real(wp), intent(inout) :: fcon(2, nnode)
       type(error_t), allocatable, intent(out) :: err
-      integer :: m, nact, pass, k, i, nbad, inner
-      logical :: changed, negative
+      integer :: m, nact, pass, k, i, nbad, ninf, best, budget, last
       real(wp) :: g
 
       m = cs%n
@@ -145,71 +150,75 @@ contains
       cs%active(1:m) = cs%gap(1:m) < 0.0_wp
       if (.not. any(cs%active(1:m))) return
       call grow_i(self%pos, m)
+      call grow_l(self%infeasible, m)
       call build_incidence(self, cs, nnode)
       if (allocated(self%fwork)) then
          if (size(self%fwork, 2) /= nnode) deallocate (self%fwork)
       end if
       if (.not. allocated(self%fwork)) allocate (self%fwork(2, nnode))
 
+      best = huge(1)
+      budget = 3
       pass = 0
       do
-         ! the active candidates, in candidate order
+         pass = pass + 1
+         ! the active candidates F, in candidate order
          nact = count(cs%active(1:m))
          call grow_i(self%idx, nact)
          self%idx(1:nact) = pack([(k, k=1, m)], cs%active(1:m))
          self%pos(1:m) = 0
          self%pos(self%idx(1:nact)) = [(k, k=1, nact)]
          call grow_l(self%drop, nact)
-         call grow_l(self%tensile, nact)
-         self%tensile(1:nact) = .false.
          call grow_r(self%rhs, nact)
          call grow_r(self%sol, nact)
          call grow_i(self%bad, nact)
          self%drop(1:nact) = .false.
          self%rhs(1:nact) = -cs%gap(self%idx(1:nact))/c
-         call assemble(self, cs, nnode, minv, nact)
-         ! drop tensile multipliers without changing the pattern
-         inner = 0
-         do
-            pass = pass + 1
-            inner = inner + 1
+         nbad = 0
+         if (nact > 0) then
+            call assemble(self, cs, nnode, minv, nact)
             call factor_and_solve(self, nact, nbad, err)
             if (allocated(err)) return
-            negative = .false.
-            do k = 1, nact
-               if (.not. self%drop(k) .and. self%sol(k) < 0.0_wp) then
-                  self%drop(k) = .true.
-                  self%tensile(k) = .true.
-                  negative = .true.
-               end if
-            end do
-            if (.not. negative .or. pass >= self%max_passes) exit
-         end do
+         end if
          self%nredundant = nbad
-         ! multipliers and the correction of the accelerations
+         ! multipliers on F (redundant ones 0) and the corrected gaps of every candidate
          cs%p(1:m) = 0.0_wp
          do k = 1, nact
-            if (.not. self%drop(k)) cs%p(self%idx(k)) = max(self%sol(k), 0.0_wp)
+            if (.not. self%drop(k)) cs%p(self%idx(k)) = self%sol(k)
          end do
          call apply(cs, nnode, self%fwork)
-         ! corrected gaps of every candidate: g = g~ + c G^T M^-1 G p
-         changed = .false.
+         ninf = 0
+         last = 0
          do i = 1, m
-            g = cs%gap(i) + c*gap_change(cs, i, nnode, minv, self%fwork)
             if (cs%active(i)) then
-               if (self%tensile(self%pos(i))) then
-                  cs%active(i) = .false.     ! tensile: released
-                  changed = .true.
-               end if
-            else if (g < -self%gap_tol) then
-               cs%active(i) = .true.         ! still violated: added
-               changed = .true.
+               self%infeasible(i) = cs%p(i) < 0.0_wp
+            else
+               g = cs%gap(i) + c*gap_change(cs, i, nnode, minv, self%fwork)
+               self%infeasible(i) = g < -self%gap_tol
+            end if
+            if (self%infeasible(i)) then
+               ninf = ninf + 1
+               last = i
             end if
          end do
-         if (.not. changed) exit
+         if (ninf == 0) exit
          if (pass >= self%max_passes) then
+            ! give up on the step: keep the compressive part of the last solution
             self%pass_limit_hits = self%pass_limit_hits + 1
+            cs%p(1:m) = max(cs%p(1:m), 0.0_wp)
+            call apply(cs, nnode, self%fwork)
             exit
+         end if
+         if (ninf < best) then
+            best = ninf
+            budget = 3
+         else
+            budget = budget - 1
+         end if
+         if (budget >= 0) then
+            where (self%infeasible(1:m)) cs%active(1:m) = .not. cs%active(1:m)
+         else
+            cs%active(last) = .not. cs%active(last)
          end if
       end do
       self%passes = pass

@@ -1,0 +1,88 @@
+#!/usr/bin/env python3
+"""Run a deck with exic and draw its histories and deformed-shape contours.
+
+    plots.py DECK [-o OUTDIR] [--exic PATH] [--no-run] [-c COMP ...]
+
+Runs `exic DECK -o OUTDIR` (unless --no-run), then writes into OUTDIR/plots/:
+  - the history plots of tools/plot_history.py (<stem>_displacement.png, _velocity.png, ...,
+    _energies.png);
+  - when the deck writes fields (OUTPut,HDF5): the deformed shape coloured by each stress
+    component asked for (default von_mises and sxx) at the peak compression (the output time of
+    the largest strain energy while contact is active, or over the whole run without contact)
+    and at the last output time (<stem>_<comp>_peak.png, <stem>_<comp>_end.png), drawn by
+    tools/plot_fields.py.
+`make plots DECK=path.inp [OUTDIR=out]` builds exic and runs this script.
+"""
+import argparse
+import glob
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+ROOT = os.path.dirname(HERE)
+
+import numpy as np  # noqa: E402
+
+import exic_results as xr  # noqa: E402
+
+
+def peak_time(run):
+    """Output time of the largest strain energy while contact is active (or over the run)."""
+    t = run.ene["t"]
+    strain = run.ene["strain"].copy()
+    active = run.ene.get("active")
+    if active is not None and np.any(active > 0):
+        strain[active <= 0] = -np.inf
+    tp = t[int(np.argmax(strain))]
+    ft = xr.field_times(run.h5)
+    return float(ft[int(np.argmin(np.abs(ft - tp)))])
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("deck", help="the deck (.inp)")
+    ap.add_argument("-o", "--outdir", default="out", help="where exic writes (default out)")
+    ap.add_argument("--exic", help="the exic binary (default: the newest under build/)")
+    ap.add_argument("--no-run", action="store_true", help="only draw the files of an earlier run")
+    ap.add_argument("-c", "--component", nargs="+", default=["von_mises", "sxx"],
+                    help="stress components of the contour pictures (default von_mises sxx)")
+    args = ap.parse_args(argv)
+
+    stem = os.path.join(args.outdir, os.path.splitext(os.path.basename(args.deck))[0])
+    if not args.no_run:
+        exic = args.exic
+        if not exic:
+            cands = glob.glob(os.path.join(ROOT, "build", "*", "app", "exic"))
+            if not cands:
+                sys.exit("plots: no exic binary under build/; build it first (make build)")
+            exic = max(cands, key=os.path.getmtime)
+        rc = subprocess.run([exic, args.deck, "-o", args.outdir]).returncode
+        if rc != 0:
+            print(f"plots: exic stopped with exit code {rc}; drawing what it wrote", file=sys.stderr)
+    if not os.path.exists(stem + ".his") and not os.path.exists(stem + ".ene"):
+        sys.exit(f"plots: no {stem}.his or {stem}.ene to draw")
+    plots = os.path.join(args.outdir, "plots")
+    os.makedirs(plots, exist_ok=True)
+    subprocess.run([sys.executable, os.path.join(HERE, "plot_history.py"), stem, "-o", plots],
+                   check=True)
+    run = xr.Run(stem)
+    if run.h5:
+        ft = xr.field_times(run.h5)
+        if len(ft):
+            times = {"peak": peak_time(run), "end": float(ft[-1])}
+            name = os.path.basename(stem)
+            for comp in args.component:
+                for label, t in times.items():
+                    out = os.path.join(plots, f"{name}_{comp}_{label}.png")
+                    subprocess.run([sys.executable, os.path.join(HERE, "plot_fields.py"), run.h5,
+                                    "-c", comp, "-t", repr(t), "-o", out], check=True)
+    else:
+        print("plots: the deck writes no fields (OUTPut,HDF5): no contour pictures")
+    print(f"plots: pictures in {plots}/")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
