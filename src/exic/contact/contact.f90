@@ -15,7 +15,7 @@ module exic_contact_contact
    use exic_material_material, only: MAT_SOLID
    use exic_explicit_state, only: state_t
    use exic_io_history, only: history_files_t
-   use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, PAIR_NTOS, &
+   use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, SURF_NODES, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
                                 DETECT_SWEPT, DETECT_STATIC, pair_spec_t
    use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, node_normals
@@ -151,12 +151,16 @@ contains
                call free_edges(model%mesh%nelem, model%mesh%conn, sel, sf%seg, err)
             case (SURF_FACETS)
                sf%seg = sp%facets
+            case (SURF_NODES)
+               ! slave nodes without segments: no normals, so no facing test (see detect_pairs)
+               allocate (sf%seg(2, 0))
+               if (size(sp%nodes) > 0) sf%nodes = unique(sp%nodes)
             end select
             if (allocated(err)) then
                err%message = 'SURFace '//itoa(sp%id)//': '//err%message
                return
             end if
-            if (size(sf%seg, 2) == 0) then
+            if (size(sf%seg, 2) == 0 .and. sp%by /= SURF_NODES) then
                call make_error(err, 'SURFace '//itoa(sp%id)//' has no segments')
                return
             end if
@@ -176,7 +180,7 @@ contains
             sf%nseg = size(sf%seg, 2)
             allocate (sf%link(2, sf%nseg), sf%where(2, sf%nseg))
             call segment_links(sf%nseg, sf%seg, sf%link)
-            call surface_nodes(sf%nseg, sf%seg, sf%nodes)
+            if (.not. allocated(sf%nodes)) call surface_nodes(sf%nseg, sf%seg, sf%nodes)
             sf%nnode = size(sf%nodes)
             call locate_nodes(sf%nseg, sf%seg, sf%nnode, sf%nodes, sf%where)
             allocate (sf%nrm(2, sf%nnode))
@@ -209,6 +213,10 @@ contains
             j = surface_index(self, ps%master)
             if (i == 0 .or. j == 0) then
                call make_error(err, 'PAIR '//itoa(ps%id)//' names a surface that is not defined')
+               return
+            end if
+            if (self%surfaces(j)%nseg == 0 .or. (ps%kind /= PAIR_NTOS .and. self%surfaces(i)%nseg == 0)) then
+               call make_error(err, 'PAIR '//itoa(ps%id)//': a node set can only be the slave side of a one-pass pair')
                return
             end if
             select case (ps%kind)
