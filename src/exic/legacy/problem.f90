@@ -95,7 +95,7 @@ contains
          p%model%contact%surfaces(k)%by = SURF_REGION
          p%model%contact%surfaces(k)%ref = b
       end do
-      call finish_create(who, p, h, ierr)
+      call finish_create(who, p, ppair, h, ierr)
    end subroutine problem_create_mesh
 
    !> A problem from segments and slave node sets. iseg(3, nseg): node 1, node 2 (body on the
@@ -175,7 +175,7 @@ contains
             end if
          end associate
       end do
-      call finish_create(who, p, h, ierr)
+      call finish_create(who, p, ppair, h, ierr)
    end subroutine problem_create_segments
 
    !> Model, masses and pair options common to both kinds of creation.
@@ -193,7 +193,8 @@ contains
       p%model%mesh%x = x0
       allocate (p%model%materials(0))
       p%model%contact%active = .true.
-      allocate (p%model%contact%pairs(npair), p%rigid_pair(npair))
+      allocate (p%model%contact%pairs(npair))
+      p%options = ipair(3:6, :)
       do k = 1, npair
          p%model%contact%pairs(k)%id = k
          p%model%contact%pairs(k)%slave = ipair(1, k)
@@ -206,9 +207,10 @@ contains
    end subroutine base_problem
 
    !> Apply the pair options, build the contact object and register the problem.
-   subroutine finish_create(who, p, h, ierr)
+   subroutine finish_create(who, p, ppair, h, ierr)
       character(len=*), intent(in) :: who
       type(problem_t), allocatable, intent(inout) :: p
+      real(wp), intent(in) :: ppair(:)
       integer, intent(out) :: h, ierr
       integer, allocatable :: ipair(:, :)
       integer :: k
@@ -216,23 +218,24 @@ contains
       ierr = IERR_SETUP
       ipair = pair_table(p)
       do k = 1, p%npair
-         call apply_pair_options(p, k, ipair(3:6, k), p%model%contact%pairs(k)%penalty)
+         call apply_pair_options(p, k, ipair(3:6, k), ppair(k))
       end do
       call rebuild(who, p, ierr)
       if (ierr /= IERR_OK) return
       call registry_add(p, h)
    end subroutine finish_create
 
-   !> Slave and master of every pair, as given (3:6 filled by apply_pair_options).
+   !> The pair table as in ipair(6, npair): slave, master and the current options.
    function pair_table(p) result(t)
       type(problem_t), intent(in) :: p
       integer, allocatable :: t(:, :)
       integer :: k
-      allocate (t(6, p%npair), source=0)
+      allocate (t(6, p%npair))
       do k = 1, p%npair
          t(1, k) = p%model%contact%pairs(k)%slave
          t(2, k) = p%model%contact%pairs(k)%master
       end do
+      t(3:6, :) = p%options
    end function pair_table
 
    !> Options (method, detection, passes, rigid) and penalty stiffness of pair k.
@@ -249,7 +252,7 @@ contains
             ps%kind = merge(PAIR_NTOS, PAIR_SYMMETRIC, iopt(3) == 1)
          end if
          ps%penalty = pen
-         p%rigid_pair(k) = iopt(4)
+         p%options(:, k) = iopt
       end associate
    end subroutine apply_pair_options
 
@@ -297,7 +300,7 @@ contains
       if (allocated(p%rigid)) deallocate (p%rigid)
       allocate (p%rigid(p%nnode), source=.false.)
       do k = 1, p%npair
-         if (p%rigid_pair(k) == 0) cycle
+         if (p%options(4, k) == 0) cycle
          associate (m => p%model%contact%pairs(k)%master)
             if (p%mesh_mode) then
                do e = 1, p%model%mesh%nelem
@@ -427,7 +430,10 @@ contains
 
       nactive = 0
       p => lookup(who, h, ierr)
-      if (.not. associated(p)) return
+      if (.not. associated(p)) then
+         fcon = 0.0_wp
+         return
+      end if
       if (.not. step_args_ok(who, h, p, nnode, x, dtprev, dt)) then
          ierr = IERR_ARGUMENT
          fcon = 0.0_wp

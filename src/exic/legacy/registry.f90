@@ -43,7 +43,7 @@ module exic_legacy_registry
       real(wp), allocatable :: mass(:)        !< (nnode) lumped masses as given
       integer, allocatable :: fixed(:, :)     !< (2, nnode) non-zero: dof prescribed by the host
       logical, allocatable :: rigid(:)        !< (nnode) node of a rigid master
-      integer, allocatable :: rigid_pair(:)   !< (npair) 1: master side of pair k is rigid
+      integer, allocatable :: options(:, :)   !< (4, npair) method, detection, passes, rigid master
       integer, allocatable :: snodes(:)       !< (ns) contact surface nodes, ascending
       integer, allocatable :: spos(:)         !< (nnode) position of a node in snodes (0: none)
       real(wp), allocatable :: vt(:, :)       !< (2, nnode) predictor velocity (half-step form)
