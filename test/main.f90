@@ -8,6 +8,7 @@ program exic_tests
    use test_physics, only: run_physics_tests
    use test_contact, only: run_contact_tests
    use test_deck, only: run_deck_tests
+   use test_legacy, only: run_legacy_tests
    implicit none
    type(suite_t) :: s
 
@@ -19,6 +20,7 @@ program exic_tests
    call run_physics_tests(s)
    call run_contact_tests(s)
    call run_deck_tests(s)
+   call run_legacy_tests(s)
    print '(i0,a,i0,a)', s%passed, ' passed, ', s%failed, ' failed'
    if (s%failed > 0) error stop 1
 end program exic_tests

@@ -516,7 +516,7 @@ C     ONE HISTORY ROW: TIP, PAIR 1 RESULTS, SMALLEST CORRECTED GAP
    10    CONTINUE
       END IF
       WRITE (6, '(1P,9E24.16)') T, U(1,ITIP), V(1,ITIP), A(1,ITIP),
-     &   (RES(I), I = 1, 4), RES(5), RES(6), GMIN
+     &   RES(1), RES(4), RES(5), RES(6), GMIN
       RETURN
       END
 C
