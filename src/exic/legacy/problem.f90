@@ -12,11 +12,12 @@
 !> exic_legacy_registry); a failure also stores a message retrievable with problem_message.
 !> `who` is the name of the calling entry point, used in messages.
 !>
-!> Per step only the nodes of the contact surfaces are copied between the host's arrays and
-!> the state the contact code reads (the corrector changes nothing else), so the cost of the
-!> API over a native call grows with the surface, not with the mesh (doc/performance.md).
+!> Per step the host's arrays go to contact_t%correct_at as they are; the API itself touches
+!> only the nodes of the contact surfaces (for its queries) and checks the positions, so its
+!> cost over a native call is small (doc/performance.md, "Legacy API overhead").
 module exic_legacy_problem
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: iso_fortran_env, only: int64
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
    use exic_contact_contact, only: contact_t
@@ -268,6 +269,8 @@ contains
 
       call rigid_nodes(p)
       call inverse_masses(p)
+      ! after steps, surfaces and the overlap check see the current positions
+      if (p%nsteps > 0) p%st%x0(:, p%snodes) = p%xprev
       p%contact = fresh
       call p%contact%init(p%model, p%st, err)
       if (allocated(err)) then
@@ -285,9 +288,9 @@ contains
       do s = 1, size(p%snodes)
          p%spos(p%snodes(s)) = s
       end do
-      if (.not. allocated(p%atil)) then
-         allocate (p%atil(2, size(p%snodes)), p%xprev(2, size(p%snodes)), p%fprev(2, size(p%snodes)), &
-                   source=0.0_wp)
+      if (.not. allocated(p%da)) then
+         allocate (p%da(2, size(p%snodes)), p%vcheck(2, size(p%snodes)), p%xprev(2, size(p%snodes)), &
+                   p%fprev(2, size(p%snodes)), source=0.0_wp)
       end if
       ierr = IERR_OK
    end subroutine rebuild
@@ -414,7 +417,8 @@ contains
 
    !> One contact step: x = x(n+1), v = v~(n+1) (or v(n+1/2), option 1), a = a~(n+1) on entry
    !> and a(n+1) on exit, dtprev = dt(n) (0 at t = 0), dt = dt(n+1); fcon = nodal contact
-   !> forces, nactive = constraints carrying force (eq. 4.4-4.7).
+   !> forces, nactive = constraints carrying force (eq. 4.4-4.7). The host's arrays go to
+   !> contact_t%correct_at as they are: nothing of size nnode is copied.
    subroutine problem_step(who, h, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr)
       character(len=*), intent(in) :: who
       integer, intent(in) :: h, nnode
@@ -426,7 +430,6 @@ contains
       type(problem_t), pointer :: p
       type(error_t), allocatable :: err
       integer :: k, i
-      real(wp) :: z
 
       nactive = 0
       p => lookup(who, h, ierr)
@@ -439,41 +442,35 @@ contains
          fcon = 0.0_wp
          return
       end if
-      ! the surface nodes' data: into the state, and checked (0 x value is NaN iff value is not finite)
-      z = 0.0_wp
+      ! predicted accelerations of the surface nodes, kept for the gap query; the velocities
+      ! and accelerations the corrector reads are checked
       do k = 1, size(p%snodes)
          i = p%snodes(k)
-         p%st%x0(:, i) = x(:, i)
-         p%st%a(:, i) = a(:, i)
-         p%atil(:, k) = a(:, i)
-         z = z + 0.0_wp*(v(1, i) + v(2, i) + a(1, i) + a(2, i))
+         p%da(:, k) = a(:, i)
+         p%vcheck(1:2, k) = v(:, i)
       end do
-      if (z /= z) then
+      if (count_nonfinite(2*size(p%snodes), p%da) + count_nonfinite(2*size(p%snodes), p%vcheck) > 0) then
          call fail(h, who//': '//first_bad(p, nnode, v, a))
          ierr = IERR_ARGUMENT
          fcon = 0.0_wp
          return
       end if
-      p%st%dt_prev = dtprev
-      p%st%dt = dt
       if (p%velocity_form == VEL_HALF_STEP) then
-         ! v~(n+1) = v(n+1/2) + dt(n)/2 a~(n+1)
+         ! v~(n+1) = v(n+1/2) + dt(n)/2 a~(n+1) (only surface nodes are read)
          do k = 1, size(p%snodes)
             i = p%snodes(k)
             p%vt(:, i) = v(:, i) + (0.5_wp*dtprev)*a(:, i)
          end do
-         call p%contact%correct(p%st, p%vt, err)
+         call p%contact%correct_at(nnode, x, p%vt, a, p%st%minv, dtprev, dt, fcon, nactive, err)
       else
-         call p%contact%correct(p%st, v, err)
+         call p%contact%correct_at(nnode, x, v, a, p%st%minv, dtprev, dt, fcon, nactive, err)
       end if
-      fcon = 0.0_wp
       if (allocated(err)) then
          call fail(h, who//': '//err%message)
          ierr = IERR_SOLVE
          return
       end if
-      call copy_out(p, nnode, x, a, fcon)
-      nactive = p%st%nactive
+      call after_step(p, nnode, x, a, fcon)
       p%c = 0.5_wp*dt*(dtprev + dt)
       p%nsteps = p%nsteps + 1
       do k = 1, size(p%contact%results)
@@ -481,27 +478,25 @@ contains
       end do
    end subroutine problem_step
 
-   !> Corrected accelerations and contact forces of the surface nodes back to the host, and the
+   !> What the queries need of the surface nodes: the change of acceleration a - a~, and the
    !> contact work W += 1/2 (f(n) + f(n+1)) . (x(n+1) - x(n)) (trapezoid rule, as the driver).
-   subroutine copy_out(p, nnode, x, a, fcon)
+   subroutine after_step(p, nnode, x, a, fcon)
       type(problem_t), intent(inout) :: p
       integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode)
-      real(wp), intent(inout) :: a(2, nnode), fcon(2, nnode)
+      real(wp), intent(in) :: x(2, nnode), a(2, nnode), fcon(2, nnode)
       integer :: k, i
       real(wp) :: w
       w = 0.0_wp
       do k = 1, size(p%snodes)
          i = p%snodes(k)
-         a(:, i) = p%st%a(:, i)
-         fcon(:, i) = p%st%fcon(:, i)
+         p%da(:, k) = a(:, i) - p%da(:, k)
          w = w + (p%fprev(1, k) + fcon(1, i))*(x(1, i) - p%xprev(1, k)) &
              + (p%fprev(2, k) + fcon(2, i))*(x(2, i) - p%xprev(2, k))
          p%xprev(:, k) = x(:, i)
          p%fprev(:, k) = fcon(:, i)
       end do
       if (p%nsteps > 0) p%wcon = p%wcon + 0.5_wp*w
-   end subroutine copy_out
+   end subroutine after_step
 
    !> Step arguments: node count, time steps and finite positions.
    logical function step_args_ok(who, h, p, nnode, x, dtprev, dt) result(ok)
@@ -523,14 +518,30 @@ contains
          call fail(h, who//': DTPREV = '//rtoa(dtprev)//' is not a finite step >= 0')
          return
       end if
-      do i = 1, nnode
-         if (.not. (ieee_is_finite(x(1, i)) .and. ieee_is_finite(x(2, i)))) then
-            call fail(h, who//': position of node '//itoa(i)//' is not finite')
-            return
-         end if
-      end do
+      if (count_nonfinite(2*nnode, x) > 0) then
+         do i = 1, nnode
+            if (.not. (ieee_is_finite(x(1, i)) .and. ieee_is_finite(x(2, i)))) then
+               call fail(h, who//': position of node '//itoa(i)//' is not finite')
+               return
+            end if
+         end do
+      end if
       ok = .true.
    end function step_args_ok
+
+   !> Number of entries of vals(n) that are NaN or infinite (all exponent bits set); integer
+   !> arithmetic on the bit patterns, so the loop vectorizes where a floating-point test
+   !> reduction could not (its order of additions is fixed).
+   pure integer function count_nonfinite(n, vals) result(nbad)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: vals(n)
+      integer(int64), parameter :: expo = int(z'7FF0000000000000', int64)
+      integer :: i
+      nbad = 0
+      do i = 1, n
+         if (iand(transfer(vals(i), 0_int64), expo) == expo) nbad = nbad + 1
+      end do
+   end function count_nonfinite
 
    !> Message naming the first surface node with a non-finite velocity or acceleration.
    function first_bad(p, nnode, v, a) result(msg)
@@ -623,7 +634,7 @@ contains
             do j = 1, 3
                nd = cs%node(j, i)
                s = p%spos(nd)
-               dg = dg + cs%w(j, i)*dot_product(cs%nrm(:, i), p%st%a(:, nd) - p%atil(:, s))
+               dg = dg + cs%w(j, i)*dot_product(cs%nrm(:, i), p%da(:, s))
             end do
             rcon(6, i) = cs%gap(i) + p%c*dg
          end do

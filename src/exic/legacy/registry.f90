@@ -30,8 +30,9 @@ module exic_legacy_registry
    integer, parameter, public :: VEL_FULL_STEP = 1    !< v~(n+1) = v(n) + dt(n)/2 (a(n) + a~(n+1))
    integer, parameter, public :: VEL_HALF_STEP = 2    !< v(n+1/2) = v(n) + dt(n)/2 a(n) (DYNA form)
 
-   !> One contact problem of a host: its model, the state the contact code reads, the contact
-   !> object, and what the API keeps for queries. Arrays indexed by `k` run over `snodes`, the
+   !> One contact problem of a host: its model, the state used to build the contact object
+   !> (reference positions, inverse masses), the contact object, and what the API keeps for
+   !> queries. Arrays indexed by `k` run over `snodes`, the
    !> nodes of all contact surfaces (the only nodes whose data the contact code reads or writes).
    type :: problem_t
       integer :: nnode = 0
@@ -47,7 +48,8 @@ module exic_legacy_registry
       integer, allocatable :: snodes(:)       !< (ns) contact surface nodes, ascending
       integer, allocatable :: spos(:)         !< (nnode) position of a node in snodes (0: none)
       real(wp), allocatable :: vt(:, :)       !< (2, nnode) predictor velocity (half-step form)
-      real(wp), allocatable :: atil(:, :)     !< (2, ns) predicted accelerations of the last step
+      real(wp), allocatable :: da(:, :)       !< (2, ns) a(n+1) - a~(n+1) of the last step
+      real(wp), allocatable :: vcheck(:, :)   !< (2, ns) work: the surface nodes' velocities
       real(wp), allocatable :: xprev(:, :)    !< (2, ns) positions at the previous step
       real(wp), allocatable :: fprev(:, :)    !< (2, ns) contact forces of the previous step
       real(wp) :: c = 0.0_wp                  !< dt(n+1) (dt(n) + dt(n+1))/2 of the last step
