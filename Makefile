@@ -11,7 +11,7 @@ RELEASE := --profile release --flag "-O3 -march=native -funroll-loops"
 EXAMPLE ?= inputs/examples/bar_wall.inp
 OUTDIR  ?= out
 
-.PHONY: all setup deps venv build run test verify bench plots install clean help
+.PHONY: all setup deps venv build run test verify bench plots install legacy-host clean help
 
 all: build
 
@@ -21,6 +21,8 @@ help:
 	@echo "make verify   run the verification decks and regenerate doc/verification.md"
 	@echo "make bench    run the benchmarks and regenerate doc/performance figures"
 	@echo "make plots DECK=path.inp   run a deck and draw its histories"
+	@echo "make install PREFIX=dir    install libexic.a, module files and include/exic_contact.h"
+	@echo "make legacy-host PREFIX=dir   build examples/legacy_host against that installation"
 
 # --- set-up -----------------------------------------------------------------
 deps:
@@ -50,11 +52,17 @@ run: build
 	@mkdir -p $(OUTDIR)
 	$(FPM) run $(RELEASE) -- $(EXAMPLE) -o $(OUTDIR)
 
+# the legacy API tests install exic with this fpm (examples/legacy_host/build.sh)
 test: setup
-	$(FPM) test
+	EXIC_FPM=$(abspath $(FPM)) $(FPM) test
 
 install: setup
 	$(FPM) install $(RELEASE) --prefix $(or $(PREFIX),$(CURDIR)/dist)
+	install -m 644 include/exic_contact.h $(or $(PREFIX),$(CURDIR)/dist)/include/
+
+legacy-host: install
+	$(MAKE) -C examples/legacy_host PREFIX=$(abspath $(or $(PREFIX),$(CURDIR)/dist)) \
+	        OUT=$(abspath $(or $(PREFIX),$(CURDIR)/dist))/bin
 
 clean:
 	rm -rf build $(OUTDIR)

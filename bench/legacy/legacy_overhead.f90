@@ -6,7 +6,8 @@
 !> the other hands its arrays to EXIC_CONTACT_STEP. Only the contact calls are timed, step by
 !> step alternately, so that the load of a shared machine falls on both alike; both copies
 !> follow the same trajectory bit for bit (checked). Per repetition the ratio API/native is
-!> formed; the median ratio over the repetitions and the fastest times are reported.
+!> formed; the median ratio over the repetitions (nrep, times 3000/nodes for the smaller
+!> scenes) and the fastest times are reported.
 !> Build and run (doc/performance.md, section "Legacy API overhead"):
 !>   fpm run exic-bench-legacy --profile release --flag "-O3 -march=native -funroll-loops" [-- nrep]
 program legacy_overhead
@@ -48,8 +49,9 @@ contains
       type(model_t) :: model
       type(error_t), allocatable :: err
       character(len=:), allocatable :: path
-      real(wp) :: tn(nrep), ta(nrep), tx(nrep), r1(nrep), r2(nrep), diff
-      integer :: rep, nsteps, ns
+      real(wp), allocatable :: tn(:), ta(:), tx(:), r1(:), r2(:)
+      real(wp) :: diff
+      integer :: rep, nsteps, ns, m
       character(len=64) :: name
 
       write (name, '(a,"_",i0,"x",i0)') mode, nx, ny
@@ -60,7 +62,10 @@ contains
          print '(a)', 'error: '//err%message
          return
       end if
-      do rep = 1, nrep
+      ! smaller scenes get more repetitions (about the same time per scene)
+      m = nrep*max(1, 3000/model%mesh%nnode)
+      allocate (tn(m), ta(m), tx(m))
+      do rep = 1, m
          call run_both(model, tn(rep), ta(rep), tx(rep), nsteps, diff)
       end do
       r1 = ta/tn
