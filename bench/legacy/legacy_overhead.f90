@@ -139,13 +139,13 @@ contains
       ta = 0.0_wp
       tx = 0.0_wp
       nsteps = 0
-      call contact_call(.false., 0, sn, contact, sn%v, x, fcon, tn, dummy)
-      call contact_call(.true., h, sa, contact, sa%v, x, fcon, ta, tx)
+      call contact_call(.false., 0, sn%nnode, sn, contact, sn%v, x, fcon, tn, dummy)
+      call contact_call(.true., h, sa%nnode, sa, contact, sa%v, x, fcon, ta, tx)
       do while (sn%t < tmax*(1.0_wp - 1.0e-12_wp))
          call predict(sn, setn, aoldn, vtn)
          call predict(sa, seta, aolda, vta)
-         call contact_call(.false., 0, sn, contact, vtn, x, fcon, tn, dummy)
-         call contact_call(.true., h, sa, contact, vta, x, fcon, ta, tx)
+         call contact_call(.false., 0, sn%nnode, sn, contact, vtn, x, fcon, tn, dummy)
+         call contact_call(.true., h, sa%nnode, sa, contact, vta, x, fcon, ta, tx)
          sn%v = sn%v + (0.5_wp*sn%dt_prev)*(aoldn + sn%a)
          sa%v = sa%v + (0.5_wp*sa%dt_prev)*(aolda + sa%a)
          nsteps = nsteps + 1
@@ -171,13 +171,13 @@ contains
 
    !> The timed contact call of either path; tc and tx accumulate its time and, for the API,
    !> the time of forming x = x0 + u.
-   subroutine contact_call(api, h, st, contact, v, x, fcon, tc, tx)
+   subroutine contact_call(api, h, nnode, st, contact, v, x, fcon, tc, tx)
       logical, intent(in) :: api
-      integer, intent(in) :: h
+      integer, intent(in) :: h, nnode
       type(state_t), intent(inout) :: st
       type(contact_t), intent(inout) :: contact
-      real(wp), intent(in) :: v(:, :)
-      real(wp), intent(inout) :: x(:, :), fcon(:, :)
+      real(wp), intent(in) :: v(2, nnode)
+      real(wp), intent(inout) :: x(2, nnode), fcon(2, nnode)
       real(wp), intent(inout) :: tc, tx
       type(error_t), allocatable :: err
       real(wp) :: t0, t1

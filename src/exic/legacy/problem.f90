@@ -288,9 +288,8 @@ contains
       do s = 1, size(p%snodes)
          p%spos(p%snodes(s)) = s
       end do
-      if (.not. allocated(p%da)) then
-         allocate (p%da(2, size(p%snodes)), p%vcheck(2, size(p%snodes)), p%xprev(2, size(p%snodes)), &
-                   p%fprev(2, size(p%snodes)), source=0.0_wp)
+      if (.not. allocated(p%xprev)) then
+         allocate (p%xprev(2, size(p%snodes)), p%fprev(2, size(p%snodes)), source=0.0_wp)
       end if
       ierr = IERR_OK
    end subroutine rebuild
@@ -429,7 +428,7 @@ contains
       integer, intent(out) :: nactive, ierr
       type(problem_t), pointer :: p
       type(error_t), allocatable :: err
-      integer :: k, i
+      integer :: k, i, nbad
 
       nactive = 0
       p => lookup(who, h, ierr)
@@ -442,14 +441,13 @@ contains
          fcon = 0.0_wp
          return
       end if
-      ! predicted accelerations of the surface nodes, kept for the gap query; the velocities
-      ! and accelerations the corrector reads are checked
+      ! the velocities and accelerations the corrector reads: those of the surface nodes
+      nbad = 0
       do k = 1, size(p%snodes)
          i = p%snodes(k)
-         p%da(:, k) = a(:, i)
-         p%vcheck(1:2, k) = v(:, i)
+         nbad = nbad + nonfinite(v(1, i)) + nonfinite(v(2, i)) + nonfinite(a(1, i)) + nonfinite(a(2, i))
       end do
-      if (count_nonfinite(2*size(p%snodes), p%da) + count_nonfinite(2*size(p%snodes), p%vcheck) > 0) then
+      if (nbad > 0) then
          call fail(h, who//': '//first_bad(p, nnode, v, a))
          ierr = IERR_ARGUMENT
          fcon = 0.0_wp
@@ -470,7 +468,7 @@ contains
          ierr = IERR_SOLVE
          return
       end if
-      call after_step(p, nnode, x, a, fcon)
+      call after_step(p, nnode, x, fcon)
       p%c = 0.5_wp*dt*(dtprev + dt)
       p%nsteps = p%nsteps + 1
       do k = 1, size(p%contact%results)
@@ -478,18 +476,18 @@ contains
       end do
    end subroutine problem_step
 
-   !> What the queries need of the surface nodes: the change of acceleration a - a~, and the
-   !> contact work W += 1/2 (f(n) + f(n+1)) . (x(n+1) - x(n)) (trapezoid rule, as the driver).
-   subroutine after_step(p, nnode, x, a, fcon)
+   !> What the queries need of the surface nodes: the contact forces (the correction of the
+   !> accelerations is minv fcon) and the contact work W += 1/2 (f(n) + f(n+1)) . (x(n+1) - x(n))
+   !> (trapezoid rule, as the driver).
+   subroutine after_step(p, nnode, x, fcon)
       type(problem_t), intent(inout) :: p
       integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode), a(2, nnode), fcon(2, nnode)
+      real(wp), intent(in) :: x(2, nnode), fcon(2, nnode)
       integer :: k, i
       real(wp) :: w
       w = 0.0_wp
       do k = 1, size(p%snodes)
          i = p%snodes(k)
-         p%da(:, k) = a(:, i) - p%da(:, k)
          w = w + (p%fprev(1, k) + fcon(1, i))*(x(1, i) - p%xprev(1, k)) &
              + (p%fprev(2, k) + fcon(2, i))*(x(2, i) - p%xprev(2, k))
          p%xprev(:, k) = x(:, i)
@@ -535,13 +533,19 @@ contains
    pure integer function count_nonfinite(n, vals) result(nbad)
       integer, intent(in) :: n
       real(wp), intent(in) :: vals(n)
-      integer(int64), parameter :: expo = int(z'7FF0000000000000', int64)
       integer :: i
       nbad = 0
       do i = 1, n
-         if (iand(transfer(vals(i), 0_int64), expo) == expo) nbad = nbad + 1
+         nbad = nbad + nonfinite(vals(i))
       end do
    end function count_nonfinite
+
+   !> 1 if val is NaN or infinite (all exponent bits set), else 0.
+   elemental integer function nonfinite(val) result(bad)
+      real(wp), intent(in) :: val
+      integer(int64), parameter :: expo = int(z'7FF0000000000000', int64)
+      bad = merge(1, 0, iand(transfer(val, 0_int64), expo) == expo)
+   end function nonfinite
 
    !> Message naming the first surface node with a non-finite velocity or acceleration.
    function first_bad(p, nnode, v, a) result(msg)
@@ -629,12 +633,13 @@ contains
             rcon(2, i) = -cs%w(3, i)
             rcon(3:4, i) = cs%nrm(:, i)
             rcon(5, i) = cs%gap_now(i)
-            ! g(n+2) = g~ + c G_i^T (a - a~): the correction moves x(n+2) by c (a - a~)
+            ! g(n+2) = g~ + c G_i^T (a - a~) with a - a~ = M^-1 fcon: the correction moves
+            ! x(n+2) by c (a - a~) (eq. 4.5-4.7)
             dg = 0.0_wp
             do j = 1, 3
                nd = cs%node(j, i)
                s = p%spos(nd)
-               dg = dg + cs%w(j, i)*dot_product(cs%nrm(:, i), p%da(:, s))
+               dg = dg + cs%w(j, i)*dot_product(cs%nrm(:, i), p%st%minv(:, nd)*p%fprev(:, s))
             end do
             rcon(6, i) = cs%gap(i) + p%c*dg
          end do

@@ -48,8 +48,6 @@ module exic_legacy_registry
       integer, allocatable :: snodes(:)       !< (ns) contact surface nodes, ascending
       integer, allocatable :: spos(:)         !< (nnode) position of a node in snodes (0: none)
       real(wp), allocatable :: vt(:, :)       !< (2, nnode) predictor velocity (half-step form)
-      real(wp), allocatable :: da(:, :)       !< (2, ns) a(n+1) - a~(n+1) of the last step
-      real(wp), allocatable :: vcheck(:, :)   !< (2, ns) work: the surface nodes' velocities
       real(wp), allocatable :: xprev(:, :)    !< (2, ns) positions at the previous step
       real(wp), allocatable :: fprev(:, :)    !< (2, ns) contact forces of the previous step
       real(wp) :: c = 0.0_wp                  !< dt(n+1) (dt(n) + dt(n+1))/2 of the last step
