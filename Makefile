@@ -11,7 +11,7 @@ RELEASE := --profile release --flag "-O3 -march=native -funroll-loops"
 EXAMPLE ?= inputs/examples/impact.inp
 OUTDIR  ?= out
 
-.PHONY: all setup deps venv build run test verify bench plots install clean help
+.PHONY: all setup deps venv build run test verify bench plots install legacy-host clean help
 
 all: build
 
@@ -22,6 +22,8 @@ help:
 	@echo "make bench    run the benchmarks and regenerate doc/performance figures"
 	@echo "make plots DECK=path.inp [OUTDIR=out]   run a deck, draw its histories and contours"
 	@echo "              into OUTDIR/plots"
+	@echo "make install PREFIX=dir    install libexic.a, module files and include/exic_contact.h"
+	@echo "make legacy-host PREFIX=dir   build examples/legacy_host against that installation"
 
 # --- set-up -----------------------------------------------------------------
 deps:
@@ -51,10 +53,11 @@ run: build
 	@mkdir -p $(OUTDIR)
 	$(FPM) run $(RELEASE) -- $(EXAMPLE) -o $(OUTDIR)
 
-# fpm 0.12 can leave a stale test executable when `fpm run` rebuilt the library first: relink it
+# fpm 0.12 can leave a stale test executable when `fpm run` rebuilt the library first: relink it.
+# The legacy API tests install exic with this fpm (examples/legacy_host/build.sh).
 test: setup
 	@find build -path '*/test/exic-test' -type f -delete 2>/dev/null || true
-	$(FPM) test
+	EXIC_FPM=$(abspath $(FPM)) $(FPM) test
 
 # the release binary that `build` made
 EXIC = $$($(FPM) run $(RELEASE) --runner echo exic 2>/dev/null | tail -n 1)
@@ -68,6 +71,11 @@ plots: build
 
 install: setup
 	$(FPM) install $(RELEASE) --prefix $(or $(PREFIX),$(CURDIR)/dist)
+	install -m 644 include/exic_contact.h $(or $(PREFIX),$(CURDIR)/dist)/include/
+
+legacy-host: install
+	$(MAKE) -C examples/legacy_host PREFIX=$(abspath $(or $(PREFIX),$(CURDIR)/dist)) \
+	        OUT=$(abspath $(or $(PREFIX),$(CURDIR)/dist))/bin
 
 clean:
 	rm -rf build $(OUTDIR)

@@ -5,18 +5,22 @@ module exic_contact_spec
    private
 
    integer, parameter, public :: SURF_REGION = 1, SURF_MATERIAL = 2, SURF_FACETS = 3
+   !> A set of slave nodes without segments (legacy API only): slave side of a one-pass pair.
+   integer, parameter, public :: SURF_NODES = 4
    integer, parameter, public :: PAIR_NTOS = 1, PAIR_SYMMETRIC = 2, PAIR_SELF = 3
    integer, parameter, public :: METHOD_LAGRANGE = 1, METHOD_PENALTY = 2
    integer, parameter, public :: DETECT_SWEPT = 1, DETECT_STATIC = 2
 
    public :: surface_spec_t, pair_spec_t, contact_spec_t
 
-   !> SURFace,id: the free boundary of a region or material, or explicit facets.
+   !> SURFace,id: the free boundary of a region or material, or explicit facets; or
+   !> (legacy API) a set of slave nodes.
    type :: surface_spec_t
       integer :: id = 0
-      integer :: by = 0                      !< SURF_REGION, SURF_MATERIAL or SURF_FACETS
+      integer :: by = 0                      !< SURF_REGION, SURF_MATERIAL, SURF_FACETS or SURF_NODES
       integer :: ref = 0                     !< region or material number
       integer, allocatable :: facets(:, :)   !< (2, nfacet) node pairs, body on the left of n1->n2
+      integer, allocatable :: nodes(:)       !< (nnode) slave nodes of a SURF_NODES set
       character(len=:), allocatable :: where
    end type surface_spec_t
 

@@ -1,0 +1,535 @@
+C=======================================================================
+C     LHOST - A SMALL EXPLICIT CODE OF THE OLD KIND THAT GETS ITS
+C     CONTACT FROM EXIC THROUGH THE LEGACY API (DOC/API.MD).
+C
+C     PLANE-STRAIN 4-NODE QUADRILATERALS, 2X2 GAUSS, ROW-SUM LUMPED
+C     MASS, CENTRAL DIFFERENCES. MATERIAL KINDS:
+C       0  RIGID (NO ELEMENT FORCES, NODES DO NOT MOVE)
+C       1  NEO-HOOKEAN, TOTAL LAGRANGIAN (THE FORMULATION EXIC USES)
+C       2  SMALL-STRAIN LINEAR ELASTIC (A SIMPLER ELEMENT)
+C     INPUT ON UNIT 5 (LIST DIRECTED):
+C       TITLE
+C       NNODE NELEM NMAT NPAIR
+C       X Y VX VY IFX IFY                      (NNODE LINES)
+C       N1 N2 N3 N4 IBODY IMAT                 (NELEM LINES)
+C       IKIND E NU RHO                         (NMAT LINES)
+C       ISLAVE IMASTER METHOD DETECT NPASS IRIGID PENALTY (NPAIR LINES)
+C       DT TMAX ITIP IVFORM
+C     DT > 0 IS A FIXED STEP; DT < 0 ASKS FOR -DT TIMES THE HOST'S OWN
+C     STABLE STEP, RECOMPUTED EVERY STEP. IVFORM 1: FULL-STEP VELOCITIES
+C     V(N) (EXIC'S SCHEME); 2: HALF-STEP VELOCITIES V(N+1/2) (DYNA'S).
+C     OUTPUT ON UNIT 6: ONE ROW PER STEP,
+C       T  UX VX AX (NODE ITIP)  FN NACT PEN PMAX (PAIR 1)  GMIN
+C     GMIN IS THE SMALLEST CORRECTED GAP AT T(N+2) OF THE CONSTRAINTS
+C     THAT CARRY FORCE (0 WHEN NONE).
+C=======================================================================
+      PROGRAM LHOST
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      INTEGER IH, IERR, NACT, ISTEP, IVF, LMSG
+      DOUBLE PRECISION T, DT, DTPREV, TMAX, DTIN, DTNEXT
+      CHARACTER*200 MSG
+C
+      CALL RDINP(DTIN, TMAX, IVF)
+      CALL REFER
+      CALL LMASS
+      CALL MKPAIR(IH, IERR)
+      IF (IERR .NE. 0) GOTO 900
+      IF (IVF .EQ. 2) THEN
+         CALL EXIC_CONTACT_SET_OPTION(IH, 1, 2, IERR)
+         IF (IERR .NE. 0) GOTO 900
+      END IF
+      CALL EXIC_CONTACT_SET_FIXED(IH, NNODE, IFIX, IERR)
+      IF (IERR .NE. 0) GOTO 900
+C
+C     T = 0: FORCES, STEP, PREDICTED AND CORRECTED A(0) (DT(N) = 0)
+      T = 0.0D0
+      ISTEP = 0
+      CALL FORCES(IERR)
+      IF (IERR .NE. 0) GOTO 910
+      CALL CHOOSE(DTIN, DT)
+      CALL PREDCT
+      DTPREV = 0.0D0
+      CALL POSIT
+      CALL EXIC_CONTACT_STEP(IH, NNODE, X, V, A, DTPREV, DT, FCON,
+     &                       NACT, IERR)
+      IF (IERR .NE. 0) GOTO 900
+      CALL OUTROW(IH, T)
+C
+C     THE TIME LOOP
+  100 CONTINUE
+      IF (T .GE. TMAX*(1.0D0 - 1.0D-12)) GOTO 800
+      IF (IVF .EQ. 1) THEN
+C        X(N+1) = X(N) + DT(N) V(N) + DT(N)**2/2 A(N)
+         CALL MOVE1(DT)
+      ELSE
+C        V(N+1/2) = V(N-1/2) + (DT(N-1)+DT(N))/2 A(N), X(N+1) = X(N)
+C        + DT(N) V(N+1/2); AT N = 0 V(1/2) = V(0) + DT(0)/2 A(0)
+         CALL MOVE2(DTPREV, DT)
+      END IF
+      T = T + DT
+      DTPREV = DT
+      ISTEP = ISTEP + 1
+      CALL FORCES(IERR)
+      IF (IERR .NE. 0) GOTO 910
+      CALL CHOOSE(DTIN, DTNEXT)
+      DT = DTNEXT
+      CALL PREDCT
+      CALL POSIT
+      IF (IVF .EQ. 1) THEN
+C        PREDICTOR VELOCITY V~(N+1) = V(N) + DT(N)/2 (A(N) + A~(N+1))
+         CALL VTILDE(DTPREV)
+         CALL EXIC_CONTACT_STEP(IH, NNODE, X, VT, A, DTPREV, DT, FCON,
+     &                          NACT, IERR)
+         IF (IERR .NE. 0) GOTO 900
+         CALL VUPD(DTPREV)
+      ELSE
+         CALL EXIC_CONTACT_STEP(IH, NNODE, X, V, A, DTPREV, DT, FCON,
+     &                          NACT, IERR)
+         IF (IERR .NE. 0) GOTO 900
+      END IF
+      CALL OUTROW(IH, T)
+      GOTO 100
+C
+  800 CONTINUE
+      CALL FINISH(IH, ISTEP)
+      CALL EXIC_CONTACT_FREE(IH, IERR)
+      STOP
+C
+  900 CONTINUE
+      CALL EXIC_CONTACT_ERROR_MESSAGE(IH, MSG, LMSG, IERR)
+      WRITE (6, '(A,A)') '# ERROR: ', MSG(1:MIN(LMSG, 200))
+      STOP 1
+  910 CONTINUE
+      WRITE (6, '(A,I8)') '# ERROR: INVERTED ELEMENT ', IERR
+      STOP 1
+      END
+C
+C=======================================================================
+      SUBROUTINE RDINP(DT, TMAX, IVF)
+C     READ THE INPUT DECK FROM UNIT 5
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      DOUBLE PRECISION DT, TMAX
+      INTEGER IVF, I, K, E
+      CHARACTER*80 TITLE
+      READ (5, '(A)') TITLE
+      READ (5, *) NNODE, NELEM, NMAT, NPAIR
+      IF (NNODE .GT. MXNODE .OR. NELEM .GT. MXELEM .OR.
+     &    NMAT .GT. MXMAT .OR. NPAIR .GT. MXPAIR) THEN
+         WRITE (6, '(A)') '# ERROR: PROBLEM TOO LARGE FOR LHOST'
+         STOP 1
+      END IF
+      DO 10 I = 1, NNODE
+         READ (5, *) X0(1,I), X0(2,I), V(1,I), V(2,I),
+     &               IFIX(1,I), IFIX(2,I)
+   10 CONTINUE
+      DO 20 E = 1, NELEM
+         READ (5, *) (IX(K,E), K = 1, 4), IBODY(E), IMAT(E)
+   20 CONTINUE
+      DO 30 K = 1, NMAT
+         READ (5, *) KIND(K), YOUNG(K), PNU(K), RHO(K)
+C        LAME CONSTANTS FROM E AND NU
+         RLAM(K) = YOUNG(K)*PNU(K)/((1.0D0 + PNU(K))*
+     &             (1.0D0 - 2.0D0*PNU(K)))
+         RMU(K) = YOUNG(K)/(2.0D0*(1.0D0 + PNU(K)))
+   30 CONTINUE
+      DO 40 K = 1, NPAIR
+         READ (5, *) (IPAIR(I,K), I = 1, 6), PPAIR(K)
+   40 CONTINUE
+      READ (5, *) DT, TMAX, ITIP, IVF
+      DO 50 I = 1, NNODE
+         U(1,I) = 0.0D0
+         U(2,I) = 0.0D0
+         IF (IFIX(1,I) .NE. 0) V(1,I) = 0.0D0
+         IF (IFIX(2,I) .NE. 0) V(2,I) = 0.0D0
+   50 CONTINUE
+      WRITE (6, '(A,A)') '# ', TITLE
+      WRITE (6, '(A)') '# T UX VX AX FN NACT PEN PMAX GMIN'
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE MKPAIR(IH, IERR)
+C     HAND THE MESH, MASSES AND PAIRS TO EXIC
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      INTEGER IH, IERR
+      CALL EXIC_CONTACT_CREATE_MESH(NNODE, X0, AMASS, NELEM, IX, IBODY,
+     &                              NPAIR, IPAIR, PPAIR, IH, IERR)
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE GRAD(XE, YE, XI, ETA, DNX, DNY, DJ)
+C     DN/DX, DN/DY AND DET J AT (XI, ETA) OF THE ELEMENT (XE, YE)
+      IMPLICIT NONE
+      DOUBLE PRECISION XE(4), YE(4), XI, ETA, DNX(4), DNY(4), DJ
+      DOUBLE PRECISION XIN(4), ETN(4), DXI(4), DETA(4)
+      DOUBLE PRECISION J11, J12, J21, J22, R
+      INTEGER K
+      DATA XIN /-1.0D0, 1.0D0, 1.0D0, -1.0D0/
+      DATA ETN /-1.0D0, -1.0D0, 1.0D0, 1.0D0/
+      DO 10 K = 1, 4
+         DXI(K) = 0.25D0*XIN(K)*(1.0D0 + ETN(K)*ETA)
+         DETA(K) = 0.25D0*ETN(K)*(1.0D0 + XIN(K)*XI)
+   10 CONTINUE
+      J11 = DXI(1)*XE(1) + DXI(2)*XE(2) + DXI(3)*XE(3) + DXI(4)*XE(4)
+      J12 = DXI(1)*YE(1) + DXI(2)*YE(2) + DXI(3)*YE(3) + DXI(4)*YE(4)
+      J21 = DETA(1)*XE(1) + DETA(2)*XE(2) + DETA(3)*XE(3)
+     &    + DETA(4)*XE(4)
+      J22 = DETA(1)*YE(1) + DETA(2)*YE(2) + DETA(3)*YE(3)
+     &    + DETA(4)*YE(4)
+      DJ = J11*J22 - J12*J21
+      R = 1.0D0
+      IF (DJ .NE. 0.0D0) R = DJ
+      R = 1.0D0/R
+      DO 20 K = 1, 4
+         DNX(K) = (J22*DXI(K) - J12*DETA(K))*R
+         DNY(K) = (J11*DETA(K) - J21*DXI(K))*R
+   20 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE REFER
+C     REFERENCE GRADIENTS AND WEIGHTS AT THE 2X2 GAUSS POINTS
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      DOUBLE PRECISION XE(4), YE(4), DNX(4), DNY(4), DJ, GQ
+      DOUBLE PRECISION XIN(4), ETN(4)
+      INTEGER E, G, K
+      DATA XIN /-1.0D0, 1.0D0, 1.0D0, -1.0D0/
+      DATA ETN /-1.0D0, -1.0D0, 1.0D0, 1.0D0/
+      GQ = 0.57735026918962576451D0
+      DO 30 E = 1, NELEM
+         DO 10 K = 1, 4
+            XE(K) = X0(1,IX(K,E))
+            YE(K) = X0(2,IX(K,E))
+   10    CONTINUE
+         DO 20 G = 1, 4
+            CALL GRAD(XE, YE, GQ*XIN(G), GQ*ETN(G), DNX, DNY, DJ)
+            IF (DJ .LE. 0.0D0) DJ = 1.0D0
+            DO 15 K = 1, 4
+               GDN(K,G,E) = DNX(K)
+               GDN(K+4,G,E) = DNY(K)
+   15       CONTINUE
+            WDJ(G,E) = DJ
+   20    CONTINUE
+   30 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE LMASS
+C     ROW-SUM LUMPED MASS (2X2 GAUSS) AND INVERSE MASS PER DOF
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      DOUBLE PRECISION XE(4), YE(4), DNX(4), DNY(4), DJ, GQ, XI, ETA
+      DOUBLE PRECISION XIN(4), ETN(4), ME(4)
+      INTEGER E, G, K, I
+      DATA XIN /-1.0D0, 1.0D0, 1.0D0, -1.0D0/
+      DATA ETN /-1.0D0, -1.0D0, 1.0D0, 1.0D0/
+      GQ = 0.57735026918962576451D0
+      DO 5 I = 1, NNODE
+         AMASS(I) = 0.0D0
+         RIGID(I) = .FALSE.
+    5 CONTINUE
+      DO 30 E = 1, NELEM
+         DO 10 K = 1, 4
+            XE(K) = X0(1,IX(K,E))
+            YE(K) = X0(2,IX(K,E))
+            ME(K) = 0.0D0
+            IF (KIND(IMAT(E)) .EQ. 0) RIGID(IX(K,E)) = .TRUE.
+   10    CONTINUE
+         DO 20 G = 1, 4
+            XI = GQ*XIN(G)
+            ETA = GQ*ETN(G)
+            CALL GRAD(XE, YE, XI, ETA, DNX, DNY, DJ)
+            DO 15 K = 1, 4
+               ME(K) = ME(K) + (RHO(IMAT(E))*DJ*0.25D0)
+     &               *(1.0D0 + XIN(K)*XI)*(1.0D0 + ETN(K)*ETA)
+   15       CONTINUE
+   20    CONTINUE
+         DO 25 K = 1, 4
+            AMASS(IX(K,E)) = AMASS(IX(K,E)) + ME(K)
+   25    CONTINUE
+   30 CONTINUE
+      DO 40 I = 1, NNODE
+         DO 35 K = 1, 2
+            AMINV(K,I) = 0.0D0
+            IF (.NOT. RIGID(I) .AND. AMASS(I) .GT. 0.0D0)
+     &         AMINV(K,I) = 1.0D0/AMASS(I)
+            IF (IFIX(K,I) .NE. 0) AMINV(K,I) = 0.0D0
+   35    CONTINUE
+   40 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE FORCES(IBAD)
+C     INTERNAL FORCES AT THE CURRENT DISPLACEMENTS; IBAD: FIRST ELEMENT
+C     WITH J <= 0 (0 IF NONE)
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      INTEGER IBAD, I, E
+      IBAD = 0
+      DO 10 I = 1, NNODE
+         FINT(1,I) = 0.0D0
+         FINT(2,I) = 0.0D0
+   10 CONTINUE
+      DO 20 E = 1, NELEM
+         IF (KIND(IMAT(E)) .EQ. 1) CALL FNEOH(E, IBAD)
+         IF (KIND(IMAT(E)) .EQ. 2) CALL FLIN(E)
+   20 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE FNEOH(E, IBAD)
+C     NEO-HOOKEAN ELEMENT, TOTAL LAGRANGIAN, 2X2 GAUSS:
+C     P = MU F + (LAMBDA LN J - MU)/J COF(F), F_A += W P GRAD0 N_A
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      INTEGER E, IBAD, G, K
+      DOUBLE PRECISION UX(4), UY(4), FX(4), FY(4), GX(4), GY(4)
+      DOUBLE PRECISION F11, F12, F21, F22, JG, JS, LNJ, C, WG
+      DOUBLE PRECISION P11, P12, P21, P22, RL, RM
+      RL = RLAM(IMAT(E))
+      RM = RMU(IMAT(E))
+      DO 10 K = 1, 4
+         UX(K) = U(1,IX(K,E))
+         UY(K) = U(2,IX(K,E))
+         FX(K) = 0.0D0
+         FY(K) = 0.0D0
+   10 CONTINUE
+      DO 30 G = 1, 4
+         DO 15 K = 1, 4
+            GX(K) = GDN(K,G,E)
+            GY(K) = GDN(K+4,G,E)
+   15    CONTINUE
+         F11 = 1.0D0 + (UX(1)*GX(1) + UX(2)*GX(2) + UX(3)*GX(3)
+     &       + UX(4)*GX(4))
+         F12 = UX(1)*GY(1) + UX(2)*GY(2) + UX(3)*GY(3) + UX(4)*GY(4)
+         F21 = UY(1)*GX(1) + UY(2)*GX(2) + UY(3)*GX(3) + UY(4)*GX(4)
+         F22 = 1.0D0 + (UY(1)*GY(1) + UY(2)*GY(2) + UY(3)*GY(3)
+     &       + UY(4)*GY(4))
+         JG = F11*F22 - F12*F21
+         IF (JG .LE. 0.0D0 .AND. IBAD .EQ. 0) IBAD = E
+         JS = 1.0D0
+         IF (JG .GT. 0.0D0) JS = JG
+         LNJ = LOG(JS)
+         C = (RL*LNJ - RM)/JS
+         WG = WDJ(G,E)
+         P11 = WG*(RM*F11 + C*F22)
+         P12 = WG*(RM*F12 - C*F21)
+         P21 = WG*(RM*F21 - C*F12)
+         P22 = WG*(RM*F22 + C*F11)
+         DO 20 K = 1, 4
+            FX(K) = FX(K) + P11*GX(K) + P12*GY(K)
+            FY(K) = FY(K) + P21*GX(K) + P22*GY(K)
+   20    CONTINUE
+   30 CONTINUE
+      DO 40 K = 1, 4
+         FINT(1,IX(K,E)) = FINT(1,IX(K,E)) + FX(K)
+         FINT(2,IX(K,E)) = FINT(2,IX(K,E)) + FY(K)
+   40 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE FLIN(E)
+C     SMALL-STRAIN LINEAR ELASTIC ELEMENT (PLANE STRAIN), 2X2 GAUSS
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      INTEGER E, G, K
+      DOUBLE PRECISION UX(4), UY(4), GX(4), GY(4)
+      DOUBLE PRECISION E11, E22, G12, S11, S22, S12, WG, RL, RM
+      RL = RLAM(IMAT(E))
+      RM = RMU(IMAT(E))
+      DO 10 K = 1, 4
+         UX(K) = U(1,IX(K,E))
+         UY(K) = U(2,IX(K,E))
+   10 CONTINUE
+      DO 30 G = 1, 4
+         E11 = 0.0D0
+         E22 = 0.0D0
+         G12 = 0.0D0
+         DO 15 K = 1, 4
+            GX(K) = GDN(K,G,E)
+            GY(K) = GDN(K+4,G,E)
+            E11 = E11 + UX(K)*GX(K)
+            E22 = E22 + UY(K)*GY(K)
+            G12 = G12 + UX(K)*GY(K) + UY(K)*GX(K)
+   15    CONTINUE
+         WG = WDJ(G,E)
+         S11 = WG*((RL + 2.0D0*RM)*E11 + RL*E22)
+         S22 = WG*(RL*E11 + (RL + 2.0D0*RM)*E22)
+         S12 = WG*RM*G12
+         DO 20 K = 1, 4
+            FINT(1,IX(K,E)) = FINT(1,IX(K,E)) + S11*GX(K) + S12*GY(K)
+            FINT(2,IX(K,E)) = FINT(2,IX(K,E)) + S12*GX(K) + S22*GY(K)
+   20    CONTINUE
+   30 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE CHOOSE(DTIN, DT)
+C     THE STEP: FIXED (DTIN > 0) OR -DTIN X THE SMALLEST L/C OF THE
+C     DEFORMABLE ELEMENTS AT THE CURRENT GEOMETRY (L = AREA/DIAGONAL)
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      DOUBLE PRECISION DTIN, DT, D1X, D1Y, D2X, D2Y, AREA, DMAX, CC
+      DOUBLE PRECISION XE(4), YE(4), DTE
+      INTEGER E, K, M
+      IF (DTIN .GT. 0.0D0) THEN
+         DT = DTIN
+         RETURN
+      END IF
+      DT = 1.0D30
+      DO 20 E = 1, NELEM
+         M = IMAT(E)
+         IF (KIND(M) .EQ. 0) GOTO 20
+         DO 10 K = 1, 4
+            XE(K) = X0(1,IX(K,E)) + U(1,IX(K,E))
+            YE(K) = X0(2,IX(K,E)) + U(2,IX(K,E))
+   10    CONTINUE
+         D1X = XE(3) - XE(1)
+         D1Y = YE(3) - YE(1)
+         D2X = XE(4) - XE(2)
+         D2Y = YE(4) - YE(2)
+         AREA = 0.5D0*(D1X*D2Y - D1Y*D2X)
+         DMAX = SQRT(MAX(D1X**2 + D1Y**2, D2X**2 + D2Y**2))
+         CC = SQRT((RLAM(M) + 2.0D0*RMU(M))/RHO(M))
+         DTE = AREA/DMAX/CC
+         IF (DTE .LT. DT) DT = DTE
+   20 CONTINUE
+      DT = -DTIN*DT
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE PREDCT
+C     PREDICTED ACCELERATIONS A~ = M**-1 (F - P), NO EXTERNAL FORCES
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      INTEGER I
+      DO 10 I = 1, NNODE
+         AOLD(1,I) = A(1,I)
+         AOLD(2,I) = A(2,I)
+         A(1,I) = AMINV(1,I)*(0.0D0 - FINT(1,I))
+         A(2,I) = AMINV(2,I)*(0.0D0 - FINT(2,I))
+   10 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE POSIT
+C     CURRENT POSITIONS X = X0 + U
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      INTEGER I
+      DO 10 I = 1, NNODE
+         X(1,I) = X0(1,I) + U(1,I)
+         X(2,I) = X0(2,I) + U(2,I)
+   10 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE MOVE1(DT)
+C     X(N+1) = X(N) + DT V(N) + DT**2/2 A(N)
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      DOUBLE PRECISION DT
+      INTEGER I, K
+      DO 10 I = 1, NNODE
+         DO 5 K = 1, 2
+            U(K,I) = U(K,I) + (DT*V(K,I) + (0.5D0*DT*DT)*A(K,I))
+    5    CONTINUE
+   10 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE MOVE2(DTPREV, DT)
+C     HALF-STEP FORM: V(N+1/2) = V(N-1/2) + (DT(N-1) + DT(N))/2 A(N),
+C     X(N+1) = X(N) + DT(N) V(N+1/2) (AT N = 0, DT(N-1) = 0)
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      DOUBLE PRECISION DTPREV, DT, DTAV
+      INTEGER I, K
+      DTAV = 0.5D0*(DTPREV + DT)
+      DO 10 I = 1, NNODE
+         DO 5 K = 1, 2
+            V(K,I) = V(K,I) + DTAV*A(K,I)
+            U(K,I) = U(K,I) + DT*V(K,I)
+    5    CONTINUE
+   10 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE VTILDE(DTPREV)
+C     V~(N+1) = V(N) + DT(N)/2 (A(N) + A~(N+1))
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      DOUBLE PRECISION DTPREV
+      INTEGER I, K
+      DO 10 I = 1, NNODE
+         DO 5 K = 1, 2
+            VT(K,I) = V(K,I) + (0.5D0*DTPREV)*(AOLD(K,I) + A(K,I))
+    5    CONTINUE
+   10 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE VUPD(DTPREV)
+C     V(N+1) = V(N) + DT(N)/2 (A(N) + A(N+1))
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      DOUBLE PRECISION DTPREV
+      INTEGER I, K
+      DO 10 I = 1, NNODE
+         DO 5 K = 1, 2
+            V(K,I) = V(K,I) + (0.5D0*DTPREV)*(AOLD(K,I) + A(K,I))
+    5    CONTINUE
+   10 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE OUTROW(IH, T)
+C     ONE HISTORY ROW: TIP, PAIR 1 RESULTS, SMALLEST CORRECTED GAP
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      INTEGER IH, IERR, NCON, I
+      DOUBLE PRECISION T, RES(6), GMIN
+      CALL EXIC_CONTACT_PAIR_RESULTS(IH, 1, RES, IERR)
+      CALL EXIC_CONTACT_CONSTRAINTS(IH, MXCON, NCON, ICON, RCON, IERR)
+      GMIN = 0.0D0
+      IF (IERR .EQ. 0) THEN
+         DO 10 I = 1, NCON
+            IF (RCON(1,I) .GT. 0.0D0) GMIN = MIN(GMIN, RCON(6,I))
+   10    CONTINUE
+      END IF
+      WRITE (6, '(1P,9E24.16)') T, U(1,ITIP), V(1,ITIP), A(1,ITIP),
+     &   RES(1), RES(4), RES(5), RES(6), GMIN
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE FINISH(IH, ISTEP)
+C     CLOSING LINES: STEPS, CONTACT WORK, LARGEST PENETRATION
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      INTEGER IH, ISTEP, IERR
+      DOUBLE PRECISION WCON, PENMAX
+      CALL EXIC_CONTACT_WORK(IH, WCON, PENMAX, IERR)
+      WRITE (6, '(A,I8)') '# STEPS ', ISTEP
+      WRITE (6, '(A,1P,E24.16)') '# CONTACT WORK ', WCON
+      WRITE (6, '(A,1P,E24.16)') '# LARGEST PENETRATION ', PENMAX
+      RETURN
+      END

@@ -1,0 +1,63 @@
+/*
+ * exic_contact.h - C interface of exic's legacy contact API (see doc/api.md).
+ *
+ * The same calls as the Fortran 77 entry points EXIC_CONTACT_*, under the names
+ * exic_c_contact_*. Input scalars by value, outputs through pointers, ierr last
+ * (0 success, 1 bad argument, 2 unknown handle, 3 set-up failure, 4 corrector failure;
+ * exic_c_contact_error_message gives the reason). Arrays are column-major Fortran arrays:
+ * x[2*(i-1)] and x[2*(i-1)+1] are the x and y of node i, ipair[6*(k-1)+j-1] is entry j of
+ * pair k. Node, body, surface and pair numbers are 1-based, as in Fortran.
+ *
+ * Link: cc host.c -I$PREFIX/include -L$PREFIX/lib -lexic $(pkg-config --libs hdf5)
+ *       -lhdf5_fortran -lldl -lamd -llapack -lblas -lgfortran -lm
+ */
+#ifndef EXIC_CONTACT_H
+#define EXIC_CONTACT_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* error codes */
+#define EXIC_OK 0
+#define EXIC_EARGUMENT 1
+#define EXIC_EHANDLE 2
+#define EXIC_ESETUP 3
+#define EXIC_ESOLVE 4
+
+/* ipair[6*(k-1) + ...] entries and values */
+#define EXIC_METHOD_LAGRANGE 1
+#define EXIC_METHOD_PENALTY 2
+#define EXIC_DETECT_SWEPT 1
+#define EXIC_DETECT_STATIC 2
+#define EXIC_ONE_PASS 1
+#define EXIC_TWO_PASS 2
+
+/* options of exic_c_contact_set_option */
+#define EXIC_OPT_VELOCITY_FORM 1
+#define EXIC_VELOCITY_FULL_STEP 1 /* v~(n+1) = v(n) + dt(n)/2 (a(n) + a~(n+1)) */
+#define EXIC_VELOCITY_HALF_STEP 2 /* v(n+1/2) = v(n) + dt(n)/2 a(n)           */
+
+void exic_c_contact_create_mesh(int nnode, const double *x0, const double *amass, int nelem,
+                                const int *ix, const int *ibody, int npair, const int *ipair,
+                                const double *ppair, int *ih, int *ierr);
+void exic_c_contact_create_segments(int nnode, const double *x0, const double *amass, int nseg,
+                                    const int *iseg, int nsn, const int *isn, int npair,
+                                    const int *ipair, const double *ppair, int *ih, int *ierr);
+void exic_c_contact_set_fixed(int ih, int nnode, const int *ifix, int *ierr);
+void exic_c_contact_set_pair(int ih, int ipair, const int *iopt, double pen, int *ierr);
+void exic_c_contact_set_option(int ih, int iopt, int ival, int *ierr);
+void exic_c_contact_step(int ih, int nnode, const double *x, const double *v, double *a,
+                         double dtprev, double dt, double *fcon, int *nactive, int *ierr);
+void exic_c_contact_pair_results(int ih, int ipair, double *res, int *ierr);
+void exic_c_contact_ncon(int ih, int *ncon, int *ierr);
+void exic_c_contact_constraints(int ih, int mcon, int *ncon, int *icon, double *rcon, int *ierr);
+void exic_c_contact_work(int ih, double *wcon, double *penmax, int *ierr);
+void exic_c_contact_free(int ih, int *ierr);
+void exic_c_contact_error_message(int ih, char *msg, int msglen, int *lmsg, int *ierr);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* EXIC_CONTACT_H */

@@ -1,0 +1,148 @@
+!> The Fortran 77 entry points of the legacy contact API (doc/api.md).
+!>
+!> External procedures outside any module, so that a fixed-form host calls them with no
+!> module and links the plain symbols (gfortran: exic_contact_step_ and so on). Arguments are
+!> default INTEGER and DOUBLE PRECISION, arrays have explicit shapes sized by earlier
+!> arguments, IERR is last (0: success; 1 bad argument, 2 unknown handle, 3 set-up failure,
+!> 4 corrector failure). After a failure EXIC_CONTACT_ERROR_MESSAGE returns the reason.
+!> Each entry point only forwards to exic_legacy_problem.
+
+!> Create a contact problem from element connectivity: one surface per body (its free
+!> boundary edges), pairs IPAIR(6, NPAIR) = slave body, master body, method (1 Lagrange,
+!> 2 penalty), detection (1 swept, 2 static), passes (1 one pass, 2 two passes), rigid
+!> master (0, 1); PPAIR = penalty stiffness. Returns the handle IH (0 on failure).
+subroutine exic_contact_create_mesh(nnode, x0, amass, nelem, ix, ibody, npair, ipair, ppair, ih, ierr)
+   use exic_legacy_problem, only: problem_create_mesh
+   implicit none
+   integer, intent(in) :: nnode, nelem, npair
+   double precision, intent(in) :: x0(2, nnode), amass(nnode)
+   integer, intent(in) :: ix(4, nelem), ibody(nelem), ipair(6, npair)
+   double precision, intent(in) :: ppair(npair)
+   integer, intent(out) :: ih, ierr
+   call problem_create_mesh('EXIC_CONTACT_CREATE_MESH', nnode, x0, amass, nelem, ix, ibody, npair, &
+                            ipair, ppair, ih, ierr)
+end subroutine exic_contact_create_mesh
+
+!> Create a contact problem from segments ISEG(3, NSEG) = node 1, node 2 (body on the left),
+!> surface, and slave node sets ISN(2, NSN) = node, surface; pairs name surfaces.
+subroutine exic_contact_create_segments(nnode, x0, amass, nseg, iseg, nsn, isn, npair, ipair, ppair, &
+                                        ih, ierr)
+   use exic_legacy_problem, only: problem_create_segments
+   implicit none
+   integer, intent(in) :: nnode, nseg, nsn, npair
+   double precision, intent(in) :: x0(2, nnode), amass(nnode)
+   integer, intent(in) :: iseg(3, nseg), isn(2, nsn), ipair(6, npair)
+   double precision, intent(in) :: ppair(npair)
+   integer, intent(out) :: ih, ierr
+   call problem_create_segments('EXIC_CONTACT_CREATE_SEGMENTS', nnode, x0, amass, nseg, iseg, &
+                                nsn, isn, npair, ipair, ppair, ih, ierr)
+end subroutine exic_contact_create_segments
+
+!> Mark prescribed dofs: IFIX(2, NNODE) non-zero = the host prescribes that dof.
+subroutine exic_contact_set_fixed(ih, nnode, ifix, ierr)
+   use exic_legacy_problem, only: problem_set_fixed
+   implicit none
+   integer, intent(in) :: ih, nnode
+   integer, intent(in) :: ifix(2, nnode)
+   integer, intent(out) :: ierr
+   call problem_set_fixed('EXIC_CONTACT_SET_FIXED', ih, nnode, ifix, ierr)
+end subroutine exic_contact_set_fixed
+
+!> New options of pair IPAIR: IOPT(4) = method, detection, passes, rigid master; PEN penalty.
+subroutine exic_contact_set_pair(ih, ipair, iopt, pen, ierr)
+   use exic_legacy_problem, only: problem_set_pair
+   implicit none
+   integer, intent(in) :: ih, ipair
+   integer, intent(in) :: iopt(4)
+   double precision, intent(in) :: pen
+   integer, intent(out) :: ierr
+   call problem_set_pair('EXIC_CONTACT_SET_PAIR', ih, ipair, iopt, pen, ierr)
+end subroutine exic_contact_set_pair
+
+!> Handle option IOPT = 1: velocity form IVAL = 1 (v~(n+1), default) or 2 (v(n+1/2)).
+subroutine exic_contact_set_option(ih, iopt, ival, ierr)
+   use exic_legacy_problem, only: problem_set_option
+   implicit none
+   integer, intent(in) :: ih, iopt, ival
+   integer, intent(out) :: ierr
+   call problem_set_option('EXIC_CONTACT_SET_OPTION', ih, iopt, ival, ierr)
+end subroutine exic_contact_set_option
+
+!> One step: X = x(n+1), V = predictor velocity, A = predicted (in) and corrected (out)
+!> accelerations, DTPREV = dt(n) (0 at the first call), DT = dt(n+1); FCON nodal contact
+!> forces, NACTIVE constraints carrying force.
+subroutine exic_contact_step(ih, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr)
+   use exic_legacy_problem, only: problem_step
+   implicit none
+   integer, intent(in) :: ih, nnode
+   double precision, intent(in) :: x(2, nnode), v(2, nnode)
+   double precision, intent(inout) :: a(2, nnode)
+   double precision, intent(in) :: dtprev, dt
+   double precision, intent(out) :: fcon(2, nnode)
+   integer, intent(out) :: nactive, ierr
+   call problem_step('EXIC_CONTACT_STEP', ih, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr)
+end subroutine exic_contact_step
+
+!> RES(6) of pair IPAIR in the last step: normal force, force x, y on the slave side, active
+!> constraints, largest penetration at t(n+1), largest multiplier.
+subroutine exic_contact_pair_results(ih, ipair, res, ierr)
+   use exic_legacy_problem, only: problem_pair_results
+   implicit none
+   integer, intent(in) :: ih, ipair
+   double precision, intent(out) :: res(6)
+   integer, intent(out) :: ierr
+   call problem_pair_results('EXIC_CONTACT_PAIR_RESULTS', ih, ipair, res, ierr)
+end subroutine exic_contact_pair_results
+
+!> NCON: number of candidate constraints of the last step.
+subroutine exic_contact_ncon(ih, ncon, ierr)
+   use exic_legacy_problem, only: problem_ncon
+   implicit none
+   integer, intent(in) :: ih
+   integer, intent(out) :: ncon, ierr
+   call problem_ncon('EXIC_CONTACT_NCON', ih, ncon, ierr)
+end subroutine exic_contact_ncon
+
+!> The constraints of the last step: ICON(4, MCON) = slave, master 1, master 2, pair;
+!> RCON(6, MCON) = multiplier, alpha, normal x, y, gap at t(n+1), corrected gap at t(n+2).
+subroutine exic_contact_constraints(ih, mcon, ncon, icon, rcon, ierr)
+   use exic_legacy_problem, only: problem_constraints
+   implicit none
+   integer, intent(in) :: ih, mcon
+   integer, intent(out) :: ncon
+   integer, intent(out) :: icon(4, mcon)
+   double precision, intent(out) :: rcon(6, mcon)
+   integer, intent(out) :: ierr
+   call problem_constraints('EXIC_CONTACT_CONSTRAINTS', ih, mcon, ncon, icon, rcon, ierr)
+end subroutine exic_contact_constraints
+
+!> WCON: work of the contact forces since creation; PENMAX: largest penetration seen.
+subroutine exic_contact_work(ih, wcon, penmax, ierr)
+   use exic_legacy_problem, only: problem_work
+   implicit none
+   integer, intent(in) :: ih
+   double precision, intent(out) :: wcon, penmax
+   integer, intent(out) :: ierr
+   call problem_work('EXIC_CONTACT_WORK', ih, wcon, penmax, ierr)
+end subroutine exic_contact_work
+
+!> Release handle IH.
+subroutine exic_contact_free(ih, ierr)
+   use exic_legacy_problem, only: problem_free
+   implicit none
+   integer, intent(in) :: ih
+   integer, intent(out) :: ierr
+   call problem_free('EXIC_CONTACT_FREE', ih, ierr)
+end subroutine exic_contact_free
+
+!> MSG: the message of the last failed call on IH (of any call when IH names no live
+!> problem, e.g. IH = 0 after a failed creation); LMSG its full length; IERR = 0.
+subroutine exic_contact_error_message(ih, msg, lmsg, ierr)
+   use exic_legacy_problem, only: problem_message
+   implicit none
+   integer, intent(in) :: ih
+   character(len=*), intent(out) :: msg
+   integer, intent(out) :: lmsg, ierr
+   call problem_message(ih, msg, lmsg)
+   ierr = 0
+end subroutine exic_contact_error_message

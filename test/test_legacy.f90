@@ -1,0 +1,664 @@
+!> The legacy contact API: a fixed-form Fortran 77 host and a C host built against an
+!> installed exic, bad arguments, and handles used side by side.
+!>
+!> The hosts are built by examples/legacy_host/build.sh, which runs `fpm install` into
+!> build/legacy_prefix (the fpm command is $EXIC_FPM, else fpm on PATH) and compiles
+!> examples/legacy_host against that prefix only. The F77 host lhost has its own element
+!> loop: with the neo-Hookean total-Lagrangian 2x2 element (the formulation exic uses) and a
+!> fixed step its tip histories must equal exic's own deck run of the same scene; with its
+!> small-strain element, its own CFL step and DYNA's half-step velocities every gap must
+!> still close.
+module test_legacy
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+   use exic_base_kinds, only: wp
+   use exic_base_error, only: error_t
+   use exic_model, only: model_t
+   use exic_material_material, only: MAT_RIGID
+   use exic_explicit_state, only: state_t, element_set_t
+   use exic_explicit_solver, only: solver_init, solver_forces
+   use exic_mesh_boundary, only: free_edges
+   use exic_legacy_interfaces, only: exic_contact_create_mesh, exic_contact_create_segments, &
+                                     exic_contact_set_fixed, exic_contact_set_pair, exic_contact_set_option, &
+                                     exic_contact_step, exic_contact_pair_results, exic_contact_ncon, &
+                                     exic_contact_constraints, exic_contact_work, exic_contact_free, &
+                                     exic_contact_error_message
+   use testing, only: suite_t, check, check_close, section
+   use deck_runner, only: run_dir, run_deck, read_table, column
+   implicit none
+   private
+
+   public :: run_legacy_tests
+
+   character(len=*), parameter :: nl = new_line('a')
+   character(len=*), parameter :: prefix = 'build/legacy_prefix'
+   character(len=*), parameter :: bindir = 'build/legacy_host'
+   real(wp), parameter :: young = 1.0e4_wp, rho0 = 0.1_wp, v0 = 0.1_wp
+   real(wp), parameter :: blen = 30.0_wp, bhgt = 4.0_wp
+   real(wp), parameter :: dt_fixed = 1.4e-3_wp          !< 0.8 of the stable step of the 30 x 6 bars
+   real(wp), parameter :: energy0 = 0.5_wp*rho0*blen*bhgt*v0**2   !< kinetic energy of bar 1
+
+   !> A run of exic's own element loop with contact through the API (a host inside the test).
+   type :: api_run_t
+      type(state_t) :: st
+      type(element_set_t), allocatable :: sets(:)
+      integer :: h = 0, itip = 0, nrow = 0
+      real(wp) :: dt = 0.0_wp, tmax = 0.0_wp
+      real(wp), allocatable :: aold(:, :), vt(:, :), x(:, :), fcon(:, :), rows(:, :)
+      logical :: ok = .true.
+   end type api_run_t
+
+contains
+
+   subroutine run_legacy_tests(s)
+      type(suite_t), intent(inout) :: s
+      type(model_t) :: wall, bars
+      logical :: built, ok1, ok2
+      call section(s, 'legacy API: bad arguments')
+      call bad_argument_tests(s)
+      call section(s, 'legacy API: exic deck runs of the two scenes')
+      call deck_run(s, 'legacy_wall', 'wall', wall, ok1)
+      call deck_run(s, 'legacy_bars', 'bars', bars, ok2)
+      if (.not. (ok1 .and. ok2)) return
+      call section(s, 'legacy API: in-process host, two handles used alternately')
+      call alternate_test(s, wall, bars)
+      call segments_test(s, wall)
+      call section(s, 'legacy API: install and build the F77 and C hosts')
+      call build_hosts(s, built)
+      if (.not. built) return
+      call section(s, 'legacy API: F77 host with the neo-Hookean element equals the deck run')
+      call host_equal_test(s, 'legacy_wall', wall)
+      call host_equal_test(s, 'legacy_bars', bars)
+      call section(s, 'legacy API: F77 host with its own linear element keeps every gap closed')
+      call host_simple_test(s, 'legacy_wall', wall)
+      call host_simple_test(s, 'legacy_bars', bars)
+      call section(s, 'legacy API: C host')
+      call c_host_test(s)
+   end subroutine run_legacy_tests
+
+   ! ------------------------------------------------------------------ scenes
+
+   !> Bar 1 (region 1, 30 x 6) at +v0 against a rigid wall (mode 'wall') or a second bar at
+   !> -v0 (mode 'bars'), with a fixed step; histories of the tip (node (nx, ny/2)) and pair 1.
+   function scene_deck(mode, tmax) result(deck)
+      character(len=*), intent(in) :: mode
+      real(wp), intent(in) :: tmax
+      character(len=:), allocatable :: deck
+      character(len=400) :: b
+      integer, parameter :: nx = 30, ny = 6
+      integer :: tip
+      tip = 1 + (ny/2)*(nx + 1) + nx
+      deck = 'FEAP * * legacy API scene '//mode//nl//'0 0 0 2 2 4'//nl
+      write (b, '(a,es23.16,a,es23.16,a,es23.16)') 'PARAmeters'//nl//'  young = ', young, nl//'  v0 = ', v0, &
+         nl//'  rho = ', rho0
+      deck = deck//trim(b)//nl
+      write (b, '(a,es23.16,a,es23.16,a,i0,a,i0)') '  len = ', blen, nl//'  hgt = ', bhgt, nl//'  nx = ', nx, &
+         nl//'  ny = ', ny
+      deck = deck//trim(b)//nl//nl
+      deck = deck//'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean young 0'//nl//'    DENSity rho'//nl//nl
+      if (mode == 'wall') then
+         deck = deck//'MATErial,2'//nl//'  RIGId'//nl//'    DENSity rho'//nl//nl
+      else
+         deck = deck//'MATErial,2'//nl//'  SOLId'//nl//'    ELAStic NEOHookean young 0.25'//nl// &
+                '    DENSity 2*rho'//nl//nl
+      end if
+      deck = deck//'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,nx,ny,0,0,1'//nl//'    1,0,0'//nl// &
+             '    2,len,0'//nl//'    3,len,hgt'//nl//'    4,0,hgt'//nl//nl
+      if (mode == 'wall') then
+         deck = deck//'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,2,4,0,0,2'//nl//'    1,len,-hgt'//nl// &
+                '    2,len+hgt,-hgt'//nl//'    3,len+hgt,2*hgt'//nl//'    4,len,2*hgt'//nl//nl
+      else
+         deck = deck//'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,nx/2,ny+2,0,0,2'//nl//'    1,len,-1'//nl// &
+                '    2,2*len,-1'//nl//'    3,2*len,hgt+1'//nl//'    4,len,hgt+1'//nl//nl
+      end if
+      deck = deck//'INITial,VELOcity'//nl//'  REGIon,1,v0,0'//nl
+      if (mode == 'bars') deck = deck//'  REGIon,2,-v0,0.01'//nl
+      deck = deck//nl//'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl// &
+             '    REGIon,2'//nl//'  PAIR,1,NTOS,1,2'//nl//'END CONTact'//nl//nl
+      write (b, '(a,es23.16,a,es23.16)') '  DT,,', dt_fixed, nl//'  LOOP,,100000'//nl//'    TIME,,', tmax
+      deck = deck//'END'//nl//'BATCh'//nl//'  TRANsient,EXPLicit'//nl//'  TPLOt,,1'//nl//trim(b)//nl// &
+             '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl
+      write (b, '(a,i0,a,i0,a,i0,a)') '  disp,', tip, ',1'//nl//'  velo,', tip, ',1'//nl//'  acce,', tip, ',1'
+      deck = deck//trim(b)//nl//'  cont,1,1'//nl//'  cont,1,4'//nl//'  cont,1,5'//nl//'  cont,1,6'//nl//nl//'STOP'
+   end function scene_deck
+
+   !> Run the scene's deck with exic itself; `model` is the model read.
+   subroutine deck_run(s, name, mode, model, ok)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name, mode
+      type(model_t), intent(out) :: model
+      logical, intent(out) :: ok
+      character(len=:), allocatable :: msg
+      integer :: stage
+      call run_deck(name, scene_deck(mode, 3.0_wp*blen/sqrt(young/rho0)), stage, msg, model)
+      ok = stage == 0
+      call check(s, ok, name//': exic runs the deck', msg)
+   end subroutine deck_run
+
+   ! ------------------------------------------------------------------ bad arguments
+
+   !> Every bad call returns ierr /= 0 and a message that says why; nothing crashes.
+   subroutine bad_argument_tests(s)
+      type(suite_t), intent(inout) :: s
+      real(wp) :: x0(2, 6), mass(6), x(2, 6), v(2, 6), a(2, 6), f(2, 6), pp(1), res(6), w, pen, rcon(6, 1)
+      integer :: ix(4, 1), ib(1), ip(6, 1), iseg(3, 1), isn(2, 1), h, ierr, nact, ncon, icon(4, 1), ifix(2, 6)
+      ! a unit square (nodes 1-4, body 1) and a rigid segment 5 -> 6 under it (segments mode)
+      x0 = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, &
+                    2.0_wp, -0.5_wp, -1.0_wp, -0.5_wp], [2, 6])
+      mass = 1.0_wp
+      ix(:, 1) = [1, 2, 3, 4]
+      ib = 1
+      ip(:, 1) = [1, 2, 1, 1, 1, 1]
+      pp = 0.0_wp
+      iseg(:, 1) = [5, 6, 2]
+      isn(:, 1) = [1, 1]
+
+      call exic_contact_create_mesh(-4, x0, mass, 1, ix, ib, 1, ip, pp, h, ierr)
+      call bad(s, ierr, h, 0, 'NNODE', 'negative node count')
+      call exic_contact_create_mesh(6, x0, mass, -1, ix, ib, 1, ip, pp, h, ierr)
+      call bad(s, ierr, h, 0, 'NELEM', 'negative element count')
+      call exic_contact_create_segments(6, x0, mass, 1, iseg, -2, isn, 1, ip, pp, h, ierr)
+      call bad(s, ierr, h, 0, 'NSN', 'negative slave node count')
+      call exic_contact_create_segments(6, x0, mass, 1, iseg, 1, isn, 0, ip, pp, h, ierr)
+      call bad(s, ierr, h, 0, 'NPAIR', 'no pairs')
+      mass(3) = 0.0_wp
+      call exic_contact_create_segments(6, x0, mass, 1, iseg, 1, isn, 1, [2, 1, 1, 1, 1, 1], pp, h, ierr)
+      call bad(s, ierr, h, 0, 'mass of node 3', 'zero mass')
+      mass(3) = -2.0_wp
+      call exic_contact_create_mesh(6, x0, mass, 1, ix, ib, 1, ip, pp, h, ierr)
+      call bad(s, ierr, h, 0, 'mass of node 3', 'negative mass')
+      mass(3) = 1.0_wp
+      x0(2, 4) = ieee_value(1.0_wp, ieee_quiet_nan)
+      call exic_contact_create_mesh(6, x0, mass, 1, ix, ib, 1, ip, pp, h, ierr)
+      call bad(s, ierr, h, 0, 'coordinate of node 4', 'NaN reference coordinate')
+      x0(2, 4) = 1.0_wp
+      call exic_contact_create_segments(6, x0, mass, 1, reshape([5, 7, 2], [3, 1]), 1, isn, 1, &
+                                        [1, 2, 1, 1, 1, 1], pp, h, ierr)
+      call bad(s, ierr, h, 0, 'segment 1', 'segment naming node 7 of 6')
+      call exic_contact_create_segments(6, x0, mass, 1, iseg, 1, reshape([0, 1], [2, 1]), 1, &
+                                        [1, 2, 1, 1, 1, 1], pp, h, ierr)
+      call bad(s, ierr, h, 0, 'slave node entry 1', 'slave node 0')
+      call exic_contact_create_mesh(6, x0, mass, 1, reshape([1, 2, 3, 9], [4, 1]), ib, 1, ip, pp, h, ierr)
+      call bad(s, ierr, h, 0, 'element 1', 'element naming node 9 of 6')
+      call exic_contact_create_mesh(6, x0, mass, 1, reshape([1, 4, 3, 2], [4, 1]), ib, 1, ip, pp, h, ierr)
+      call bad(s, ierr, h, 0, 'clockwise', 'clockwise element')
+      call exic_contact_create_mesh(6, x0, mass, 1, ix, ib, 1, ip, pp, h, ierr)
+      call bad(s, ierr, h, 0, 'not defined', 'pair naming a body without elements')
+      call exic_contact_create_segments(6, x0, mass, 1, iseg, 1, isn, 1, [2, 1, 1, 1, 1, 1], pp, h, ierr)
+      call bad(s, ierr, h, 0, 'node set', 'a node set as master')
+      call exic_contact_create_segments(6, x0, mass, 1, iseg, 1, isn, 1, [1, 2, 3, 1, 1, 1], pp, h, ierr)
+      call bad(s, ierr, h, 0, 'out of range', 'method 3')
+      call exic_contact_create_segments(6, x0, mass, 1, iseg, 1, isn, 1, [1, 2, 2, 1, 1, 1], [-1.0_wp], h, ierr)
+      call bad(s, ierr, h, 0, 'penalty', 'negative penalty stiffness')
+
+      ! a good problem: node set {1} above the rigid segment
+      call exic_contact_create_segments(6, x0, mass, 1, iseg, 1, isn, 1, [1, 2, 1, 1, 1, 1], pp, h, ierr)
+      call check(s, ierr == 0 .and. h > 0, 'a node set against a rigid segment is accepted')
+      if (ierr /= 0) return
+      x = x0
+      v = 0.0_wp
+      a = 0.0_wp
+      call exic_contact_step(h + 1000, 6, x, v, a, 0.0_wp, 1.0e-3_wp, f, nact, ierr)
+      call bad(s, ierr, h + 1000, 2, 'names no live', 'step with an unknown handle')
+      call exic_contact_step(h, 5, x, v, a, 0.0_wp, 1.0e-3_wp, f, nact, ierr)
+      call bad(s, ierr, h, 1, 'NNODE', 'step with another node count')
+      call exic_contact_step(h, 6, x, v, a, 0.0_wp, 0.0_wp, f, nact, ierr)
+      call bad(s, ierr, h, 1, 'DT', 'step with dt = 0')
+      call exic_contact_step(h, 6, x, v, a, -1.0_wp, 1.0e-3_wp, f, nact, ierr)
+      call bad(s, ierr, h, 1, 'DTPREV', 'step with dt(n) < 0')
+      x(1, 2) = ieee_value(1.0_wp, ieee_quiet_nan)
+      call exic_contact_step(h, 6, x, v, a, 0.0_wp, 1.0e-3_wp, f, nact, ierr)
+      call bad(s, ierr, h, 1, 'position of node 2', 'step with a NaN position')
+      x(1, 2) = 1.0_wp
+      v(2, 1) = ieee_value(1.0_wp, ieee_quiet_nan)
+      call exic_contact_step(h, 6, x, v, a, 0.0_wp, 1.0e-3_wp, f, nact, ierr)
+      call bad(s, ierr, h, 1, 'velocity of node 1', 'step with a NaN velocity')
+      v(2, 1) = -1.0_wp
+      call exic_contact_step(h, 6, x, v, a, 0.0_wp, 1.0e-3_wp, f, nact, ierr)
+      call check(s, ierr == 0 .and. nact == 0, 'after bad calls the handle still steps (ierr 0)')
+      call exic_contact_pair_results(h, 2, res, ierr)
+      call bad(s, ierr, h, 1, 'pair 2', 'results of pair 2 of 1')
+      call exic_contact_constraints(h, -1, ncon, icon, rcon, ierr)
+      call exic_contact_ncon(h, ncon, ierr)
+      call check(s, ierr == 0, 'constraint count query', 'ierr '//itoa(ierr))
+      call exic_contact_set_option(h, 7, 1, ierr)
+      call bad(s, ierr, h, 1, 'unknown option', 'option 7')
+      call exic_contact_set_option(h, 1, 3, ierr)
+      call bad(s, ierr, h, 1, 'velocity form', 'velocity form 3')
+      call exic_contact_set_pair(h, 1, [1, 1, 2, 1], 0.0_wp, ierr)
+      call bad(s, ierr, h, 1, 'node set', 'two passes with a node set')
+      call exic_contact_set_pair(h, 1, [2, 2, 1, 1], 1.0e3_wp, ierr)
+      call check(s, ierr == 0, 'valid new pair options are accepted')
+      ifix = 0
+      call exic_contact_set_fixed(h, 4, ifix, ierr)
+      call bad(s, ierr, h, 1, 'NNODE', 'fixities with another node count')
+      call exic_contact_free(h, ierr)
+      call check(s, ierr == 0, 'free a live handle')
+      call exic_contact_free(h, ierr)
+      call bad(s, ierr, h, 2, 'names no live', 'free the same handle twice')
+      call exic_contact_work(h, w, pen, ierr)
+      call bad(s, ierr, h, 2, 'names no live', 'query a freed handle')
+   end subroutine bad_argument_tests
+
+   !> One bad call: ierr /= 0 (= code when code > 0), h = 0 after a failed creation, and the
+   !> message of handle `hq` names `key`.
+   subroutine bad(s, ierr, hq, code, key, what)
+      type(suite_t), intent(inout) :: s
+      integer, intent(in) :: ierr, hq, code
+      character(len=*), intent(in) :: key, what
+      character(len=300) :: msg
+      integer :: lmsg, ierr2
+      call exic_contact_error_message(hq, msg, lmsg, ierr2)
+      call check(s, ierr /= 0 .and. (code == 0 .or. ierr == code) .and. index(msg, key) > 0 .and. &
+                 lmsg == len_trim(msg), 'bad argument: '//what//' -> ierr '//itoa(ierr), &
+                 'message "'//msg(1:min(lmsg, 300))//'"')
+   end subroutine bad
+
+   ! ------------------------------------------------------------------ in-process host
+
+   !> Create the problem of `model` through the API and take the first (t = 0) step.
+   subroutine api_start(r, model, tip)
+      type(api_run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: tip
+      type(error_t), allocatable :: err
+      integer :: ierr, ebad, nact
+      integer, allocatable :: ipair(:, :)
+      real(wp), allocatable :: pp(:)
+      call solver_init(model, r%st, r%sets, err)
+      r%ok = .not. allocated(err)
+      if (.not. r%ok) return
+      call host_pairs(model, ipair, pp)
+      call exic_contact_create_mesh(r%st%nnode, model%mesh%x, r%st%mass, model%mesh%nelem, model%mesh%conn, &
+                                    model%mesh%region, size(ipair, 2), ipair, pp, r%h, ierr)
+      r%ok = ierr == 0
+      if (.not. r%ok) return
+      r%dt = dt_fixed
+      r%tmax = 3.0_wp*blen/sqrt(young/rho0)
+      r%itip = tip
+      allocate (r%aold(2, r%st%nnode), r%vt(2, r%st%nnode), r%x(2, r%st%nnode), r%fcon(2, r%st%nnode), &
+                source=0.0_wp)
+      allocate (r%rows(8, 1000))
+      call solver_forces(r%st, r%sets, ebad)
+      r%st%dt = r%dt
+      r%st%a = r%st%minv*(r%st%fext - r%st%fint)
+      r%x = r%st%x0 + r%st%u
+      call exic_contact_step(r%h, r%st%nnode, r%x, r%st%v, r%st%a, 0.0_wp, r%dt, r%fcon, nact, ierr)
+      r%ok = ierr == 0 .and. ebad == 0
+      call api_row(r)
+   end subroutine api_start
+
+   !> One explicit step of the in-process host, as the native driver makes it (eq. 4.3-4.4).
+   subroutine api_advance(r, done)
+      type(api_run_t), intent(inout) :: r
+      logical, intent(out) :: done
+      integer :: ebad, ierr, nact
+      done = r%st%t >= r%tmax*(1.0_wp - 1.0e-12_wp) .or. .not. r%ok
+      if (done) return
+      associate (st => r%st)
+         st%u = st%u + (st%dt*st%v + (0.5_wp*st%dt*st%dt)*st%a)
+         st%t = st%t + st%dt
+         st%dt_prev = st%dt
+         r%aold = st%a
+         call solver_forces(st, r%sets, ebad)
+         st%a = st%minv*(st%fext - st%fint)
+         r%vt = st%v + (0.5_wp*st%dt_prev)*(r%aold + st%a)
+         r%x = st%x0 + st%u
+         call exic_contact_step(r%h, st%nnode, r%x, r%vt, st%a, st%dt_prev, st%dt, r%fcon, nact, ierr)
+         st%v = st%v + (0.5_wp*st%dt_prev)*(r%aold + st%a)
+         r%ok = ierr == 0 .and. ebad == 0
+      end associate
+      call api_row(r)
+   end subroutine api_advance
+
+   !> The history row of the deck's TPLOt requests: t, tip u, v, a, pair 1 components 1, 4, 5, 6.
+   subroutine api_row(r)
+      type(api_run_t), intent(inout) :: r
+      real(wp) :: res(6)
+      real(wp), allocatable :: tmp(:, :)
+      integer :: ierr
+      call exic_contact_pair_results(r%h, 1, res, ierr)
+      if (r%nrow == size(r%rows, 2)) then
+         allocate (tmp(8, 2*r%nrow))
+         tmp(:, 1:r%nrow) = r%rows
+         call move_alloc(tmp, r%rows)
+      end if
+      r%nrow = r%nrow + 1
+      r%rows(:, r%nrow) = [r%st%t, r%st%u(1, r%itip), r%st%v(1, r%itip), r%st%a(1, r%itip), res(1), res(4), &
+                           res(5), res(6)]
+   end subroutine api_row
+
+   !> Run to the end alone.
+   subroutine api_run_alone(r, model, tip)
+      type(api_run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: tip
+      logical :: done
+      call api_start(r, model, tip)
+      do
+         call api_advance(r, done)
+         if (done) exit
+      end do
+   end subroutine api_run_alone
+
+   !> Done-when 3: two handles stepped alternately give exactly what each gives alone; and the
+   !> in-process API run equals the deck run.
+   subroutine alternate_test(s, wall, bars)
+      type(suite_t), intent(inout) :: s
+      type(model_t), intent(in) :: wall, bars
+      type(api_run_t) :: a1, b1, a2, b2
+      logical :: da, db
+      integer :: tip, ierr
+      tip = 1 + 3*31 + 30
+      call api_run_alone(a1, wall, tip)
+      call api_run_alone(b1, bars, tip)
+      call check(s, a1%ok .and. b1%ok, 'wall and two-bar scenes run through the API alone')
+      call api_start(a2, wall, tip)
+      call api_start(b2, bars, tip)
+      do
+         call api_advance(a2, da)
+         call api_advance(b2, db)
+         if (da .and. db) exit
+      end do
+      call check(s, a2%ok .and. b2%ok .and. a2%h /= b2%h, 'both handles step when used alternately')
+      call check(s, a1%nrow == a2%nrow .and. b1%nrow == b2%nrow, 'alternate runs have as many rows as alone')
+      if (a1%nrow == a2%nrow .and. b1%nrow == b2%nrow) then
+         call check(s, all(a1%rows(:, 1:a1%nrow) == a2%rows(:, 1:a2%nrow)), &
+                    'wall handle used alternately equals it alone (bitwise)')
+         call check(s, all(b1%rows(:, 1:b1%nrow) == b2%rows(:, 1:b2%nrow)), &
+                    'two-bar handle used alternately equals it alone (bitwise)')
+      end if
+      call compare_deck(s, 'legacy_wall', a1%rows(:, 1:a1%nrow), 'in-process API run of the wall scene')
+      call compare_deck(s, 'legacy_bars', b1%rows(:, 1:b1%nrow), 'in-process API run of the two-bar scene')
+      call exic_contact_free(a1%h, ierr)
+      call exic_contact_free(b1%h, ierr)
+      call exic_contact_free(a2%h, ierr)
+      call exic_contact_free(b2%h, ierr)
+   end subroutine alternate_test
+
+   !> The wall scene made from segment lists (the free edges, as the host could give them)
+   !> runs exactly as the one made from connectivity.
+   subroutine segments_test(s, wall)
+      type(suite_t), intent(inout) :: s
+      type(model_t), intent(in) :: wall
+      type(api_run_t) :: r1, r2
+      type(error_t), allocatable :: err
+      integer, allocatable :: e1(:, :), e2(:, :), iseg(:, :), ipair(:, :), isn(:, :)
+      real(wp), allocatable :: pp(:)
+      integer :: tip, ierr, ns
+      logical :: done
+      tip = 1 + 3*31 + 30
+      call api_run_alone(r1, wall, tip)
+      call free_edges(wall%mesh%nelem, wall%mesh%conn, wall%mesh%region == 1, e1, err)
+      call free_edges(wall%mesh%nelem, wall%mesh%conn, wall%mesh%region == 2, e2, err)
+      ns = size(e1, 2) + size(e2, 2)
+      allocate (iseg(3, ns), isn(2, 0))
+      iseg(1:2, 1:size(e1, 2)) = e1
+      iseg(3, 1:size(e1, 2)) = 1
+      iseg(1:2, size(e1, 2) + 1:) = e2
+      iseg(3, size(e1, 2) + 1:) = 2
+      call host_pairs(wall, ipair, pp)
+      ! the in-process start, with the problem made from segments instead
+      call solver_init(wall, r2%st, r2%sets, err)
+      call start_from(r2, wall, tip, iseg, isn, ipair, pp)
+      call check(s, r2%ok, 'wall scene from segment lists is accepted')
+      if (.not. r2%ok) return
+      do
+         call api_advance(r2, done)
+         if (done) exit
+      end do
+      call check(s, r1%nrow == r2%nrow .and. r2%ok, 'segment-list run has as many rows as the connectivity run')
+      if (r1%nrow == r2%nrow) call check(s, all(r1%rows(:, 1:r1%nrow) == r2%rows(:, 1:r2%nrow)), &
+                                         'segment-list run equals the connectivity run (bitwise)')
+      call exic_contact_free(r1%h, ierr)
+      call exic_contact_free(r2%h, ierr)
+   end subroutine segments_test
+
+   !> api_start with the problem made from segment lists.
+   subroutine start_from(r, model, tip, iseg, isn, ipair, pp)
+      type(api_run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: tip, iseg(:, :), isn(:, :), ipair(:, :)
+      real(wp), intent(in) :: pp(:)
+      integer :: ierr, ebad, nact
+      call exic_contact_create_segments(r%st%nnode, model%mesh%x, r%st%mass, size(iseg, 2), iseg, size(isn, 2), &
+                                        isn, size(ipair, 2), ipair, pp, r%h, ierr)
+      r%ok = ierr == 0
+      if (.not. r%ok) return
+      r%dt = dt_fixed
+      r%tmax = 3.0_wp*blen/sqrt(young/rho0)
+      r%itip = tip
+      allocate (r%aold(2, r%st%nnode), r%vt(2, r%st%nnode), r%x(2, r%st%nnode), r%fcon(2, r%st%nnode), &
+                source=0.0_wp)
+      allocate (r%rows(8, 1000))
+      call solver_forces(r%st, r%sets, ebad)
+      r%st%dt = r%dt
+      r%st%a = r%st%minv*(r%st%fext - r%st%fint)
+      r%x = r%st%x0 + r%st%u
+      call exic_contact_step(r%h, r%st%nnode, r%x, r%st%v, r%st%a, 0.0_wp, r%dt, r%fcon, nact, ierr)
+      r%ok = ierr == 0 .and. ebad == 0
+      call api_row(r)
+   end subroutine start_from
+
+   !> Pairs of a deck model in the API's table: slave region, master region, Lagrange, swept,
+   !> one pass (NTOS) or two (SYMMetric), rigid master when the master region is rigid.
+   subroutine host_pairs(model, ipair, pp)
+      type(model_t), intent(in) :: model
+      integer, allocatable, intent(out) :: ipair(:, :)
+      real(wp), allocatable, intent(out) :: pp(:)
+      integer :: k, rs, rm, e
+      allocate (ipair(6, size(model%contact%pairs)), source=0)
+      allocate (pp(size(model%contact%pairs)))
+      pp = 0.0_wp
+      do k = 1, size(model%contact%pairs)
+         rs = region_of_surface(model, model%contact%pairs(k)%slave)
+         rm = region_of_surface(model, model%contact%pairs(k)%master)
+         ipair(:, k) = [rs, rm, model%contact%pairs(k)%method, model%contact%pairs(k)%detection, &
+                        merge(1, 2, model%contact%pairs(k)%kind == 1), 0]
+         do e = 1, model%mesh%nelem
+            if (model%mesh%region(e) == rm .and. model%materials(model%mesh%mat(e))%kind == MAT_RIGID) &
+               ipair(6, k) = 1
+         end do
+      end do
+   end subroutine host_pairs
+
+   !> Region of a SURFace,id given as REGIon,r.
+   integer function region_of_surface(model, id) result(r)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: id
+      integer :: k
+      r = 0
+      do k = 1, size(model%contact%surfaces)
+         if (model%contact%surfaces(k)%id == id) r = model%contact%surfaces(k)%ref
+      end do
+   end function region_of_surface
+
+   ! ------------------------------------------------------------------ the installed hosts
+
+   !> Install exic into build/legacy_prefix and build lhost and chost against it.
+   subroutine build_hosts(s, built)
+      type(suite_t), intent(inout) :: s
+      logical, intent(out) :: built
+      integer :: stat, cstat
+      logical :: there
+      call execute_command_line('bash examples/legacy_host/build.sh '//prefix//' '//bindir// &
+                                ' > build/legacy_build.log 2>&1', exitstat=stat, cmdstat=cstat)
+      built = stat == 0 .and. cstat == 0
+      call check(s, built, 'fpm install and the host builds succeed (log: build/legacy_build.log)')
+      inquire (file=prefix//'/lib/libexic.a', exist=there)
+      call check(s, there, 'libexic.a is installed under '//prefix//'/lib')
+      inquire (file=prefix//'/include/exic_contact.h', exist=there)
+      call check(s, there, 'the C header is installed under '//prefix//'/include')
+      call execute_command_line('nm '//bindir//'/lhost | grep -q " [Tt] exic_contact_step_$"', exitstat=stat, &
+                                cmdstat=cstat)
+      call check(s, stat == 0 .and. cstat == 0, 'lhost links the plain F77 symbol exic_contact_step_')
+   end subroutine build_hosts
+
+   !> Write the host's input file for `model`: material kinds 1 (neo-Hookean) or 2 (linear) for
+   !> solids and 0 for rigid bodies, step dt (< 0: CFL factor), velocity form ivf.
+   subroutine write_host_input(path, model, solid_kind, dt, ivf)
+      character(len=*), intent(in) :: path
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: solid_kind, ivf
+      real(wp), intent(in) :: dt
+      integer :: u, i, e, k
+      integer, allocatable :: ipair(:, :)
+      real(wp), allocatable :: pp(:)
+      call host_pairs(model, ipair, pp)
+      open (newunit=u, file=path, status='replace', action='write')
+      write (u, '(a)') 'exic scene for lhost'
+      write (u, '(4(i0,1x))') model%mesh%nnode, model%mesh%nelem, size(model%materials), size(ipair, 2)
+      do i = 1, model%mesh%nnode
+         write (u, '(4es25.17,2(1x,i0))') model%mesh%x(:, i), model%mesh%v0(:, i), merge(1, 0, model%mesh%bc(:, i) /= 0)
+      end do
+      do e = 1, model%mesh%nelem
+         write (u, '(6(i0,1x))') model%mesh%conn(:, e), model%mesh%region(e), model%mesh%mat(e)
+      end do
+      do k = 1, size(model%materials)
+         associate (m => model%materials(k))
+            write (u, '(i0,3es25.17)') merge(0, solid_kind, m%kind == MAT_RIGID), m%young, m%poisson, m%rho
+         end associate
+      end do
+      do k = 1, size(ipair, 2)
+         write (u, '(6(i0,1x),es25.17)') ipair(:, k), pp(k)
+      end do
+      write (u, '(2es25.17,2(1x,i0))') dt, 3.0_wp*blen/sqrt(young/rho0), 1 + 3*31 + 30, ivf
+      close (u)
+   end subroutine write_host_input
+
+   !> Run lhost on run_dir/<name>.dat; rows(9, n) of its table, work and penetration lines.
+   subroutine run_host(name, rows, wcon, penmax, ok)
+      character(len=*), intent(in) :: name
+      real(wp), allocatable, intent(out) :: rows(:, :)
+      real(wp), intent(out) :: wcon, penmax
+      logical, intent(out) :: ok
+      integer :: stat, cstat, u, ios, n
+      character(len=512) :: line
+      real(wp) :: buf(9, 4000)
+      call execute_command_line(bindir//'/lhost < '//run_dir//'/'//name//'.dat > '//run_dir//'/'//name//'.lh', &
+                                exitstat=stat, cmdstat=cstat)
+      ok = stat == 0 .and. cstat == 0
+      wcon = 0.0_wp
+      penmax = huge(1.0_wp)
+      n = 0
+      open (newunit=u, file=run_dir//'/'//name//'.lh', status='old', action='read', iostat=ios)
+      if (ios /= 0) then
+         ok = .false.
+         allocate (rows(9, 0))
+         return
+      end if
+      do
+         read (u, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         if (line(1:1) == '#') then
+            if (index(line, '# CONTACT WORK') == 1) read (line(15:), *) wcon
+            if (index(line, '# LARGEST PENETRATION') == 1) read (line(22:), *) penmax
+            if (index(line, 'ERROR') > 0) ok = .false.
+            cycle
+         end if
+         if (n == size(buf, 2)) exit
+         n = n + 1
+         read (line, *) buf(:, n)
+      end do
+      close (u)
+      rows = buf(:, 1:n)
+   end subroutine run_host
+
+   !> Done-when 1: with exic's element formulation and step the F77 host's tip and contact
+   !> histories equal the deck run's to 1e-10 relative (they agree to round-off or better).
+   subroutine host_equal_test(s, name, model)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name
+      type(model_t), intent(in) :: model
+      real(wp), allocatable :: rows(:, :), e(:, :)
+      character(len=64), allocatable :: enames(:)
+      real(wp) :: wcon, penmax, wdeck
+      logical :: ok
+      call write_host_input(run_dir//'/'//name//'_nh.dat', model, 1, dt_fixed, 1)
+      call run_host(name//'_nh', rows, wcon, penmax, ok)
+      call check(s, ok, name//': lhost (neo-Hookean, fixed step) runs')
+      if (.not. ok) return
+      call compare_deck(s, name, rows(1:8, :), 'F77 host')
+      call read_table(run_dir//'/'//name//'.ene', enames, e)
+      wdeck = e(column(enames, 'contact_work'), size(e, 2))
+      ! the API sums the work over surface nodes from positions, the driver over all nodes from
+      ! increments: the same terms up to rounding, compared on the scale of the initial energy
+      call check_close(s, wcon, wdeck, 1.0e-10_wp*energy0, name//': contact work equals the deck''s')
+      call check(s, penmax < 1.0e-10_wp*blen, name//': largest penetration below 1e-10 L', rstr(penmax))
+   end subroutine host_equal_test
+
+   !> Compare rows(8, n) (t, tip u, v, a, pair 1 force, active, penetration, multiplier) with
+   !> the deck's history: same number of rows, every column within 1e-10 of its largest value.
+   subroutine compare_deck(s, name, rows, who)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name, who
+      real(wp), intent(in) :: rows(:, :)
+      real(wp), allocatable :: d(:, :)
+      character(len=64), allocatable :: names(:)
+      real(wp) :: worst, rel
+      integer :: j
+      call read_table(run_dir//'/'//name//'.his', names, d)
+      call check(s, size(d, 1) == 8 .and. size(d, 2) == size(rows, 2), name//': '//who//' has the deck''s '// &
+                 itoa(size(d, 2))//' rows', 'has '//itoa(size(rows, 2)))
+      if (size(d, 1) /= 8 .or. size(d, 2) /= size(rows, 2)) return
+      worst = 0.0_wp
+      do j = 1, 8
+         rel = maxval(abs(rows(j, :) - d(j, :)))/max(maxval(abs(d(j, :))), tiny(1.0_wp))
+         if (.not. (rel <= worst)) worst = rel
+      end do
+      call check(s, worst <= 1.0e-10_wp .and. maxval(d(6, :)) > 0.0_wp, name//': '//who// &
+                 ' history equals the deck''s to 1e-10 relative (largest '//rstr(worst)//')')
+   end subroutine compare_deck
+
+   !> Done-when 1, second half: the host's small-strain element with its own CFL step and
+   !> half-step velocities; every gap closes (corrected gaps and penetrations below 1e-10 L).
+   subroutine host_simple_test(s, name, model)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name
+      type(model_t), intent(in) :: model
+      real(wp), allocatable :: rows(:, :), dts(:)
+      real(wp) :: wcon, penmax
+      logical :: ok
+      integer :: n
+      call write_host_input(run_dir//'/'//name//'_lin.dat', model, 2, -0.8_wp, 2)
+      call run_host(name//'_lin', rows, wcon, penmax, ok)
+      n = size(rows, 2)
+      call check(s, ok .and. n > 10, name//': lhost (linear element, own CFL step, half-step velocities) runs')
+      if (.not. ok .or. n <= 10) return
+      dts = rows(1, 2:n) - rows(1, 1:n - 1)
+      call check(s, maxval(dts) > minval(dts)*(1.0_wp + 1.0e-9_wp), name//': the host''s step varies', &
+                 'dt from '//rstr(minval(dts))//' to '//rstr(maxval(dts)))
+      call check(s, count(rows(6, :) > 0.0_wp) > 10 .and. rows(6, n) == 0.0_wp, &
+                 name//': contact is made and released')
+      call check(s, maxval(rows(7, :)) < 1.0e-10_wp*blen .and. penmax < 1.0e-10_wp*blen, &
+                 name//': largest penetration at t(n+1) below 1e-10 L', rstr(max(maxval(rows(7, :)), penmax)))
+      call check(s, minval(rows(9, :)) > -1.0e-10_wp*blen, name//': every corrected gap at t(n+2) closed', &
+                 'smallest '//rstr(minval(rows(9, :))))
+      call check(s, abs(wcon) < 0.01_wp*energy0, name//': contact does next to no work (< 1 % of the energy)', rstr(wcon))
+   end subroutine host_simple_test
+
+   !> The C host: one step, the gap closes, an unknown handle gives a message.
+   subroutine c_host_test(s)
+      type(suite_t), intent(inout) :: s
+      integer :: stat, cstat
+      call execute_command_line(bindir//'/chost > '//run_dir//'/chost.txt 2>&1', exitstat=stat, cmdstat=cstat)
+      call check(s, stat == 0 .and. cstat == 0, 'chost: one step closes the gap, contact force = m a, '// &
+                 'unknown handle reported (output in '//run_dir//'/chost.txt)')
+   end subroutine c_host_test
+
+   function itoa(i) result(str)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: str
+      character(len=16) :: b
+      write (b, '(i0)') i
+      str = trim(b)
+   end function itoa
+
+   function rstr(x) result(str)
+      real(wp), intent(in) :: x
+      character(len=:), allocatable :: str
+      character(len=24) :: b
+      write (b, '(es12.5)') x
+      str = trim(adjustl(b))
+   end function rstr
+
+end module test_legacy
