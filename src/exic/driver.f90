@@ -441,7 +441,7 @@ contains
             case (REQ_CONT)
                r%values(k) = r%contact%pair_value(q%id, q%comp)
             case (REQ_MOME)
-               r%values(k) = region_momentum(r, model, q%id, q%comp)
+               r%values(k) = region_momentum(r, q%id, q%comp)
             end select
          end associate
       end do
@@ -457,16 +457,14 @@ contains
    end subroutine write_rows
 
    !> Linear momentum component `comp` of the nodes of region `region` (TPLOt `mome` [ext]).
-   real(wp) function region_momentum(r, model, region, comp) result(p)
+   real(wp) function region_momentum(r, region, comp) result(p)
       type(run_t), intent(in) :: r
-      type(model_t), intent(in) :: model
       integer, intent(in) :: region, comp
       integer :: i
       p = 0.0_wp
       do i = 1, r%st%nnode
          if (r%region_of_node(i) == region) p = p + r%st%mass(i)*r%st%v(comp, i)
       end do
-      if (.false.) p = p + size(model%program)
    end function region_momentum
 
    !> PRINt,ENERgy: a one-line energy balance on the console.
