@@ -43,7 +43,6 @@ module exic_driver
       integer :: dt_element = 0                 !< element that sets it
       real(wp) :: tmax = -1.0_wp                !< from the innermost TIME,,tmax seen
       integer :: his_inc = 0                    !< TPLOt interval (0: no histories)
-      integer :: ene_inc = 1
       integer :: print_inc = 0                  !< PRINt,ENERgy interval
       integer(i8) :: last_row_step = -1
       logical :: dt_warned = .false.
@@ -137,7 +136,6 @@ contains
                if (allocated(err)) return
             case ('tplo')
                r%his_inc = max(1, nint(c%v(1)))
-               r%ene_inc = r%his_inc
             case ('init')
                where (spread(c%given, 1, 2)) r%st%v = c%data
                where (r%st%minv == 0.0_wp .and. .not. spread(r%st%rigid, 1, 2)) r%st%v = 0.0_wp
