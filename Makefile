@@ -53,6 +53,13 @@ run: build
 test: setup
 	$(FPM) test
 
+# Benchmarks (doc/performance.md): release build, then every section of bench/run_bench.py
+# (about 10 minutes; BENCH_ONLY=rate,output runs a subset, BENCH_ARGS=--quick a smoke test).
+BENCH_ONLY ?= machine,rate,profile,output,contact,workprec,stability
+bench: setup
+	$(FPM) build $(RELEASE)
+	$(PYTHON) bench/run_bench.py --fpm $(FPM) --release '$(RELEASE)' --only $(BENCH_ONLY) $(BENCH_ARGS)
+
 install: setup
 	$(FPM) install $(RELEASE) --prefix $(or $(PREFIX),$(CURDIR)/dist)
 
