@@ -13,6 +13,7 @@ Sections (doc/performance.md explains each):
               dense/sparse crossover (exic-bench-corrector)
   workprec    work-precision of the 1-D bar on a rigid wall, Lagrange against penalty
   stability   CFL sweep, fixed DT around the limit, distorted meshes, contact
+  compare     (only when asked, with --baseline-bindir) two builds side by side
 
 Usage:
   run_bench.py --fpm .venv/bin/fpm --release '--profile release --flag "-O3 -march=native"'
@@ -27,6 +28,7 @@ import math
 import os
 import platform
 import re
+import resource
 import shlex
 import shutil
 import statistics
@@ -63,12 +65,14 @@ class Runner:
         for ext in (".his", ".ene", ".out", ".h5", ".xdmf"):
             if os.path.exists(os.path.join(WORK, name + ext)):
                 os.remove(os.path.join(WORK, name + ext))
+        c0 = child_cpu()
         t0 = time.perf_counter()
         p = subprocess.run(list(wrapper) + [self.exe, "-q", deck, "-o", WORK], capture_output=True,
                            text=True, timeout=timeout)
         wall = time.perf_counter() - t0
         res = parse_out(os.path.join(WORK, name + ".out"))
-        res.update(rc=p.returncode, stderr=p.stderr.strip(), process_wall=wall, stem=os.path.join(WORK, name))
+        res.update(rc=p.returncode, stderr=p.stderr.strip(), process_wall=wall, cpu=child_cpu() - c0,
+                   stem=os.path.join(WORK, name))
         return res
 
     def tool(self, name, args=(), timeout=900):
@@ -80,6 +84,12 @@ class Runner:
 
 
 NUM = r"([-+]?\d+\.?\d*(?:[eE][-+]?\d+)?)"
+
+
+def child_cpu():
+    """Processor time (user + system) of the finished child processes so far."""
+    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return ru.ru_utime + ru.ru_stime
 
 
 def parse_out(path):
@@ -193,45 +203,86 @@ def machine(args, run):
 
 
 def rate(args, run):
-    """Whole-step rate from deck runs (2x2 and 1-point alternated) and the kernel-only rate."""
+    """Whole-step rate from deck runs and the kernel-only rate, alternated in every repetition.
+
+    Per core: the processor time of the exic process, from two run lengths (n1 and n2 steps)
+    so that set-up and closing cancel: nel (n2 - n1) / (cpu(n2) - cpu(n1)). Wall-time rates
+    (<stem>.out, time in steps) are kept beside them; on a loaded machine they are lower."""
     nrep = 3 if args.quick else 7
-    steps = 600 if args.quick else 1500
+    n1, n2 = (150, 600) if args.quick else (300, 1500)
+    kern_steps = 300 if args.quick else 600
     res = {"mesh": "120 x 24 (2880 elements), bar 30 x 6 clamped at x = 0, transverse velocity 5",
-           "steps": steps, "repetitions": nrep, "history_interval": 100, "runs": {"2x2": [], "1pt": []}}
+           "steps": [n1, n2], "repetitions": nrep, "history_interval": 100,
+           "runs": {"2x2": [], "1pt": []}, "kernel_runs": []}
     for rep in range(nrep):
         for q, key in ((2, "2x2"), (1, "1pt")):
-            r = run.run(f"rate_q{q}", decks.cantilever(120, 24, quad=q, steps=steps))
-            if r["rc"] != 0:
-                raise RuntimeError(f"rate run failed: {r['stderr']}")
-            res["runs"][key].append({k: r[k] for k in ("elem_steps_per_s", "time_steps", "time_forces", "wall")})
+            r1 = run.run(f"rate_q{q}_short", decks.cantilever(120, 24, quad=q, steps=n1))
+            r2 = run.run(f"rate_q{q}", decks.cantilever(120, 24, quad=q, steps=n2))
+            for r in (r1, r2):
+                if r["rc"] != 0:
+                    raise RuntimeError(f"rate run failed: {r['stderr']}")
+            nel = r2["elements"]
+            res["runs"][key].append({
+                "cpu_rate": nel*(r2["steps"] - r1["steps"])/(r2["cpu"] - r1["cpu"]),
+                "wall_rate": r2["elem_steps_per_s"], "cpu_long": r2["cpu"], "cpu_short": r1["cpu"],
+                "time_steps": r2["time_steps"], "time_forces": r2["time_forces"], "wall": r2["wall"]})
+        out = run.tool("exic-bench-element", [kern_steps])
+        k = {}
+        for line in out.splitlines():
+            m = re.match(r"(q4_\w+)( cpu)?:\s+" + NUM, line)
+            if m:
+                k[m.group(1) + ("_cpu" if m.group(2) else "_wall")] = float(m.group(3))*1e6
+        res["kernel_runs"].append(k)
     for key in ("2x2", "1pt"):
         runs = res["runs"][key]
         res[key] = {
-            "elem_steps_per_s": spread([x["elem_steps_per_s"] for x in runs]),
+            "cpu_rate": spread([x["cpu_rate"] for x in runs]),
+            "wall_rate": spread([x["wall_rate"] for x in runs]),
             "forces_share": median([x["time_forces"]/x["time_steps"] for x in runs]),
         }
-    # kernel-only rate
-    kern = {"q4_force_2x2": [], "q4_force_1pt": [], "q4_stable_dt": []}
-    for rep in range(1 if args.quick else 3):
-        out = run.tool("exic-bench-element", [1000 if args.quick else 2000])
-        for line in out.splitlines():
-            m = re.match(r"(q4_\w+):\s+" + NUM, line)
-            if m:
-                kern[m.group(1)].append(float(m.group(2))*1e6)
-    res["kernel"] = {k: median(v) for k, v in kern.items()}
-    res["kernel"]["runs"] = kern
+    kern = {name: median([k[name] for k in res["kernel_runs"]]) for name in res["kernel_runs"][0]}
     for q, f in (("2x2", "q4_force_2x2"), ("1pt", "q4_force_1pt")):
-        # what a step of force + stable step alone would give
-        res["kernel"][f"{q}_with_stable_dt"] = 1.0/(1.0/res["kernel"][f] + 1.0/res["kernel"]["q4_stable_dt"])
+        for clock in ("cpu", "wall"):
+            # what a step of force + stable step alone would give
+            kern[f"{q}_with_stable_dt_{clock}"] = 1.0/(1.0/kern[f"{f}_{clock}"] + 1.0/kern[f"q4_stable_dt_{clock}"])
+    res["kernel"] = kern
     save("rate", res)
     for key in ("2x2", "1pt"):
-        log(f"rate {key}: {res[key]['elem_steps_per_s']['median']/1e6:.2f} M element-steps/s (whole step), "
-            f"kernel {res['kernel']['q4_force_' + key]/1e6:.2f} M")
+        log(f"rate {key}: {res[key]['cpu_rate']['median']/1e6:.2f} M element-steps per cpu-second (whole step), "
+            f"kernel {kern['q4_force_' + key + '_cpu']/1e6:.2f} M; wall {res[key]['wall_rate']['median']/1e6:.2f} M")
+    return res
+
+
+def compare(args, run):
+    """Two builds side by side (--baseline-bindir against --bindir), alternated, same decks:
+    whole-step rate per processor-second as in `rate`, and whether the energies agree."""
+    base = Runner(os.path.abspath(args.baseline_bindir))
+    nrep = 3 if args.quick else 7
+    n1, n2 = (150, 600) if args.quick else (300, 1500)
+    res = {"baseline": base.bindir, "current": run.bindir, "steps": [n1, n2], "repetitions": nrep}
+    for q, key in ((2, "2x2"), (1, "1pt")):
+        rates = {"baseline": [], "current": []}
+        same = True
+        for rep in range(nrep):
+            ene = {}
+            for who, rr in (("baseline", base), ("current", run)):
+                r1 = rr.run(f"cmp_{who}_short", decks.cantilever(120, 24, quad=q, steps=n1))
+                r2 = rr.run(f"cmp_{who}", decks.cantilever(120, 24, quad=q, steps=n2))
+                rates[who].append(r2["elements"]*(r2["steps"] - r1["steps"])/(r2["cpu"] - r1["cpu"]))
+                ene[who] = open(r2["stem"] + ".ene").read()
+            same = same and ene["baseline"] == ene["current"]
+        res[key] = {"baseline": spread(rates["baseline"]), "current": spread(rates["current"]),
+                    "speedup": spread([c/b for c, b in zip(rates["current"], rates["baseline"])]),
+                    "identical_energy_files": same}
+        log(f"compare {key}: baseline {res[key]['baseline']['median']/1e6:.2f} M, current "
+            f"{res[key]['current']['median']/1e6:.2f} M, speed-up x{res[key]['speedup']['median']:.3f}, "
+            f"identical .ene: {same}")
+    save("compare", res)
     return res
 
 
 PARTS = {
-    "element loop (forces, 2x2)": [r"exic_explicit_solver_MOD_solver_forces"],
+    "element loop (forces)": [r"exic_explicit_solver_MOD_solver_forces"],
     "stable step": [r"exic_explicit_solver_MOD_solver_stable_dt"],
     "update (displacement, predictor, velocity)": [r"MOD_cd_displacement", r"MOD_cd_predictor",
                                                    r"MOD_cd_velocity"],
@@ -288,6 +339,8 @@ def profile(args, run, bindir_profile):
     dt_72 = 0.9*run.run("profile_probe", decks.bar_on_bar(4, tmax=1e-9))["dt_stable0"]
     cases = {
         "bar 120 x 24, 2x2, histories every 100 steps": lambda n: decks.cantilever(120, 24, 2, steps=n, tplot=100),
+        "bar 120 x 24, 1-point, histories every 100 steps": lambda n: decks.cantilever(120, 24, 1, steps=n,
+                                                                                        tplot=100),
         "bar 120 x 24, 2x2, histories every step": lambda n: decks.cantilever(120, 24, 2, steps=n, tplot=1),
         "bar 120 x 24, 2x2, HDF5 fields every 10 steps": lambda n: decks.cantilever(
             120, 24, 2, steps=n, tplot=100, hdf5=10*dt_bar),
@@ -333,6 +386,7 @@ def output(args, run):
         "histories_every_step": decks.cantilever(120, 24, 2, steps=steps, tplot=1),
     }
     runs = {k: [] for k in variants}
+    cpus = {k: [] for k in variants}
     nout = {}
     for rep in range(nrep):
         for k, text in variants.items():
@@ -340,18 +394,22 @@ def output(args, run):
             if r["rc"] != 0:
                 raise RuntimeError(f"output run {k} failed: {r['stderr']}")
             runs[k].append(r["wall"])
+            cpus[k].append(r["cpu"])
             if k.startswith("hdf5"):
                 nout[k] = count_field_outputs(r["stem"])
     res = {"steps": steps, "repetitions": nrep, "dt": dt, "field_outputs": nout,
            "measure": "wall time of the run in <stem>.out (set-up, steps, output, closing)",
-           "wall": {k: spread(v) for k, v in runs.items()}, "ratio": {}}
+           "wall": {k: spread(v) for k, v in runs.items()}, "cpu": {k: spread(v) for k, v in cpus.items()},
+           "ratio": {}, "ratio_cpu": {}}
     for k in variants:
         if k != "base":
             res["ratio"][k] = spread([a/b for a, b in zip(runs[k], runs["base"])])
+            res["ratio_cpu"][k] = spread([a/b for a, b in zip(cpus[k], cpus["base"])])
     h5 = os.path.join(WORK, "output_hdf5_every_100.h5")
     res["h5_bytes_every_100"] = os.path.getsize(h5) if os.path.exists(h5) else None
     save("output", res)
-    log("output: " + ", ".join(f"{k} x{v['median']:.3f}" for k, v in res["ratio"].items()))
+    log("output: " + ", ".join(f"{k} x{v['median']:.3f} (cpu x{res['ratio_cpu'][k]['median']:.3f})"
+                               for k, v in res["ratio"].items()))
     return res
 
 
@@ -510,6 +568,7 @@ def workprec(args, run):
             rows.append({
                 "nx": nx, "elements": rs[0]["elements"], "steps": rs[0]["steps"],
                 "wall_s": median([x["wall"] for x in rs]), "steps_s": median([x["time_steps"] for x in rs]),
+                "cpu_s": median([x["cpu"] for x in rs]),
                 "impulse_err": impulse/(fexact*texact) - 1.0,
                 "momentum_impulse_err": (mass*v0 - p_end)/(2.0*mass*v0) - 1.0,
                 "force_err": fmean/fexact - 1.0, "duration_err": duration/texact - 1.0,
@@ -606,7 +665,7 @@ def plot_workprec(res):
         ls = "-" if label == "Lagrange" else "--"
         for ax, (key, title) in zip(axes, measures):
             x = [max(abs(r[key]), 1e-17) for r in rows]
-            y = [r["wall_s"] for r in rows]
+            y = [r["cpu_s"] for r in rows]
             ax.loglog(x, y, ls, color=col, label=label)
             for r, xx, yy in zip(rows, x, y):
                 bad = r["max_energy_gain"] > 0.01
@@ -614,7 +673,7 @@ def plot_workprec(res):
                 ax.annotate(str(r["nx"]), (xx, yy), textcoords="offset points", xytext=(4, 3), fontsize=7)
     for ax, (key, title) in zip(axes, measures):
         ax.set_xlabel(title)
-        ax.set_ylabel("run time [s]")
+        ax.set_ylabel("run time [processor s]")
         ax.grid(True, which="both", alpha=0.3)
     axes[0].legend(fontsize=8)
     fig.suptitle("Bar on a rigid wall (1-D exact answer): run time against error; labels: elements along the bar; "
@@ -666,14 +725,30 @@ def summary():
               f"commit {m['commit']}; {m['date']}", ""]
     r = load("rate")
     if r:
+        k = r["kernel"]
         L += ["## Step rate (120 x 24 bar, no contact)", "",
-              "| quadrature | whole step, M element-steps/s (median, range) | kernel only | kernel + stable step |",
-              "|---|---|---|---|"]
+              f"{r['repetitions']} repetitions, deck runs and exic-bench-element alternated; per core = per "
+              f"processor-second of the exic process, from runs of {r['steps'][1]} and {r['steps'][0]} steps "
+              "(difference, so set-up cancels); wall = <stem>.out 'element-steps per second'.", "",
+              "| quadrature | whole step per core, M element-steps/s (median, range) | whole step, wall | "
+              "kernel only (cpu / wall) | kernel + stable step (cpu) |", "|---|---|---|---|---|"]
         for q, f in (("2x2", "q4_force_2x2"), ("1pt", "q4_force_1pt")):
-            e = r[q]["elem_steps_per_s"]
-            L.append(f"| {q} | {e['median']/1e6:.2f} ({e['min']/1e6:.2f} - {e['max']/1e6:.2f}), {e['n']} runs "
-                     f"| {r['kernel'][f]/1e6:.2f} | {r['kernel'][q + '_with_stable_dt']/1e6:.2f} |")
-        L += [f"\nq4_stable_dt alone: {r['kernel']['q4_stable_dt']/1e6:.1f} M element-steps/s", ""]
+            e, w = r[q]["cpu_rate"], r[q]["wall_rate"]
+            L.append(f"| {q} | {e['median']/1e6:.2f} ({e['min']/1e6:.2f} - {e['max']/1e6:.2f}) | "
+                     f"{w['median']/1e6:.2f} ({w['min']/1e6:.2f} - {w['max']/1e6:.2f}) | "
+                     f"{k[f + '_cpu']/1e6:.2f} / {k[f + '_wall']/1e6:.2f} | {k[q + '_with_stable_dt_cpu']/1e6:.2f} |")
+        L += ["", f"q4_stable_dt alone: {k['q4_stable_dt_cpu']/1e6:.1f} M element-steps per processor-second", ""]
+    cm = load("compare")
+    if cm:
+        L += ["## Two builds side by side (section compare)", "", f"baseline {cm['baseline']}, current {cm['current']}",
+              "", "| quadrature | baseline | current | speed-up (median of pairs, range) | identical .ene |",
+              "|---|---|---|---|---|"]
+        for q in ("2x2", "1pt"):
+            v = cm[q]
+            L.append(f"| {q} | {v['baseline']['median']/1e6:.2f} | {v['current']['median']/1e6:.2f} | "
+                     f"{v['speedup']['median']:.3f} ({v['speedup']['min']:.3f} - {v['speedup']['max']:.3f}) | "
+                     f"{v['identical_energy_files']} |")
+        L.append("")
     p = load("profile")
     if p:
         L += ["## Profile of a step (callgrind, instructions per step)", "", p["method"], ""]
@@ -684,12 +759,17 @@ def summary():
             L.append("")
     o = load("output")
     if o:
-        L += ["## Output cost", "", f"{o['steps']} steps, {o['repetitions']} alternated runs; {o['measure']}", "",
-              "| variant | wall time median [s] | ratio to no output (median of pairs, range) |", "|---|---|---|",
-              f"| no field output, histories every 100 steps | {o['wall']['base']['median']:.3f} | 1 |"]
+        L += ["## Output cost", "", f"{o['steps']} steps, {o['repetitions']} alternated runs; {o['measure']}; "
+              "cpu: processor time of the process", "",
+              "| variant | wall [s] | ratio (wall, median of pairs, range) | cpu [s] | ratio (cpu) |",
+              "|---|---|---|---|---|",
+              f"| no field output, histories every 100 steps | {o['wall']['base']['median']:.3f} | 1 | "
+              f"{o['cpu']['base']['median']:.3f} | 1 |"]
         for k, v in o["ratio"].items():
+            vc = o["ratio_cpu"][k]
             L.append(f"| {k} ({o['field_outputs'].get(k, '-')} field outputs) | {o['wall'][k]['median']:.3f} | "
-                     f"{v['median']:.3f} ({v['min']:.3f} - {v['max']:.3f}) |")
+                     f"{v['median']:.3f} ({v['min']:.3f} - {v['max']:.3f}) | {o['cpu'][k]['median']:.3f} | "
+                     f"{vc['median']:.3f} ({vc['min']:.3f} - {vc['max']:.3f}) |")
         L.append("")
     c = load("contact")
     if c:
@@ -726,11 +806,11 @@ def summary():
     w = load("workprec")
     if w:
         L += ["## Work-precision (bar on a rigid wall)", "", w["problem"], "",
-              "| method | nx | steps | run [s] | impulse err | duration err | mean force err | largest penetration / L "
+              "| method | nx | steps | run [cpu s] | impulse err | duration err | mean force err | largest penetration / L "
               "| largest energy gain |", "|---|---|---|---|---|---|---|---|---|"]
         for label, rows in w["methods"].items():
             for v in rows:
-                L.append(f"| {label} | {v['nx']} | {v['steps']} | {v['wall_s']:.3f} | {v['impulse_err']:+.2e} | "
+                L.append(f"| {label} | {v['nx']} | {v['steps']} | {v.get('cpu_s', v['wall_s']):.3f} | {v['impulse_err']:+.2e} | "
                          f"{v['duration_err']:+.2e} | {v['force_err']:+.2e} | {v['penetration_over_L']:.1e} | "
                          f"{v['max_energy_gain']:+.1e} |")
         L.append("")
@@ -770,6 +850,7 @@ def main(argv=None):
     ap.add_argument("--bindir", help="directory with exic, exic-bench-element, exic-bench-corrector")
     ap.add_argument("--profile-bindir", help="directory of a -g build for callgrind (built with --fpm if absent)")
     ap.add_argument("--only", default=",".join(SECTIONS), help="comma-separated sections")
+    ap.add_argument("--baseline-bindir", help="section 'compare': an older build to compare with --bindir")
     ap.add_argument("--quick", action="store_true", help="fewer repetitions and smaller runs (a smoke test)")
     args = ap.parse_args(argv)
     args.profile_flags = None
@@ -811,6 +892,8 @@ def main(argv=None):
             workprec(args, run)
         elif sec == "stability":
             stability(args, run)
+        elif sec == "compare":
+            compare(args, run)
         else:
             ap.error("unknown section " + sec)
         log(f"-- {sec}: {time.time() - t1:.0f} s")
