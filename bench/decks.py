@@ -122,13 +122,14 @@ def striking_strips(nx=100, ny=16, v0=1.0, tmax=None, tplot=0):
 WALL_E, WALL_RHO, WALL_V0, WALL_L, WALL_H = 1.0e4, 0.1, 0.1, 30.0, 4.0
 
 
-def bar_on_wall(nx, method="LAGRange", tplot=1):
+def bar_on_wall(nx, method="LAGRange", tplot=1, tmax=None):
     """Bar L x H = 30 x 4 (nx x nx/5 elements), E = 1e4, nu = 0, rho = 0.1, moving at v0 = 0.1
-    onto a fixed rigid wall it touches at t = 0; runs to 3 L/c. `method` is the pair's method
-    record (LAGRange or PENAlty,k)."""
+    onto a fixed rigid wall it touches at t = 0; runs to 3 L/c (default). `method` is the pair's
+    method record (LAGRange or PENAlty,k)."""
     ny = max(1, nx//5)
     c = math.sqrt(WALL_E/WALL_RHO)
-    tmax = 3.0*WALL_L/c
+    if tmax is None:
+        tmax = 3.0*WALL_L/c
     L, H = WALL_L, WALL_H
     return ("FEAP * * bar on a rigid wall\n0 0 0 2 2 4\n"
             + _material(1, young=repr(WALL_E), nu="0", rho=repr(WALL_RHO))

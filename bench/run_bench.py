@@ -337,6 +337,8 @@ def profile(args, run, bindir_profile):
     n1, n2 = (50, 150) if args.quick else (100, 300)
     dt_bar = 0.9*run.run("profile_probe", decks.cantilever(120, 24, 2, steps=1))["dt_stable0"]
     dt_72 = 0.9*run.run("profile_probe", decks.bar_on_bar(4, tmax=1e-9))["dt_stable0"]
+    dt_71 = 0.9*run.run("profile_probe", decks.bar_on_bar(1, tmax=1e-9))["dt_stable0"]
+    dt_s = 0.9*run.run("profile_probe", decks.striking_strips(256, tmax=1e-9))["dt_stable0"]
     cases = {
         "bar 120 x 24, 2x2, histories every 100 steps": lambda n: decks.cantilever(120, 24, 2, steps=n, tplot=100),
         "bar 120 x 24, 1-point, histories every 100 steps": lambda n: decks.cantilever(120, 24, 1, steps=n,
@@ -344,8 +346,13 @@ def profile(args, run, bindir_profile):
         "bar 120 x 24, 2x2, histories every step": lambda n: decks.cantilever(120, 24, 2, steps=n, tplot=1),
         "bar 120 x 24, 2x2, HDF5 fields every 10 steps": lambda n: decks.cantilever(
             120, 24, 2, steps=n, tplot=100, hdf5=10*dt_bar),
+        "seed 7.2 scene (360 elements), SYMMetric": lambda n: decks.bar_on_bar(1, tmax=n*dt_71/3, tplot=100),
+        "seed 7.2 scene (360 elements), NTOS": lambda n: decks.bar_on_bar(1, tmax=n*dt_71/3, tplot=100,
+                                                                          pair="NTOS"),
         "seed 7.2 scene refined 4 times (5760 elements), SYMMetric": lambda n: decks.bar_on_bar(
             4, tmax=n*dt_72, tplot=100),
+        "two strips, 256 elements along the contact line (8208 elements)": lambda n: decks.striking_strips(
+            256, tmax=n*dt_s/7),
     }
     res = {"method": f"callgrind instruction counts (inclusive), run of {n2} steps minus run of {n1} steps; "
                      "profile build " + (args.profile_flags or ""), "cases": {}}
@@ -447,7 +454,7 @@ def contact(args, run):
     # the 7.2 scene refined k times
     scaled = []
     for k in ([1, 2, 4] if quick else [1, 2, 4, 8]):
-        reps = 1 if k >= 4 else 3
+        reps = 1 if quick or k >= 8 else 3
         rs = [run.run(f"ex72_x{k}", decks.bar_on_bar(k, tmax=0.1, pair="SYMMetric", tplot=1)) for _ in range(reps)]
         ene = read_table(rs[0]["stem"] + ".ene")
         scaled.append(phase_row(rs, {"k": k, "max_active": max(ene["active"]),
@@ -457,7 +464,7 @@ def contact(args, run):
     # a long contact line: two strips meeting, nx elements along it
     strips = []
     for nx in ([8, 32, 128, 512] if quick else [4, 8, 16, 24, 32, 48, 64, 128, 256, 512, 1024, 2048]):
-        reps = 1 if nx >= 1024 else 3
+        reps = 1 if quick or nx >= 1024 else 5
         rs = [run.run(f"strips_{nx}", decks.striking_strips(nx, tplot=1)) for _ in range(reps)]
         if rs[0]["rc"] != 0:
             raise RuntimeError(f"strips run failed: {rs[0]['stderr']}")
@@ -549,17 +556,21 @@ def workprec(args, run):
                "penalty k = 1e5": "PENAlty,1e5"}
     nrep = 1 if args.quick else 3
     res = {"exact": {"force": fexact, "duration": texact, "impulse": fexact*texact},
+           "time": "processor time of the run minus that of the same deck stopped after one tiny step "
+                   "(start-up, set-up and closing), median of repeated runs",
            "problem": "bar 30 x 4 (nx x nx/5 elements), E = 1e4, nu = 0, rho = 0.1, v0 = 0.1, rigid wall, "
                       "to t = 3L/c, DT,CFL,0.9", "methods": {}}
     for label, method in methods.items():
         rows = []
         for nx in meshes:
-            rs = []
+            rs, setup = [], []
             for rep in range(nrep):
                 r = run.run(f"wall_{nx}_{method.replace(',', '_')}", decks.bar_on_wall(nx, method))
                 if r["rc"] != 0:
                     raise RuntimeError(f"wall run failed: {r['stderr']}")
                 rs.append(r)
+                # the same deck for one tiny step: start-up, set-up and closing, to subtract
+                setup.append(run.run("wall_setup", decks.bar_on_wall(nx, method, tmax=1e-9))["cpu"])
             his = read_table(rs[0]["stem"] + ".his")
             ene = read_table(rs[0]["stem"] + ".ene")
             t, f = his["t"], his["cont(p1,1)"]
@@ -568,7 +579,8 @@ def workprec(args, run):
             rows.append({
                 "nx": nx, "elements": rs[0]["elements"], "steps": rs[0]["steps"],
                 "wall_s": median([x["wall"] for x in rs]), "steps_s": median([x["time_steps"] for x in rs]),
-                "cpu_s": median([x["cpu"] for x in rs]),
+                "cpu_s": median([x["cpu"] for x in rs]), "cpu_setup_s": median(setup),
+                "cpu_steps_s": max(median([x["cpu"] for x in rs]) - median(setup), 1e-6),
                 "impulse_err": impulse/(fexact*texact) - 1.0,
                 "momentum_impulse_err": (mass*v0 - p_end)/(2.0*mass*v0) - 1.0,
                 "force_err": fmean/fexact - 1.0, "duration_err": duration/texact - 1.0,
@@ -665,7 +677,7 @@ def plot_workprec(res):
         ls = "-" if label == "Lagrange" else "--"
         for ax, (key, title) in zip(axes, measures):
             x = [max(abs(r[key]), 1e-17) for r in rows]
-            y = [r["cpu_s"] for r in rows]
+            y = [r["cpu_steps_s"] for r in rows]
             ax.loglog(x, y, ls, color=col, label=label)
             for r, xx, yy in zip(rows, x, y):
                 bad = r["max_energy_gain"] > 0.01
@@ -673,7 +685,7 @@ def plot_workprec(res):
                 ax.annotate(str(r["nx"]), (xx, yy), textcoords="offset points", xytext=(4, 3), fontsize=7)
     for ax, (key, title) in zip(axes, measures):
         ax.set_xlabel(title)
-        ax.set_ylabel("run time [processor s]")
+        ax.set_ylabel("time of the steps [processor s]")
         ax.grid(True, which="both", alpha=0.3)
     axes[0].legend(fontsize=8)
     fig.suptitle("Bar on a rigid wall (1-D exact answer): run time against error; labels: elements along the bar; "
@@ -693,7 +705,7 @@ def plot_contact(out):
     ax.loglog(n, [r["search_us"] for r in s], "o-", label="contact search")
     ax.loglog(n, [r["corrector_us"] for r in s], "s-", label="contact corrector")
     ax.loglog(n, [r["elements_us"] for r in s], "^-", label="elements and stable step")
-    ax.set_xlabel("active constraints per step (two strips, 32 elements per unit of contact line)")
+    ax.set_xlabel("active constraints per step (two strips, 32 elements per element of the contact line)")
     ax.set_ylabel("wall time per step [us]")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
@@ -722,7 +734,12 @@ def summary():
               f"load average at start {m['load_average']}",
               f"- compiler: {m['compiler']}; flags: `{m['flags']}`",
               f"- OpenBLAS {m['openblas']}, SuiteSparse LDL {m['suitesparse']}, HDF5 {m['hdf5']}; "
-              f"commit {m['commit']}; {m['date']}", ""]
+              f"commit {m['commit']}; {m['date']}"]
+        ld = load("loads")
+        if ld:
+            L.append("- load average (1 min) at the start of each section: "
+                     + ", ".join(f"{k} {v:.2f}" for k, v in ld.items() if v is not None))
+        L.append("")
     r = load("rate")
     if r:
         k = r["kernel"]
@@ -787,7 +804,7 @@ def summary():
             L.append(f"| {v['k']} | {v['elements']} | {v['steps']} | {v['step_us']:.0f} | {v['elements_us']:.0f} | "
                      f"{v['search_us']:.0f} | {v['corrector_us']:.0f} | {100*v['share_search']:.1f} % | "
                      f"{100*v['share_corrector']:.1f} % | {v['max_active']:.0f} |")
-        L += ["", "Two strips meeting along a line of nx elements (32 nx elements, whole line active):", "",
+        L += ["", "Two strips meeting along a line of nx elements (about 32 nx elements, the whole line active):", "",
               "| nx | elements | mean active | step [us] | search [us] | corrector [us] | search share | "
               "corrector share | sparse analyses / factorizations |", "|---|---|---|---|---|---|---|---|---|"]
         for v in c["strips"]:
@@ -806,11 +823,11 @@ def summary():
     w = load("workprec")
     if w:
         L += ["## Work-precision (bar on a rigid wall)", "", w["problem"], "",
-              "| method | nx | steps | run [cpu s] | impulse err | duration err | mean force err | largest penetration / L "
+              "| method | nx | steps | steps [cpu s] | impulse err | duration err | mean force err | largest penetration / L "
               "| largest energy gain |", "|---|---|---|---|---|---|---|---|---|"]
         for label, rows in w["methods"].items():
             for v in rows:
-                L.append(f"| {label} | {v['nx']} | {v['steps']} | {v.get('cpu_s', v['wall_s']):.3f} | {v['impulse_err']:+.2e} | "
+                L.append(f"| {label} | {v['nx']} | {v['steps']} | {v.get('cpu_steps_s', v['wall_s']):.4f} | {v['impulse_err']:+.2e} | "
                          f"{v['duration_err']:+.2e} | {v['force_err']:+.2e} | {v['penetration_over_L']:.1e} | "
                          f"{v['max_energy_gain']:+.1e} |")
         L.append("")
@@ -876,8 +893,10 @@ def main(argv=None):
         prof_bindir = fpm_bindir(args.fpm, prof)
     run = Runner(bindir, args.quick)
     t0 = time.time()
+    loads = {}
     for sec in only:
         t1 = time.time()
+        loads[sec] = os.getloadavg()[0] if hasattr(os, "getloadavg") else None
         if sec == "machine":
             machine(args, run)
         elif sec == "rate":
@@ -896,7 +915,8 @@ def main(argv=None):
             compare(args, run)
         else:
             ap.error("unknown section " + sec)
-        log(f"-- {sec}: {time.time() - t1:.0f} s")
+        log(f"-- {sec}: {time.time() - t1:.0f} s (load average at its start {loads[sec]})")
+    save("loads", loads)
     summary()
     log(f"bench: done in {time.time() - t0:.0f} s; results in {os.path.relpath(RESULTS, ROOT)}/, "
         "figures doc/perf_*.png")
