@@ -50,6 +50,14 @@ SECTIONS = ["machine", "rate", "profile", "output", "contact", "workprec", "stab
 # ---------------------------------------------------------------------------------------------
 # running exic
 # ---------------------------------------------------------------------------------------------
+# exic is single-threaded and calls LAPACK only for small dense systems; an OpenBLAS thread
+# pool costs about 0.1 s of processor time per process at start-up (spinning threads), which
+# would blur processor-time measurements. The benchmarks run with one BLAS thread unless the
+# caller chose otherwise.
+ENV = dict(os.environ)
+ENV.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+
 class Runner:
     def __init__(self, bindir, quick=False):
         self.bindir = bindir
@@ -68,7 +76,7 @@ class Runner:
         c0 = child_cpu()
         t0 = time.perf_counter()
         p = subprocess.run(list(wrapper) + [self.exe, "-q", deck, "-o", WORK], capture_output=True,
-                           text=True, timeout=timeout)
+                           text=True, timeout=timeout, env=ENV)
         wall = time.perf_counter() - t0
         res = parse_out(os.path.join(WORK, name + ".out"))
         res.update(rc=p.returncode, stderr=p.stderr.strip(), process_wall=wall, cpu=child_cpu() - c0,
@@ -77,7 +85,7 @@ class Runner:
 
     def tool(self, name, args=(), timeout=900):
         p = subprocess.run([os.path.join(self.bindir, name)] + [str(a) for a in args], capture_output=True,
-                           text=True, timeout=timeout)
+                           text=True, timeout=timeout, env=ENV)
         if p.returncode != 0:
             raise RuntimeError(f"{name} failed: {p.stdout}\n{p.stderr}")
         return p.stdout
@@ -190,8 +198,9 @@ def machine(args, run):
         "flags": args.release or "(binaries given with --bindir)",
         "openblas": sh("dpkg-query -W -f='${Version}' libopenblas0-pthread 2>/dev/null || "
                        "dpkg-query -W -f='${Version}' libopenblas0 2>/dev/null"),
-        "suitesparse": sh("dpkg-query -W -f='${Version}' libldl3 2>/dev/null"),
+        "suitesparse": sh("dpkg-query -W -f='${Version}' libsuitesparse-dev 2>/dev/null"),
         "hdf5": sh("dpkg-query -W -f='${Version}' libhdf5-dev 2>/dev/null"),
+        "openblas_num_threads": ENV.get("OPENBLAS_NUM_THREADS"),
         "commit": sh(f"git -C {ROOT} rev-parse --short HEAD") + ("" if not sh(f"git -C {ROOT} status --porcelain -- src app")
                                                               else " (modified)"),
         "load_average": os.getloadavg() if hasattr(os, "getloadavg") else None,
@@ -733,7 +742,8 @@ def summary():
         L += [f"- machine: {m['cpu']}, {m['cores']} cores, {m['threads_per_core']} thread(s) per core, "
               f"load average at start {m['load_average']}",
               f"- compiler: {m['compiler']}; flags: `{m['flags']}`",
-              f"- OpenBLAS {m['openblas']}, SuiteSparse LDL {m['suitesparse']}, HDF5 {m['hdf5']}; "
+              f"- OpenBLAS {m['openblas']} (OPENBLAS_NUM_THREADS={m.get('openblas_num_threads')}), "
+              f"SuiteSparse LDL {m['suitesparse']}, HDF5 {m['hdf5']}; "
               f"commit {m['commit']}; {m['date']}"]
         ld = load("loads")
         if ld:
