@@ -54,7 +54,8 @@ test: setup
 	$(FPM) test
 
 # Benchmarks (doc/performance.md): release build, then every section of bench/run_bench.py
-# (about 10 minutes; BENCH_ONLY=rate,output runs a subset, BENCH_ARGS=--quick a smoke test).
+# (about 6 minutes after the build; BENCH_ONLY=rate,output runs a subset, BENCH_ARGS=--quick
+# a 2-minute smoke test). Results: bench/results/, figures: doc/perf_*.png.
 BENCH_ONLY ?= machine,rate,profile,output,contact,workprec,stability
 bench: setup
 	$(FPM) build $(RELEASE)

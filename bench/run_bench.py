@@ -903,7 +903,7 @@ def main(argv=None):
         prof_bindir = fpm_bindir(args.fpm, prof)
     run = Runner(bindir, args.quick)
     t0 = time.time()
-    loads = {}
+    loads = load("loads") or {}
     for sec in only:
         t1 = time.time()
         loads[sec] = os.getloadavg()[0] if hasattr(os, "getloadavg") else None
