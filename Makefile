@@ -69,6 +69,14 @@ plots: build
 	@if [ -z "$(DECK)" ]; then echo "usage: make plots DECK=path/to/deck.inp [OUTDIR=out]"; exit 2; fi
 	$(PYTHON) tools/plots.py "$(DECK)" -o "$(OUTDIR)" --exic "$(EXIC)"
 
+# Benchmarks (doc/performance.md): release build, then every section of bench/run_bench.py
+# (about 6 minutes after the build; BENCH_ONLY=rate,output runs a subset, BENCH_ARGS=--quick
+# a 2-minute smoke test). Results: bench/results/, figures: doc/perf_*.png.
+BENCH_ONLY ?= machine,rate,profile,output,contact,workprec,stability
+bench: setup
+	$(FPM) build $(RELEASE)
+	$(PYTHON) bench/run_bench.py --fpm $(FPM) --release '$(RELEASE)' --only $(BENCH_ONLY) $(BENCH_ARGS)
+
 install: setup
 	$(FPM) install $(RELEASE) --prefix $(or $(PREFIX),$(CURDIR)/dist)
 	install -m 644 include/exic_contact.h $(or $(PREFIX),$(CURDIR)/dist)/include/

@@ -9,7 +9,7 @@ module exic_driver
    use exic_io_history, only: history_files_t
    use exic_explicit_state, only: state_t, element_set_t
    use exic_explicit_solver, only: solver_init, solver_forces, solver_stable_dt, solver_energies, &
-                                   element_stress, all_stresses
+                                   element_stress, all_stresses, cd_displacement, cd_predictor, cd_velocity
    use exic_contact_contact, only: contact_t
    use exic_io_fields, only: field_writer_t
    implicit none
@@ -49,6 +49,7 @@ module exic_driver
       real(wp), allocatable :: values(:)        !< one history row
       integer, allocatable :: region_of_node(:) !< region of the elements that use each node
       real(wp), allocatable :: du(:, :), a_old(:, :), vt(:, :), fcon_old(:, :)   !< step work arrays
+      real(wp), allocatable :: xcur(:, :)       !< current coordinates for the stable step
       real(wp) :: wall_start = 0.0_wp
       real(wp) :: time_forces = 0.0_wp          !< wall time in the element loop and stable step
       real(wp) :: time_steps = 0.0_wp           !< wall time in FORM (whole steps)
@@ -183,7 +184,7 @@ contains
       if (r%started) return
       r%started = .true.
       allocate (r%du(2, r%st%nnode), r%a_old(2, r%st%nnode), r%vt(2, r%st%nnode), &
-                r%fcon_old(2, r%st%nnode), source=0.0_wp)
+                r%fcon_old(2, r%st%nnode), r%xcur(2, r%st%nnode), source=0.0_wp)
       call history_header(r, model)
       call node_regions(r, model)
       call solver_forces(r%st, r%sets, ebad)
@@ -212,7 +213,7 @@ contains
       integer :: n
       real(wp) :: target, dtp
 
-      call solver_stable_dt(r%st, r%sets, r%dt_stable, r%dt_element)
+      call solver_stable_dt(r%st, r%sets, r%dt_stable, r%dt_element, r%xcur)
       if (r%contact%any_penalty) then
          ! a penalty spring adds its frequency to that of the elements at its nodes:
          ! omega^2 <= omega_elements^2 + omega_penalty^2, i.e. 1/dt^2 adds up
@@ -266,15 +267,13 @@ contains
       real(wp) :: t0, t1
 
       t0 = wall_time()
-      associate (st => r%st, du => r%du, a_old => r%a_old, vt => r%vt, fcon_old => r%fcon_old)
+      associate (st => r%st)
          ! x(n+1) = x(n) + dt(n) v(n) + dt(n)^2/2 a(n)
-         du = st%dt*st%v + (0.5_wp*st%dt*st%dt)*st%a
-         st%u = st%u + du
+         call cd_displacement(st%nnode, st%dt, st%v, st%a, st%u, r%du, r%a_old)
          st%t = st%t + st%dt
          st%dt_prev = st%dt
          st%step = st%step + 1
-         a_old = st%a
-         fcon_old = st%fcon
+         if (r%contact%active) r%fcon_old = st%fcon
 
          t1 = wall_time()
          call solver_forces(st, r%sets, ebad)
@@ -285,16 +284,14 @@ contains
          call choose_dt(r, err, 'DT')
          r%time_forces = r%time_forces + (wall_time() - t1)
          if (allocated(err)) return
-         ! predictor, eq. 4.3-4.4
-         st%a = st%minv*(st%fext - st%fint)
-         vt = st%v + (0.5_wp*st%dt_prev)*(a_old + st%a)
-         call r%contact%correct(st, vt, err)
+         ! predictor, eq. 4.3-4.4 (v~ only when there is contact to search)
+         call cd_predictor(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%v, r%a_old, st%a, &
+                           r%contact%active, r%vt)
+         call r%contact%correct(st, r%vt, err)
          if (allocated(err)) return
-         st%v = st%v + (0.5_wp*st%dt_prev)*(a_old + st%a)
-
-         ! work of external and contact forces over the step (trapezoid rule)
-         st%wext = st%wext + sum(st%fext*du)
-         st%wcon = st%wcon + 0.5_wp*sum((fcon_old + st%fcon)*du)
+         ! v(n+1) and the work of external and contact forces over the step (trapezoid rule)
+         call cd_velocity(st%nnode, st%dt_prev, r%a_old, st%a, st%fext, r%du, r%contact%active, &
+                          r%fcon_old, st%fcon, st%v, st%wext, st%wcon)
       end associate
       call solver_energies(r%st)
       r%time_steps = r%time_steps + (wall_time() - t0)
@@ -562,6 +559,9 @@ contains
          call r%files%say('contact: largest penetration over the run '//real_text(r%contact%max_penetration)// &
             ', redundant constraints removed '//int_text(r%contact%nredundant)// &
             ', steps whose corrector reached its pass limit '//int_text(r%contact%corr%pass_limit_hits))
+         call r%files%say('contact corrector: factorizations '//int_text(r%contact%corr%nsolves)// &
+            ' (dense '//int_text(r%contact%corr%ndense)//', sparse '//int_text(r%contact%corr%nsparse)// &
+            '), sparse symbolic analyses '//int_text(r%contact%corr%sparse%nanalyze))
       end if
       if (r%field_dt > 0.0_wp) then
          call r%files%say('files written: '//r%files%his_path//' '//r%files%ene_path//' '// &

@@ -19,6 +19,7 @@ module exic_explicit_solver
    private
 
    public :: solver_init, solver_forces, solver_stable_dt, solver_energies, element_stress, all_stresses
+   public :: cd_displacement, cd_predictor, cd_velocity
    public :: STEP_OK, STEP_INVERTED
 
    integer, parameter :: STEP_OK = 0, STEP_INVERTED = 1
@@ -142,16 +143,28 @@ contains
    end subroutine solver_forces
 
    !> Smallest critical step over the deformable elements at the current geometry, and its element.
-   subroutine solver_stable_dt(st, sets, dtmin, emin)
+   !> `xwork` (2, nnode), when given, holds the current coordinates instead of a temporary.
+   subroutine solver_stable_dt(st, sets, dtmin, emin, xwork)
       type(state_t), intent(in) :: st
       type(element_set_t), intent(in) :: sets(:)
       real(wp), intent(out) :: dtmin
       integer, intent(out) :: emin
-      integer :: k, e
+      real(wp), intent(inout), optional, target :: xwork(:, :)
+      real(wp), allocatable, target :: xtmp(:, :)
+      real(wp), pointer, contiguous :: x(:, :)
+      integer :: k, e, i
       real(wp) :: d
-      real(wp), allocatable :: x(:, :)
 
-      x = st%x0 + st%u
+      if (present(xwork)) then
+         x => xwork(:, 1:st%nnode)
+      else
+         allocate (xtmp(2, st%nnode))
+         x => xtmp
+      end if
+      do i = 1, st%nnode
+         x(1, i) = st%x0(1, i) + st%u(1, i)
+         x(2, i) = st%x0(2, i) + st%u(2, i)
+      end do
       dtmin = huge(1.0_wp)
       emin = 0
       do k = 1, size(sets)
@@ -165,6 +178,88 @@ contains
          end associate
       end do
    end subroutine solver_stable_dt
+
+   !> First part of a central-difference step over `n` nodes (seed eq. 4.3-4.4):
+   !> du = dt v + dt^2/2 a, u = u + du, and a_old = a kept for the velocity update.
+   !> One pass instead of four whole-array statements (no temporaries).
+   pure subroutine cd_displacement(n, dt, v, a, u, du, a_old)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: dt
+      real(wp), intent(in) :: v(2, n), a(2, n)
+      real(wp), intent(inout) :: u(2, n)
+      real(wp), intent(out) :: du(2, n), a_old(2, n)
+      real(wp) :: h, d
+      integer :: i, k
+      h = 0.5_wp*dt*dt
+      do i = 1, n
+         do k = 1, 2
+            d = dt*v(k, i) + h*a(k, i)
+            du(k, i) = d
+            u(k, i) = u(k, i) + d
+            a_old(k, i) = a(k, i)
+         end do
+      end do
+   end subroutine cd_displacement
+
+   !> Predictor of eq. 4.3-4.4: a~ = M^-1 (F - P) and, when `with_vt`, v~ = v + dt/2 (a_old + a~)
+   !> (only the contact search needs v~).
+   pure subroutine cd_predictor(n, dt, minv, fext, fint, v, a_old, a, with_vt, vt)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: dt
+      real(wp), intent(in) :: minv(2, n), fext(2, n), fint(2, n), v(2, n), a_old(2, n)
+      real(wp), intent(out) :: a(2, n)
+      logical, intent(in) :: with_vt
+      real(wp), intent(inout) :: vt(2, n)
+      real(wp) :: h
+      integer :: i, k
+      h = 0.5_wp*dt
+      if (with_vt) then
+         do i = 1, n
+            do k = 1, 2
+               a(k, i) = minv(k, i)*(fext(k, i) - fint(k, i))
+               vt(k, i) = v(k, i) + h*(a_old(k, i) + a(k, i))
+            end do
+         end do
+      else
+         do i = 1, n
+            do k = 1, 2
+               a(k, i) = minv(k, i)*(fext(k, i) - fint(k, i))
+            end do
+         end do
+      end if
+   end subroutine cd_predictor
+
+   !> Last part of a step: v = v + dt/2 (a_old + a) with the corrected a, the work of the
+   !> external forces (F . du) and, when `with_contact`, of the contact forces by the
+   !> trapezoid rule (1/2 (fcon_old + fcon) . du), each summed in array order.
+   pure subroutine cd_velocity(n, dt, a_old, a, fext, du, with_contact, fcon_old, fcon, v, wext, wcon)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: dt
+      real(wp), intent(in) :: a_old(2, n), a(2, n), fext(2, n), du(2, n)
+      logical, intent(in) :: with_contact
+      real(wp), intent(in) :: fcon_old(2, n), fcon(2, n)
+      real(wp), intent(inout) :: v(2, n), wext, wcon
+      real(wp) :: h, se, sc
+      integer :: i, k
+      h = 0.5_wp*dt
+      se = 0.0_wp
+      sc = 0.0_wp
+      do i = 1, n
+         do k = 1, 2
+            v(k, i) = v(k, i) + h*(a_old(k, i) + a(k, i))
+            se = se + fext(k, i)*du(k, i)
+         end do
+      end do
+      wext = wext + se
+      if (with_contact) then
+         do i = 1, n
+            do k = 1, 2
+               sc = sc + (fcon_old(k, i) + fcon(k, i))*du(k, i)
+            end do
+         end do
+         wcon = wcon + 0.5_wp*sc
+      end if
+   end subroutine cd_velocity
 
    !> Kinetic energy and linear momentum of every active node (rigid bodies included).
    subroutine solver_energies(st)
