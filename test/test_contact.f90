@@ -494,6 +494,8 @@ contains
       call read_table(run_dir//'/'//name//'.his', names, d)
       call check_close(s, d(9, size(d, 2)), p1_exact, 0.04_wp*scale, name//': momentum of bar 1 after separation (4 %)')
       call check_close(s, d(10, size(d, 2)), p2_exact, 0.04_wp*scale, name//': momentum of bar 2 after separation (4 %)')
+      print '(a,a,es10.3,a,es10.3,a)', '      figures ', name//': momentum errors (bar 1, bar 2) / (m1 v0) ', &
+         (d(9, size(d, 2)) - p1_exact)/scale, ', ', (d(10, size(d, 2)) - p2_exact)/scale, ''
    end subroutine momentum_check
 
    !> Contact measures from a force history f(t): impulse I = sum f_k (t_(k+1) - t_(k-1))/2 (the
