@@ -1,6 +1,7 @@
 !> Runs a model's solution program (spec section 5): the explicit time loop with its outputs.
 module exic_driver
    use exic_base_kinds, only: wp, i8
+   use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
    use exic_base_progress, only: progress_t
@@ -253,7 +254,7 @@ contains
                call make_error(err, trim(buf), where)
             else if (.not. r%dt_warned) then
                r%dt_warned = .true.
-               call r%files%say('warning: at t = '//real_text(r%st%t)//': '//trim(buf))
+               call r%files%say('warning: at t = '//rtoa(r%st%t)//': '//trim(buf))
             end if
          end if
       end if
@@ -349,11 +350,11 @@ contains
          e = st%kinetic + st%strain + st%hourglass
          scale = abs(st%total0) + abs(st%wext) + abs(st%wcon) + tiny(1.0_wp)
          if (.not. (e == e) .or. .not. (st%wext == st%wext)) then
-            call make_error(err, 'NaN in the solution at t = '//real_text(st%t)//', step '// &
-                            int_text(int(st%step)))
+            call make_error(err, 'NaN in the solution at t = '//rtoa(st%t)//', step '// &
+                            itoa(int(st%step)))
          else if (e > 10.0_wp*scale) then
-            call make_error(err, 'runaway energy at t = '//real_text(st%t)//': kinetic + strain = '// &
-                            real_text(e)//' against '//real_text(scale)// &
+            call make_error(err, 'runaway energy at t = '//rtoa(st%t)//': kinetic + strain = '// &
+                            rtoa(e)//' against '//rtoa(scale)// &
                             ' put in; the step is probably unstable')
          end if
       end associate
@@ -364,8 +365,8 @@ contains
       type(run_t), intent(in) :: r
       integer, intent(in) :: ebad
       type(error_t), allocatable, intent(out) :: err
-      call make_error(err, 'element '//int_text(ebad)//' inverted (J <= 0) at t = '// &
-                      real_text(r%st%t)//', step '//int_text(int(r%st%step)))
+      call make_error(err, 'element '//itoa(ebad)//' inverted (J <= 0) at t = '// &
+                      rtoa(r%st%t)//', step '//itoa(int(r%st%step)))
    end subroutine inverted_error
 
    !> Region of every node (of the last element that uses it; -huge for unused nodes).
@@ -495,25 +496,25 @@ contains
       real(wp) :: dts
       integer :: e
       call r%files%say('')
-      call r%files%say('nodes (highest number) '//int_text(r%st%nnode)//', active '// &
-                       int_text(count(r%st%active))//', elements '//int_text(r%st%nelem))
+      call r%files%say('nodes (highest number) '//itoa(r%st%nnode)//', active '// &
+                       itoa(count(r%st%active))//', elements '//itoa(r%st%nelem))
       do k = 1, size(r%sets)
          associate (s => r%sets(k), m => model%materials(r%sets(k)%mat))
             if (s%kind == 1) then
-               call r%files%say('material '//int_text(s%mat)//': solid neo-Hookean, E = '// &
-                  real_text(m%young)//', nu = '//real_text(m%poisson)//', lambda = '// &
-                  real_text(m%lambda)//', mu = '//real_text(m%mu)//', rho = '//real_text(m%rho)// &
-                  ', quadrature '//int_text(s%nq)//', elements '//int_text(s%nel))
+               call r%files%say('material '//itoa(s%mat)//': solid neo-Hookean, E = '// &
+                  rtoa(m%young)//', nu = '//rtoa(m%poisson)//', lambda = '// &
+                  rtoa(m%lambda)//', mu = '//rtoa(m%mu)//', rho = '//rtoa(m%rho)// &
+                  ', quadrature '//itoa(s%nq)//', elements '//itoa(s%nel))
             else
-               call r%files%say('material '//int_text(s%mat)//': rigid, rho = '//real_text(m%rho)// &
-                                ', elements '//int_text(s%nel))
+               call r%files%say('material '//itoa(s%mat)//': rigid, rho = '//rtoa(m%rho)// &
+                                ', elements '//itoa(s%nel))
             end if
          end associate
       end do
       call solver_stable_dt(r%st, r%sets, dts, e)
-      if (e > 0) call r%files%say('stable step of the initial mesh '//real_text(dts)// &
-                                  ' (element '//int_text(e)//')')
-      call r%files%say('total mass '//real_text(sum(r%st%mass)))
+      if (e > 0) call r%files%say('stable step of the initial mesh '//rtoa(dts)// &
+                                  ' (element '//itoa(e)//')')
+      call r%files%say('total mass '//rtoa(sum(r%st%mass)))
       call r%contact%describe(r%files)
    end subroutine write_summary
 
@@ -540,28 +541,28 @@ contains
       call r%files%say('')
       if (r%started) then
          associate (st => r%st)
-            call r%files%say('final time '//real_text(st%t)//' after '//int_text(int(st%step))//' steps')
-            call r%files%say('energy: kinetic '//real_text(st%kinetic)//', strain '// &
-               real_text(st%strain + st%hourglass)//', external work '//real_text(st%wext)// &
-               ', contact work '//real_text(st%wcon)//', initial total '//real_text(st%total0))
+            call r%files%say('final time '//rtoa(st%t)//' after '//itoa(int(st%step))//' steps')
+            call r%files%say('energy: kinetic '//rtoa(st%kinetic)//', strain '// &
+               rtoa(st%strain + st%hourglass)//', external work '//rtoa(st%wext)// &
+               ', contact work '//rtoa(st%wcon)//', initial total '//rtoa(st%total0))
          end associate
       end if
       if (allocated(err)) call r%files%say('error: '//err%message)
-      call r%files%say('wall time '//real_text(wall)//' s')
+      call r%files%say('wall time '//rtoa(wall)//' s')
       if (r%st%step > 0) then
-         call r%files%say('time in steps '//real_text(r%time_steps)//' s: elements and stable step '// &
-            real_text(r%time_forces)//' s, contact search '//real_text(r%contact%time_search)// &
-            ' s, contact corrector '//real_text(r%contact%time_corrector)//' s')
-         call r%files%say('steps per second '//real_text(real(r%st%step, wp)/max(r%time_steps, 1.0e-9_wp))// &
-            ', element-steps per second '//real_text(real(r%st%step, wp)*r%st%nelem/max(r%time_steps, 1.0e-9_wp)))
+         call r%files%say('time in steps '//rtoa(r%time_steps)//' s: elements and stable step '// &
+            rtoa(r%time_forces)//' s, contact search '//rtoa(r%contact%time_search)// &
+            ' s, contact corrector '//rtoa(r%contact%time_corrector)//' s')
+         call r%files%say('steps per second '//rtoa(real(r%st%step, wp)/max(r%time_steps, 1.0e-9_wp))// &
+            ', element-steps per second '//rtoa(real(r%st%step, wp)*r%st%nelem/max(r%time_steps, 1.0e-9_wp)))
       end if
       if (r%contact%active) then
-         call r%files%say('contact: largest penetration over the run '//real_text(r%contact%max_penetration)// &
-            ', redundant constraints removed '//int_text(r%contact%nredundant)// &
-            ', steps whose corrector reached its pass limit '//int_text(r%contact%corr%pass_limit_hits))
-         call r%files%say('contact corrector: factorizations '//int_text(r%contact%corr%nsolves)// &
-            ' (dense '//int_text(r%contact%corr%ndense)//', sparse '//int_text(r%contact%corr%nsparse)// &
-            '), sparse symbolic analyses '//int_text(r%contact%corr%sparse%nanalyze))
+         call r%files%say('contact: largest penetration over the run '//rtoa(r%contact%max_penetration)// &
+            ', redundant constraints removed '//itoa(r%contact%nredundant)// &
+            ', steps whose corrector reached its pass limit '//itoa(r%contact%corr%pass_limit_hits))
+         call r%files%say('contact corrector: factorizations '//itoa(r%contact%corr%nsolves)// &
+            ' (dense '//itoa(r%contact%corr%ndense)//', sparse '//itoa(r%contact%corr%nsparse)// &
+            '), sparse symbolic analyses '//itoa(r%contact%corr%sparse%nanalyze))
       end if
       if (r%field_dt > 0.0_wp) then
          call r%files%say('files written: '//r%files%his_path//' '//r%files%ene_path//' '// &
@@ -571,23 +572,5 @@ contains
       end if
       call r%files%close()
    end subroutine finish
-
-   !> A real as short text.
-   function real_text(x) result(s)
-      real(wp), intent(in) :: x
-      character(len=:), allocatable :: s
-      character(len=32) :: buf
-      write (buf, '(es14.7)') x
-      s = trim(adjustl(buf))
-   end function real_text
-
-   !> An integer as text.
-   function int_text(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function int_text
 
 end module exic_driver

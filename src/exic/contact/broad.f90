@@ -21,6 +21,7 @@
 !> contains it. Work arrays live in `broad_t` and are only grown, never shrunk.
 module exic_contact_broad
    use exic_base_kinds, only: wp, i8
+   use exic_base_grow, only: grow
    implicit none
    private
 
@@ -93,8 +94,8 @@ contains
       bw%nx = 0
       bw%ny = 0
       if (nslave == 0 .or. nseg == 0) return
-      call grow_real(bw%sbox, nslave)
-      call grow_real(bw%mbox, nseg)
+      call grow(bw%sbox, nslave, 4)
+      call grow(bw%mbox, nseg, 4)
       hmean = 0.0_wp
       ubs(1:2) = huge(1.0_wp); ubs(3:4) = -huge(1.0_wp)
       ubm = ubs
@@ -146,7 +147,7 @@ contains
       integer :: k, ix, iy, ix0, ix1, iy0, iy1, ncell, c, pass
 
       ncell = bw%nx*bw%ny
-      call grow_int(bw%head, ncell + 1)
+      call grow(bw%head, ncell + 1)
       bw%head(1:ncell + 1) = 0
       do pass = 1, 2
          do k = 1, nseg
@@ -173,7 +174,7 @@ contains
             do c = 2, ncell + 1
                bw%head(c) = bw%head(c) + bw%head(c - 1)
             end do
-            call grow_int(bw%items, bw%head(ncell + 1) - 1)
+            call grow(bw%items, bw%head(ncell + 1) - 1)
          end if
       end do
       ! after filling, head(c) points one past cell c: shift back
@@ -192,7 +193,7 @@ contains
       integer :: s, k, ix, iy, ix0, ix1, iy0, iy1, c, p, nfound, node
       real(wp) :: rx, ry
 
-      call grow_int(bw%buf, 16)
+      call grow(bw%buf, 16)
       do s = 1, nslave
          if (.not. boxes_overlap(bw%sbox(:, s), dom, 0.0_wp)) cycle
          node = slaves(s)
@@ -213,7 +214,7 @@ contains
                   if (cell_of(rx, dom(1), h, bw%nx) /= ix) cycle
                   if (cell_of(ry, dom(2), h, bw%ny) /= iy) cycle
                   if (seg(1, k) == node .or. seg(2, k) == node) cycle
-                  if (nfound == size(bw%buf)) call grow_int(bw%buf, 2*nfound)
+                  if (nfound == size(bw%buf)) call grow(bw%buf, 2*nfound)
                   nfound = nfound + 1
                   bw%buf(nfound) = k
                end do
@@ -293,31 +294,5 @@ contains
          end do
       end do
    end subroutine broad_brute
-
-   !> Make sure a(:, 1:n) exists (4 rows); contents are not kept.
-   subroutine grow_real(a, n)
-      real(wp), allocatable, intent(inout) :: a(:, :)
-      integer, intent(in) :: n
-      if (allocated(a)) then
-         if (size(a, 2) >= n) return
-         deallocate (a)
-      end if
-      allocate (a(4, max(n, 1)))
-   end subroutine grow_real
-
-   !> Make sure a(1:n) exists; contents are kept when it grows.
-   subroutine grow_int(a, n)
-      integer, allocatable, intent(inout) :: a(:)
-      integer, intent(in) :: n
-      integer, allocatable :: tmp(:)
-      if (allocated(a)) then
-         if (size(a) >= n) return
-         allocate (tmp(max(n, 2*size(a))))
-         tmp(1:size(a)) = a
-         call move_alloc(tmp, a)
-      else
-         allocate (a(max(n, 1)))
-      end if
-   end subroutine grow_int
 
 end module exic_contact_broad

@@ -9,6 +9,7 @@
 !> penalty passes add k x penetration forces at t(n+1) instead.
 module exic_contact_contact
    use exic_base_kinds, only: wp
+   use exic_base_strings, only: itoa
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
    use exic_model, only: model_t
@@ -623,14 +624,5 @@ contains
       end do
       u = pack([(i, i=lo, hi)], seen)
    end function unique
-
-   !> An integer as text.
-   function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: b
-      write (b, '(i0)') i
-      s = trim(b)
-   end function itoa
 
 end module exic_contact_contact

@@ -20,6 +20,7 @@
 module exic_contact_corrector
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
+   use exic_base_grow, only: grow
    use exic_linalg_sparse_ldl, only: sparse_ldl_t
    use exic_linalg_dense_spd, only: dense_spd_t
    implicit none
@@ -149,8 +150,8 @@ contains
       cs%p(1:m) = 0.0_wp
       cs%active(1:m) = cs%gap(1:m) < 0.0_wp
       if (.not. any(cs%active(1:m))) return
-      call grow_i(self%pos, m)
-      call grow_l(self%infeasible, m)
+      call grow(self%pos, m)
+      call grow(self%infeasible, m)
       call build_incidence(self, cs, nnode)
       if (allocated(self%fwork)) then
          if (size(self%fwork, 2) /= nnode) deallocate (self%fwork)
@@ -164,14 +165,14 @@ contains
          pass = pass + 1
          ! the active candidates F, in candidate order
          nact = count(cs%active(1:m))
-         call grow_i(self%idx, nact)
+         call grow(self%idx, nact)
          self%idx(1:nact) = pack([(k, k=1, m)], cs%active(1:m))
          self%pos(1:m) = 0
          self%pos(self%idx(1:nact)) = [(k, k=1, nact)]
-         call grow_l(self%drop, nact)
-         call grow_r(self%rhs, nact)
-         call grow_r(self%sol, nact)
-         call grow_i(self%bad, nact)
+         call grow(self%drop, nact)
+         call grow(self%rhs, nact)
+         call grow(self%sol, nact)
+         call grow(self%bad, nact)
          self%drop(1:nact) = .false.
          self%rhs(1:nact) = -cs%gap(self%idx(1:nact))/c
          nbad = 0
@@ -266,8 +267,8 @@ contains
       type(constraints_t), intent(in) :: cs
       integer, intent(in) :: nnode
       integer :: i, k, nd
-      call grow_i(self%nstart, nnode + 1)
-      call grow_i(self%nlist, 3*cs%n)
+      call grow(self%nstart, nnode + 1)
+      call grow(self%nlist, 3*cs%n)
       self%nstart(1:nnode + 1) = 0
       do i = 1, cs%n
          do k = 1, 3
@@ -311,8 +312,8 @@ contains
          if (.not. allocated(self%s)) allocate (self%s(max(nact, 16), max(nact, 16)))
          self%s(1:nact, 1:nact) = 0.0_wp
       end if
-      call grow_i(self%ap, nact + 1)
-      call grow_i(self%mark, nact)
+      call grow(self%ap, nact + 1)
+      call grow(self%mark, nact)
       self%mark(1:nact) = 0
       nnz = 0
       self%ap(1) = 1
@@ -335,8 +336,8 @@ contains
                   if (self%mark(row) /= j) then
                      self%mark(row) = j
                      nnz = nnz + 1
-                     call grow_i(self%ai, nnz)
-                     call grow_r(self%ax, nnz)
+                     call grow(self%ai, nnz)
+                     call grow(self%ax, nnz)
                      self%ai(nnz) = row
                      self%ax(nnz) = v
                   else
@@ -417,46 +418,5 @@ contains
          self%sol(self%bad(k)) = 0.0_wp
       end do
    end subroutine factor_and_solve
-
-   !> Grow `a` to at least n entries, keeping its contents.
-   subroutine grow_i(a, n)
-      integer, allocatable, intent(inout) :: a(:)
-      integer, intent(in) :: n
-      integer, allocatable :: tmp(:)
-      if (allocated(a)) then
-         if (size(a) >= n) return
-         allocate (tmp(max(n, 2*size(a))))
-         tmp(1:size(a)) = a
-         call move_alloc(tmp, a)
-         return
-      end if
-      allocate (a(max(n, 32)))
-   end subroutine grow_i
-
-   !> Grow `a` to at least n entries, keeping its contents.
-   subroutine grow_r(a, n)
-      real(wp), allocatable, intent(inout) :: a(:)
-      integer, intent(in) :: n
-      real(wp), allocatable :: tmp(:)
-      if (allocated(a)) then
-         if (size(a) >= n) return
-         allocate (tmp(max(n, 2*size(a))))
-         tmp(1:size(a)) = a
-         call move_alloc(tmp, a)
-         return
-      end if
-      allocate (a(max(n, 32)))
-   end subroutine grow_r
-
-   !> Grow `a` to at least n entries (contents not kept).
-   subroutine grow_l(a, n)
-      logical, allocatable, intent(inout) :: a(:)
-      integer, intent(in) :: n
-      if (allocated(a)) then
-         if (size(a) >= n) return
-         deallocate (a)
-      end if
-      allocate (a(max(n, 32)))
-   end subroutine grow_l
 
 end module exic_contact_corrector

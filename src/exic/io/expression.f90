@@ -16,6 +16,7 @@
 !> digits, `_`, starting with a letter) and are case-folded.
 module exic_io_expression
    use exic_base_kinds, only: wp
+   use exic_base_strings, only: itoa
    use exic_base_error, only: error_t, make_error
    implicit none
    private
@@ -439,13 +440,5 @@ contains
          if (c >= iachar('A') .and. c <= iachar('Z')) t(k:k) = achar(c + 32)
       end do
    end function lower
-
-   pure function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 
 end module exic_io_expression

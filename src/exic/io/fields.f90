@@ -15,6 +15,7 @@
 !> The layout is documented in doc/fields.md.
 module exic_io_fields
    use exic_base_kinds, only: wp, i8
+   use exic_base_strings, only: itoa
    use exic_base_error, only: error_t, make_error
    use exic_io_hdf5_file, only: hdf5_file_t, DTYPE_REAL, DTYPE_INT, DTYPE_INT64
    use exic_io_posix, only: rename_file
@@ -201,7 +202,7 @@ contains
       else
          do e = 1, nelem
             if (any(conn(:, e) < 1 .or. conn(:, e) > nnode)) then
-               call make_error(err, pre//'element '//int_text(e)//' names a node outside 1..nnode')
+               call make_error(err, pre//'element '//itoa(e)//' names a node outside 1..nnode')
                return
             end if
          end do
@@ -432,8 +433,8 @@ contains
       character(len=:), allocatable :: nn, ne, f, g
       integer :: i
 
-      nn = int_text(self%nnode)
-      ne = int_text(self%nelem)
+      nn = itoa(self%nnode)
+      ne = itoa(self%nelem)
       f = xml_escape(self%h5_ref)//':'
       g = f//'/xdmf/'//view_group(k)//'/'
       s = '      <Grid Name="t'//view_group(k)//'" GridType="Uniform">'//NL// &
@@ -565,15 +566,6 @@ contains
          end select
       end do
    end function xml_escape
-
-   !> Integer as text.
-   function int_text(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function int_text
 
    !> Real as text with 17 significant digits (round-trips exactly).
    function real_text(x) result(s)

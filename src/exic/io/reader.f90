@@ -5,6 +5,7 @@
 !> `.`) is then met where a command is expected, a warning names both lines (spec section 1).
 module exic_io_reader
    use exic_base_kinds, only: wp
+   use exic_base_strings, only: itoa
    use exic_base_error, only: error_t, make_error
    use exic_io_records, only: source_t, to_lower, keyword_is, nearest_keyword
    use exic_io_expression, only: param_table_t, set_param, evaluate, is_valid_name
@@ -319,15 +320,6 @@ contains
          call set_param(rd%params, name, v)
       end do
    end subroutine parameter_record
-
-   !> Integer as text.
-   pure function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 
    !> Real as short text.
    pure function rtoa(v) result(s)

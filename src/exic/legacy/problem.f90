@@ -19,6 +19,7 @@ module exic_legacy_problem
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use, intrinsic :: iso_fortran_env, only: int64
    use exic_base_kinds, only: wp
+   use exic_base_strings, only: itoa
    use exic_base_error, only: error_t
    use exic_contact_contact, only: contact_t
    use exic_contact_spec, only: SURF_REGION, SURF_FACETS, SURF_NODES, PAIR_NTOS, PAIR_SYMMETRIC, &
@@ -792,15 +793,6 @@ contains
       character(len=*), intent(in) :: msg
       call set_error(h, msg)
    end subroutine fail
-
-   !> An integer as text.
-   function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: b
-      write (b, '(i0)') i
-      s = trim(b)
-   end function itoa
 
    !> A real as text.
    function rtoa(x) result(s)

@@ -34,6 +34,7 @@ module exic_linalg_sparse_ldl
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
+   use exic_base_grow, only: grow
    use exic_linalg_suitesparse_c, only: ldl_symbolic, ldl_numeric, ldl_lsolve, ldl_dsolve, &
       ldl_ltsolve, ldl_perm, ldl_permt, amd_order, amd_defaults, amd_control_size, &
       amd_info_size, amd_ok, amd_ok_but_jumbled, amd_out_of_memory
@@ -72,9 +73,6 @@ module exic_linalg_sparse_ldl
       procedure :: free => ldl_free
    end type sparse_ldl_t
 
-   interface grow
-      module procedure grow_int, grow_real, grow_logical
-   end interface grow
 
 contains
 
@@ -460,41 +458,5 @@ contains
          end if
       end do
    end function all_finite
-
-   subroutine grow_int(a, need)
-      integer(c_int), allocatable, intent(inout) :: a(:)
-      integer, intent(in) :: need
-      if (allocated(a)) then
-         if (size(a) >= need) return
-         deallocate (a)
-         allocate (a(need + need/2))
-      else
-         allocate (a(max(1, need)))
-      end if
-   end subroutine grow_int
-
-   subroutine grow_real(a, need)
-      real(wp), allocatable, intent(inout) :: a(:)
-      integer, intent(in) :: need
-      if (allocated(a)) then
-         if (size(a) >= need) return
-         deallocate (a)
-         allocate (a(need + need/2))
-      else
-         allocate (a(max(1, need)))
-      end if
-   end subroutine grow_real
-
-   subroutine grow_logical(a, need)
-      logical, allocatable, intent(inout) :: a(:)
-      integer, intent(in) :: need
-      if (allocated(a)) then
-         if (size(a) >= need) return
-         deallocate (a)
-         allocate (a(need + need/2))
-      else
-         allocate (a(max(1, need)))
-      end if
-   end subroutine grow_logical
 
 end module exic_linalg_sparse_ldl

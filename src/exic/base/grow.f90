@@ -1,0 +1,78 @@
+!> Work arrays that grow and never shrink: `call grow(a, n)` makes sure a holds at least n
+!> entries (n columns for a rank-2 array), keeping its contents, doubling when it grows so that
+!> repeated small growth costs amortized O(1). Used by the per-step paths (contact search,
+!> corrector, sparse factorization), which allocate nothing once their arrays are sized.
+module exic_base_grow
+   use exic_base_kinds, only: wp
+   implicit none
+   private
+
+   public :: grow
+
+   !> Grow an allocatable array to at least n entries (or n columns), keeping its contents.
+   interface grow
+      module procedure grow_int, grow_real, grow_logical, grow_real2
+   end interface grow
+
+contains
+
+   !> New size when an array of `have` entries must hold `need`.
+   pure integer function new_size(have, need)
+      integer, intent(in) :: have, need
+      new_size = max(need, 2*have, 1)
+   end function new_size
+
+   subroutine grow_int(a, n)
+      integer, allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      integer, allocatable :: tmp(:)
+      if (.not. allocated(a)) then
+         allocate (a(new_size(0, n)))
+      else if (size(a) < n) then
+         allocate (tmp(new_size(size(a), n)))
+         tmp(1:size(a)) = a
+         call move_alloc(tmp, a)
+      end if
+   end subroutine grow_int
+
+   subroutine grow_real(a, n)
+      real(wp), allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      real(wp), allocatable :: tmp(:)
+      if (.not. allocated(a)) then
+         allocate (a(new_size(0, n)))
+      else if (size(a) < n) then
+         allocate (tmp(new_size(size(a), n)))
+         tmp(1:size(a)) = a
+         call move_alloc(tmp, a)
+      end if
+   end subroutine grow_real
+
+   subroutine grow_logical(a, n)
+      logical, allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      logical, allocatable :: tmp(:)
+      if (.not. allocated(a)) then
+         allocate (a(new_size(0, n)))
+      else if (size(a) < n) then
+         allocate (tmp(new_size(size(a), n)))
+         tmp(1:size(a)) = a
+         call move_alloc(tmp, a)
+      end if
+   end subroutine grow_logical
+
+   !> Rank 2: grows the second (entity) dimension; the first is `rows` when allocating anew.
+   subroutine grow_real2(a, n, rows)
+      real(wp), allocatable, intent(inout) :: a(:, :)
+      integer, intent(in) :: n, rows
+      real(wp), allocatable :: tmp(:, :)
+      if (.not. allocated(a)) then
+         allocate (a(rows, new_size(0, n)))
+      else if (size(a, 2) < n) then
+         allocate (tmp(size(a, 1), new_size(size(a, 2), n)))
+         tmp(:, 1:size(a, 2)) = a
+         call move_alloc(tmp, a)
+      end if
+   end subroutine grow_real2
+
+end module exic_base_grow

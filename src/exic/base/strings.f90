@@ -1,0 +1,34 @@
+!> Numbers as text for messages and reports.
+module exic_base_strings
+   use exic_base_kinds, only: wp
+   implicit none
+   private
+
+   public :: itoa, rtoa
+
+contains
+
+   !> An integer as text, without blanks.
+   pure function itoa(i) result(s)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function itoa
+
+   !> A real as text, without blanks, in format `fmt` (default es14.7).
+   pure function rtoa(x, fmt) result(s)
+      real(wp), intent(in) :: x
+      character(len=*), intent(in), optional :: fmt
+      character(len=:), allocatable :: s
+      character(len=40) :: buf
+      if (present(fmt)) then
+         write (buf, fmt) x
+      else
+         write (buf, '(es14.7)') x
+      end if
+      s = trim(adjustl(buf))
+   end function rtoa
+
+end module exic_base_strings
