@@ -6,6 +6,7 @@
 !> bars are derived by characteristics in doc/contact-verification.md.
 module test_contact
    use exic_base_kinds, only: wp
+   use exic_base_strings, only: rtoa
    use testing, only: suite_t, check, check_close, section
    use deck_runner, only: run_dir, run_deck, read_table, column
    implicit none
@@ -71,9 +72,9 @@ contains
       ! node 36: top-right corner of the left arm (1, 3); node 49: top-left of the right arm (2, 3)
       call check(s, maxval(d(4, :)) > 0.0_wp, 'the arms meet (self contact carries force)')
       call check(s, maxval(d(2, :)) > 0.4_wp .and. d(2, size(d, 2)) < maxval(d(2, :)), &
-                 'the left arm swings in and is pushed back', 'largest tip displacement '//rstr(maxval(d(2, :))))
+                 'the left arm swings in and is pushed back', 'largest tip displacement '//rtoa(maxval(d(2, :))))
       call check(s, maxval(d(5, :)) < 1.0e-3_wp, 'residual penetration below 1e-3 of a segment', &
-                 'largest '//rstr(maxval(d(5, :))))
+                 'largest '//rtoa(maxval(d(5, :))))
    end subroutine self_contact_test
 
    !> Two blocks that overlap by 0.05 at the start: an error naming the node and the depth.
@@ -148,13 +149,13 @@ contains
          worst = max(worst, abs(a(2, k) - ub))
       end do
       call check(s, worst <= 0.01_wp*peak, 'tip displacement histories agree within 1 % of the peak', &
-                 'largest difference '//rstr(worst)//', peak '//rstr(peak))
+                 'largest difference '//rtoa(worst)//', peak '//rtoa(peak))
       print '(a,es10.3)', '      figures seed 7.2 vs 7.2b: largest tip displacement difference / peak ', worst/peak
       ! multipliers stay bounded (two-pass, corners of the striking bar on the face)
       f1d = 0.1_wp*sqrt((33333.0_wp + 2.0_wp*5000.0_wp)/0.1_wp)*50.0_wp*4.0_wp
       call check(s, maxval(a(4, :)) <= 10.0_wp*f1d .and. maxval(b(4, :)) <= 10.0_wp*f1d, &
                  'no multiplier above 10x the 1-D contact force (two-pass, corners)', &
-                 'largest '//rstr(max(maxval(a(4, :)), maxval(b(4, :))))//', 1-D force '//rstr(f1d))
+                 'largest '//rtoa(max(maxval(a(4, :)), maxval(b(4, :))))//', 1-D force '//rtoa(f1d))
       call two_pass_check(s, 30, a)
       call two_pass_check(s, 31, b)
    end subroutine mesh_pair_test
@@ -178,7 +179,7 @@ contains
       if (stage /= 0) return
       call read_table(run_dir//'/seed72_sym_'//trim(tag(3:))//'.his', names, d)
       call check(s, maxval(d(5, :)) < 1.0e-3_wp, 'two-pass residual penetration below 1e-3 of a segment ('// &
-                 trim(tag)//')', 'largest '//rstr(maxval(d(5, :))))
+                 trim(tag)//')', 'largest '//rtoa(maxval(d(5, :))))
       peak = maxval(abs(one(2, :)))
       worst = 0.0_wp
       do k = 1, size(d, 2)
@@ -187,7 +188,7 @@ contains
          worst = max(worst, abs(d(2, k) - u))
       end do
       call check(s, worst <= 0.01_wp*peak, 'two-pass tip history within 1 % of the one-pass one ('//trim(tag)//')', &
-                 'largest difference '//rstr(worst)//', peak '//rstr(peak))
+                 'largest difference '//rtoa(worst)//', peak '//rtoa(peak))
    end subroutine two_pass_check
 
    !> Linear interpolation of y(x) at xq (x increasing).
@@ -235,17 +236,17 @@ contains
       if (stage /= 0) return
       call read_table(run_dir//'/thin_swept.ene', names, e)
       call check(s, 5.0_wp*e(3, 2) > 0.01_wp, 'one step of travel (v dt) exceeds the plate thickness', &
-                 'v dt = '//rstr(5.0_wp*e(3, 2)))
+                 'v dt = '//rtoa(5.0_wp*e(3, 2)))
       call read_table(run_dir//'/thin_swept.his', names, d)
       call check(s, maxval(d(2, :)) <= 0.005_wp + 1.0e-10_wp, 'swept detection stops the face at the plate', &
-                 'largest face displacement '//rstr(maxval(d(2, :)))//' (plate at 0.005)')
+                 'largest face displacement '//rtoa(maxval(d(2, :)))//' (plate at 0.005)')
       call run_deck('thin_static', thin_target_deck('STATic'), stage, msg)
       call check(s, stage == 0, 'thin target, static detection, runs', msg)
       if (stage /= 0) return
       call read_table(run_dir//'/thin_static.his', names, d)
       call check(s, d(2, size(d, 2)) > 0.05_wp, &
                  'static detection misses the crossing: the block passes through (documented)', &
-                 'final face displacement '//rstr(d(2, size(d, 2))))
+                 'final face displacement '//rtoa(d(2, size(d, 2))))
    end subroutine thin_target_test
 
    !> Penalty: finite penetration that falls as k grows, and a stable step that falls as k grows.
@@ -264,7 +265,7 @@ contains
          write (tag, '(a,i0)') 'penalty_', k
          call run_deck(trim(tag), bar_deck('bar on a wall, penalty', 30, 6, 'wall', rho0, rho0, 'NTOS', &
                        2.5_wp*blen/sqrt(young/rho0), trim(extra)//nl), stage, msg)
-         call check(s, stage == 0, 'penalty run k = '//rstr(kk(k)), msg)
+         call check(s, stage == 0, 'penalty run k = '//rtoa(kk(k)), msg)
          if (stage /= 0) return
          call read_table(run_dir//'/'//trim(tag)//'.his', names, d)
          call read_table(run_dir//'/'//trim(tag)//'.ene', names, e)
@@ -391,20 +392,20 @@ contains
       print '(a,es10.3)', '      expected energy loss ~ 1/(2N) = ', 0.5_wp/real(nx, wp)
       pen = maxval(d(kp, :))
       call check(s, pen < 1.0e-10_wp*blen, 'largest penetration below 1e-10 L ('//trim(tag)//')', &
-                 'largest '//rstr(pen))
+                 'largest '//rtoa(pen))
       ! seed section 5: two steps after contact the tip's normal velocity and acceleration vanish
       dt = e(3, 2)
       worst_v = maxval(abs(d(kv, k_on + 2:k_off)))
       worst_a = maxval(abs(d(ka, k_on + 2:k_off)))
       call check(s, worst_v <= 1.0e-8_wp*v0, 'tip velocity zero from two steps after contact ('//trim(tag)//')', &
-                 'largest |v|/v0 '//rstr(worst_v/v0))
+                 'largest |v|/v0 '//rtoa(worst_v/v0))
       call check(s, worst_a <= 1.0e-8_wp*v0/dt, 'tip acceleration zero from two steps after contact ('//trim(tag)//')', &
-                 'largest |a| dt/v0 '//rstr(worst_a*dt/v0))
+                 'largest |a| dt/v0 '//rtoa(worst_a*dt/v0))
       ! Lagrange contact does not cut the step: dt during contact equals dt before it
       call fixed_tip_check(s, name, nx, ny, k_off)
       pmax = maxval(d(7 + 1, :))
       call check(s, pmax <= 10.0_wp*force, 'no multiplier above 10x the exact contact force ('//trim(tag)//')', &
-                 'largest '//rstr(pmax))
+                 'largest '//rtoa(pmax))
    end subroutine wall_test
 
    !> Seed 7.1: the same bar with its tip's x-displacement fixed instead of the wall gives the
@@ -430,11 +431,11 @@ contains
       n = min(k_off, size(df, 2))
       diff_dt = maxval(abs(ew(3, 1:n) - ef(3, 1:n)))/ef(3, 1)
       call check(s, diff_dt <= 1.0e-12_wp, 'time steps equal those of the fixed-tip run while contact lasts', &
-                 'largest relative difference '//rstr(diff_dt))
+                 'largest relative difference '//rtoa(diff_dt))
       ! x-displacement of node 1 (the free end) in both runs
       diff_u = maxval(abs(dw(2, 1:n) - df(2, 1:n)))
       call check(s, diff_u <= 1.0e-12_wp*blen, 'tip stays where a fixed support holds it', &
-                 'largest difference '//rstr(diff_u))
+                 'largest difference '//rtoa(diff_u))
    end subroutine fixed_tip_check
 
    !> Two bars meeting at x = blen, bar 1 at +v0 with density rho1 <= rho2, bar 2 at -v0 with
@@ -478,7 +479,7 @@ contains
          ', duration/exact-1 ', duration/dur - 1.0_wp
       pmax = maxval(d(8, :))
       call check(s, pmax <= 10.0_wp*force, name//': no multiplier above 10x the exact contact force', &
-                 'largest '//rstr(pmax))
+                 'largest '//rtoa(pmax))
       m1 = rho1*blen*bhgt
       p1_exact = m1*v0*(z1 - 3.0_wp*z2)/(z1 + z2)
       call momentum_check(s, name, p1_exact, m1*v0 - rho2*blen*bhgt*v0 - p1_exact, m1*v0)
@@ -521,13 +522,5 @@ contains
       duration = t_end - t(1)
       fmean = impulse/max(duration, tiny(1.0_wp))
    end subroutine contact_measures
-
-   function rstr(x) result(str)
-      real(wp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=24) :: b
-      write (b, '(es12.5)') x
-      str = trim(adjustl(b))
-   end function rstr
 
 end module test_contact

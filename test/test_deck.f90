@@ -3,6 +3,7 @@
 !> malformed decks that must give a clean `file:line: <expected ...>` error.
 module test_deck
    use exic_base_kinds, only: wp
+   use exic_base_strings, only: itoa
    use exic_base_error, only: error_t
    use exic_model, only: model_t
    use exic_material_material, only: MAT_SOLID, MAT_RIGID
@@ -67,14 +68,6 @@ contains
       character(len=*), intent(in) :: str, sub
       has = index(str, sub) > 0
    end function has
-
-   pure function itoa(i) result(t)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: t
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      t = trim(buf)
-   end function itoa
 
    !> Write lines (trimmed) to a file.
    subroutine write_lines(path, lines)

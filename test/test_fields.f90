@@ -5,6 +5,7 @@
 !> back is compared with the exact number written. The files go to build/test_fields/.
 module test_fields
    use exic_base_kinds, only: wp, i8
+   use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
    use exic_io_fields, only: field_writer_t
    use testing, only: suite_t, check, check_close, section
@@ -241,21 +242,21 @@ contains
       call synthetic_step(1, t1, step, u, v, a, sig, fcont, active, energies)
       call synthetic_step(n, t, step, u, v, a, sig, fcont, active, energies)
       k = itoa(n - 1)
-      args = ' --steps '//itoa(n)//' --points 12 --cells 6 --time 0,'//rtoa(t1)// &
-             ' --time '//k//','//rtoa(t)// &
-             ' --point-value displacement,'//k//',5,0,'//rtoa(u(1, 6))// &
-             ' --point-value displacement,'//k//',5,1,'//rtoa(u(2, 6))// &
+      args = ' --steps '//itoa(n)//' --points 12 --cells 6 --time 0,'//rtoa(t1, '(es24.16)')// &
+             ' --time '//k//','//rtoa(t, '(es24.16)')// &
+             ' --point-value displacement,'//k//',5,0,'//rtoa(u(1, 6), '(es24.16)')// &
+             ' --point-value displacement,'//k//',5,1,'//rtoa(u(2, 6), '(es24.16)')// &
              ' --point-value displacement,'//k//',5,2,0'// &
-             ' --point-value contact_force,'//k//',7,1,'//rtoa(fcont(2, 8))// &
+             ' --point-value contact_force,'//k//',7,1,'//rtoa(fcont(2, 8), '(es24.16)')// &
              ' --point-value contact_active,'//k//',2,0,'//itoa(active(3))// &
-             ' --cell-value von_mises,'//k//',4,'//rtoa(sig(6, 5))// &
-             ' --cell-value J,'//k//',0,'//rtoa(sig(7, 1))// &
+             ' --cell-value von_mises,'//k//',4,'//rtoa(sig(6, 5), '(es24.16)')// &
+             ' --cell-value J,'//k//',0,'//rtoa(sig(7, 1), '(es24.16)')// &
              ' --cell-value material,0,4,12'
       code = run_python('tools/check_xdmf.py '//xdmf//args)
       call check(s, code == 0, tag//': meshio: '//itoa(n)//' times, 12 points, 6 cells, values', &
                  'check_xdmf.py exit code '//itoa(code))
       code = run_python('tools/check_xdmf.py '//xdmf//' --cell-value von_mises,'//k//',4,'// &
-                        rtoa(sig(6, 5) + 1.0_wp)//' > /dev/null')
+                        rtoa(sig(6, 5) + 1.0_wp, '(es24.16)')//' > /dev/null')
       call check(s, code == 1, tag//': meshio check fails on a wrong value', &
                  'check_xdmf.py exit code '//itoa(code))
    end subroutine check_meshio
@@ -509,26 +510,8 @@ contains
       integer :: i
       s = 'got '//itoa(size(x))//' values:'
       do i = 1, min(size(x), 8)
-         s = s//' '//rtoa(x(i))
+         s = s//' '//rtoa(x(i), '(es24.16)')
       end do
    end function list_text
-
-   !> Integer as text.
-   function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
-
-   !> Real as text with 17 significant digits.
-   function rtoa(x) result(s)
-      real(wp), intent(in) :: x
-      character(len=:), allocatable :: s
-      character(len=32) :: buf
-      write (buf, '(es24.16)') x
-      s = trim(adjustl(buf))
-   end function rtoa
 
 end module test_fields

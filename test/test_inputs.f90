@@ -3,6 +3,7 @@
 !> (inputs/paper) brought to light stay fixed.
 module test_inputs
    use exic_base_kinds, only: wp, i8
+   use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
    use exic_model, only: model_t
    use exic_material_material, only: MAT_SOLID
@@ -520,21 +521,5 @@ contains
          if (k(3) /= k(1) .and. k(3) /= k(2)) exit
       end do
    end subroutine three_distinct
-
-   function itoa(i) result(str)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: b
-      write (b, '(i0)') i
-      str = trim(b)
-   end function itoa
-
-   function rtoa(x) result(str)
-      real(wp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=24) :: b
-      write (b, '(es12.5)') x
-      str = trim(adjustl(b))
-   end function rtoa
 
 end module test_inputs

@@ -11,6 +11,7 @@
 module test_legacy
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use exic_base_kinds, only: wp
+   use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
    use exic_model, only: model_t
    use exic_material_material, only: MAT_RIGID
@@ -583,7 +584,7 @@ contains
       ! the API sums the work over surface nodes from positions, the driver over all nodes from
       ! increments: the same terms up to rounding, compared on the scale of the initial energy
       call check_close(s, wcon, wdeck, 1.0e-10_wp*energy0, name//': contact work equals the deck''s')
-      call check(s, penmax < 1.0e-10_wp*blen, name//': largest penetration below 1e-10 L', rstr(penmax))
+      call check(s, penmax < 1.0e-10_wp*blen, name//': largest penetration below 1e-10 L', rtoa(penmax))
    end subroutine host_equal_test
 
    !> Compare rows(8, n) (t, tip u, v, a, pair 1 force, active, penetration, multiplier) with
@@ -606,7 +607,7 @@ contains
          if (.not. (rel <= worst)) worst = rel
       end do
       call check(s, worst <= 1.0e-10_wp .and. maxval(d(6, :)) > 0.0_wp, name//': '//who// &
-                 ' history equals the deck''s to 1e-10 relative (largest '//rstr(worst)//')')
+                 ' history equals the deck''s to 1e-10 relative (largest '//rtoa(worst)//')')
    end subroutine compare_deck
 
    !> Done-when 1, second half: the host's small-strain element with its own CFL step and
@@ -626,14 +627,14 @@ contains
       if (.not. ok .or. n <= 10) return
       dts = rows(1, 2:n) - rows(1, 1:n - 1)
       call check(s, maxval(dts) > minval(dts)*(1.0_wp + 1.0e-9_wp), name//': the host''s step varies', &
-                 'dt from '//rstr(minval(dts))//' to '//rstr(maxval(dts)))
+                 'dt from '//rtoa(minval(dts))//' to '//rtoa(maxval(dts)))
       call check(s, count(rows(6, :) > 0.0_wp) > 10 .and. rows(6, n) == 0.0_wp, &
                  name//': contact is made and released')
       call check(s, maxval(rows(7, :)) < 1.0e-10_wp*blen .and. penmax < 1.0e-10_wp*blen, &
-                 name//': largest penetration at t(n+1) below 1e-10 L', rstr(max(maxval(rows(7, :)), penmax)))
+                 name//': largest penetration at t(n+1) below 1e-10 L', rtoa(max(maxval(rows(7, :)), penmax)))
       call check(s, minval(rows(9, :)) > -1.0e-10_wp*blen, name//': every corrected gap at t(n+2) closed', &
-                 'smallest '//rstr(minval(rows(9, :))))
-      call check(s, abs(wcon) < 0.01_wp*energy0, name//': contact does next to no work (< 1 % of the energy)', rstr(wcon))
+                 'smallest '//rtoa(minval(rows(9, :))))
+      call check(s, abs(wcon) < 0.01_wp*energy0, name//': contact does next to no work (< 1 % of the energy)', rtoa(wcon))
    end subroutine host_simple_test
 
    !> The C host: one step, the gap closes, an unknown handle gives a message.
@@ -644,21 +645,5 @@ contains
       call check(s, stat == 0 .and. cstat == 0, 'chost: one step closes the gap, contact force = m a, '// &
                  'unknown handle reported (output in '//run_dir//'/chost.txt)')
    end subroutine c_host_test
-
-   function itoa(i) result(str)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: b
-      write (b, '(i0)') i
-      str = trim(b)
-   end function itoa
-
-   function rstr(x) result(str)
-      real(wp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=24) :: b
-      write (b, '(es12.5)') x
-      str = trim(adjustl(b))
-   end function rstr
 
 end module test_legacy

@@ -1,6 +1,7 @@
 !> Whole-run physics checks of the explicit solver against exact answers and conservation laws.
 module test_physics
    use exic_base_kinds, only: wp
+   use exic_base_strings, only: rtoa
    use testing, only: suite_t, check, check_close, section
    use deck_runner, only: run_dir, run_deck, read_table, column
    implicit none
@@ -68,7 +69,7 @@ contains
          end if
       end do
       call check(s, abs(t_arrive - length/c) <= 2.0_wp*dt, 'front reaches the free end at L/c within 2 steps', &
-                 'arrival '//real_str(t_arrive)//', L/c '//real_str(length/c)//', dt '//real_str(dt))
+                 'arrival '//rtoa(t_arrive)//', L/c '//rtoa(length/c)//', dt '//rtoa(dt))
       ! stress behind the front at mid-bar, between the front's passage and the reflected unloading
       t1 = 0.5_wp*length/c + 20.0_wp*h/c
       t2 = 1.5_wp*length/c - 20.0_wp*h/c
@@ -131,19 +132,19 @@ contains
       nrow = size(d, 2)
       worst = maxval(abs(d(kd, :)))
       call check(s, worst <= 0.005_wp, 'total energy within 0.5 % over 1e4 steps (quadrature '//q//')', &
-                 'largest drift '//real_str(worst))
+                 'largest drift '//rtoa(worst))
       n = nrow/10
       early = sum(d(kd, n + 1:2*n))/n
       late = sum(d(kd, nrow - n + 1:nrow))/n
       call check(s, abs(late - early) <= 1.0e-3_wp, 'no secular energy drift (quadrature '//q//')', &
-                 'mean drift early '//real_str(early)//', late '//real_str(late))
+                 'mean drift early '//rtoa(early)//', late '//rtoa(late))
       call read_table(run_dir//'/energy_q'//q//'.his', names, d)
       jdev = 0.0_wp
       do k = 2, 3
          jdev = max(jdev, maxval(abs(d(k, :) - 1.0_wp)))
       end do
       call check(s, jdev >= 0.05_wp, 'the block strains by more than 5 % in volume (quadrature '//q//')', &
-                 'largest |J - 1| '//real_str(jdev))
+                 'largest |J - 1| '//rtoa(jdev))
       if (nq == 1) then
          call read_table(run_dir//'/energy_q'//q//'.ene', names, d)
          ! hourglass energy at every output against the strain energy the block stores (its
@@ -151,7 +152,7 @@ contains
          umax = maxval(d(ku, :))
          hgmax = maxval(d(kh, :))
          call check(s, hgmax < 0.01_wp*umax, 'hourglass energy below 1 % of strain energy', &
-                    'largest hourglass '//real_str(hgmax)//', largest strain '//real_str(umax))
+                    'largest hourglass '//rtoa(hgmax)//', largest strain '//rtoa(umax))
       end if
    end subroutine energy_test
 
@@ -211,7 +212,7 @@ contains
       call read_table(run_dir//'/distorted.ene', names, d)
       kd = column(names, 'drift')
       call check(s, maxval(abs(d(kd, :))) < 0.01_wp, 'distorted mesh keeps its energy within 1 % (stable)', &
-                 'largest drift '//real_str(maxval(abs(d(kd, :)))))
+                 'largest drift '//rtoa(maxval(abs(d(kd, :)))))
    end subroutine stability_tests
 
    !> A bar slammed into a fixed end at twice its wave speed crushes its last element.
@@ -236,13 +237,5 @@ contains
       call read_table(run_dir//'/crush.ene', names, d)
       call check(s, size(d, 2) >= 10 .and. all(d == d), 'energies kept up to the failing step, no NaN')
    end subroutine inversion_test
-
-   function real_str(x) result(str)
-      real(wp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=24) :: b
-      write (b, '(es12.5)') x
-      str = trim(adjustl(b))
-   end function real_str
 
 end module test_physics

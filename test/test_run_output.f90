@@ -2,6 +2,7 @@
 !> killed with SIGTERM halfway through.
 module test_run_output
    use exic_base_kinds, only: wp
+   use exic_base_strings, only: itoa, rtoa
    use testing, only: suite_t, check, section
    use deck_runner, only: run_dir, run_deck, read_table, write_text
    use test_fields, only: run_python
@@ -83,11 +84,11 @@ contains
       call check(s, abs(his(1, row) - times(k)) <= 1.0e-12_wp*max(1.0_wp, times(k)) .and. &
                  abs(value - his(2, row)) <= 1.0e-14_wp*max(abs(value), 1.0e-30_wp) + 1.0e-300_wp, &
                  'field value equals the history value at the same time', &
-                 'h5 '//rtoa(value)//', his '//rtoa(his(2, row))//' at t '//rtoa(times(k)))
+                 'h5 '//rtoa(value, '(es23.16)')//', his '//rtoa(his(2, row), '(es23.16)')//' at t '//rtoa(times(k), '(es23.16)'))
       ! an independent reader: meshio loads the .xdmf time series (node 13 is point 12)
       status = run_python('tools/check_xdmf.py '//run_dir//'/fields_run.xdmf --steps '//itoa(nt)// &
                           ' --points 45 --cells 26 --point-value displacement,'//itoa(k - 1)//',12,0,'// &
-                          rtoa(his(2, row))//' --tol 1e-15')
+                          rtoa(his(2, row), '(es23.16)')//' --tol 1e-15')
       call check(s, status == 0, 'meshio reads the run''s .xdmf: times, points, cells and the same value')
    end subroutine readback_test
 
@@ -191,21 +192,5 @@ contains
       end do
       close (u)
    end function has_line
-
-   function itoa(i) result(str)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: str
-      character(len=16) :: b
-      write (b, '(i0)') i
-      str = trim(b)
-   end function itoa
-
-   function rtoa(x) result(str)
-      real(wp), intent(in) :: x
-      character(len=:), allocatable :: str
-      character(len=32) :: b
-      write (b, '(es23.16)') x
-      str = trim(adjustl(b))
-   end function rtoa
 
 end module test_run_output
