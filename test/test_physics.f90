@@ -3,7 +3,12 @@ module test_physics
    use exic_base_kinds, only: wp
    use exic_base_strings, only: rtoa
    use testing, only: suite_t, check, check_close, section
-   use deck_runner, only: run_dir, run_deck, read_table, column
+   use deck_runner, only: run_dir, run_deck, read_table, column, write_text
+   use exic_base_error, only: error_t
+   use exic_model, only: model_t
+   use exic_io_deck, only: read_deck
+   use exic_explicit_state, only: state_t, element_set_t
+   use exic_explicit_solver, only: solver_init, solver_forces
    implicit none
    private
 
@@ -24,7 +29,57 @@ contains
       call stability_tests(s)
       call section(s, 'physics: element inversion stops the run')
       call inversion_test(s)
+      call section(s, 'physics: objectivity under a 90-degree rigid rotation')
+      call rotation_test(s, 2)
+      call rotation_test(s, 1)
    end subroutine run_physics_tests
+
+   !> A distorted block carried through a rigid rotation of 90 degrees in 2000 increments
+   !> (u = (R - I) X): the strain energy and the internal forces stay at round-off at every
+   !> increment (the total-Lagrangian element is objective), for both quadratures.
+   subroutine rotation_test(s, nq)
+      type(suite_t), intent(inout) :: s
+      integer, intent(in) :: nq
+      type(model_t) :: model
+      type(state_t) :: st
+      type(element_set_t), allocatable :: sets(:)
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: deck
+      character(len=1) :: q
+      integer :: k, ebad
+      real(wp) :: th, c, sn, worst_w, worst_f, fscale
+      integer, parameter :: nstep = 2000
+
+      write (q, '(i1)') nq
+      deck = 'FEAP * * rigid rotation'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'//nl//'    DENSity 1'//nl// &
+             '    QUADrature '//q//nl//nl// &
+             'BLOCk'//nl//'  CARTesian,4,3,0,0,1'//nl//'    1,0,0'//nl//'    2,2,0.3'//nl//'    3,2.2,1.5'//nl// &
+             '    4,-0.1,1.2'//nl//'    5,1.1,0.05'//nl//nl//'END'//nl//'BATCh'//nl//'END'//nl//'STOP'
+      call write_text(run_dir//'/rotation.inp', deck)
+      call read_deck(run_dir//'/rotation.inp', model, err)
+      if (.not. allocated(err)) call solver_init(model, st, sets, err)
+      call check(s, .not. allocated(err), 'rotation block set up (quadrature '//q//')')
+      if (allocated(err)) return
+      worst_w = 0.0_wp
+      worst_f = 0.0_wp
+      ! force scale: a strain of 1 on an element edge of about 0.5
+      fscale = 1000.0_wp*0.5_wp
+      do k = 1, nstep
+         th = 0.5_wp*acos(-1.0_wp)*real(k, wp)/real(nstep, wp)
+         c = cos(th)
+         sn = sin(th)
+         st%u(1, :) = (c - 1.0_wp)*st%x0(1, :) - sn*st%x0(2, :)
+         st%u(2, :) = sn*st%x0(1, :) + (c - 1.0_wp)*st%x0(2, :)
+         call solver_forces(st, sets, ebad)
+         worst_w = max(worst_w, abs(st%strain) + abs(st%hourglass))
+         worst_f = max(worst_f, maxval(abs(st%fint)))
+      end do
+      call check(s, worst_w <= 1.0e-12_wp*1000.0_wp*3.0_wp, 'strain energy at round-off through 90 degrees'// &
+                 ' (quadrature '//q//')', 'largest '//rtoa(worst_w))
+      call check(s, worst_f <= 1.0e-12_wp*fscale, 'internal forces at round-off through 90 degrees'// &
+                 ' (quadrature '//q//')', 'largest '//rtoa(worst_f))
+   end subroutine rotation_test
 
    !> A bar fixed at x = L, moving at v0 toward it: a compression front of stress rho c v0 runs
    !> back and reaches the free end at t = L/c (exact 1-D wave theory; nu = 0 makes plane strain 1-D).
