@@ -19,6 +19,10 @@ import sys
 os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")
 
 
+# the columns of the cell matrix "stress" (the seven stress components of the TPLOt table)
+STRESS = ["sxx", "syy", "szz", "sxy", "pressure", "von_mises", "J"]
+
+
 def fields(n):
     """argparse type: a comma-separated list of exactly n items."""
     def split(text):
@@ -44,7 +48,8 @@ def parse_args(argv):
                         "(0 for a scalar) equals VALUE")
     p.add_argument("--cell-value", action="append", default=[], type=fields(4),
                    metavar="NAME,K,CELL,VALUE",
-                   help="cell field NAME at output K, cell CELL (0-based) equals VALUE")
+                   help="cell field NAME at output K, cell CELL (0-based) equals VALUE; NAME may be "
+                        "a stress component (sxx ... J), a column of the cell matrix 'stress'")
     p.add_argument("--tol", type=float, default=0.0,
                    help="absolute tolerance of value checks (default 0: exact)")
     return p.parse_args(argv)
@@ -95,11 +100,15 @@ def main(argv=None):
                 expect(abs(float(got) - float(value)) <= args.tol,
                        f"{name}[{node},{comp}] at output {k}: got {float(got)!r}, want {value}")
             for name, k, cell, value in args.cell_value:
-                blocks = step(int(k))[2].get(name)
+                cell_data = step(int(k))[2]
+                blocks = cell_data.get(name)
+                column = None
+                if blocks is None and name in STRESS and "stress" in cell_data:
+                    blocks, column = cell_data["stress"], STRESS.index(name)
                 if blocks is None:
                     failures.append(f"cell field {name} missing at output {k}")
                     continue
-                got = blocks[0][int(cell)]
+                got = blocks[0][int(cell)] if column is None else blocks[0][int(cell), column]
                 expect(abs(float(got) - float(value)) <= args.tol,
                        f"{name}[{cell}] at output {k}: got {float(got)!r}, want {value}")
     except Exception as exc:  # any reader error is a failed check
