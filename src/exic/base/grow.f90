@@ -1,6 +1,6 @@
-!> Work arrays that grow and never shrink: `call grow(a, n)` makes sure a holds at least n
-!> entries (n columns for a rank-2 array), keeping its contents, doubling when it grows so that
-!> repeated small growth costs amortized O(1). Used by the per-step paths (contact search,
+!> Arrays that grow and never shrink: `call grow(a, n)` makes sure a holds at least n entries
+!> (n columns for a rank-2 array), keeping its contents and zeroing the new entries (.false. for
+!> logicals), doubling when it grows so that repeated small growth costs amortized O(1). Used by the per-step paths (contact search,
 !> corrector, sparse factorization), which allocate nothing once their arrays are sized.
 module exic_base_grow
    use exic_base_kinds, only: wp
@@ -11,7 +11,7 @@ module exic_base_grow
 
    !> Grow an allocatable array to at least n entries (or n columns), keeping its contents.
    interface grow
-      module procedure grow_int, grow_real, grow_logical, grow_real2
+      module procedure grow_int, grow_real, grow_logical, grow_real2, grow_int2
    end interface grow
 
 contains
@@ -27,9 +27,9 @@ contains
       integer, intent(in) :: n
       integer, allocatable :: tmp(:)
       if (.not. allocated(a)) then
-         allocate (a(new_size(0, n)))
+         allocate (a(new_size(0, n)), source=0)
       else if (size(a) < n) then
-         allocate (tmp(new_size(size(a), n)))
+         allocate (tmp(new_size(size(a), n)), source=0)
          tmp(1:size(a)) = a
          call move_alloc(tmp, a)
       end if
@@ -40,9 +40,9 @@ contains
       integer, intent(in) :: n
       real(wp), allocatable :: tmp(:)
       if (.not. allocated(a)) then
-         allocate (a(new_size(0, n)))
+         allocate (a(new_size(0, n)), source=0.0_wp)
       else if (size(a) < n) then
-         allocate (tmp(new_size(size(a), n)))
+         allocate (tmp(new_size(size(a), n)), source=0.0_wp)
          tmp(1:size(a)) = a
          call move_alloc(tmp, a)
       end if
@@ -53,9 +53,9 @@ contains
       integer, intent(in) :: n
       logical, allocatable :: tmp(:)
       if (.not. allocated(a)) then
-         allocate (a(new_size(0, n)))
+         allocate (a(new_size(0, n)), source=.false.)
       else if (size(a) < n) then
-         allocate (tmp(new_size(size(a), n)))
+         allocate (tmp(new_size(size(a), n)), source=.false.)
          tmp(1:size(a)) = a
          call move_alloc(tmp, a)
       end if
@@ -67,12 +67,26 @@ contains
       integer, intent(in) :: n, rows
       real(wp), allocatable :: tmp(:, :)
       if (.not. allocated(a)) then
-         allocate (a(rows, new_size(0, n)))
+         allocate (a(rows, new_size(0, n)), source=0.0_wp)
       else if (size(a, 2) < n) then
-         allocate (tmp(size(a, 1), new_size(size(a, 2), n)))
+         allocate (tmp(size(a, 1), new_size(size(a, 2), n)), source=0.0_wp)
          tmp(:, 1:size(a, 2)) = a
          call move_alloc(tmp, a)
       end if
    end subroutine grow_real2
+
+   !> Rank 2 integer: as grow_real2.
+   subroutine grow_int2(a, n, rows)
+      integer, allocatable, intent(inout) :: a(:, :)
+      integer, intent(in) :: n, rows
+      integer, allocatable :: tmp(:, :)
+      if (.not. allocated(a)) then
+         allocate (a(rows, new_size(0, n)), source=0)
+      else if (size(a, 2) < n) then
+         allocate (tmp(size(a, 1), new_size(size(a, 2), n)), source=0)
+         tmp(:, 1:size(a, 2)) = a
+         call move_alloc(tmp, a)
+      end if
+   end subroutine grow_int2
 
 end module exic_base_grow

@@ -5,6 +5,7 @@
 !> INITial,VELOcity are kept and applied after the mesh END (see exic_io_deck_finish).
 module exic_io_deck_mesh
    use exic_base_kinds, only: wp
+   use exic_base_grow, only: grow
    use exic_base_error, only: error_t
    use exic_mesh_mesh, only: mesh_t
    use exic_material_material, only: material_t
@@ -112,13 +113,13 @@ contains
       old = size(b%m%defined)
       if (n > old) then
          cap = max(2*old, n)
-         call grow_r2(b%m%x, cap)
-         call grow_r2(b%m%force, cap)
-         call grow_r2(b%m%disp, cap)
-         call grow_r2(b%m%v0, cap)
-         call grow_i2(b%m%bc, cap)
-         call grow_l1(b%m%defined, cap)
-         call grow_i1(b%nrec, cap)
+         call grow(b%m%x, cap, 2)
+         call grow(b%m%force, cap, 2)
+         call grow(b%m%disp, cap, 2)
+         call grow(b%m%v0, cap, 2)
+         call grow(b%m%bc, cap, 2)
+         call grow(b%m%defined, cap)
+         call grow(b%nrec, cap)
       end if
       b%m%nnode = max(b%m%nnode, n)
    end subroutine ensure_node
@@ -131,54 +132,14 @@ contains
       old = size(b%edef)
       if (e > old) then
          cap = max(2*old, e)
-         call grow_i2(b%m%conn, cap)
-         call grow_i1(b%m%mat, cap)
-         call grow_i1(b%m%region, cap)
-         call grow_i1(b%erec, cap)
-         call grow_l1(b%edef, cap)
+         call grow(b%m%conn, cap, 4)
+         call grow(b%m%mat, cap)
+         call grow(b%m%region, cap)
+         call grow(b%erec, cap)
+         call grow(b%edef, cap)
       end if
       b%m%nelem = max(b%m%nelem, e)
    end subroutine ensure_elem
-
-   subroutine grow_r2(a, cap)
-      real(wp), allocatable, intent(inout) :: a(:, :)
-      integer, intent(in) :: cap
-      real(wp), allocatable :: t(:, :)
-      allocate (t(size(a, 1), cap))
-      t = 0.0_wp
-      t(:, 1:size(a, 2)) = a
-      call move_alloc(t, a)
-   end subroutine grow_r2
-
-   subroutine grow_i2(a, cap)
-      integer, allocatable, intent(inout) :: a(:, :)
-      integer, intent(in) :: cap
-      integer, allocatable :: t(:, :)
-      allocate (t(size(a, 1), cap))
-      t = 0
-      t(:, 1:size(a, 2)) = a
-      call move_alloc(t, a)
-   end subroutine grow_i2
-
-   subroutine grow_i1(a, cap)
-      integer, allocatable, intent(inout) :: a(:)
-      integer, intent(in) :: cap
-      integer, allocatable :: t(:)
-      allocate (t(cap))
-      t = 0
-      t(1:size(a)) = a
-      call move_alloc(t, a)
-   end subroutine grow_i1
-
-   subroutine grow_l1(a, cap)
-      logical, allocatable, intent(inout) :: a(:)
-      integer, intent(in) :: cap
-      logical, allocatable :: t(:)
-      allocate (t(cap))
-      t = .false.
-      t(1:size(a)) = a
-      call move_alloc(t, a)
-   end subroutine grow_l1
 
    !> FEAP node-vector generation (genvec): append to (nodes, vals) the nodes strictly between the
    !> previous record's node and n (when the previous record had ng /= 0), interpolated linearly,
