@@ -51,7 +51,7 @@ build: setup
 
 run: build
 	@mkdir -p $(OUTDIR)
-	$(FPM) run $(RELEASE) -- $(EXAMPLE) -o $(OUTDIR)
+	$(FPM) run $(RELEASE) exic -- $(EXAMPLE) -o $(OUTDIR)
 
 # fpm 0.12 can leave a stale test executable when `fpm run` rebuilt the library first: relink it.
 # The legacy API tests install exic with this fpm (examples/legacy_host/build.sh).
