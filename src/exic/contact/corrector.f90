@@ -158,34 +158,39 @@ contains
       end if
       if (.not. allocated(self%fwork)) allocate (self%fwork(2, nnode))
 
+      ! S over every candidate, assembled once: the pivoting passes only change which
+      ! constraints are dropped, so the pattern (and the sparse symbolic analysis) stays the same
+      ! within the step, and across steps while the candidates do
+      call grow(self%idx, m)
+      call grow(self%drop, m)
+      call grow(self%rhs, m)
+      call grow(self%sol, m)
+      call grow(self%bad, m)
+      self%idx(1:m) = [(k, k=1, m)]
+      self%pos(1:m) = self%idx(1:m)
+      self%rhs(1:m) = -cs%gap(1:m)/c
+      call assemble(self, cs, nnode, minv, m)
+
       best = huge(1)
       budget = 3
       pass = 0
       do
          pass = pass + 1
-         ! the active candidates F, in candidate order
+         ! the active candidates F: every other candidate is dropped from the factorization
          nact = count(cs%active(1:m))
-         call grow(self%idx, nact)
-         self%idx(1:nact) = pack([(k, k=1, m)], cs%active(1:m))
-         self%pos(1:m) = 0
-         self%pos(self%idx(1:nact)) = [(k, k=1, nact)]
-         call grow(self%drop, nact)
-         call grow(self%rhs, nact)
-         call grow(self%sol, nact)
-         call grow(self%bad, nact)
-         self%drop(1:nact) = .false.
-         self%rhs(1:nact) = -cs%gap(self%idx(1:nact))/c
+         self%drop(1:m) = .not. cs%active(1:m)
          nbad = 0
          if (nact > 0) then
-            call assemble(self, cs, nnode, minv, nact)
-            call factor_and_solve(self, nact, nbad, err)
+            call factor_and_solve(self, m, nbad, err)
             if (allocated(err)) return
+         else
+            self%sol(1:m) = 0.0_wp
          end if
          self%nredundant = nbad
          ! multipliers on F (redundant ones 0) and the corrected gaps of every candidate
          cs%p(1:m) = 0.0_wp
-         do k = 1, nact
-            if (.not. self%drop(k)) cs%p(self%idx(k)) = self%sol(k)
+         do k = 1, m
+            if (.not. self%drop(k)) cs%p(k) = self%sol(k)
          end do
          call apply(cs, nnode, self%fwork)
          ninf = 0
@@ -327,7 +332,6 @@ contains
                ci = self%nlist(q)
                row = self%pos(ci)
                if (row == 0) cycle
-               if (.not. cs%active(ci)) cycle
                v = cs%w(k, cj)*node_weight(cs, ci, nd)* &
                    (cs%nrm(1, cj)*minv(1, nd)*cs%nrm(1, ci) + cs%nrm(2, cj)*minv(2, nd)*cs%nrm(2, ci))
                if (nact <= self%dense_limit) then
