@@ -13,10 +13,12 @@
 !> p = -lambda in the seed's sign convention (its lambda is negative in compression).
 !> The active set starts from the violated predicted gaps and is settled by block principal
 !> pivoting (see corrector_solve): tensile multipliers leave it and candidates whose corrected
-!> gap is still violated join it, for at most `max_passes` passes. Redundant constraints (dependent columns of G) are removed by the factorization
-!> (see exic_linalg_sparse_ldl) and carry p = 0. Small active sets go to a dense LAPACK
-!> factorization, larger ones to SuiteSparse LDL' with AMD ordering, whose symbolic analysis
-!> is reused while the active pattern is unchanged.
+!> gap is still violated join it, for at most `max_passes` passes. S is assembled once per step
+!> over every candidate; a pass only drops the constraints outside its active set. Redundant
+!> constraints (dependent columns of G) are removed by the factorization (see
+!> exic_linalg_sparse_ldl) and carry p = 0. Up to `dense_limit` candidates go to a dense LAPACK
+!> factorization, more to SuiteSparse LDL' with AMD ordering, whose symbolic analysis is reused
+!> while the candidates' pattern is unchanged (across the passes of a step, and across steps).
 module exic_contact_corrector
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
