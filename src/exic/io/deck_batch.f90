@@ -21,8 +21,8 @@ module exic_io_deck_batch
                               REQ_REAC, REQ_CONT, REQ_MOME
    use exic_io_records, only: keyword_is, keyword_key
    use exic_io_expression, only: evaluate
-   use exic_io_reader, only: reader_t, next_record, next_nonblank, field, word, has_field, &
-                             real_field, int_field, fail, warn, where, end_set, unknown_keyword, &
+   use exic_io_reader, only: next_in_set, reader_t, next_nonblank, field, word, has_field, &
+                             real_field, int_field, fail, warn, where, unknown_keyword, &
                              itoa, rtoa, check_command, check_data_record, is_command
    use exic_io_deck_mesh, only: genvec_t, node_record
    use exic_io_deck_finish, only: used_nodes, nearest_node
@@ -323,12 +323,8 @@ contains
       real(wp), allocatable :: vals(:, :)
       integer :: i, cnt, k, n
       do
-         call next_record(rd, i)
+         call next_in_set(rd, i)
          if (i == 0) return
-         if (rd%src%rec(i)%blank) then
-            call end_set(rd, i)
-            return
-         end if
          cnt = 0
          call check_data_record(rd, i, 'INITial', err)
          if (allocated(err)) return
@@ -362,12 +358,8 @@ contains
       integer :: i
       logical :: skip
       do
-         call next_record(rd, i)
+         call next_in_set(rd, i)
          if (i == 0) return
-         if (rd%src%rec(i)%blank) then
-            call end_set(rd, i)
-            return
-         end if
          call parse_request(rd, i, model, map, r, skip, err)
          if (allocated(err)) return
          if (skip) cycle

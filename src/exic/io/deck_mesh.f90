@@ -11,8 +11,8 @@ module exic_io_deck_mesh
    use exic_material_material, only: material_t
    use exic_mesh_block, only: BLOCK_CARTESIAN, BLOCK_POLAR, block_coordinates, block_connectivity
    use exic_io_records, only: keyword_is
-   use exic_io_reader, only: reader_t, next_record, next_nonblank, back_one, nfields, field, word, &
-                             has_field, real_field, int_field, fail, warn, where, end_set, &
+   use exic_io_reader, only: next_in_set, reader_t, next_record, next_nonblank, back_one, nfields, &
+                             field, word, has_field, real_field, int_field, fail, warn, where, &
                              unknown_keyword, itoa, looks_like_data, check_data_record
    implicit none
    private
@@ -258,12 +258,8 @@ contains
       cnt = 0
       if (present(recs)) allocate (recs(64))
       do
-         call next_record(rd, i)
+         call next_in_set(rd, i)
          if (i == 0) return
-         if (rd%src%rec(i)%blank) then
-            call end_set(rd, i)
-            return
-         end if
          old = cnt
          call check_data_record(rd, i, what(1:index(what, ' ') - 1), err)
          if (allocated(err)) return
@@ -353,12 +349,8 @@ contains
       mnd = 0
       mma = 0
       do
-         call next_record(rd, i)
+         call next_in_set(rd, i)
          if (i == 0) return
-         if (rd%src%rec(i)%blank) then
-            call end_set(rd, i)
-            return
-         end if
          call check_data_record(rd, i, 'ELEMents', err)
          if (allocated(err)) return
          call int_field(rd, i, 1, what, n, err)
@@ -561,12 +553,8 @@ contains
       master = 0.0_wp
       given = .false.
       do
-         call next_record(rd, i)
+         call next_in_set(rd, i)
          if (i == 0) return
-         if (rd%src%rec(i)%blank) then
-            call end_set(rd, i)
-            return
-         end if
          if (.not. looks_like_data(rd, i) .and. any(given)) then
             call check_data_record(rd, i, 'BLOCk master node', err)
             if (allocated(err)) return
@@ -624,12 +612,8 @@ contains
       call set_mode(rd, icmd, .false., eb%set, err)
       if (allocated(err)) return
       do
-         call next_record(rd, i)
+         call next_in_set(rd, i)
          if (i == 0) return
-         if (rd%src%rec(i)%blank) then
-            call end_set(rd, i)
-            return
-         end if
          call check_data_record(rd, i, 'EBOUndary', err)
          if (allocated(err)) return
          call int_field(rd, i, 1, what, eb%dir, err)
@@ -687,12 +671,8 @@ contains
       if (allocated(err)) return
       gap = -1.0_wp
       do
-         call next_record(rd, i)
+         call next_in_set(rd, i)
          if (i == 0) return
-         if (rd%src%rec(i)%blank) then
-            call end_set(rd, i)
-            return
-         end if
          cb = cbou_t(set=set, gap=gap, rec=i)
          if (keyword_is(word(rd, i, 1), 'node')) then
             cb%kind = CB_NODE
@@ -780,12 +760,8 @@ contains
       type(error_t), allocatable, intent(out) :: err
       integer :: i
       do
-         call next_record(rd, i)
+         call next_in_set(rd, i)
          if (i == 0) return
-         if (rd%src%rec(i)%blank) then
-            call end_set(rd, i)
-            return
-         end if
          if (keyword_is(word(rd, i, 1), 'plan') .and. keyword_is(word(rd, i, 2), 'stra')) cycle
          if (keyword_is(word(rd, i, 1), 'fini')) cycle
          call check_data_record(rd, i, 'GLOBal', err)
@@ -818,12 +794,8 @@ contains
          return
       end if
       do
-         call next_record(rd, i)
+         call next_in_set(rd, i)
          if (i == 0) return
-         if (rd%src%rec(i)%blank) then
-            call end_set(rd, i)
-            return
-         end if
          if (looks_like_data(rd, i)) then
             cnt = 0
             call node_record(rd, i, 1, 'INITial,VELOcity record n, ng, vx, vy', 0, .false., g, &

@@ -12,7 +12,7 @@ module exic_io_reader
    implicit none
    private
 
-   public :: reader_t, next_record, next_nonblank, back_one, nfields, field, word, has_field
+   public :: reader_t, next_record, next_in_set, next_nonblank, back_one, nfields, field, word, has_field
    public :: real_field, int_field, fail, warn, where, end_set, looks_like_data, check_command
    public :: read_parameters, unknown_keyword, itoa, rtoa, check_data_record, is_command
 
@@ -47,6 +47,19 @@ contains
          i = rd%pos
       end if
    end subroutine next_record
+
+   !> Next record of the current data set: `i` = 0 at the end of input or at the blank record
+   !> that ends the set (which is recorded with end_set).
+   subroutine next_in_set(rd, i)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(out) :: i
+      call next_record(rd, i)
+      if (i == 0) return
+      if (rd%src%rec(i)%blank) then
+         call end_set(rd, i)
+         i = 0
+      end if
+   end subroutine next_in_set
 
    !> Advance to the next non-blank record; `i` = 0 at the end of input.
    subroutine next_nonblank(rd, i)
@@ -259,12 +272,8 @@ contains
       type(error_t), allocatable, intent(out) :: err
       integer :: i
       do
-         call next_record(rd, i)
+         call next_in_set(rd, i)
          if (i == 0) return
-         if (rd%src%rec(i)%blank) then
-            call end_set(rd, i)
-            return
-         end if
          call parameter_record(rd, i, err)
          if (allocated(err)) return
       end do
