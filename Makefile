@@ -7,7 +7,7 @@ APT_PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf
 VENV    := .venv
 PYTHON  := $(VENV)/bin/python
 FPM     := $(VENV)/bin/fpm
-RELEASE := --profile release --flag "-O3 -march=native -funroll-loops"
+RELEASE := --profile release --flag "-O3 -march=native -funroll-loops -ffp-contract=off"
 EXAMPLE ?= inputs/examples/impact.inp
 OUTDIR  ?= out
 

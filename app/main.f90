@@ -1,7 +1,7 @@
 !> The `exic` command: read a deck, run it, write <stem>.his/.ene/.out next to it or under -o DIR.
 program exic_main
    use exic_base_error, only: error_t, fatal_error
-   use exic_model, only: model_t
+   use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit

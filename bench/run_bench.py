@@ -892,7 +892,7 @@ def main(argv=None):
     prof_bindir = args.profile_bindir
     if "profile" in only and not prof_bindir and args.fpm and shutil.which("valgrind"):
         # valgrind does not decode AVX-512: profile an AVX2 build where the CPU has AVX-512
-        flags = "-O3 -march=native -funroll-loops"
+        flags = "-O3 -march=native -funroll-loops -ffp-contract=off"
         if "--flag" in rel:
             flags = rel[rel.index("--flag") + 1]
         if "avx512f" in open("/proc/cpuinfo").read():

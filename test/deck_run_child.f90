@@ -5,7 +5,7 @@
 !> without arguments (as `fpm test` does with every program under test/), it does nothing.
 program deck_run_child
    use exic_base_error, only: error_t
-   use exic_model, only: model_t
+   use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
    implicit none

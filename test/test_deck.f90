@@ -5,7 +5,7 @@ module test_deck
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa
    use exic_base_error, only: error_t
-   use exic_model, only: model_t
+   use exic_io_model, only: model_t
    use exic_material_material, only: MAT_SOLID, MAT_RIGID
    use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &

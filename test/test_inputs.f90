@@ -5,7 +5,7 @@ module test_inputs
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_model, only: model_t
+   use exic_io_model, only: model_t
    use exic_material_material, only: MAT_SOLID
    use exic_io_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model

@@ -12,11 +12,11 @@ module test_legacy
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
-   use exic_base_error, only: error_t
-   use exic_model, only: model_t
+   use exic_base_error, only: error_t, make_error
+   use exic_io_model, only: model_t
    use exic_material_material, only: MAT_RIGID
-   use exic_explicit_state, only: state_t, element_set_t
-   use exic_explicit_solver, only: solver_init, solver_forces
+   use exic_contact_spec, only: contact_spec_t
+   use exic_explicit_step, only: stepper_t, contact_hook_t
    use exic_mesh_boundary, only: free_edges
    use exic_legacy_interfaces, only: exic_contact_create_mesh, exic_contact_create_segments, &
                                      exic_contact_set_fixed, exic_contact_set_pair, exic_contact_set_option, &
@@ -38,13 +38,20 @@ module test_legacy
    real(wp), parameter :: dt_fixed = 1.4e-3_wp          !< 0.8 of the stable step of the 30 x 6 bars
    real(wp), parameter :: energy0 = 0.5_wp*rho0*blen*bhgt*v0**2   !< kinetic energy of bar 1
 
-   !> A run of exic's own element loop with contact through the API (a host inside the test).
+   !> The step's contact through the API: EXIC_CONTACT_STEP on handle h.
+   type, extends(contact_hook_t) :: api_hook_t
+      integer :: h = 0
+   contains
+      procedure :: correct => api_correct
+   end type api_hook_t
+
+   !> A run of exic's own step with contact through the API (a host inside the test).
    type :: api_run_t
-      type(state_t) :: st
-      type(element_set_t), allocatable :: sets(:)
+      type(stepper_t) :: stp
+      type(api_hook_t), pointer :: hook => null()
       integer :: h = 0, itip = 0, nrow = 0
-      real(wp) :: dt = 0.0_wp, tmax = 0.0_wp
-      real(wp), allocatable :: aold(:, :), vt(:, :), x(:, :), fcon(:, :), rows(:, :)
+      real(wp) :: tmax = 0.0_wp
+      real(wp), allocatable :: rows(:, :)
       logical :: ok = .true.
    end type api_run_t
 
@@ -256,58 +263,71 @@ contains
 
    ! ------------------------------------------------------------------ in-process host
 
+   !> The step's contact: one EXIC_CONTACT_STEP call with the stepper's arrays.
+   subroutine api_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err)
+      class(api_hook_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode), dt_prev, dt
+      real(wp), intent(inout) :: a(2, nnode), fcon(2, nnode)
+      integer, intent(out) :: nactive
+      type(error_t), allocatable, intent(out) :: err
+      integer :: ierr
+      call exic_contact_step(self%h, nnode, x, vt, a, dt_prev, dt, fcon, nactive, ierr)
+      if (ierr /= 0) call make_error(err, 'EXIC_CONTACT_STEP returned ierr = '//itoa(ierr))
+   end subroutine api_correct
+
+   !> The stepper of `model` without exic's contact (the deck's is made through the API).
+   subroutine api_init(r, model)
+      type(api_run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable :: err
+      call r%stp%init(model%mesh, model%materials, contact_spec_t(), err)
+      r%ok = .not. allocated(err)
+   end subroutine api_init
+
    !> Create the problem of `model` through the API and take the first (t = 0) step.
    subroutine api_start(r, model, tip)
       type(api_run_t), intent(inout) :: r
       type(model_t), intent(in) :: model
       integer, intent(in) :: tip
-      type(error_t), allocatable :: err
-      integer :: ierr, ebad, nact
+      integer :: ierr
       integer, allocatable :: ipair(:, :)
       real(wp), allocatable :: pp(:)
-      call solver_init(model, r%st, r%sets, err)
-      r%ok = .not. allocated(err)
+      call api_init(r, model)
       if (.not. r%ok) return
       call host_pairs(model, ipair, pp)
-      call exic_contact_create_mesh(r%st%nnode, model%mesh%x, r%st%mass, model%mesh%nelem, model%mesh%conn, &
-                                    model%mesh%region, size(ipair, 2), ipair, pp, r%h, ierr)
+      call exic_contact_create_mesh(r%stp%st%nnode, model%mesh%x, r%stp%st%mass, model%mesh%nelem, &
+                                    model%mesh%conn, model%mesh%region, size(ipair, 2), ipair, pp, r%h, ierr)
       r%ok = ierr == 0
-      if (.not. r%ok) return
-      r%dt = dt_fixed
-      r%tmax = 3.0_wp*blen/sqrt(young/rho0)
-      r%itip = tip
-      allocate (r%aold(2, r%st%nnode), r%vt(2, r%st%nnode), r%x(2, r%st%nnode), r%fcon(2, r%st%nnode), &
-                source=0.0_wp)
-      allocate (r%rows(8, 1000))
-      call solver_forces(r%st, r%sets, ebad)
-      r%st%dt = r%dt
-      r%st%a = r%st%minv*(r%st%fext - r%st%fint)
-      r%x = r%st%x0 + r%st%u
-      call exic_contact_step(r%h, r%st%nnode, r%x, r%st%v, r%st%a, 0.0_wp, r%dt, r%fcon, nact, ierr)
-      r%ok = ierr == 0 .and. ebad == 0
-      call api_row(r)
+      if (r%ok) call api_first_step(r, tip)
    end subroutine api_start
 
-   !> One explicit step of the in-process host, as the native driver makes it (eq. 4.3-4.4).
+   !> Hook the handle into the stepper, set the deck's fixed step and make the state at t = 0.
+   subroutine api_first_step(r, tip)
+      type(api_run_t), intent(inout) :: r
+      integer, intent(in) :: tip
+      type(error_t), allocatable :: err
+      allocate (r%hook)
+      r%hook%h = r%h
+      r%stp%hook => r%hook
+      r%tmax = 3.0_wp*blen/sqrt(young/rho0)
+      r%itip = tip
+      allocate (r%rows(8, 1000))
+      call r%stp%set_fixed_dt(dt_fixed, 'test', err)
+      if (.not. allocated(err)) call r%stp%start(err)
+      r%ok = .not. allocated(err)
+      call api_row(r)
+   end subroutine api_first_step
+
+   !> One explicit step of the in-process host: exic's stepper with the API's contact.
    subroutine api_advance(r, done)
       type(api_run_t), intent(inout) :: r
       logical, intent(out) :: done
-      integer :: ebad, ierr, nact
-      done = r%st%t >= r%tmax*(1.0_wp - 1.0e-12_wp) .or. .not. r%ok
+      type(error_t), allocatable :: err
+      done = r%stp%st%t >= r%tmax*(1.0_wp - 1.0e-12_wp) .or. .not. r%ok
       if (done) return
-      associate (st => r%st)
-         st%u = st%u + (st%dt*st%v + (0.5_wp*st%dt*st%dt)*st%a)
-         st%t = st%t + st%dt
-         st%dt_prev = st%dt
-         r%aold = st%a
-         call solver_forces(st, r%sets, ebad)
-         st%a = st%minv*(st%fext - st%fint)
-         r%vt = st%v + (0.5_wp*st%dt_prev)*(r%aold + st%a)
-         r%x = st%x0 + st%u
-         call exic_contact_step(r%h, st%nnode, r%x, r%vt, st%a, st%dt_prev, st%dt, r%fcon, nact, ierr)
-         st%v = st%v + (0.5_wp*st%dt_prev)*(r%aold + st%a)
-         r%ok = ierr == 0 .and. ebad == 0
-      end associate
+      call r%stp%advance(err)
+      r%ok = .not. allocated(err)
       call api_row(r)
    end subroutine api_advance
 
@@ -324,8 +344,10 @@ contains
          call move_alloc(tmp, r%rows)
       end if
       r%nrow = r%nrow + 1
-      r%rows(:, r%nrow) = [r%st%t, r%st%u(1, r%itip), r%st%v(1, r%itip), r%st%a(1, r%itip), res(1), res(4), &
-                           res(5), res(6)]
+      associate (st => r%stp%st)
+         r%rows(:, r%nrow) = [st%t, st%u(1, r%itip), st%v(1, r%itip), st%a(1, r%itip), res(1), res(4), &
+                              res(5), res(6)]
+      end associate
    end subroutine api_row
 
    !> Run to the end alone.
@@ -399,7 +421,6 @@ contains
       iseg(3, size(e1, 2) + 1:) = 2
       call host_pairs(wall, ipair, pp)
       ! the in-process start, with the problem made from segments instead
-      call solver_init(wall, r2%st, r2%sets, err)
       call start_from(r2, wall, tip, iseg, isn, ipair, pp)
       call check(s, r2%ok, 'wall scene from segment lists is accepted')
       if (.not. r2%ok) return
@@ -420,24 +441,13 @@ contains
       type(model_t), intent(in) :: model
       integer, intent(in) :: tip, iseg(:, :), isn(:, :), ipair(:, :)
       real(wp), intent(in) :: pp(:)
-      integer :: ierr, ebad, nact
-      call exic_contact_create_segments(r%st%nnode, model%mesh%x, r%st%mass, size(iseg, 2), iseg, size(isn, 2), &
-                                        isn, size(ipair, 2), ipair, pp, r%h, ierr)
-      r%ok = ierr == 0
+      integer :: ierr
+      call api_init(r, model)
       if (.not. r%ok) return
-      r%dt = dt_fixed
-      r%tmax = 3.0_wp*blen/sqrt(young/rho0)
-      r%itip = tip
-      allocate (r%aold(2, r%st%nnode), r%vt(2, r%st%nnode), r%x(2, r%st%nnode), r%fcon(2, r%st%nnode), &
-                source=0.0_wp)
-      allocate (r%rows(8, 1000))
-      call solver_forces(r%st, r%sets, ebad)
-      r%st%dt = r%dt
-      r%st%a = r%st%minv*(r%st%fext - r%st%fint)
-      r%x = r%st%x0 + r%st%u
-      call exic_contact_step(r%h, r%st%nnode, r%x, r%st%v, r%st%a, 0.0_wp, r%dt, r%fcon, nact, ierr)
-      r%ok = ierr == 0 .and. ebad == 0
-      call api_row(r)
+      call exic_contact_create_segments(r%stp%st%nnode, model%mesh%x, r%stp%st%mass, size(iseg, 2), iseg, &
+                                        size(isn, 2), isn, size(ipair, 2), ipair, pp, r%h, ierr)
+      r%ok = ierr == 0
+      if (r%ok) call api_first_step(r, tip)
    end subroutine start_from
 
    !> Pairs of a deck model in the API's table: slave region, master region, Lagrange, swept,

@@ -5,10 +5,10 @@ module test_physics
    use testing, only: suite_t, check, check_close, section
    use deck_runner, only: run_dir, run_deck, read_table, column, write_text
    use exic_base_error, only: error_t
-   use exic_model, only: model_t
+   use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
    use exic_explicit_state, only: state_t, element_set_t
-   use exic_explicit_solver, only: solver_init, solver_forces
+   use exic_explicit_assembly, only: assembly_init, internal_forces
    implicit none
    private
 
@@ -58,7 +58,7 @@ contains
              '    4,-0.1,1.2'//nl//'    5,1.1,0.05'//nl//nl//'END'//nl//'BATCh'//nl//'END'//nl//'STOP'
       call write_text(run_dir//'/rotation.inp', deck)
       call read_deck(run_dir//'/rotation.inp', model, err)
-      if (.not. allocated(err)) call solver_init(model, st, sets, err)
+      if (.not. allocated(err)) call assembly_init(model%mesh, model%materials, st, sets, err)
       call check(s, .not. allocated(err), 'rotation block set up (quadrature '//q//')')
       if (allocated(err)) return
       worst_w = 0.0_wp
@@ -71,7 +71,7 @@ contains
          sn = sin(th)
          st%u(1, :) = (c - 1.0_wp)*st%x0(1, :) - sn*st%x0(2, :)
          st%u(2, :) = sn*st%x0(1, :) + (c - 1.0_wp)*st%x0(2, :)
-         call solver_forces(st, sets, ebad)
+         call internal_forces(st, sets, ebad)
          worst_w = max(worst_w, abs(st%strain) + abs(st%hourglass))
          worst_f = max(worst_f, maxval(abs(st%fint)))
       end do

@@ -13,7 +13,7 @@
 !> variants alternate within each sample); every
 !> solution is checked (corrected gaps closed, multipliers positive). Prints one row per n and
 !> the smallest n from which each sparse variant stays cheaper than dense.
-!> Run: fpm run --profile release --flag "-O3 -march=native -funroll-loops" exic-bench-corrector
+!> Run: fpm run --profile release --flag "-O3 -march=native -funroll-loops -ffp-contract=off" exic-bench-corrector
 program corrector_rate
    use, intrinsic :: iso_fortran_env, only: output_unit
    use exic_base_kinds, only: wp, i8

@@ -3,7 +3,7 @@
 !> Times q4_force_2x2, q4_force_1pt and q4_stable_dt (each step zeroes the force array first,
 !> as the explicit driver does) in 5 repetitions and prints the median and range, in wall time
 !> and in processor time (the latter is what counts on a shared, loaded machine).
-!> Build: fpm build --profile release --flag "-O3 -march=native -funroll-loops"
+!> Build: fpm build --profile release --flag "-O3 -march=native -funroll-loops -ffp-contract=off"
 !> Run:   fpm run exic-bench-element --profile release --flag "..." [-- nsteps]
 program element_rate
    use exic_base_kinds, only: wp, i8

@@ -1,26 +1,27 @@
 !> Cost of the legacy API's step call against the native contact path on the same scenes.
 !>
 !> For each scene (a bar on a rigid wall, 30 x 6 and 120 x 24; two bars, 60 x 12 each) two
-!> copies of the same explicit run (exic's element loop, fixed step 0.8 x stable, t = 0 ..
-!> 3 L/c) advance in lockstep: one calls contact_t%correct on its state as the driver does,
-!> the other hands its arrays to EXIC_CONTACT_STEP. Only the contact calls are timed, step by
-!> step alternately, so that the load of a shared machine falls on both alike; both copies
-!> follow the same trajectory bit for bit (checked). Per repetition the ratio API/native is
+!> copies of the same explicit run (exic's stepper, fixed step 0.8 x stable, t = 0 .. 3 L/c)
+!> advance in lockstep, each with its contact through a hook of the stepper: one calls
+!> contact_t%correct on the stepper's arrays as the deck path does, the other forms x = x0 + u
+!> itself, as a host that keeps displacements would, and hands its arrays to EXIC_CONTACT_STEP.
+!> Only the contact calls are timed, step by step alternately, so that the load of a shared
+!> machine falls on both alike; both copies follow the same trajectory bit for bit (checked). Per repetition the ratio API/native is
 !> formed; the median ratio over the repetitions (nrep, times 3000/nodes for the smaller
 !> scenes) and the fastest times are reported.
 !> Build and run (doc/performance.md, section "Legacy API overhead"):
-!>   fpm run exic-bench-legacy --profile release --flag "-O3 -march=native -funroll-loops" [-- nrep]
+!>   fpm run exic-bench-legacy --profile release --flag "-O3 -march=native -funroll-loops -ffp-contract=off" [-- nrep]
 program legacy_overhead
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
    use exic_base_clock, only: wall_time
-   use exic_model, only: model_t
+   use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
-   use exic_explicit_state, only: state_t, element_set_t
-   use exic_explicit_solver, only: solver_init, solver_forces, solver_stable_dt
-   use exic_contact_contact, only: contact_t
+   use exic_explicit_step, only: stepper_t
+   use exic_contact_spec, only: contact_spec_t
+   use bench_legacy_hooks, only: native_hook_t, api_hook_t
    use exic_material_material, only: MAT_RIGID
-   use exic_legacy_interfaces, only: exic_contact_create_mesh, exic_contact_step, exic_contact_free
+   use exic_legacy_interfaces, only: exic_contact_create_mesh, exic_contact_free
    implicit none
    character(len=*), parameter :: dir = 'build/bench_legacy'
    integer :: nrep, nargs
@@ -103,124 +104,64 @@ contains
       type(model_t), intent(in) :: model
       real(wp), intent(out) :: tn, ta, tx, diff
       integer, intent(out) :: nsteps
-      type(state_t) :: sn, sa
-      type(element_set_t), allocatable :: setn(:), seta(:)
-      type(contact_t) :: contact
+      type(stepper_t), target :: sn, sa
+      type(native_hook_t), target :: hn
+      type(api_hook_t), target :: ha
       type(error_t), allocatable :: err
-      real(wp), allocatable :: aoldn(:, :), vtn(:, :), aolda(:, :), vta(:, :), x(:, :), fcon(:, :)
       integer, allocatable :: ipair(:, :)
-      real(wp) :: dts, tmax, pp(1), dummy
-      integer :: h, ierr, ebad, emin, e
+      real(wp) :: dts, tmax, pp(1)
+      integer :: ierr, emin, e
 
-      call solver_init(model, sn, setn, err)
-      call solver_init(model, sa, seta, err)
-      allocate (aoldn(2, sn%nnode), vtn(2, sn%nnode), aolda(2, sn%nnode), vta(2, sn%nnode), x(2, sn%nnode), &
-                fcon(2, sn%nnode), source=0.0_wp)
-      call solver_stable_dt(sn, setn, dts, emin)
-      sn%dt = 0.8_wp*dts
-      sa%dt = sn%dt
+      call sn%init(model%mesh, model%materials, contact_spec_t(), err)
+      call sa%init(model%mesh, model%materials, contact_spec_t(), err)
+      if (allocated(err)) error stop 'exic-bench-legacy: set-up failed'
+      call sn%initial_stable_step(dts, emin)
+      call sn%set_fixed_dt(0.8_wp*dts, 'bench', err)
+      call sa%set_fixed_dt(0.8_wp*dts, 'bench', err)
       tmax = 3.0_wp*30.0_wp/sqrt(1.0e4_wp/0.1_wp)
+      ! the native path: exic's contact of the deck
+      call hn%contact%init(model%contact, sn%st%nnode, sn%st%x0, sn%x, model%mesh%nelem, model%mesh%conn, &
+                           model%mesh%region, model%mesh%mat, 0.0_wp, err)
+      if (allocated(err)) error stop 'exic-bench-legacy: contact init failed'
+      sn%hook => hn
+      ! the API path: the same pair through the legacy API
       allocate (ipair(6, 1))
       ipair(:, 1) = [1, 2, 1, 1, 1, 0]
       do e = 1, model%mesh%nelem
          if (model%mesh%region(e) == 2 .and. model%materials(model%mesh%mat(e))%kind == MAT_RIGID) ipair(6, 1) = 1
       end do
       pp = 0.0_wp
-      call exic_contact_create_mesh(sa%nnode, model%mesh%x, sa%mass, model%mesh%nelem, model%mesh%conn, &
-                                    model%mesh%region, 1, ipair, pp, h, ierr)
+      call exic_contact_create_mesh(sa%st%nnode, model%mesh%x, sa%st%mass, model%mesh%nelem, model%mesh%conn, &
+                                    model%mesh%region, 1, ipair, pp, ha%h, ierr)
       if (ierr /= 0) error stop 'exic-bench-legacy: create failed'
-      call contact%init(model, sn, err)
-      if (allocated(err)) error stop 'exic-bench-legacy: contact init failed'
-      call solver_forces(sn, setn, ebad)
-      call solver_forces(sa, seta, ebad)
-      sn%a = sn%minv*(sn%fext - sn%fint)
-      sa%a = sa%minv*(sa%fext - sa%fint)
-      tn = 0.0_wp
-      ta = 0.0_wp
-      tx = 0.0_wp
+      allocate (ha%x(2, sa%st%nnode), source=0.0_wp)
+      ha%stp => sa
+      sa%hook => ha
+      call sn%start(err)
+      call sa%start(err)
+      if (allocated(err)) error stop 'exic-bench-legacy: start failed'
       nsteps = 0
-      call contact_call(.false., 0, sn%nnode, sn, contact, sn%v, x, fcon, tn, dummy)
-      call contact_call(.true., h, sa%nnode, sa, contact, sa%v, x, fcon, ta, tx)
-      do while (sn%t < tmax*(1.0_wp - 1.0e-12_wp))
-         call predict(sn, setn, aoldn, vtn)
-         call predict(sa, seta, aolda, vta)
-         call contact_call(.false., 0, sn%nnode, sn, contact, vtn, x, fcon, tn, dummy)
-         call contact_call(.true., h, sa%nnode, sa, contact, vta, x, fcon, ta, tx)
-         sn%v = sn%v + (0.5_wp*sn%dt_prev)*(aoldn + sn%a)
-         sa%v = sa%v + (0.5_wp*sa%dt_prev)*(aolda + sa%a)
+      do while (sn%st%t < tmax*(1.0_wp - 1.0e-12_wp))
+         call sn%advance(err)
+         call sa%advance(err)
+         if (allocated(err)) error stop 'exic-bench-legacy: step failed'
          nsteps = nsteps + 1
       end do
-      diff = maxval(abs(sn%u - sa%u))
-      call exic_contact_free(h, ierr)
+      tn = hn%time
+      ta = ha%time
+      tx = ha%time_x
+      diff = maxval(abs(sn%st%u - sa%st%u))
+      call exic_contact_free(ha%h, ierr)
    end subroutine run_both
-
-   !> Update, forces and predictor of one step (eq. 4.3-4.4), as the driver makes them.
-   subroutine predict(st, sets, aold, vt)
-      type(state_t), intent(inout) :: st
-      type(element_set_t), intent(in) :: sets(:)
-      real(wp), intent(inout) :: aold(:, :), vt(:, :)
-      integer :: ebad
-      st%u = st%u + (st%dt*st%v + (0.5_wp*st%dt*st%dt)*st%a)
-      st%t = st%t + st%dt
-      st%dt_prev = st%dt
-      aold = st%a
-      call solver_forces(st, sets, ebad)
-      st%a = st%minv*(st%fext - st%fint)
-      vt = st%v + (0.5_wp*st%dt_prev)*(aold + st%a)
-   end subroutine predict
-
-   !> The timed contact call of either path; tc and tx accumulate its time and, for the API,
-   !> the time of forming x = x0 + u.
-   subroutine contact_call(api, h, nnode, st, contact, v, x, fcon, tc, tx)
-      logical, intent(in) :: api
-      integer, intent(in) :: h, nnode
-      type(state_t), intent(inout) :: st
-      type(contact_t), intent(inout) :: contact
-      real(wp), intent(in) :: v(2, nnode)
-      real(wp), intent(inout) :: x(2, nnode), fcon(2, nnode)
-      real(wp), intent(inout) :: tc, tx
-      type(error_t), allocatable :: err
-      real(wp) :: t0, t1
-      integer :: nact, ierr
-      if (api) then
-         t0 = wall_time()
-         call form_x(st%nnode, st%x0, st%u, x)
-         t1 = wall_time()
-         call exic_contact_step(h, st%nnode, x, v, st%a, st%dt_prev, st%dt, fcon, nact, ierr)
-         tc = tc + (wall_time() - t1)
-         tx = tx + (t1 - t0)
-         if (ierr /= 0) error stop 'exic-bench-legacy: step failed'
-      else
-         t0 = wall_time()
-         call contact%correct(st, v, err)
-         tc = tc + (wall_time() - t0)
-         if (allocated(err)) error stop 'exic-bench-legacy: correct failed'
-      end if
-   end subroutine contact_call
-
-   !> x = x0 + u, as a host that keeps displacements forms its positions.
-   subroutine form_x(n, x0, u, x)
-      integer, intent(in) :: n
-      real(wp), intent(in) :: x0(2, n), u(2, n)
-      real(wp), intent(out) :: x(2, n)
-      integer :: i
-      do i = 1, n
-         x(1, i) = x0(1, i) + u(1, i)
-         x(2, i) = x0(2, i) + u(2, i)
-      end do
-   end subroutine form_x
 
    !> Nodes on the free boundaries of regions 1 and 2 (the contact surfaces).
    integer function count_surface_nodes(model) result(n)
       type(model_t), intent(in) :: model
-      type(state_t) :: st
-      type(element_set_t), allocatable :: sets(:)
-      type(contact_t) :: contact
+      type(stepper_t) :: stp
       type(error_t), allocatable :: err
       integer :: k
-      call solver_init(model, st, sets, err)
-      call contact%init(model, st, err)
-      n = sum([(size(contact%surfaces(k)%nodes), k=1, size(contact%surfaces))])
+      call stp%init(model%mesh, model%materials, model%contact, err)
+      n = sum([(size(stp%contact%surfaces(k)%nodes), k=1, size(stp%contact%surfaces))])
    end function count_surface_nodes
 
    !> A bar (region 1, nx x ny over 30 x 4) at +0.1 against a rigid wall ('wall') or a second

@@ -7,18 +7,20 @@
 !> candidate constraints with the predicted gap of eq. 3.19 at t(n+2) and a frozen normal. All
 !> Lagrange candidates of all passes are solved together by the corrector (eq. 4.5-4.7);
 !> penalty passes add k x penetration forces at t(n+1) instead.
+!>
+!> Everything comes in as plain arrays: the CONTact block's spec, the positions, the element
+!> connectivity with region and material numbers (for REGIon/MATErial and AUTOmatic surfaces),
+!> and per step the positions, velocities, accelerations and inverse masses. The deck path
+!> (src/exic/explicit/step.f90) and the legacy API (src/exic/legacy) call the same two entries,
+!> `init` and `correct`.
 module exic_contact_contact
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
-   use exic_model, only: model_t
-   use exic_material_material, only: MAT_SOLID
-   use exic_explicit_state, only: state_t
-   use exic_io_history, only: history_files_t
    use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, SURF_NODES, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
-                                DETECT_SWEPT, DETECT_STATIC, pair_spec_t
+                                DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t
    use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, node_normals
    use exic_contact_broad, only: broad_t, broad_search
    use exic_contact_detect, only: contact_set_t, detect_contacts
@@ -85,7 +87,7 @@ module exic_contact_contact
       type(corrector_t) :: corr
       real(wp) :: lref = 1.0_wp                !< mean segment length
       real(wp) :: depth = 0.0_wp               !< penetration accepted at the start of a step (DEPTH_SHARE x lref)
-      real(wp), allocatable :: xn(:, :), xp(:, :)
+      real(wp), allocatable :: xp(:, :)           !< (2, nnode) predicted positions x~(n+2)
       real(wp) :: max_penetration = 0.0_wp     !< largest over the run
       real(wp) :: time_search = 0.0_wp         !< wall time in search (broad + narrow phase)
       real(wp) :: time_corrector = 0.0_wp      !< wall time in the corrector (assembly + solve)
@@ -93,80 +95,88 @@ module exic_contact_contact
    contains
       procedure :: init => contact_init
       procedure :: correct => contact_correct
-      procedure :: correct_at => contact_correct_at
       procedure :: stable_dt => contact_stable_dt
       procedure :: pair_value => contact_pair_value
-      procedure :: describe => contact_describe
+      procedure :: summary => contact_summary
       procedure :: edges => contact_edges
    end type contact_t
 
 contains
 
-   !> Build surfaces and passes from the model's contact block; refuse bodies that overlap.
-   subroutine contact_init(self, model, st, err)
+   !> Build surfaces and passes from the CONTact block `spec`; refuse bodies that overlap.
+   !> xref(2, nnode): the positions whose segment lengths set the search depth (the reference
+   !> mesh); x(2, nnode): the positions now (checked for overlap); conn(4, nelem), region(nelem),
+   !> mat(nelem): the elements whose free boundaries make REGIon, MATErial and AUTOmatic surfaces;
+   !> modulus: the largest constrained modulus lambda + 2 mu of the solids (PENAlty,SCALe).
+   subroutine contact_init(self, spec, nnode, xref, x, nelem, conn, region, mat, modulus, err)
       class(contact_t), intent(inout) :: self
-      type(model_t), intent(in) :: model
-      type(state_t), intent(in) :: st
+      type(contact_spec_t), intent(in) :: spec
+      integer, intent(in) :: nnode, nelem
+      real(wp), intent(in) :: xref(2, nnode), x(2, nnode)
+      integer, intent(in) :: conn(4, nelem), region(nelem), mat(nelem)
+      real(wp), intent(in) :: modulus
       type(error_t), allocatable, intent(out) :: err
       integer :: k, np, nsurf
       real(wp) :: len_sum
       integer :: nlen
 
-      self%active = model%contact%active
+      self%active = spec%active
       if (.not. self%active) return
-      call build_surfaces(self, model, err)
+      call build_surfaces(self, spec, nelem, conn, region, mat, err)
       if (allocated(err)) return
-      call build_passes(self, model, err)
+      call build_passes(self, spec, err)
       if (allocated(err)) return
       nsurf = size(self%surfaces)
       len_sum = 0.0_wp
       nlen = 0
       do k = 1, nsurf
          associate (sf => self%surfaces(k))
-            len_sum = len_sum + sum(norm2(st%x0(:, sf%seg(2, :)) - st%x0(:, sf%seg(1, :)), dim=1))
+            len_sum = len_sum + sum(norm2(xref(:, sf%seg(2, :)) - xref(:, sf%seg(1, :)), dim=1))
             nlen = nlen + sf%nseg
          end associate
       end do
       if (nlen > 0) self%lref = len_sum/nlen
       self%depth = DEPTH_SHARE*self%lref
       self%corr%gap_tol = 1.0e-13_wp*self%lref
-      allocate (self%xn(2, st%nnode), self%xp(2, st%nnode))
+      allocate (self%xp(2, nnode))
       np = size(self%passes)
       do k = 1, np
          if (self%passes(k)%method == METHOD_PENALTY) self%any_penalty = .true.
       end do
-      call penalty_stiffness(self, model)
-      call check_overlap(self, st, err)
+      call penalty_stiffness(self, modulus)
+      call check_overlap(self, nnode, x, err)
    end subroutine contact_init
 
    !> Surfaces of the SURFace records, plus one per region for AUTOmatic.
-   subroutine build_surfaces(self, model, err)
+   subroutine build_surfaces(self, spec, nelem, conn, region, mat, err)
       type(contact_t), intent(inout) :: self
-      type(model_t), intent(in) :: model
+      type(contact_spec_t), intent(in) :: spec
+      integer, intent(in) :: nelem
+      integer, intent(in) :: conn(4, nelem), region(nelem), mat(nelem)
       type(error_t), allocatable, intent(out) :: err
       integer :: ns, nauto, k, r
       integer, allocatable :: regions(:)
       logical, allocatable :: sel(:)
 
       ns = 0
-      if (allocated(model%contact%surfaces)) ns = size(model%contact%surfaces)
+      if (allocated(spec%surfaces)) ns = size(spec%surfaces)
       nauto = 0
-      if (model%contact%automatic) then
-         regions = unique(model%mesh%region)
+      if (spec%automatic) then
+         regions = unique(region)
          nauto = size(regions)
       end if
       allocate (self%surfaces(ns + nauto))
-      allocate (sel(model%mesh%nelem))
+      allocate (sel(nelem))
       do k = 1, ns
-         associate (sp => model%contact%surfaces(k), sf => self%surfaces(k))
+         associate (sp => spec%surfaces(k), sf => self%surfaces(k))
             sf%id = sp%id
             select case (sp%by)
             case (SURF_REGION)
-               sel = model%mesh%region == sp%ref
-               call free_edges(model%mesh%nelem, model%mesh%conn, sel, sf%seg, err)
+               sel = region == sp%ref
+               call free_edges(nelem, conn, sel, sf%seg, err)
             case (SURF_MATERIAL)
-               sel = model%mesh%mat == sp%ref
-               call free_edges(model%mesh%nelem, model%mesh%conn, sel, sf%seg, err)
+               sel = mat == sp%ref
+               call free_edges(nelem, conn, sel, sf%seg, err)
             case (SURF_FACETS)
                sf%seg = sp%facets
             case (SURF_NODES)
@@ -188,8 +198,8 @@ contains
          r = regions(k)
          associate (sf => self%surfaces(ns + k))
             sf%id = -r - 1          ! automatic surface of region r
-            sel = model%mesh%region == r
-            call free_edges(model%mesh%nelem, model%mesh%conn, sel, sf%seg, err)
+            sel = region == r
+            call free_edges(nelem, conn, sel, sf%seg, err)
             if (allocated(err)) return
          end associate
       end do
@@ -207,24 +217,24 @@ contains
    end subroutine build_surfaces
 
    !> Passes of the PAIR records (two for SYMMetric) and of AUTOmatic (two per region pair).
-   subroutine build_passes(self, model, err)
+   subroutine build_passes(self, spec, err)
       type(contact_t), intent(inout) :: self
-      type(model_t), intent(in) :: model
+      type(contact_spec_t), intent(in) :: spec
       type(error_t), allocatable, intent(out) :: err
       integer :: npair, np, k, i, j, nauto, ns, maxid, npass
       type(pass_t), allocatable :: p(:)
 
       npair = 0
-      if (allocated(model%contact%pairs)) npair = size(model%contact%pairs)
+      if (allocated(spec%pairs)) npair = size(spec%pairs)
       ns = 0
-      if (allocated(model%contact%surfaces)) ns = size(model%contact%surfaces)
+      if (allocated(spec%surfaces)) ns = size(spec%surfaces)
       nauto = size(self%surfaces) - ns
       allocate (p(2*npair + nauto*max(nauto - 1, 0)))
       maxid = 0
       np = 0
       allocate (self%results(npair + merge(1, 0, nauto > 0)))
       do k = 1, npair
-         associate (ps => model%contact%pairs(k))
+         associate (ps => spec%pairs(k))
             self%results(k)%id = ps%id
             maxid = max(maxid, ps%id)
             i = surface_index(self, ps%slave)
@@ -252,7 +262,7 @@ contains
          self%results(npair + 1)%id = maxid + 1
          do i = ns + 1, ns + nauto
             do j = ns + 1, ns + nauto
-               if (i /= j) call add_pass(p, np, npair + 1, i, j, model%contact%auto_options)
+               if (i /= j) call add_pass(p, np, npair + 1, i, j, spec%auto_options)
             end do
          end do
       end if
@@ -284,17 +294,11 @@ contains
       if (ps%penalty_scaled) p(np)%k = -ps%penalty   ! scale factor, resolved in penalty_stiffness
    end subroutine add_pass
 
-   !> PENAlty,SCALe,f: k = f (lambda + 2 mu), the largest constrained modulus of the solids.
-   subroutine penalty_stiffness(self, model)
+   !> PENAlty,SCALe,f: k = f x modulus, the largest constrained modulus lambda + 2 mu of the solids.
+   subroutine penalty_stiffness(self, modulus)
       type(contact_t), intent(inout) :: self
-      type(model_t), intent(in) :: model
-      real(wp) :: modulus
+      real(wp), intent(in) :: modulus
       integer :: k
-      modulus = 0.0_wp
-      do k = 1, size(model%materials)
-         if (model%materials(k)%kind == MAT_SOLID) &
-            modulus = max(modulus, model%materials(k)%lambda + 2.0_wp*model%materials(k)%mu)
-      end do
       do k = 1, size(self%passes)
          if (self%passes(k)%k < 0.0_wp) self%passes(k)%k = -self%passes(k)%k*modulus
       end do
@@ -311,24 +315,24 @@ contains
    end function surface_index
 
    !> Bodies that overlap at the start are an error naming the worst node, segment and depth.
-   subroutine check_overlap(self, st, err)
+   subroutine check_overlap(self, nnode, x, err)
       type(contact_t), intent(inout) :: self
-      type(state_t), intent(in) :: st
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x(2, nnode)
       type(error_t), allocatable, intent(out) :: err
       integer :: k, j, worst_node, worst_m(2)
       real(wp) :: worst
       character(len=200) :: buf
 
-      self%xn = st%x0 + st%u
       worst = 0.0_wp
       worst_node = 0
       do k = 1, size(self%passes)
          associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
                     ms => self%surfaces(self%passes(k)%master))
-            call node_normals(st%nnode, self%xn, sl%nseg, sl%seg, sl%nnode, sl%where, sl%nrm)
-            call broad_search(ps%broad, st%nnode, self%xn, self%xn, sl%nnode, sl%nodes, ms%nseg, ms%seg, &
+            call node_normals(nnode, x, sl%nseg, sl%seg, sl%nnode, sl%where, sl%nrm)
+            call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, &
                               0.5_wp*self%lref)
-            call detect_contacts(ps%hits, DETECT_STATIC, st%nnode, self%xn, self%xn, sl%nnode, sl%nodes, &
+            call detect_contacts(ps%hits, DETECT_STATIC, nnode, x, x, sl%nnode, sl%nodes, &
                                  sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
                                  0.5_wp*self%lref, FACING)
             do j = 1, ps%hits%n
@@ -347,38 +351,12 @@ contains
       end if
    end subroutine check_overlap
 
-   !> Correct the predicted accelerations st%a so that every active gap closes at t(n+2).
-   !> vt is the predictor velocity v~(n+1) (eq. 4.4); st%dt_prev and st%dt are dt(n), dt(n+1).
-   subroutine contact_correct(self, st, vt, err)
-      class(contact_t), intent(inout) :: self
-      type(state_t), intent(inout) :: st
-      real(wp), intent(in) :: vt(:, :)
-      type(error_t), allocatable, intent(out) :: err
-
-      st%nactive = 0
-      if (.not. self%active) return
-      call positions(st%nnode, st%x0, st%u, self%xn)
-      call self%correct_at(st%nnode, self%xn, vt, st%a, st%minv, st%dt_prev, st%dt, st%fcon, st%nactive, err)
-   end subroutine contact_correct
-
-   !> x = x0 + u as a plain loop (measured several microseconds per step faster than the
-   !> whole-array assignment between the components of the two dummies on a 3000-node mesh).
-   pure subroutine positions(nnode, x0, u, x)
-      integer, intent(in) :: nnode
-      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
-      real(wp), intent(out) :: x(2, nnode)
-      integer :: i
-      do i = 1, nnode
-         x(1, i) = x0(1, i) + u(1, i)
-         x(2, i) = x0(2, i) + u(2, i)
-      end do
-   end subroutine positions
-
-   !> contact_correct on plain arrays (the legacy API hands over a host's own): x = x(n+1),
-   !> vt = v~(n+1), a = a~(n+1) on entry and a(n+1) on exit, minv the inverse mass per dof,
-   !> dt_prev = dt(n), dt = dt(n+1); fcon = nodal contact forces, nactive = constraints in force.
-   !> x may be self%xn (which this procedure does not change).
-   subroutine contact_correct_at(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err)
+   !> Correct the predicted accelerations so that every active gap closes at t(n+2): the one
+   !> entry of the step (the deck's stepper and the legacy API's hosts call it with their own
+   !> arrays). x = x(n+1), vt = v~(n+1) (eq. 4.4), a = a~(n+1) on entry and a(n+1) on exit,
+   !> minv the inverse mass per dof (0: rigid, prescribed or inactive), dt_prev = dt(n) (0 at
+   !> t = 0), dt = dt(n+1); fcon = nodal contact forces, nactive = constraints in force.
+   subroutine contact_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err)
       class(contact_t), intent(inout) :: self
       integer, intent(in) :: nnode
       real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode), dt_prev, dt
@@ -452,7 +430,7 @@ contains
       do k = 1, size(self%results)
          self%max_penetration = max(self%max_penetration, self%results(k)%penetration)
       end do
-   end subroutine contact_correct_at
+   end subroutine contact_correct
 
    !> Penalty baseline: f = k (-g) n on the slave at t(n+1), opposite on the master nodes, plus
    !> a viscous part -c v_n with c = 2 PENALTY_DAMPING sqrt(k m) (m the pair's effective mass,
@@ -510,9 +488,10 @@ contains
    !> The linear limit of a spring is 2/omega; half of it is taken because a spring that
    !> switches on and off within the step (impact, chatter) pumps energy at the linear limit:
    !> a bar struck at 0.9 x 2/omega gained 19 % energy, at 0.5 x 2/omega it held within 0.3 %.
-   real(wp) function contact_stable_dt(self, st) result(dt)
+   real(wp) function contact_stable_dt(self, nnode, minv) result(dt)
       class(contact_t), intent(in) :: self
-      type(state_t), intent(in) :: st
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: minv(2, nnode)
       integer :: k, j
       real(wp) :: mmin, w2
       dt = huge(1.0_wp)
@@ -523,10 +502,10 @@ contains
             if (ps%method /= METHOD_PENALTY) cycle
             mmin = huge(1.0_wp)
             do j = 1, ms%nnode
-               if (st%minv(1, ms%nodes(j)) > 0.0_wp) mmin = min(mmin, 1.0_wp/st%minv(1, ms%nodes(j)))
+               if (minv(1, ms%nodes(j)) > 0.0_wp) mmin = min(mmin, 1.0_wp/minv(1, ms%nodes(j)))
             end do
             do j = 1, sl%nnode
-               w2 = ps%k*(st%minv(1, sl%nodes(j)) + merge(1.0_wp/mmin, 0.0_wp, mmin < huge(1.0_wp)))
+               w2 = ps%k*(minv(1, sl%nodes(j)) + merge(1.0_wp/mmin, 0.0_wp, mmin < huge(1.0_wp)))
                if (w2 > 0.0_wp) dt = min(dt, 1.0_wp/sqrt(w2))
             end do
          end associate
@@ -561,37 +540,39 @@ contains
       end do
    end function contact_pair_value
 
-   !> Surfaces and passes in <stem>.out.
-   subroutine contact_describe(self, files)
+   !> Surfaces and passes, one line each (newline separated), for <stem>.out.
+   function contact_summary(self) result(text)
       class(contact_t), intent(in) :: self
-      type(history_files_t), intent(inout) :: files
+      character(len=:), allocatable :: text
       integer :: k
       character(len=*), parameter :: methods(2) = ['Lagrange (implicit corrector)', 'penalty                      ']
       character(len=*), parameter :: detections(2) = ['swept ', 'static']
+      character(len=1), parameter :: nl = new_line('a')
       if (.not. self%active) then
-         call files%say('contact: none')
+         text = 'contact: none'
          return
       end if
+      text = ''
       do k = 1, size(self%surfaces)
          associate (sf => self%surfaces(k))
             if (sf%id >= 0) then
-               call files%say('contact surface '//itoa(sf%id)//': '//itoa(sf%nseg)//' segments, '// &
-                              itoa(sf%nnode)//' nodes')
+               text = text//'contact surface '//itoa(sf%id)//': '//itoa(sf%nseg)//' segments, '// &
+                      itoa(sf%nnode)//' nodes'//nl
             else
-               call files%say('contact surface of region '//itoa(-sf%id - 1)//' (automatic): '// &
-                              itoa(sf%nseg)//' segments, '//itoa(sf%nnode)//' nodes')
+               text = text//'contact surface of region '//itoa(-sf%id - 1)//' (automatic): '// &
+                      itoa(sf%nseg)//' segments, '//itoa(sf%nnode)//' nodes'//nl
             end if
          end associate
       end do
       do k = 1, size(self%passes)
          associate (ps => self%passes(k))
-            call files%say('contact pass '//itoa(k)//' of pair '//itoa(self%results(ps%pair)%id)// &
-                           ': nodes of surface '//itoa(ps%slave)//' against segments of surface '// &
-                           itoa(ps%master)//', '//trim(methods(ps%method))//', '// &
-                           trim(detections(ps%detection)))
+            text = text//'contact pass '//itoa(k)//' of pair '//itoa(self%results(ps%pair)%id)// &
+                   ': nodes of surface '//itoa(ps%slave)//' against segments of surface '// &
+                   itoa(ps%master)//', '//trim(methods(ps%method))//', '//trim(detections(ps%detection))
+            if (k < size(self%passes)) text = text//nl
          end associate
       end do
-   end subroutine contact_describe
+   end function contact_summary
 
    !> Every contact segment of every surface, (2, nedge); empty without contact.
    function contact_edges(self) result(e)

@@ -16,9 +16,10 @@
 !> gap is still violated join it, for at most `max_passes` passes. S is assembled once per step
 !> over every candidate; a pass only drops the constraints outside its active set. Redundant
 !> constraints (dependent columns of G) are removed by the factorization (see
-!> exic_linalg_sparse_ldl) and carry p = 0. Up to `dense_limit` candidates go to a dense LAPACK
-!> factorization, more to SuiteSparse LDL' with AMD ordering, whose symbolic analysis is reused
-!> while the candidates' pattern is unchanged (across the passes of a step, and across steps).
+!> exic_linalg_sparse_ldl) and carry p = 0. Steps with up to `dense_limit` candidates factorize S
+!> densely (LAPACK), steps with more use SuiteSparse LDL' with AMD ordering, whose symbolic
+!> analysis is reused while the candidates' pattern is unchanged (across the passes of a step,
+!> and across steps).
 module exic_contact_corrector
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
@@ -48,7 +49,7 @@ module exic_contact_corrector
 
    !> Solver state kept across steps (factorization objects, work arrays).
    type :: corrector_t
-      integer :: dense_limit = 30            !< active sets up to this size use the dense path (measured crossover)
+      integer :: dense_limit = 30            !< steps with up to this many candidates factorize S densely (measured crossover)
       integer :: max_passes = 30             !< active-set passes before giving up on the step
       real(wp) :: gap_tol = 0.0_wp           !< corrected gaps above -gap_tol count as closed
       type(sparse_ldl_t) :: sparse
@@ -58,12 +59,16 @@ module exic_contact_corrector
       integer :: nredundant = 0              !< constraints removed as redundant in the last call
       integer :: pass_limit_hits = 0         !< calls that ended at max_passes
       integer :: nsolves = 0, ndense = 0, nsparse = 0
-      ! work arrays (grown, never shrunk)
-      integer, allocatable :: idx(:), pos(:), ap(:), ai(:), bad(:), mark(:)
-      real(wp), allocatable :: ax(:), s(:, :), rhs(:), sol(:)
+      ! work arrays (grown, never shrunk); m is the number of candidates of the step
+      integer, allocatable :: ap(:), ai(:)          !< S in compressed columns: (m + 1), (nnz)
+      real(wp), allocatable :: ax(:)                !< (nnz) values of S in compressed columns
+      real(wp), allocatable :: s(:, :)              !< (m, m) S for the dense path
+      integer, allocatable :: mark(:)               !< (m) last column that touched a row (assembly)
+      integer, allocatable :: bad(:)                !< (m) constraints the factorization finds redundant
+      real(wp), allocatable :: rhs(:), sol(:)       !< (m) -g~/c and the multipliers of a pass
       real(wp), allocatable :: fwork(:, :)          !< (2, nnode) G p of the current pass
-      logical, allocatable :: drop(:)
-      logical, allocatable :: infeasible(:)        !< (m) candidates that switch sides
+      logical, allocatable :: drop(:)               !< (m) left out of the pass's factorization
+      logical, allocatable :: infeasible(:)         !< (m) candidates that switch sides
       integer, allocatable :: nstart(:), nlist(:)   !< node -> candidates incidence (CSR)
    contains
       procedure :: solve => corrector_solve
@@ -76,42 +81,35 @@ contains
       class(constraints_t), intent(inout) :: self
       integer, intent(in) :: m
       self%n = 0
-      if (allocated(self%gap)) then
-         if (size(self%gap) >= m) return
-         deallocate (self%node, self%w, self%nrm, self%gap, self%gap_now, self%pair, self%p, self%active)
-      end if
-      allocate (self%node(3, m), self%w(3, m), self%nrm(2, m), self%gap(m), self%gap_now(m), &
-                self%pair(m), self%p(m), self%active(m))
+      call grow(self%node, m, 3)
+      call grow(self%w, m, 3)
+      call grow(self%nrm, m, 2)
+      call grow(self%gap, m)
+      call grow(self%gap_now, m)
+      call grow(self%pair, m)
+      call grow(self%p, m)
+      call grow(self%active, m)
    end subroutine constraints_reserve
 
-   !> Append one candidate (grows the arrays when full).
+   !> Append one candidate (the arrays grow, keeping their contents, when full).
    subroutine constraints_add(self, s, m1, m2, alpha, nrm, gap, gap_now, pair)
       class(constraints_t), intent(inout) :: self
       integer, intent(in) :: s, m1, m2, pair
       real(wp), intent(in) :: alpha, nrm(2), gap, gap_now
-      type(constraints_t) :: tmp
       integer :: k
-      if (.not. allocated(self%gap)) call self%reserve(64)
-      if (self%n == size(self%gap)) then
-         k = self%n
-         call tmp%reserve(2*k)
-         tmp%node(:, 1:k) = self%node(:, 1:k)
-         tmp%w(:, 1:k) = self%w(:, 1:k)
-         tmp%nrm(:, 1:k) = self%nrm(:, 1:k)
-         tmp%gap(1:k) = self%gap(1:k)
-         tmp%gap_now(1:k) = self%gap_now(1:k)
-         tmp%pair(1:k) = self%pair(1:k)
-         tmp%n = k
-         call move_alloc(tmp%node, self%node)
-         call move_alloc(tmp%w, self%w)
-         call move_alloc(tmp%nrm, self%nrm)
-         call move_alloc(tmp%gap, self%gap)
-         call move_alloc(tmp%gap_now, self%gap_now)
-         call move_alloc(tmp%pair, self%pair)
-         call move_alloc(tmp%p, self%p)
-         call move_alloc(tmp%active, self%active)
-      end if
       k = self%n + 1
+      if (.not. allocated(self%gap)) then
+         call self%reserve(64)
+      else if (k > size(self%gap)) then
+         call grow(self%node, k, 3)
+         call grow(self%w, k, 3)
+         call grow(self%nrm, k, 2)
+         call grow(self%gap, k)
+         call grow(self%gap_now, k)
+         call grow(self%pair, k)
+         call grow(self%p, k)
+         call grow(self%active, k)
+      end if
       self%n = k
       self%node(:, k) = [s, m1, m2]
       self%w(:, k) = [1.0_wp, -(1.0_wp - alpha), -alpha]
@@ -152,7 +150,6 @@ contains
       cs%p(1:m) = 0.0_wp
       cs%active(1:m) = cs%gap(1:m) < 0.0_wp
       if (.not. any(cs%active(1:m))) return
-      call grow(self%pos, m)
       call grow(self%infeasible, m)
       call build_incidence(self, cs, nnode)
       if (allocated(self%fwork)) then
@@ -163,13 +160,10 @@ contains
       ! S over every candidate, assembled once: the pivoting passes only change which
       ! constraints are dropped, so the pattern (and the sparse symbolic analysis) stays the same
       ! within the step, and across steps while the candidates do
-      call grow(self%idx, m)
       call grow(self%drop, m)
       call grow(self%rhs, m)
       call grow(self%sol, m)
       call grow(self%bad, m)
-      self%idx(1:m) = [(k, k=1, m)]
-      self%pos(1:m) = self%idx(1:m)
       self%rhs(1:m) = -cs%gap(1:m)/c
       call assemble(self, cs, nnode, minv, m)
 
@@ -178,7 +172,7 @@ contains
       pass = 0
       do
          pass = pass + 1
-         ! the active candidates F: every other candidate is dropped from the factorization
+         ! the active set F: every other candidate is dropped from the factorization
          nact = count(cs%active(1:m))
          self%drop(1:m) = .not. cs%active(1:m)
          nbad = 0
@@ -303,52 +297,51 @@ contains
       self%nstart(1) = 1
    end subroutine build_incidence
 
-   !> S = G^T M^-1 G on the active candidates: dense (small) or compressed columns (full pattern).
-   subroutine assemble(self, cs, nnode, minv, nact)
+   !> S = G^T M^-1 G over all m candidates: dense (m <= dense_limit) or in compressed columns
+   !> with the full pattern (the pivoting passes drop constraints in the factorization).
+   subroutine assemble(self, cs, nnode, minv, m)
       type(corrector_t), intent(inout) :: self
       type(constraints_t), intent(in) :: cs
-      integer, intent(in) :: nnode, nact
+      integer, intent(in) :: nnode, m
       real(wp), intent(in) :: minv(2, nnode)
-      integer :: j, cj, k, nd, q, ci, row, nnz, first, l
+      integer :: j, k, nd, q, i, nnz, first, l
       real(wp) :: v
 
-      if (nact <= self%dense_limit) then
+      if (m <= self%dense_limit) then
          if (allocated(self%s)) then
-            if (size(self%s, 1) < nact) deallocate (self%s)
+            if (size(self%s, 1) < m) deallocate (self%s)
          end if
-         if (.not. allocated(self%s)) allocate (self%s(max(nact, 16), max(nact, 16)))
-         self%s(1:nact, 1:nact) = 0.0_wp
+         if (.not. allocated(self%s)) allocate (self%s(max(m, 16), max(m, 16)))
+         self%s(1:m, 1:m) = 0.0_wp
       end if
-      call grow(self%ap, nact + 1)
-      call grow(self%mark, nact)
-      self%mark(1:nact) = 0
+      call grow(self%ap, m + 1)
+      call grow(self%mark, m)
+      self%mark(1:m) = 0
       nnz = 0
       self%ap(1) = 1
-      do j = 1, nact
-         cj = self%idx(j)
+      do j = 1, m
          first = nnz + 1
          do k = 1, 3
-            if (cs%w(k, cj) == 0.0_wp) cycle
-            nd = cs%node(k, cj)
+            if (cs%w(k, j) == 0.0_wp) cycle
+            nd = cs%node(k, j)
+            ! every candidate i that shares node nd with candidate j: S(i, j) += w_kj w_i(nd) n_j M^-1 n_i
             do q = self%nstart(nd), self%nstart(nd + 1) - 1
-               ci = self%nlist(q)
-               row = self%pos(ci)
-               if (row == 0) cycle
-               v = cs%w(k, cj)*node_weight(cs, ci, nd)* &
-                   (cs%nrm(1, cj)*minv(1, nd)*cs%nrm(1, ci) + cs%nrm(2, cj)*minv(2, nd)*cs%nrm(2, ci))
-               if (nact <= self%dense_limit) then
-                  self%s(row, j) = self%s(row, j) + v
+               i = self%nlist(q)
+               v = cs%w(k, j)*node_weight(cs, i, nd)* &
+                   (cs%nrm(1, j)*minv(1, nd)*cs%nrm(1, i) + cs%nrm(2, j)*minv(2, nd)*cs%nrm(2, i))
+               if (m <= self%dense_limit) then
+                  self%s(i, j) = self%s(i, j) + v
                else
-                  if (self%mark(row) /= j) then
-                     self%mark(row) = j
+                  if (self%mark(i) /= j) then
+                     self%mark(i) = j
                      nnz = nnz + 1
                      call grow(self%ai, nnz)
                      call grow(self%ax, nnz)
-                     self%ai(nnz) = row
+                     self%ai(nnz) = i
                      self%ax(nnz) = v
                   else
                      do l = first, nnz
-                        if (self%ai(l) == row) then
+                        if (self%ai(l) == i) then
                            self%ax(l) = self%ax(l) + v
                            exit
                         end if
@@ -357,7 +350,7 @@ contains
                end if
             end do
          end do
-         if (nact > self%dense_limit) call sort_column(self%ai(first:nnz), self%ax(first:nnz))
+         if (m > self%dense_limit) call sort_column(self%ai(first:nnz), self%ax(first:nnz))
          self%ap(j + 1) = nnz + 1
       end do
    end subroutine assemble
@@ -394,26 +387,26 @@ contains
       end do
    end subroutine sort_column
 
-   !> Factorize the assembled S (without the dropped constraints) and solve for sol.
-   subroutine factor_and_solve(self, nact, nbad, err)
+   !> Factorize the assembled S of the m candidates without the dropped ones and solve for sol.
+   subroutine factor_and_solve(self, m, nbad, err)
       type(corrector_t), intent(inout) :: self
-      integer, intent(in) :: nact
+      integer, intent(in) :: m
       integer, intent(out) :: nbad
       type(error_t), allocatable, intent(out) :: err
       integer :: stat, k
       self%nsolves = self%nsolves + 1
-      if (nact <= self%dense_limit) then
+      if (m <= self%dense_limit) then
          self%ndense = self%ndense + 1
-         call self%dense%factorize(self%s(1:nact, 1:nact), nbad, self%bad, err, self%drop(1:nact))
+         call self%dense%factorize(self%s(1:m, 1:m), nbad, self%bad, err, self%drop(1:m))
          if (allocated(err)) return
-         call self%dense%solve(self%rhs(1:nact), self%sol(1:nact), stat)
+         call self%dense%solve(self%rhs(1:m), self%sol(1:m), stat)
       else
          self%nsparse = self%nsparse + 1
-         call self%sparse%refactorize(nact, self%ap(1:nact + 1), self%ai(1:self%ap(nact + 1) - 1), &
-                                      self%ax(1:self%ap(nact + 1) - 1), nbad, self%bad, err, &
-                                      self%drop(1:nact))
+         call self%sparse%refactorize(m, self%ap(1:m + 1), self%ai(1:self%ap(m + 1) - 1), &
+                                      self%ax(1:self%ap(m + 1) - 1), nbad, self%bad, err, &
+                                      self%drop(1:m))
          if (allocated(err)) return
-         call self%sparse%solve(self%rhs(1:nact), self%sol(1:nact), stat)
+         call self%sparse%solve(self%rhs(1:m), self%sol(1:m), stat)
       end if
       if (stat /= 0) then
          call make_error(err, 'contact corrector: the solve of S p = -g/c failed')

@@ -16,9 +16,14 @@
 !>   gam(4, nel)         hourglass shape vector, orthogonal to every affine nodal field
 !>
 !> Integer flags: `ebad` is the first (local) element found inverted, 0 if none.
+!>
+!> The force kernels work on blocks of NBLOCK elements, as DYNA codes do: first the
+!> deformation gradients of every quadrature point of the block, then one call of the
+!> material's kernel (src/exic/material) on all of them, then the nodal forces. A material
+!> law is therefore one pure kernel on plain arrays of points, shared by both quadratures.
 module exic_element_quad4
    use exic_base_kinds, only: wp
-   use exic_material_neohookean, only: nh_cauchy, nh_wave_speed2
+   use exic_material_neohookean, only: nh_piola, nh_cauchy, nh_wave_speed2
    implicit none
    private
 
@@ -28,6 +33,9 @@ module exic_element_quad4
    real(wp), parameter :: etn(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]   !< eta_a
    real(wp), parameter :: hgv(4) = [1.0_wp, -1.0_wp, 1.0_wp, -1.0_wp]   !< hourglass base vector h
    real(wp), parameter :: gq = 0.57735026918962576451_wp                 !< 1/sqrt(3)
+   !> Elements per block of the force kernels: the block's points go to the material kernel in
+   !> one call (its work arrays, 4 x NBLOCK points x 11 values, stay in the L1 cache).
+   integer, parameter :: NBLOCK = 32
 
 contains
 
@@ -104,9 +112,11 @@ contains
 
    !> Internal force with 2x2 Gauss quadrature: f_ia += sum_g wdj_g P_iJ(F_g) dN_a/dX_J.
    !>
-   !> F = 1 + sum_a u_a (x) grad0 N_a, P = lambda ln(J) F^-T + mu (F - F^-T) (eq. 7.2).
+   !> F = 1 + sum_a u_a (x) grad0 N_a, P = lambda ln(J) F^-T + mu (F - F^-T) (eq. 7.2, nh_piola).
    !> f is accumulated (scatter-add); wint is the strain energy of the set, jmin the smallest J
    !> at a Gauss point and ebad the first element with J <= 0 (its forces are meaningless).
+   !> Elements go in blocks of NBLOCK: the deformation gradients of the block's points, one call
+   !> of the material kernel on all of them, then the nodal forces (module header).
    subroutine q4_force_2x2(nel, nnode, conn, u, gdn, wdj, lambda, mu, f, wint, jmin, ebad)
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
@@ -117,49 +127,58 @@ contains
       real(wp), intent(inout) :: f(2, nnode)
       real(wp), intent(out) :: wint, jmin
       integer, intent(out) :: ebad
-      real(wp) :: ux(4), uy(4), fx(4), fy(4), gx(4), gy(4)
-      real(wp) :: f11, f12, f21, f22, jg, js, lnj, c, p11, p12, p21, p22, wg, we
-      integer :: e, g, a
+      real(wp) :: ux(4), uy(4), fx(4), fy(4), gx(4), gy(4), jg, we
+      real(wp), dimension(4*NBLOCK) :: f11, f12, f21, f22, js, wt, p11, p12, p21, p22, wq
+      integer :: e, e0, k, nb, g, q, a
 
       wint = 0.0_wp
       jmin = huge(1.0_wp)
       ebad = 0
-      do e = 1, nel
-         do a = 1, 4
-            ux(a) = u(1, conn(a, e))
-            uy(a) = u(2, conn(a, e))
+      do e0 = 1, nel, NBLOCK
+         nb = min(NBLOCK, nel - e0 + 1)
+         ! kinematics of the block's points q = 4 (k - 1) + g
+         do k = 1, nb
+            e = e0 + k - 1
+            do a = 1, 4
+               ux(a) = u(1, conn(a, e))
+               uy(a) = u(2, conn(a, e))
+            end do
+            do g = 1, 4
+               q = 4*(k - 1) + g
+               gx = gdn(1:4, g, e)
+               gy = gdn(5:8, g, e)
+               f11(q) = 1.0_wp + (ux(1)*gx(1) + ux(2)*gx(2) + ux(3)*gx(3) + ux(4)*gx(4))
+               f12(q) = ux(1)*gy(1) + ux(2)*gy(2) + ux(3)*gy(3) + ux(4)*gy(4)
+               f21(q) = uy(1)*gx(1) + uy(2)*gx(2) + uy(3)*gx(3) + uy(4)*gx(4)
+               f22(q) = 1.0_wp + (uy(1)*gy(1) + uy(2)*gy(2) + uy(3)*gy(3) + uy(4)*gy(4))
+               jg = f11(q)*f22(q) - f12(q)*f21(q)
+               jmin = min(jmin, jg)
+               if (jg <= 0.0_wp .and. ebad == 0) ebad = e
+               js(q) = merge(jg, 1.0_wp, jg > 0.0_wp)
+               wt(q) = wdj(g, e)
+            end do
          end do
-         fx = 0.0_wp
-         fy = 0.0_wp
-         we = 0.0_wp
-         do g = 1, 4
-            gx = gdn(1:4, g, e)
-            gy = gdn(5:8, g, e)
-            f11 = 1.0_wp + (ux(1)*gx(1) + ux(2)*gx(2) + ux(3)*gx(3) + ux(4)*gx(4))
-            f12 = ux(1)*gy(1) + ux(2)*gy(2) + ux(3)*gy(3) + ux(4)*gy(4)
-            f21 = uy(1)*gx(1) + uy(2)*gx(2) + uy(3)*gx(3) + uy(4)*gx(4)
-            f22 = 1.0_wp + (uy(1)*gy(1) + uy(2)*gy(2) + uy(3)*gy(3) + uy(4)*gy(4))
-            jg = f11*f22 - f12*f21
-            jmin = min(jmin, jg)
-            if (jg <= 0.0_wp .and. ebad == 0) ebad = e
-            js = merge(jg, 1.0_wp, jg > 0.0_wp)
-            lnj = log(js)
-            ! P = mu F + (lambda ln J - mu)/J [f22 -f21; -f12 f11]
-            c = (lambda*lnj - mu)/js
-            wg = wdj(g, e)
-            p11 = wg*(mu*f11 + c*f22)
-            p12 = wg*(mu*f12 - c*f21)
-            p21 = wg*(mu*f21 - c*f12)
-            p22 = wg*(mu*f22 + c*f11)
-            we = we + wg*(lnj*(0.5_wp*lambda*lnj - mu) &
-                          + 0.5_wp*mu*(f11*f11 + f12*f12 + f21*f21 + f22*f22 - 2.0_wp))
-            fx = fx + p11*gx + p12*gy
-            fy = fy + p21*gx + p22*gy
-         end do
-         wint = wint + we
-         do a = 1, 4
-            f(1, conn(a, e)) = f(1, conn(a, e)) + fx(a)
-            f(2, conn(a, e)) = f(2, conn(a, e)) + fy(a)
+         ! the law at every point of the block
+         call nh_piola(4*nb, lambda, mu, f11, f12, f21, f22, js, wt, p11, p12, p21, p22, wq)
+         ! nodal forces
+         do k = 1, nb
+            e = e0 + k - 1
+            fx = 0.0_wp
+            fy = 0.0_wp
+            we = 0.0_wp
+            do g = 1, 4
+               q = 4*(k - 1) + g
+               gx = gdn(1:4, g, e)
+               gy = gdn(5:8, g, e)
+               we = we + wq(q)
+               fx = fx + p11(q)*gx + p12(q)*gy
+               fy = fy + p21(q)*gx + p22(q)*gy
+            end do
+            wint = wint + we
+            do a = 1, 4
+               f(1, conn(a, e)) = f(1, conn(a, e)) + fx(a)
+               f(2, conn(a, e)) = f(2, conn(a, e)) + fy(a)
+            end do
          end do
       end do
    end subroutine q4_force_2x2
@@ -175,6 +194,7 @@ contains
    !> the fully integrated hourglass stiffness (0.05-0.15 usual). The force is linear in the
    !> total displacement: elastic, conservative, and zero for affine fields.
    !> wint: strain energy of the mean part; whg: hourglass energy; jmin, ebad as for 2x2.
+   !> Elements go in blocks of NBLOCK, as in q4_force_2x2.
    subroutine q4_force_1pt(nel, nnode, conn, u, gdn, wdj, gam, lambda, mu, hg, f, wint, whg, &
                            jmin, ebad)
       integer, intent(in) :: nel, nnode
@@ -187,51 +207,61 @@ contains
       real(wp), intent(inout) :: f(2, nnode)
       real(wp), intent(out) :: wint, whg, jmin
       integer, intent(out) :: ebad
-      real(wp) :: ux(4), uy(4), gx(4), gy(4), ga(4)
-      real(wp) :: f11, f12, f21, f22, jg, js, lnj, c, p11, p12, p21, p22, a0, qx, qy, k, kh
-      integer :: e, a
+      real(wp) :: ux(4), uy(4), gx(4), gy(4), ga(4), jg, a0, qx, qy, k, kh
+      real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, js, p11, p12, p21, p22, wq
+      integer :: e, e0, i, nb, a
 
       wint = 0.0_wp
       whg = 0.0_wp
       jmin = huge(1.0_wp)
       ebad = 0
       kh = hg*(lambda + 2.0_wp*mu)
-      do e = 1, nel
-         do a = 1, 4
-            ux(a) = u(1, conn(a, e))
-            uy(a) = u(2, conn(a, e))
+      do e0 = 1, nel, NBLOCK
+         nb = min(NBLOCK, nel - e0 + 1)
+         ! kinematics of the block's centroids
+         do i = 1, nb
+            e = e0 + i - 1
+            do a = 1, 4
+               ux(a) = u(1, conn(a, e))
+               uy(a) = u(2, conn(a, e))
+            end do
+            gx = gdn(1:4, 1, e)
+            gy = gdn(5:8, 1, e)
+            f11(i) = 1.0_wp + (ux(1)*gx(1) + ux(2)*gx(2) + ux(3)*gx(3) + ux(4)*gx(4))
+            f12(i) = ux(1)*gy(1) + ux(2)*gy(2) + ux(3)*gy(3) + ux(4)*gy(4)
+            f21(i) = uy(1)*gx(1) + uy(2)*gx(2) + uy(3)*gx(3) + uy(4)*gx(4)
+            f22(i) = 1.0_wp + (uy(1)*gy(1) + uy(2)*gy(2) + uy(3)*gy(3) + uy(4)*gy(4))
+            jg = f11(i)*f22(i) - f12(i)*f21(i)
+            jmin = min(jmin, jg)
+            if (jg <= 0.0_wp .and. ebad == 0) ebad = e
+            js(i) = merge(jg, 1.0_wp, jg > 0.0_wp)
          end do
-         gx = gdn(1:4, 1, e)
-         gy = gdn(5:8, 1, e)
-         ga = gam(:, e)
-         a0 = wdj(1, e)
-         f11 = 1.0_wp + (ux(1)*gx(1) + ux(2)*gx(2) + ux(3)*gx(3) + ux(4)*gx(4))
-         f12 = ux(1)*gy(1) + ux(2)*gy(2) + ux(3)*gy(3) + ux(4)*gy(4)
-         f21 = uy(1)*gx(1) + uy(2)*gx(2) + uy(3)*gx(3) + uy(4)*gx(4)
-         f22 = 1.0_wp + (uy(1)*gy(1) + uy(2)*gy(2) + uy(3)*gy(3) + uy(4)*gy(4))
-         jg = f11*f22 - f12*f21
-         jmin = min(jmin, jg)
-         if (jg <= 0.0_wp .and. ebad == 0) ebad = e
-         js = merge(jg, 1.0_wp, jg > 0.0_wp)
-         lnj = log(js)
-         c = (lambda*lnj - mu)/js
-         p11 = a0*(mu*f11 + c*f22)
-         p12 = a0*(mu*f12 - c*f21)
-         p21 = a0*(mu*f21 - c*f12)
-         p22 = a0*(mu*f22 + c*f11)
-         wint = wint + a0*(lnj*(0.5_wp*lambda*lnj - mu) &
-                           + 0.5_wp*mu*(f11*f11 + f12*f12 + f21*f21 + f22*f22 - 2.0_wp))
-         ! hourglass: k = hg (lambda + 2 mu) b:b/A0 = hg (lambda + 2 mu) A0 sum(gdn**2)
-         k = kh*a0*(gx(1)*gx(1) + gx(2)*gx(2) + gx(3)*gx(3) + gx(4)*gx(4) &
-                    + gy(1)*gy(1) + gy(2)*gy(2) + gy(3)*gy(3) + gy(4)*gy(4))
-         qx = ga(1)*ux(1) + ga(2)*ux(2) + ga(3)*ux(3) + ga(4)*ux(4)
-         qy = ga(1)*uy(1) + ga(2)*uy(2) + ga(3)*uy(3) + ga(4)*uy(4)
-         whg = whg + 0.5_wp*k*(qx*qx + qy*qy)
-         qx = k*qx
-         qy = k*qy
-         do a = 1, 4
-            f(1, conn(a, e)) = f(1, conn(a, e)) + (p11*gx(a) + p12*gy(a) + qx*ga(a))
-            f(2, conn(a, e)) = f(2, conn(a, e)) + (p21*gx(a) + p22*gy(a) + qy*ga(a))
+         ! the law at every centroid of the block, weighted by the reference areas
+         call nh_piola(nb, lambda, mu, f11, f12, f21, f22, js, wdj(1, e0:e0 + nb - 1), p11, p12, p21, p22, wq)
+         ! mean and hourglass forces
+         do i = 1, nb
+            e = e0 + i - 1
+            do a = 1, 4
+               ux(a) = u(1, conn(a, e))
+               uy(a) = u(2, conn(a, e))
+            end do
+            gx = gdn(1:4, 1, e)
+            gy = gdn(5:8, 1, e)
+            ga = gam(:, e)
+            a0 = wdj(1, e)
+            wint = wint + wq(i)
+            ! hourglass: k = hg (lambda + 2 mu) b:b/A0 = hg (lambda + 2 mu) A0 sum(gdn**2)
+            k = kh*a0*(gx(1)*gx(1) + gx(2)*gx(2) + gx(3)*gx(3) + gx(4)*gx(4) &
+                       + gy(1)*gy(1) + gy(2)*gy(2) + gy(3)*gy(3) + gy(4)*gy(4))
+            qx = ga(1)*ux(1) + ga(2)*ux(2) + ga(3)*ux(3) + ga(4)*ux(4)
+            qy = ga(1)*uy(1) + ga(2)*uy(2) + ga(3)*uy(3) + ga(4)*uy(4)
+            whg = whg + 0.5_wp*k*(qx*qx + qy*qy)
+            qx = k*qx
+            qy = k*qy
+            do a = 1, 4
+               f(1, conn(a, e)) = f(1, conn(a, e)) + (p11(i)*gx(a) + p12(i)*gy(a) + qx*ga(a))
+               f(2, conn(a, e)) = f(2, conn(a, e)) + (p21(i)*gx(a) + p22(i)*gy(a) + qy*ga(a))
+            end do
          end do
       end do
    end subroutine q4_force_1pt

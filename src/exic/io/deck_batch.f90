@@ -14,10 +14,11 @@
 !> - `outp` option `hdf5`, v(1) = dt_out; `prin` option `ener`, v(1) = n.
 module exic_io_deck_batch
    use exic_base_kinds, only: wp
+   use exic_base_constants, only: DEFAULT_CFL
    use exic_base_error, only: error_t, make_error
    use exic_mesh_mesh, only: mesh_t
-   use exic_model, only: model_t
-   use exic_io_program, only: command_t, request_t, REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, &
+   use exic_io_model, only: model_t
+   use exic_io_program, only: MAX_LOOP_DEPTH, command_t, request_t, REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, &
                               REQ_REAC, REQ_CONT, REQ_MOME
    use exic_io_records, only: keyword_is, keyword_key
    use exic_io_expression, only: evaluate
@@ -30,9 +31,6 @@ module exic_io_deck_batch
    private
 
    public :: read_batch, read_batch_data
-
-   !> Deepest LOOP nesting.
-   integer, parameter :: MAX_LOOP_DEPTH = 8
 
    character(len=12), parameter :: commands(11) = [character(len=12) :: 'TRANsient', 'DT', &
                                                    'LOOP', 'NEXT', 'TIME', 'FORM', 'TPLOt', &
@@ -197,7 +195,7 @@ contains
       real(wp) :: v
       if (keyword_is(c%option, 'cfl')) then
          c%option = 'cfl'
-         if (.not. has_field(rd, i, 3)) c%v(1) = 0.9_wp
+         if (.not. has_field(rd, i, 3)) c%v(1) = DEFAULT_CFL
          if (.not. (c%v(1) > 0.0_wp .and. c%v(1) <= 1.0_wp)) &
             call fail(rd, i, 'DT,CFL,c: c = '//rtoa(c%v(1))//': expected 0 < c <= 1', err)
          return

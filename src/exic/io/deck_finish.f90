@@ -16,7 +16,7 @@ module exic_io_deck_finish
    use exic_mesh_tie, only: tie_map, apply_tie
    use exic_material_material, only: MAT_UNDEFINED
    use exic_contact_spec, only: contact_spec_t, SURF_REGION, SURF_MATERIAL, SURF_FACETS
-   use exic_model, only: model_t
+   use exic_io_model, only: model_t
    use exic_io_records, only: keyword_is
    use exic_io_reader, only: reader_t, fail, warn, where, itoa, rtoa, word, field, int_field, &
                              unknown_keyword, has_field

@@ -10,6 +10,9 @@ module exic_io_program
 
    public :: command_t, request_t
 
+   !> Deepest LOOP nesting of a BATCh program.
+   integer, parameter, public :: MAX_LOOP_DEPTH = 8
+
    !> One solution command `name,option,v1,v2,v3` (spec section 5).
    type :: command_t
       character(len=4) :: name = ''          !< first 4 characters, lower case

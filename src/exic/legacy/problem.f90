@@ -3,8 +3,8 @@
 !> A host hands over its node count, reference coordinates and lumped masses, and either its
 !> element connectivity with a body number per element (each body's free boundary becomes a
 !> contact surface, as REGIon surfaces do in a deck) or its own segments and slave node sets.
-!> From these an in-memory model_t (mesh, contact_spec_t) and state_t are built and the
-!> ordinary contact_t of the deck path does the work, unchanged: contact_t%init once and
+!> From these a contact_spec_t (as a deck's CONTact block) is built and the ordinary contact_t
+!> of the deck path does the work on the host's arrays, unchanged: contact_t%init once and
 !> contact_t%correct once per step (seed sections 3-6; eq. 4.4-4.7).
 !>
 !> Every procedure here takes explicit-shape arrays sized by earlier arguments, default
@@ -12,7 +12,7 @@
 !> exic_legacy_registry); a failure also stores a message retrievable with problem_message.
 !> `who` is the name of the calling entry point, used in messages.
 !>
-!> Per step the host's arrays go to contact_t%correct_at as they are; the API itself touches
+!> Per step the host's arrays go to contact_t%correct as they are; the API itself touches
 !> only the nodes of the contact surfaces (for its queries) and checks the positions, so its
 !> cost over a native call is small (doc/performance.md, "Legacy API overhead").
 module exic_legacy_problem
@@ -84,18 +84,17 @@ contains
       allocate (p)
       call base_problem(p, nnode, x0, mass, npair, ipair)
       p%mesh_mode = .true.
-      p%model%mesh%nelem = nelem
-      p%model%mesh%conn = ix
-      p%model%mesh%region = ibody
-      p%model%mesh%mat = [(1, k=1, nelem)]
-      allocate (p%model%contact%surfaces(count(has_body)))
+      p%nelem = nelem
+      p%conn = ix
+      p%body = ibody
+      allocate (p%spec%surfaces(count(has_body)))
       k = 0
       do b = 1, size(has_body)
          if (.not. has_body(b)) cycle
          k = k + 1
-         p%model%contact%surfaces(k)%id = b
-         p%model%contact%surfaces(k)%by = SURF_REGION
-         p%model%contact%surfaces(k)%ref = b
+         p%spec%surfaces(k)%id = b
+         p%spec%surfaces(k)%by = SURF_REGION
+         p%spec%surfaces(k)%ref = b
       end do
       call finish_create(who, p, ppair, h, ierr)
    end subroutine problem_create_mesh
@@ -159,14 +158,14 @@ contains
       allocate (p)
       call base_problem(p, nnode, x0, mass, npair, ipair)
       p%mesh_mode = .false.
-      p%model%mesh%nelem = 0
-      allocate (p%model%mesh%conn(4, 0), p%model%mesh%region(0), p%model%mesh%mat(0))
-      allocate (p%model%contact%surfaces(count(used)))
+      p%nelem = 0
+      allocate (p%conn(4, 0), p%body(0))
+      allocate (p%spec%surfaces(count(used)))
       k = 0
       do s = 1, nsurf
          if (.not. used(s)) cycle
          k = k + 1
-         associate (sp => p%model%contact%surfaces(k))
+         associate (sp => p%spec%surfaces(k))
             sp%id = s
             if (has_seg(s)) then
                sp%by = SURF_FACETS
@@ -180,7 +179,7 @@ contains
       call finish_create(who, p, ppair, h, ierr)
    end subroutine problem_create_segments
 
-   !> Model, masses and pair options common to both kinds of creation.
+   !> Positions, masses and pairs common to both kinds of creation.
    subroutine base_problem(p, nnode, x0, mass, npair, ipair)
       type(problem_t), intent(inout) :: p
       integer, intent(in) :: nnode, npair
@@ -191,21 +190,16 @@ contains
       p%npair = npair
       p%mass = mass
       allocate (p%fixed(2, nnode), source=0)
-      p%model%mesh%nnode = nnode
-      p%model%mesh%x = x0
-      allocate (p%model%materials(0))
-      p%model%contact%active = .true.
-      allocate (p%model%contact%pairs(npair))
+      p%x0 = x0
+      allocate (p%minv(2, nnode), source=0.0_wp)
+      p%spec%active = .true.
+      allocate (p%spec%pairs(npair))
       p%options = ipair(3:6, :)
       do k = 1, npair
-         p%model%contact%pairs(k)%id = k
-         p%model%contact%pairs(k)%slave = ipair(1, k)
-         p%model%contact%pairs(k)%master = ipair(2, k)
+         p%spec%pairs(k)%id = k
+         p%spec%pairs(k)%slave = ipair(1, k)
+         p%spec%pairs(k)%master = ipair(2, k)
       end do
-      allocate (p%st%x0(2, nnode), source=x0)
-      allocate (p%st%u(2, nnode), p%st%a(2, nnode), p%st%fcon(2, nnode), p%st%minv(2, nnode), source=0.0_wp)
-      p%st%nnode = nnode
-      p%st%mass = mass
    end subroutine base_problem
 
    !> Apply the pair options, build the contact object and register the problem.
@@ -234,8 +228,8 @@ contains
       integer :: k
       allocate (t(6, p%npair))
       do k = 1, p%npair
-         t(1, k) = p%model%contact%pairs(k)%slave
-         t(2, k) = p%model%contact%pairs(k)%master
+         t(1, k) = p%spec%pairs(k)%slave
+         t(2, k) = p%spec%pairs(k)%master
       end do
       t(3:6, :) = p%options
    end function pair_table
@@ -245,7 +239,7 @@ contains
       type(problem_t), intent(inout) :: p
       integer, intent(in) :: k, iopt(4)
       real(wp), intent(in) :: pen
-      associate (ps => p%model%contact%pairs(k))
+      associate (ps => p%spec%pairs(k))
          ps%method = merge(METHOD_LAGRANGE, METHOD_PENALTY, iopt(1) == 1)
          ps%detection = merge(DETECT_SWEPT, DETECT_STATIC, iopt(2) == 1)
          if (ps%slave == ps%master) then
@@ -258,7 +252,7 @@ contains
       end associate
    end subroutine apply_pair_options
 
-   !> (Re)build the contact object from the model and the masses, rigid masters and fixities.
+   !> (Re)build the contact object from the spec and the masses, rigid masters and fixities.
    subroutine rebuild(who, p, ierr)
       character(len=*), intent(in) :: who
       type(problem_t), intent(inout) :: p
@@ -266,14 +260,17 @@ contains
       type(contact_t) :: fresh
       type(error_t), allocatable :: err
       logical, allocatable :: mark(:)
+      real(wp), allocatable :: x(:, :)
       integer :: k, s
 
       call rigid_nodes(p)
       call inverse_masses(p)
-      ! after steps, surfaces and the overlap check see the current positions
-      if (p%nsteps > 0) p%st%x0(:, p%snodes) = p%xprev
+      ! after steps, the segment lengths and the overlap check see the surfaces where they are now
+      x = p%x0
+      if (p%nsteps > 0) x(:, p%snodes) = p%xprev
       p%contact = fresh
-      call p%contact%init(p%model, p%st, err)
+      call p%contact%init(p%spec, p%nnode, x, x, p%nelem, p%conn, p%body, spread(1, 1, p%nelem), &
+                          0.0_wp, err)
       if (allocated(err)) then
          ierr = IERR_SETUP
          call fail(0, who//': '//err%message)
@@ -304,16 +301,16 @@ contains
       allocate (p%rigid(p%nnode), source=.false.)
       do k = 1, p%npair
          if (p%options(4, k) == 0) cycle
-         associate (m => p%model%contact%pairs(k)%master)
+         associate (m => p%spec%pairs(k)%master)
             if (p%mesh_mode) then
-               do e = 1, p%model%mesh%nelem
-                  if (p%model%mesh%region(e) == m) p%rigid(p%model%mesh%conn(:, e)) = .true.
+               do e = 1, p%nelem
+                  if (p%body(e) == m) p%rigid(p%conn(:, e)) = .true.
                end do
             else
-               do j = 1, size(p%model%contact%surfaces)
-                  if (p%model%contact%surfaces(j)%id /= m) cycle
-                  if (p%model%contact%surfaces(j)%by == SURF_FACETS) &
-                     p%rigid(reshape(p%model%contact%surfaces(j)%facets, [size(p%model%contact%surfaces(j)%facets)])) &
+               do j = 1, size(p%spec%surfaces)
+                  if (p%spec%surfaces(j)%id /= m) cycle
+                  if (p%spec%surfaces(j)%by == SURF_FACETS) &
+                     p%rigid(reshape(p%spec%surfaces(j)%facets, [size(p%spec%surfaces(j)%facets)])) &
                      = .true.
                end do
             end if
@@ -326,9 +323,9 @@ contains
       type(problem_t), intent(inout) :: p
       integer :: i
       do i = 1, p%nnode
-         p%st%minv(:, i) = 1.0_wp/p%mass(i)
-         if (p%rigid(i)) p%st%minv(:, i) = 0.0_wp
-         where (p%fixed(:, i) /= 0) p%st%minv(:, i) = 0.0_wp
+         p%minv(:, i) = 1.0_wp/p%mass(i)
+         if (p%rigid(i)) p%minv(:, i) = 0.0_wp
+         where (p%fixed(:, i) /= 0) p%minv(:, i) = 0.0_wp
       end do
    end subroutine inverse_masses
 
@@ -375,10 +372,10 @@ contains
       t(3:6, ipair) = iopt
       n = maxval(t(1:2, :))
       allocate (any_surf(n), seg_surf(n), source=.false.)
-      do k = 1, size(p%model%contact%surfaces)
-         if (p%model%contact%surfaces(k)%id > n) cycle
-         any_surf(p%model%contact%surfaces(k)%id) = .true.
-         seg_surf(p%model%contact%surfaces(k)%id) = p%model%contact%surfaces(k)%by /= SURF_NODES
+      do k = 1, size(p%spec%surfaces)
+         if (p%spec%surfaces(k)%id > n) cycle
+         any_surf(p%spec%surfaces(k)%id) = .true.
+         seg_surf(p%spec%surfaces(k)%id) = p%spec%surfaces(k)%by /= SURF_NODES
       end do
       if (.not. pairs_ok(who, 1, t(:, ipair:ipair), [pen], any_surf, seg_surf, ipair)) then
          p%message = last_message(0)
@@ -418,7 +415,7 @@ contains
    !> One contact step: x = x(n+1), v = v~(n+1) (or v(n+1/2), option 1), a = a~(n+1) on entry
    !> and a(n+1) on exit, dtprev = dt(n) (0 at t = 0), dt = dt(n+1); fcon = nodal contact
    !> forces, nactive = constraints carrying force (eq. 4.4-4.7). The host's arrays go to
-   !> contact_t%correct_at as they are: nothing of size nnode is copied.
+   !> contact_t%correct as they are: nothing of size nnode is copied.
    subroutine problem_step(who, h, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr)
       character(len=*), intent(in) :: who
       integer, intent(in) :: h, nnode
@@ -460,9 +457,9 @@ contains
             i = p%snodes(k)
             p%vt(:, i) = v(:, i) + (0.5_wp*dtprev)*a(:, i)
          end do
-         call p%contact%correct_at(nnode, x, p%vt, a, p%st%minv, dtprev, dt, fcon, nactive, err)
+         call p%contact%correct(nnode, x, p%vt, a, p%minv, dtprev, dt, fcon, nactive, err)
       else
-         call p%contact%correct_at(nnode, x, v, a, p%st%minv, dtprev, dt, fcon, nactive, err)
+         call p%contact%correct(nnode, x, v, a, p%minv, dtprev, dt, fcon, nactive, err)
       end if
       if (allocated(err)) then
          call fail(h, who//': '//err%message)
@@ -640,7 +637,7 @@ contains
             do j = 1, 3
                nd = cs%node(j, i)
                s = p%spos(nd)
-               dg = dg + cs%w(j, i)*dot_product(cs%nrm(:, i), p%st%minv(:, nd)*p%fprev(:, s))
+               dg = dg + cs%w(j, i)*dot_product(cs%nrm(:, i), p%minv(:, nd)*p%fprev(:, s))
             end do
             rcon(6, i) = cs%gap(i) + p%c*dg
          end do

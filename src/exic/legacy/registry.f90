@@ -9,8 +9,7 @@
 !> thread safe: a host that calls the API from several threads must serialize the calls.
 module exic_legacy_registry
    use exic_base_kinds, only: wp
-   use exic_model, only: model_t
-   use exic_explicit_state, only: state_t
+   use exic_contact_spec, only: contact_spec_t
    use exic_contact_contact, only: contact_t
    implicit none
    private
@@ -30,16 +29,21 @@ module exic_legacy_registry
    integer, parameter, public :: VEL_FULL_STEP = 1    !< v~(n+1) = v(n) + dt(n)/2 (a(n) + a~(n+1))
    integer, parameter, public :: VEL_HALF_STEP = 2    !< v(n+1/2) = v(n) + dt(n)/2 a(n) (DYNA form)
 
-   !> One contact problem of a host: its model, the state used to build the contact object
-   !> (reference positions, inverse masses), the contact object, and what the API keeps for
-   !> queries. Arrays indexed by `k` run over `snodes`, the
-   !> nodes of all contact surfaces (the only nodes whose data the contact code reads or writes).
+   !> One contact problem of a host: the host's arrays the contact object is built from (the
+   !> contact spec, connectivity and body numbers, reference positions), the inverse masses, the
+   !> contact object, and what the API keeps for queries. Arrays indexed by `k` run over
+   !> `snodes`, the nodes of all contact surfaces (the only nodes whose data the contact code
+   !> reads or writes).
    type :: problem_t
       integer :: nnode = 0
       integer :: npair = 0
       logical :: mesh_mode = .true.           !< built from connectivity (else from segments)
-      type(model_t) :: model
-      type(state_t) :: st
+      type(contact_spec_t) :: spec            !< surfaces and pairs, as a deck's CONTact block
+      integer :: nelem = 0                    !< elements given (0 when built from segments)
+      integer, allocatable :: conn(:, :)      !< (4, nelem) the host's connectivity
+      integer, allocatable :: body(:)         !< (nelem) the host's body numbers
+      real(wp), allocatable :: x0(:, :)       !< (2, nnode) reference coordinates
+      real(wp), allocatable :: minv(:, :)     !< (2, nnode) inverse mass per dof (0: rigid or fixed)
       type(contact_t) :: contact
       real(wp), allocatable :: mass(:)        !< (nnode) lumped masses as given
       integer, allocatable :: fixed(:, :)     !< (2, nnode) non-zero: dof prescribed by the host

@@ -17,17 +17,19 @@
 !>
 !>     P = J sigma F^-T = lambda ln(J) F^-T + mu (F - F^-T)
 !>
-!> The kernels assume J > 0; callers check J first.
+!> The kernels assume J > 0; callers check J first. nh_piola is the law for the internal forces
+!> (one kernel for every quadrature), nh_cauchy its Cauchy form for stress output.
 module exic_material_neohookean
    use exic_base_kinds, only: wp
    implicit none
    private
 
-   public :: nh_cauchy, nh_piola, nh_energy, nh_wave_speed2
+   public :: nh_piola, nh_cauchy, nh_wave_speed2
 
 contains
 
-   !> Cauchy stress (eq. 7.2), J and the strain energy per reference volume for plane-strain F.
+   !> Cauchy stress (eq. 7.2), J and the strain energy per reference volume for plane-strain F:
+   !> the law in the Cauchy form the seed prints, for stress output (forces use nh_piola).
    elemental subroutine nh_cauchy(lambda, mu, f11, f12, f21, f22, sxx, syy, szz, sxy, jac, w)
       real(wp), intent(in) :: lambda, mu          !< Lame constants
       real(wp), intent(in) :: f11, f12, f21, f22  !< in-plane deformation gradient
@@ -50,37 +52,39 @@ contains
       w = 0.5_wp*lambda*lnj*lnj + 0.5_wp*mu*(b11 + b22 - 2.0_wp) - mu*lnj
    end subroutine nh_cauchy
 
-   !> First Piola-Kirchhoff stress P = lambda ln(J) F^-T + mu (F - F^-T), J and the strain energy.
-   elemental subroutine nh_piola(lambda, mu, f11, f12, f21, f22, p11, p12, p21, p22, jac, w)
-      real(wp), intent(in) :: lambda, mu          !< Lame constants
-      real(wp), intent(in) :: f11, f12, f21, f22  !< in-plane deformation gradient
-      real(wp), intent(out) :: p11, p12, p21, p22 !< in-plane first Piola-Kirchhoff stress
-      real(wp), intent(out) :: jac                !< J = det F
-      real(wp), intent(out) :: w                  !< strain energy per reference volume
+   !> First Piola-Kirchhoff stress and strain energy at n points whose J = det F > 0 the
+   !> caller has computed and checked, each times the point's weight wt (the quadrature weight x
+   !> reference volume it stands for; 1 for values per unit reference volume): the one kernel
+   !> of the law for forces, used by both quadratures of the element and by the tests.
+   !>
+   !>     P = lambda ln(J) F^-T + mu (F - F^-T) = mu F + (lambda ln J - mu)/J cof F
+   !>     W = ln J (lambda/2 ln J - mu) + mu/2 (F11^2 + F12^2 + F21^2 + F22^2 - 2)
+   !>
+   !> with cof F = [F22 -F21; -F12 F11] in plane strain (F33 = 1, so I1 - 3 = |F|^2 - 2).
+   pure subroutine nh_piola(n, lambda, mu, f11, f12, f21, f22, jac, wt, p11, p12, p21, p22, w)
+      integer, intent(in) :: n                             !< number of points
+      real(wp), intent(in) :: lambda, mu                   !< Lame constants
+      real(wp), intent(in) :: f11(n), f12(n), f21(n), f22(n) !< in-plane deformation gradient
+      real(wp), intent(in) :: jac(n)                       !< J = det F > 0
+      real(wp), intent(in) :: wt(n)                        !< weight of each point
+      real(wp), intent(out) :: p11(n), p12(n), p21(n), p22(n) !< wt x first Piola-Kirchhoff stress
+      real(wp), intent(out) :: w(n)                        !< wt x strain energy per reference volume
       real(wp) :: lnj, c
+      integer :: q
 
-      jac = f11*f22 - f12*f21
-      lnj = log(jac)
-      ! F^-T = [f22 -f21; -f12 f11] / J
-      c = (lambda*lnj - mu)/jac
-      p11 = mu*f11 + c*f22
-      p12 = mu*f12 - c*f21
-      p21 = mu*f21 - c*f12
-      p22 = mu*f22 + c*f11
-      w = 0.5_wp*lambda*lnj*lnj &
-          + 0.5_wp*mu*(f11*f11 + f12*f12 + f21*f21 + f22*f22 - 2.0_wp) - mu*lnj
+      ! scalar log: glibc's vector log (libmvec) differs from it in the last bits
+      !GCC$ novector
+      do q = 1, n
+         lnj = log(jac(q))
+         c = (lambda*lnj - mu)/jac(q)
+         p11(q) = wt(q)*(mu*f11(q) + c*f22(q))
+         p12(q) = wt(q)*(mu*f12(q) - c*f21(q))
+         p21(q) = wt(q)*(mu*f21(q) - c*f12(q))
+         p22(q) = wt(q)*(mu*f22(q) + c*f11(q))
+         w(q) = wt(q)*(lnj*(0.5_wp*lambda*lnj - mu) &
+                       + 0.5_wp*mu*(f11(q)*f11(q) + f12(q)*f12(q) + f21(q)*f21(q) + f22(q)*f22(q) - 2.0_wp))
+      end do
    end subroutine nh_piola
-
-   !> Strain energy per unit reference volume W(F) of the plane-strain neo-Hookean solid.
-   elemental function nh_energy(lambda, mu, f11, f12, f21, f22) result(w)
-      real(wp), intent(in) :: lambda, mu          !< Lame constants
-      real(wp), intent(in) :: f11, f12, f21, f22  !< in-plane deformation gradient
-      real(wp) :: w
-      real(wp) :: lnj
-      lnj = log(f11*f22 - f12*f21)
-      w = 0.5_wp*lambda*lnj*lnj &
-          + 0.5_wp*mu*(f11*f11 + f12*f12 + f21*f21 + f22*f22 - 2.0_wp) - mu*lnj
-   end function nh_energy
 
    !> Square of the tangent dilatational wave speed at volume ratio J:
    !> c^2 = (lambda + 2 mu - 2 lambda ln J)/rho0 (spatial moduli lambda/J and (mu - lambda ln J)/J,

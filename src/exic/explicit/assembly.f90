@@ -1,34 +1,29 @@
-!> The central-difference solver: set-up from a model, one explicit step, energies.
+!> The element sets of a mesh and what the step needs of them: internal forces and strain
+!> energy (seed eq. 4.3 needs P(u)), the stable step, kinetic energy and momentum, stresses.
 !>
-!> One step follows the seed's eq. 4.3-4.4 with distinct dt(n) and dt(n+1):
-!>   x(n+1) = x(n) + dt(n) v(n) + dt(n)^2/2 a(n)
-!>   M a~(n+1) = F - P(u(n+1))                                   (4.3)
-!>   v~(n+1) = v(n) + dt(n)/2 (a(n) + a~(n+1))                    (4.4)
-!>   contact corrector: a(n+1) = a~(n+1) - M^-1 G lambda          (4.5-4.7)
-!>   v(n+1) = v(n) + dt(n)/2 (a(n) + a(n+1))
-!> with dt(n+1) chosen from the geometry at t(n+1) before the corrector needs it.
-module exic_explicit_solver
-   use exic_base_kinds, only: wp, i8
+!> `assembly_init` builds the state (reference coordinates, lumped masses, inverse masses per
+!> dof, initial conditions) and one element set per material in use; the loops below call the
+!> element kernels of src/exic/element set by set.
+module exic_explicit_assembly
+   use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
-   use exic_model, only: model_t
-   use exic_material_material, only: MAT_SOLID, MAT_RIGID
+   use exic_mesh_mesh, only: mesh_t
+   use exic_material_material, only: material_t, MAT_SOLID, MAT_RIGID
    use exic_explicit_state, only: state_t, element_set_t
    use exic_element_quad4, only: q4_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
                                  q4_stable_dt, q4_stress
    implicit none
    private
 
-   public :: solver_init, solver_forces, solver_stable_dt, solver_energies, element_stress, all_stresses
-   public :: cd_displacement, cd_predictor, cd_velocity
-   public :: STEP_OK, STEP_INVERTED
-
-   integer, parameter :: STEP_OK = 0, STEP_INVERTED = 1
+   public :: assembly_init, internal_forces, stable_step, kinetic_energy, element_stress, all_stresses
 
 contains
 
-   !> Build the state and element sets of `model`; the initial velocity is the mesh's v0.
-   subroutine solver_init(model, st, sets, err)
-      type(model_t), intent(in) :: model
+   !> Build the state and element sets of `mesh` with `materials` (indexed by material set
+   !> number); the initial velocity is the mesh's v0.
+   subroutine assembly_init(mesh, materials, st, sets, err)
+      type(mesh_t), intent(in) :: mesh
+      type(material_t), intent(in) :: materials(:)
       type(state_t), intent(out) :: st
       type(element_set_t), allocatable, intent(out) :: sets(:)
       type(error_t), allocatable, intent(out) :: err
@@ -36,23 +31,23 @@ contains
       integer, allocatable :: count(:)
       character(len=64) :: buf
 
-      nn = model%mesh%nnode
-      ne = model%mesh%nelem
+      nn = mesh%nnode
+      ne = mesh%nelem
       st%nnode = nn
       st%nelem = ne
-      st%x0 = model%mesh%x
+      st%x0 = mesh%x
       allocate (st%u(2, nn), st%v(2, nn), st%a(2, nn), st%fint(2, nn), st%fcon(2, nn), &
                 st%minv(2, nn), source=0.0_wp)
       allocate (st%mass(nn), source=0.0_wp)
       allocate (st%active(nn), st%rigid(nn), source=.false.)
-      st%fext = model%mesh%force
+      st%fext = mesh%force
 
       ! element sets, one per material in use
-      nmat = size(model%materials)
+      nmat = size(materials)
       allocate (count(nmat), source=0)
       allocate (st%eset(ne), st%eloc(ne), source=0)
       do e = 1, ne
-         count(model%mesh%mat(e)) = count(model%mesh%mat(e)) + 1
+         count(mesh%mat(e)) = count(mesh%mat(e)) + 1
       end do
       nset = count_nonzero(count)
       allocate (sets(nset))
@@ -60,7 +55,7 @@ contains
       do im = 1, nmat
          if (count(im) == 0) cycle
          k = k + 1
-         associate (s => sets(k), m => model%materials(im))
+         associate (s => sets(k), m => materials(im))
             s%mat = im
             s%kind = m%kind
             s%nq = m%quadrature
@@ -70,8 +65,8 @@ contains
             s%rho = m%rho
             s%hourglass = m%hourglass
             allocate (s%elems(s%nel), s%conn(4, s%nel))
-            s%elems = pack([(i, i=1, ne)], model%mesh%mat == im)
-            s%conn = model%mesh%conn(:, s%elems)
+            s%elems = pack([(i, i=1, ne)], mesh%mat == im)
+            s%conn = mesh%conn(:, s%elems)
             allocate (s%gdn(8, s%nq**2, s%nel), s%wdj(s%nq**2, s%nel), s%gamma(4, s%nel))
             call q4_reference(s%nq, s%nel, nn, s%conn, st%x0, s%gdn, s%wdj, s%gamma, ebad)
             if (ebad /= 0) then
@@ -92,17 +87,17 @@ contains
          if (st%active(i) .and. .not. st%rigid(i) .and. st%mass(i) > 0.0_wp) then
             st%minv(:, i) = 1.0_wp/st%mass(i)
          end if
-         where (model%mesh%bc(:, i) /= 0) st%minv(:, i) = 0.0_wp
+         where (mesh%bc(:, i) /= 0) st%minv(:, i) = 0.0_wp
       end do
 
       ! initial conditions: prescribed displacement values hold from t = 0
-      where (model%mesh%bc /= 0) st%u = model%mesh%disp
-      st%v = model%mesh%v0
-      where (model%mesh%bc /= 0) st%v = 0.0_wp
+      where (mesh%bc /= 0) st%u = mesh%disp
+      st%v = mesh%v0
+      where (mesh%bc /= 0) st%v = 0.0_wp
       do i = 1, nn
          if (.not. st%active(i)) st%v(:, i) = 0.0_wp
       end do
-   end subroutine solver_init
+   end subroutine assembly_init
 
    !> Number of non-zero entries.
    pure integer function count_nonzero(a)
@@ -112,7 +107,7 @@ contains
 
    !> Internal forces, strain and hourglass energy at the current displacement (seed eq. 4.3 needs P(u)).
    !> `ebad` is the first (global) element with J <= 0, or 0.
-   subroutine solver_forces(st, sets, ebad)
+   subroutine internal_forces(st, sets, ebad)
       type(state_t), intent(inout) :: st
       type(element_set_t), intent(in) :: sets(:)
       integer, intent(out) :: ebad
@@ -140,31 +135,19 @@ contains
             if (eb /= 0 .and. ebad == 0) ebad = s%elems(eb)
          end associate
       end do
-   end subroutine solver_forces
+   end subroutine internal_forces
 
-   !> Smallest critical step over the deformable elements at the current geometry, and its element.
-   !> `xwork` (2, nnode), when given, holds the current coordinates instead of a temporary.
-   subroutine solver_stable_dt(st, sets, dtmin, emin, xwork)
+   !> Smallest critical step over the deformable elements at the current coordinates
+   !> x(2, nnode), and its (global) element (0 when there is no deformable element).
+   subroutine stable_step(st, sets, x, dtmin, emin)
       type(state_t), intent(in) :: st
       type(element_set_t), intent(in) :: sets(:)
+      real(wp), intent(in) :: x(2, st%nnode)
       real(wp), intent(out) :: dtmin
       integer, intent(out) :: emin
-      real(wp), intent(inout), optional, target :: xwork(:, :)
-      real(wp), allocatable, target :: xtmp(:, :)
-      real(wp), pointer, contiguous :: x(:, :)
-      integer :: k, e, i
+      integer :: k, e
       real(wp) :: d
 
-      if (present(xwork)) then
-         x => xwork(:, 1:st%nnode)
-      else
-         allocate (xtmp(2, st%nnode))
-         x => xtmp
-      end if
-      do i = 1, st%nnode
-         x(1, i) = st%x0(1, i) + st%u(1, i)
-         x(2, i) = st%x0(2, i) + st%u(2, i)
-      end do
       dtmin = huge(1.0_wp)
       emin = 0
       do k = 1, size(sets)
@@ -177,92 +160,10 @@ contains
             end if
          end associate
       end do
-   end subroutine solver_stable_dt
-
-   !> First part of a central-difference step over `n` nodes (seed eq. 4.3-4.4):
-   !> du = dt v + dt^2/2 a, u = u + du, and a_old = a kept for the velocity update.
-   !> One pass instead of four whole-array statements (no temporaries).
-   pure subroutine cd_displacement(n, dt, v, a, u, du, a_old)
-      integer, intent(in) :: n
-      real(wp), intent(in) :: dt
-      real(wp), intent(in) :: v(2, n), a(2, n)
-      real(wp), intent(inout) :: u(2, n)
-      real(wp), intent(out) :: du(2, n), a_old(2, n)
-      real(wp) :: h, d
-      integer :: i, k
-      h = 0.5_wp*dt*dt
-      do i = 1, n
-         do k = 1, 2
-            d = dt*v(k, i) + h*a(k, i)
-            du(k, i) = d
-            u(k, i) = u(k, i) + d
-            a_old(k, i) = a(k, i)
-         end do
-      end do
-   end subroutine cd_displacement
-
-   !> Predictor of eq. 4.3-4.4: a~ = M^-1 (F - P) and, when `with_vt`, v~ = v + dt/2 (a_old + a~)
-   !> (only the contact search needs v~).
-   pure subroutine cd_predictor(n, dt, minv, fext, fint, v, a_old, a, with_vt, vt)
-      integer, intent(in) :: n
-      real(wp), intent(in) :: dt
-      real(wp), intent(in) :: minv(2, n), fext(2, n), fint(2, n), v(2, n), a_old(2, n)
-      real(wp), intent(out) :: a(2, n)
-      logical, intent(in) :: with_vt
-      real(wp), intent(inout) :: vt(2, n)
-      real(wp) :: h
-      integer :: i, k
-      h = 0.5_wp*dt
-      if (with_vt) then
-         do i = 1, n
-            do k = 1, 2
-               a(k, i) = minv(k, i)*(fext(k, i) - fint(k, i))
-               vt(k, i) = v(k, i) + h*(a_old(k, i) + a(k, i))
-            end do
-         end do
-      else
-         do i = 1, n
-            do k = 1, 2
-               a(k, i) = minv(k, i)*(fext(k, i) - fint(k, i))
-            end do
-         end do
-      end if
-   end subroutine cd_predictor
-
-   !> Last part of a step: v = v + dt/2 (a_old + a) with the corrected a, the work of the
-   !> external forces (F . du) and, when `with_contact`, of the contact forces by the
-   !> trapezoid rule (1/2 (fcon_old + fcon) . du), each summed in array order.
-   pure subroutine cd_velocity(n, dt, a_old, a, fext, du, with_contact, fcon_old, fcon, v, wext, wcon)
-      integer, intent(in) :: n
-      real(wp), intent(in) :: dt
-      real(wp), intent(in) :: a_old(2, n), a(2, n), fext(2, n), du(2, n)
-      logical, intent(in) :: with_contact
-      real(wp), intent(in) :: fcon_old(2, n), fcon(2, n)
-      real(wp), intent(inout) :: v(2, n), wext, wcon
-      real(wp) :: h, se, sc
-      integer :: i, k
-      h = 0.5_wp*dt
-      se = 0.0_wp
-      sc = 0.0_wp
-      do i = 1, n
-         do k = 1, 2
-            v(k, i) = v(k, i) + h*(a_old(k, i) + a(k, i))
-            se = se + fext(k, i)*du(k, i)
-         end do
-      end do
-      wext = wext + se
-      if (with_contact) then
-         do i = 1, n
-            do k = 1, 2
-               sc = sc + (fcon_old(k, i) + fcon(k, i))*du(k, i)
-            end do
-         end do
-         wcon = wcon + 0.5_wp*sc
-      end if
-   end subroutine cd_velocity
+   end subroutine stable_step
 
    !> Kinetic energy and linear momentum of every active node (rigid bodies included).
-   subroutine solver_energies(st)
+   subroutine kinetic_energy(st)
       type(state_t), intent(inout) :: st
       integer :: i
       real(wp) :: k, p(2)
@@ -274,7 +175,7 @@ contains
       end do
       st%kinetic = 0.5_wp*k
       st%momentum = p
-   end subroutine solver_energies
+   end subroutine kinetic_energy
 
    !> Stress components (sxx, syy, szz, sxy, pressure, von Mises, J) of global element `e`.
    subroutine element_stress(st, sets, e, sig)
@@ -314,4 +215,4 @@ contains
       end do
    end subroutine all_stresses
 
-end module exic_explicit_solver
+end module exic_explicit_assembly

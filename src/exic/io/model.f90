@@ -1,5 +1,5 @@
 !> Everything a deck defines: mesh, materials, contact, solution program and requests.
-module exic_model
+module exic_io_model
    use exic_base_kinds, only: wp
    use exic_mesh_mesh, only: mesh_t
    use exic_material_material, only: material_t
@@ -23,4 +23,4 @@ module exic_model
       character(len=:), allocatable :: warnings        !< reader warnings, newline separated
    end type model_t
 
-end module exic_model
+end module exic_io_model

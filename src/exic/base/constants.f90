@@ -1,0 +1,16 @@
+!> Literals that several layers must agree on.
+module exic_base_constants
+   use exic_base_kinds, only: wp
+   implicit none
+   private
+
+   !> Courant factor of `DT,CFL` when the deck gives none, and of a deck without DT: the step is
+   !> DEFAULT_CFL x the stable estimate (doc/decisions.md, "Stable step").
+   real(wp), parameter, public :: DEFAULT_CFL = 0.9_wp
+
+   !> Relative tolerance of comparisons between simulated times (end of a TIME interval, due
+   !> output times, landing on tmax): times within TIME_TOL x t of each other are equal, so that
+   !> the rounding of t = sum of the steps never adds or drops a step or an output.
+   real(wp), parameter, public :: TIME_TOL = 1.0e-12_wp
+
+end module exic_base_constants

@@ -1,0 +1,340 @@
+!> The explicit time step: one object that owns the state, the element sets, the contact and
+!> the step's work arrays, and performs the seed's sequence. Every caller steps through it: the
+!> deck driver, the tests, the benchmarks, and hosts that bring their own contact through a hook.
+!>
+!> One `advance` (FORM,EXPLicit) is, with distinct dt(n) and dt(n+1) (doc/decisions.md):
+!>   1. x(n+1) = x(n) + dt(n) v(n) + dt(n)^2/2 a(n)                        (eq. 4.3-4.4)
+!>   2. internal forces P(u(n+1)), strain energy                            (eq. 4.3, 7.2)
+!>   3. dt(n+1) from the geometry at t(n+1) (CFL x stable estimate, or fixed)
+!>   4. predictor a~ = M^-1 (F - P), v~ = v(n) + dt(n)/2 (a(n) + a~)        (eq. 4.3-4.4)
+!>   5. contact corrector: a(n+1) = a~ + M^-1 G p, every active gap closed at t(n+2)  (4.5-4.7)
+!>   6. v(n+1) = v(n) + dt(n)/2 (a(n) + a(n+1)); works of external and contact forces
+!>   7. kinetic energy, momentum and the health check (NaN, runaway energy)
+!> `start` makes the state at t = 0 consistent first: forces, dt(0), a(0) with the corrector
+!> acting on the initial velocity (bodies touching at t = 0 are caught at once).
+!>
+!> The stepper writes no file: what it has to report it adds to `messages`.
+module exic_explicit_step
+   use exic_base_kinds, only: wp
+   use exic_base_constants, only: DEFAULT_CFL, TIME_TOL
+   use exic_base_error, only: error_t, make_error
+   use exic_base_strings, only: itoa, rtoa
+   use exic_base_clock, only: wall_time
+   use exic_base_messages, only: messages_t
+   use exic_mesh_mesh, only: mesh_t
+   use exic_material_material, only: material_t, MAT_SOLID
+   use exic_contact_spec, only: contact_spec_t
+   use exic_contact_contact, only: contact_t
+   use exic_explicit_state, only: state_t, element_set_t
+   use exic_explicit_assembly, only: assembly_init, internal_forces, stable_step, kinetic_energy
+   use exic_explicit_central, only: cd_displacement, cd_predictor, cd_velocity, positions
+   implicit none
+   private
+
+   public :: stepper_t, contact_hook_t
+
+   !> Contact brought by a host instead of exic's own (the legacy API's hosts, in tests and
+   !> benchmarks): called at step 5 with the same plain arrays as contact_t%correct.
+   type, abstract :: contact_hook_t
+   contains
+      procedure(hook_correct), deferred :: correct
+   end type contact_hook_t
+
+   abstract interface
+      !> x = x(n+1), vt = v~(n+1), a = a~(n+1) in, a(n+1) out, minv inverse mass per dof,
+      !> dt_prev = dt(n), dt = dt(n+1); fcon = nodal contact forces, nactive = constraints in force.
+      subroutine hook_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err)
+         import :: contact_hook_t, wp, error_t
+         class(contact_hook_t), intent(inout) :: self
+         integer, intent(in) :: nnode
+         real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode), dt_prev, dt
+         real(wp), intent(inout) :: a(2, nnode), fcon(2, nnode)
+         integer, intent(out) :: nactive
+         type(error_t), allocatable, intent(out) :: err
+      end subroutine hook_correct
+   end interface
+
+   !> A running explicit analysis.
+   type :: stepper_t
+      type(state_t) :: st
+      type(element_set_t), allocatable :: sets(:)
+      type(contact_t) :: contact                      !< exic's contact (inactive without CONTact)
+      class(contact_hook_t), pointer :: hook => null() !< a host's contact instead, when associated
+      type(messages_t) :: messages                    !< warnings for the run's report
+      logical :: started = .false.                    !< `start` has made the state at t = 0
+      ! time-step control
+      logical :: cfl_mode = .true.                    !< DT,CFL (else a fixed DT)
+      real(wp) :: cfl = DEFAULT_CFL
+      real(wp) :: dt_fixed = 0.0_wp
+      real(wp) :: dt_stable = 0.0_wp                  !< last stable-step estimate
+      integer :: dt_element = 0                       !< element that sets it (0: penalty or none)
+      real(wp) :: tmax = -1.0_wp                      !< end time to land on (TIME,,tmax; < 0: none)
+      logical :: dt_warned = .false.
+      ! work arrays of a step, (2, nnode)
+      real(wp), allocatable :: x(:, :)                !< x(n+1) = x0 + u
+      real(wp), allocatable :: du(:, :), a_old(:, :), vt(:, :), fcon_old(:, :)
+      ! wall time
+      real(wp) :: time_forces = 0.0_wp                !< element loop and stable step
+      real(wp) :: time_steps = 0.0_wp                 !< whole steps
+   contains
+      procedure :: init => stepper_init
+      procedure :: start => stepper_start
+      procedure :: advance => stepper_advance
+      procedure :: set_cfl => stepper_set_cfl
+      procedure :: set_fixed_dt => stepper_set_fixed_dt
+      procedure :: set_velocity => stepper_set_velocity
+      procedure :: initial_stable_step => stepper_initial_stable_step
+      procedure :: has_contact => stepper_has_contact
+   end type stepper_t
+
+contains
+
+   !> Element sets, state and contact of a mesh; `spec` inactive (the default) for no contact.
+   subroutine stepper_init(self, mesh, materials, spec, err)
+      class(stepper_t), intent(inout) :: self
+      type(mesh_t), intent(in) :: mesh
+      type(material_t), intent(in) :: materials(:)
+      type(contact_spec_t), intent(in) :: spec
+      type(error_t), allocatable, intent(out) :: err
+      integer :: n, k
+      real(wp) :: modulus
+
+      call assembly_init(mesh, materials, self%st, self%sets, err)
+      if (allocated(err)) return
+      n = self%st%nnode
+      allocate (self%x(2, n), self%du(2, n), self%a_old(2, n), self%vt(2, n), self%fcon_old(2, n), &
+                source=0.0_wp)
+      call positions(n, self%st%x0, self%st%u, self%x)
+      ! PENAlty,SCALe refers to the largest constrained modulus of the solids
+      modulus = 0.0_wp
+      do k = 1, size(materials)
+         if (materials(k)%kind == MAT_SOLID) modulus = max(modulus, materials(k)%lambda + 2.0_wp*materials(k)%mu)
+      end do
+      call self%contact%init(spec, n, self%st%x0, self%x, mesh%nelem, mesh%conn, mesh%region, mesh%mat, &
+                             modulus, err)
+   end subroutine stepper_init
+
+   !> Contact acts in the step (exic's own or a host's).
+   pure logical function stepper_has_contact(self) result(on)
+      class(stepper_t), intent(in) :: self
+      on = associated(self%hook) .or. self%contact%active
+   end function stepper_has_contact
+
+   !> The state at t = 0: forces, dt(0) and the contact-corrected a(0). Does nothing twice.
+   subroutine stepper_start(self, err)
+      class(stepper_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      integer :: ebad
+
+      if (self%started) return
+      self%started = .true.
+      associate (st => self%st)
+         call positions(st%nnode, st%x0, st%u, self%x)
+         call internal_forces(st, self%sets, ebad)
+         if (ebad /= 0) then
+            call inverted_error(st, ebad, err)
+            return
+         end if
+         call choose_dt(self, err, 'DT')
+         if (allocated(err)) return
+         st%a = st%minv*(st%fext - st%fint)
+         ! at t(0) the predictor velocity is the initial velocity itself and
+         ! x(1) = x(0) + dt v(0) + dt^2/2 a(0): the corrector's c is dt^2/2 (dt(n) = 0)
+         st%dt_prev = 0.0_wp
+         call correct(self, st%v, err)
+         if (allocated(err)) return
+         call kinetic_energy(st)
+         st%total0 = st%kinetic + st%strain + st%hourglass
+      end associate
+   end subroutine stepper_start
+
+   !> One explicit step (FORM,EXPLicit), steps 1-7 of the module header.
+   subroutine stepper_advance(self, err)
+      class(stepper_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      integer :: ebad
+      real(wp) :: t0, t1
+      logical :: contact_on
+
+      t0 = wall_time()
+      contact_on = self%has_contact()
+      associate (st => self%st)
+         ! 1. x(n+1) = x(n) + dt(n) v(n) + dt(n)^2/2 a(n)
+         call cd_displacement(st%nnode, st%dt, st%v, st%a, st%u, self%du, self%a_old)
+         st%t = st%t + st%dt
+         st%dt_prev = st%dt
+         st%step = st%step + 1
+         if (contact_on) self%fcon_old = st%fcon
+
+         ! 2-3. forces and dt(n+1) at t(n+1)
+         t1 = wall_time()
+         call positions(st%nnode, st%x0, st%u, self%x)
+         call internal_forces(st, self%sets, ebad)
+         if (ebad /= 0) then
+            call inverted_error(st, ebad, err)
+            return
+         end if
+         call choose_dt(self, err, 'DT')
+         self%time_forces = self%time_forces + (wall_time() - t1)
+         if (allocated(err)) return
+         ! 4. predictor, eq. 4.3-4.4 (v~ only when there is contact to search)
+         call cd_predictor(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%v, self%a_old, st%a, &
+                           contact_on, self%vt)
+         ! 5. contact corrector, eq. 4.5-4.7
+         call correct(self, self%vt, err)
+         if (allocated(err)) return
+         ! 6. v(n+1) and the work of external and contact forces over the step (trapezoid rule)
+         call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, st%fext, self%du, contact_on, &
+                          self%fcon_old, st%fcon, st%v, st%wext, st%wcon)
+      end associate
+      ! 7. energies and health
+      call kinetic_energy(self%st)
+      self%time_steps = self%time_steps + (wall_time() - t0)
+      call check_health(self%st, err)
+   end subroutine stepper_advance
+
+   !> Step 5: the corrector of exic's contact or of the host's hook, on the positions self%x.
+   subroutine correct(self, vt, err)
+      type(stepper_t), intent(inout) :: self
+      real(wp), intent(in) :: vt(:, :)
+      type(error_t), allocatable, intent(out) :: err
+      associate (st => self%st)
+         st%nactive = 0
+         if (associated(self%hook)) then
+            call self%hook%correct(st%nnode, self%x, vt, st%a, st%minv, st%dt_prev, st%dt, st%fcon, &
+                                   st%nactive, err)
+         else if (self%contact%active) then
+            call self%contact%correct(st%nnode, self%x, vt, st%a, st%minv, st%dt_prev, st%dt, st%fcon, &
+                                      st%nactive, err)
+         end if
+      end associate
+   end subroutine correct
+
+   !> DT,CFL,c: the step is c x the stable estimate from now on (c <= 0: the default).
+   subroutine stepper_set_cfl(self, c, where, err)
+      class(stepper_t), intent(inout) :: self
+      real(wp), intent(in) :: c
+      character(len=*), intent(in) :: where
+      type(error_t), allocatable, intent(out) :: err
+      self%cfl_mode = .true.
+      self%cfl = c
+      if (self%cfl <= 0.0_wp) self%cfl = DEFAULT_CFL
+      if (self%started) call choose_dt(self, err, where)
+   end subroutine stepper_set_cfl
+
+   !> DT,,dt: a fixed step from now on (checked against the stable estimate).
+   subroutine stepper_set_fixed_dt(self, dt, where, err)
+      class(stepper_t), intent(inout) :: self
+      real(wp), intent(in) :: dt
+      character(len=*), intent(in) :: where
+      type(error_t), allocatable, intent(out) :: err
+      self%cfl_mode = .false.
+      self%dt_fixed = dt
+      if (self%started) call choose_dt(self, err, where)
+   end subroutine stepper_set_fixed_dt
+
+   !> INITial velocities: v = data on the nodes `given`, then zero again on prescribed dofs and
+   !> massless nodes (rigid bodies keep theirs).
+   subroutine stepper_set_velocity(self, given, data)
+      class(stepper_t), intent(inout) :: self
+      logical, intent(in) :: given(:)
+      real(wp), intent(in) :: data(:, :)
+      associate (st => self%st)
+         where (spread(given, 1, 2)) st%v = data
+         where (st%minv == 0.0_wp .and. .not. spread(st%rigid, 1, 2)) st%v = 0.0_wp
+         if (self%started) call kinetic_energy(st)
+      end associate
+   end subroutine stepper_set_velocity
+
+   !> Stable step of the mesh as it is now (before `start`: the initial mesh) and its element.
+   subroutine stepper_initial_stable_step(self, dtmin, emin)
+      class(stepper_t), intent(inout) :: self
+      real(wp), intent(out) :: dtmin
+      integer, intent(out) :: emin
+      call positions(self%st%nnode, self%st%x0, self%st%u, self%x)
+      call stable_step(self%st, self%sets, self%x, dtmin, emin)
+   end subroutine stepper_initial_stable_step
+
+   !> Set dt(n+1): fixed (checked against the stable limit) or CFL x the stable limit, from the
+   !> positions self%x.
+   subroutine choose_dt(self, err, where)
+      type(stepper_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      character(len=*), intent(in) :: where
+      character(len=200) :: buf
+      integer :: n
+      real(wp) :: target, dtp
+
+      associate (st => self%st)
+         call stable_step(st, self%sets, self%x, self%dt_stable, self%dt_element)
+         if (self%contact%any_penalty) then
+            ! a penalty spring adds its frequency to that of the elements at its nodes:
+            ! omega^2 <= omega_elements^2 + omega_penalty^2, i.e. 1/dt^2 adds up
+            dtp = self%contact%stable_dt(st%nnode, st%minv)
+            if (dtp < huge(1.0_wp)) then
+               self%dt_stable = 1.0_wp/sqrt(1.0_wp/self%dt_stable**2 + 1.0_wp/dtp**2)
+               self%dt_element = 0
+            end if
+         end if
+         if (self%cfl_mode) then
+            if (self%dt_stable >= huge(1.0_wp)) then
+               call make_error(err, 'DT,CFL needs at least one deformable element to set the step', where)
+               return
+            end if
+            ! Hysteresis: the step shrinks at once when the stable step falls below it, and grows
+            ! only when it is more than 15 % below c x the stable step. A step that followed every
+            ! breath of the mesh would vary in time with the motion, and such a modulated
+            ! central-difference step pumps energy into the mode that modulates it.
+            target = self%cfl*self%dt_stable
+            if (st%dt <= 0.0_wp .or. st%dt > target .or. st%dt < 0.85_wp*target) st%dt = target
+            ! land exactly on tmax with steps no larger than the stable one
+            if (self%tmax > st%t) then
+               n = ceiling((self%tmax - st%t)/st%dt*(1.0_wp - TIME_TOL))
+               if (n >= 1 .and. n <= 4) st%dt = (self%tmax - st%t)/real(n, wp)
+            end if
+         else
+            if (self%dt_fixed <= 0.0_wp) then
+               call make_error(err, 'DT,,dt needs a positive step', where)
+               return
+            end if
+            st%dt = self%dt_fixed
+            if (self%dt_fixed > self%dt_stable) then
+               write (buf, '(a,es12.5,a,es12.5,a,i0,a)') 'DT = ', self%dt_fixed, &
+                  ' exceeds the stable limit ', self%dt_stable, ' (element ', self%dt_element, &
+                  '); use a smaller DT or DT,CFL,c'
+               if (.not. self%started .or. st%step == 0) then
+                  call make_error(err, trim(buf), where)
+               else if (.not. self%dt_warned) then
+                  self%dt_warned = .true.
+                  call self%messages%add('warning: at t = '//rtoa(st%t)//': '//trim(buf))
+               end if
+            end if
+         end if
+      end associate
+   end subroutine choose_dt
+
+   !> Stop on NaN or runaway energy.
+   subroutine check_health(st, err)
+      type(state_t), intent(in) :: st
+      type(error_t), allocatable, intent(out) :: err
+      real(wp) :: e, scale
+      e = st%kinetic + st%strain + st%hourglass
+      scale = abs(st%total0) + abs(st%wext) + abs(st%wcon) + tiny(1.0_wp)
+      if (.not. (e == e) .or. .not. (st%wext == st%wext)) then
+         call make_error(err, 'NaN in the solution at t = '//rtoa(st%t)//', step '//itoa(int(st%step)))
+      else if (e > 10.0_wp*scale) then
+         call make_error(err, 'runaway energy at t = '//rtoa(st%t)//': kinetic + strain = '// &
+                         rtoa(e)//' against '//rtoa(scale)//' put in; the step is probably unstable')
+      end if
+   end subroutine check_health
+
+   !> The error for an element whose Jacobian is no longer positive.
+   subroutine inverted_error(st, ebad, err)
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: ebad
+      type(error_t), allocatable, intent(out) :: err
+      call make_error(err, 'element '//itoa(ebad)//' inverted (J <= 0) at t = '// &
+                      rtoa(st%t)//', step '//itoa(int(st%step)))
+   end subroutine inverted_error
+
+end module exic_explicit_step

@@ -1,0 +1,217 @@
+!> What a run writes as it goes: TPLOt history rows, energy rows and HDF5/XDMF fields.
+!>
+!> The driver asks for a row at every TIME command (`record`: when the TPLOt interval is due)
+!> and for fields when an output time is due (`fields_due`); the final state is always written
+!> (`final`). Values come from the stepper's state; nothing here changes it.
+module exic_io_output
+   use exic_base_kinds, only: wp, i8
+   use exic_base_constants, only: TIME_TOL
+   use exic_base_error, only: error_t
+   use exic_io_model, only: model_t
+   use exic_io_program, only: REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, REQ_REAC, REQ_CONT, REQ_MOME
+   use exic_io_history, only: history_files_t
+   use exic_io_fields, only: field_writer_t
+   use exic_explicit_step, only: stepper_t
+   use exic_explicit_assembly, only: element_stress, all_stresses
+   implicit none
+   private
+
+   public :: output_t
+
+   !> The run's output files and their schedules.
+   type :: output_t
+      type(history_files_t) :: files                !< <stem>.his, .ene, .out
+      type(field_writer_t) :: fields                !< <stem>.h5, .xdmf
+      character(len=:), allocatable :: base         !< output path without extension
+      integer :: his_inc = 0                        !< TPLOt interval (0: no histories)
+      integer(i8) :: last_row_step = -1
+      real(wp), allocatable :: values(:)            !< one history row
+      integer, allocatable :: region_of_node(:)     !< region of the elements that use each node
+      real(wp) :: field_dt = 0.0_wp                 !< OUTPut,HDF5 interval (0: no field output)
+      real(wp) :: field_next = 0.0_wp               !< time of the next field output
+      real(wp) :: field_last = -huge(1.0_wp)        !< time of the last field output
+   contains
+      procedure :: open => output_open
+      procedure :: begin => output_begin
+      procedure :: record => output_record
+      procedure :: open_fields => output_open_fields
+      procedure :: fields_due => output_fields_due
+      procedure :: final => output_final
+      procedure :: close => output_close
+   end type output_t
+
+contains
+
+   !> Create <base>.his, .ene and .out.
+   subroutine output_open(self, base, err)
+      class(output_t), intent(inout) :: self
+      character(len=*), intent(in) :: base
+      type(error_t), allocatable, intent(out) :: err
+      self%base = base
+      call self%files%open(base, err)
+   end subroutine output_open
+
+   !> At the start of the time loop: the history header and the region of every node.
+   subroutine output_begin(self, model)
+      class(output_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      character(len=32), allocatable :: labels(:)
+      character(len=4), parameter :: names(7) = ['disp', 'velo', 'acce', 'stre', 'reac', 'cont', 'mome']
+      character(len=1), parameter :: tags(7) = ['n', 'n', 'n', 'e', 'n', 'p', 'r']
+      integer :: k, nreq, e
+
+      nreq = 0
+      if (allocated(model%requests)) nreq = size(model%requests)
+      allocate (labels(nreq), self%values(nreq))
+      do k = 1, nreq
+         associate (q => model%requests(k))
+            write (labels(k), '(a,a,a,i0,a,i0,a)') names(q%kind), '(', tags(q%kind), q%id, ',', q%comp, ')'
+         end associate
+      end do
+      call self%files%his_header(labels)
+      ! the region of the last element that uses each node (-huge for unused nodes)
+      allocate (self%region_of_node(model%mesh%nnode), source=-huge(1))
+      do e = 1, model%mesh%nelem
+         self%region_of_node(model%mesh%conn(:, e)) = model%mesh%region(e)
+      end do
+   end subroutine output_begin
+
+   !> The history and energy rows of the current state when the TPLOt interval is due (always
+   !> at step 0, never twice for one step).
+   subroutine output_record(self, model, stp)
+      class(output_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(stepper_t), intent(in) :: stp
+      logical :: due
+      due = self%his_inc > 0
+      if (due) due = mod(stp%st%step, int(self%his_inc, i8)) == 0
+      if (stp%st%step == 0) due = .true.
+      if (.not. due .or. self%last_row_step == stp%st%step) return
+      call write_rows(self, model, stp)
+   end subroutine output_record
+
+   !> History and energy rows of the current state.
+   subroutine write_rows(self, model, stp)
+      type(output_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(stepper_t), intent(in) :: stp
+      integer :: k
+      real(wp) :: sig(7), total, drift, denom
+
+      do k = 1, size(self%values)
+         associate (q => model%requests(k), st => stp%st)
+            select case (q%kind)
+            case (REQ_DISP)
+               self%values(k) = st%u(q%comp, q%id)
+            case (REQ_VELO)
+               self%values(k) = st%v(q%comp, q%id)
+            case (REQ_ACCE)
+               self%values(k) = st%a(q%comp, q%id)
+            case (REQ_STRE)
+               call element_stress(st, stp%sets, q%id, sig)
+               self%values(k) = sig(q%comp)
+            case (REQ_REAC)
+               ! force the support exerts on the body: M a = F + R - P with a = 0 on a fixed dof
+               self%values(k) = st%fint(q%comp, q%id) - st%fext(q%comp, q%id)
+            case (REQ_CONT)
+               self%values(k) = stp%contact%pair_value(q%id, q%comp)
+            case (REQ_MOME)
+               self%values(k) = region_momentum(self, stp, q%id, q%comp)
+            end select
+         end associate
+      end do
+      associate (st => stp%st)
+         call self%files%his_row(st%t, self%values)
+         total = st%kinetic + st%strain + st%hourglass - st%wext - st%wcon
+         denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass, tiny(1.0_wp))
+         drift = (total - st%total0)/denom
+         call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
+                                 st%wcon, total, drift, st%momentum, st%nactive, st%hourglass)
+      end associate
+      self%last_row_step = stp%st%step
+   end subroutine write_rows
+
+   !> Linear momentum component `comp` of the nodes of region `region` (TPLOt `mome` [ext]).
+   real(wp) function region_momentum(self, stp, region, comp) result(p)
+      type(output_t), intent(in) :: self
+      type(stepper_t), intent(in) :: stp
+      integer, intent(in) :: region, comp
+      integer :: i
+      p = 0.0_wp
+      do i = 1, stp%st%nnode
+         if (self%region_of_node(i) == region) p = p + stp%st%mass(i)*stp%st%v(comp, i)
+      end do
+   end function region_momentum
+
+   !> OUTPut,HDF5,dt_out: open <stem>.h5 and <stem>.xdmf with the mesh (once). The first output
+   !> time is now, then every dt_out.
+   subroutine output_open_fields(self, model, stp, dt_out, err)
+      class(output_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(stepper_t), intent(in) :: stp
+      real(wp), intent(in) :: dt_out
+      type(error_t), allocatable, intent(out) :: err
+      if (self%fields%is_open()) return
+      self%field_dt = dt_out
+      self%field_next = stp%st%t
+      call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, model%mesh%nelem, &
+                            model%mesh%x, model%mesh%conn, model%mesh%region, model%mesh%mat, &
+                            stp%contact%edges(), err)
+   end subroutine output_open_fields
+
+   !> Write the fields when an output time is due.
+   subroutine output_fields_due(self, stp, err)
+      class(output_t), intent(inout) :: self
+      type(stepper_t), intent(in) :: stp
+      type(error_t), allocatable, intent(out) :: err
+      if (.not. self%fields%is_open()) return
+      if (stp%st%t < self%field_next*(1.0_wp - TIME_TOL)) return
+      do while (self%field_next <= stp%st%t*(1.0_wp + TIME_TOL))
+         self%field_next = self%field_next + self%field_dt
+      end do
+      call write_fields(self, stp, err)
+   end subroutine output_fields_due
+
+   !> The fields of the current state.
+   subroutine write_fields(self, stp, err)
+      type(output_t), intent(inout) :: self
+      type(stepper_t), intent(in) :: stp
+      type(error_t), allocatable, intent(out) :: err
+      real(wp), allocatable :: sig(:, :)
+      integer, allocatable :: flag(:)
+      real(wp) :: energies(5)
+      character(len=16), parameter :: names(5) = [character(len=16) :: 'kinetic', 'strain', &
+                                                   'external_work', 'contact_work', 'hourglass']
+      associate (st => stp%st)
+         allocate (sig(7, st%nelem), flag(st%nnode))
+         call all_stresses(st, stp%sets, sig)
+         flag = merge(1, 0, st%fcon(1, :) /= 0.0_wp .or. st%fcon(2, :) /= 0.0_wp)
+         energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass]
+         call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
+                                     energies, names, err)
+         self%field_last = st%t
+      end associate
+   end subroutine write_fields
+
+   !> The final state: its history row and fields, unless already written.
+   subroutine output_final(self, model, stp, err)
+      class(output_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(stepper_t), intent(in) :: stp
+      type(error_t), allocatable, intent(out) :: err
+      if (self%last_row_step /= stp%st%step) call write_rows(self, model, stp)
+      if (self%fields%is_open() .and. stp%st%t > self%field_last) call write_fields(self, stp, err)
+   end subroutine output_final
+
+   !> Close the field files (reporting a failure in <stem>.out) and the text files.
+   subroutine output_close(self)
+      class(output_t), intent(inout) :: self
+      type(error_t), allocatable :: err
+      if (self%fields%is_open()) then
+         call self%fields%close(err)
+         if (allocated(err)) call self%files%say('error: '//err%message)
+      end if
+      call self%files%close()
+   end subroutine output_close
+
+end module exic_io_output

@@ -1,0 +1,103 @@
+!> The run's report in <stem>.out: the deck echo before the first step, the model summary, and
+!> the final state, energy balance, wall time and contact statistics at the end.
+module exic_io_report
+   use exic_base_kinds, only: wp
+   use exic_base_strings, only: itoa, rtoa
+   use exic_base_error, only: error_t
+   use exic_material_material, only: MAT_SOLID
+   use exic_io_model, only: model_t
+   use exic_io_history, only: history_files_t
+   use exic_explicit_step, only: stepper_t
+   implicit none
+   private
+
+   public :: report_preamble, report_summary, report_final
+
+contains
+
+   !> Title, deck echo and reader warnings at the top of <stem>.out.
+   subroutine report_preamble(files, model)
+      type(history_files_t), intent(inout) :: files
+      type(model_t), intent(in) :: model
+      call files%say('exic: explicit finite elements for 2-D dynamic contact')
+      if (allocated(model%title)) call files%say('title: '//model%title)
+      if (allocated(model%deck_file)) call files%say('deck:  '//model%deck_file)
+      call files%say('')
+      call files%say('---- deck ----')
+      if (allocated(model%echo)) call files%say(model%echo)
+      call files%say('---- end of deck ----')
+      if (allocated(model%warnings)) then
+         if (len(model%warnings) > 0) call files%say(model%warnings)
+      end if
+   end subroutine report_preamble
+
+   !> Mesh, materials, the stable step of the initial mesh and the contact surfaces.
+   subroutine report_summary(files, model, stp)
+      type(history_files_t), intent(inout) :: files
+      type(model_t), intent(in) :: model
+      type(stepper_t), intent(inout) :: stp
+      integer :: k, e
+      real(wp) :: dts
+      call files%say('')
+      call files%say('nodes (highest number) '//itoa(stp%st%nnode)//', active '// &
+                     itoa(count(stp%st%active))//', elements '//itoa(stp%st%nelem))
+      do k = 1, size(stp%sets)
+         associate (s => stp%sets(k), m => model%materials(stp%sets(k)%mat))
+            if (s%kind == MAT_SOLID) then
+               call files%say('material '//itoa(s%mat)//': solid neo-Hookean, E = '// &
+                              rtoa(m%young)//', nu = '//rtoa(m%poisson)//', lambda = '// &
+                              rtoa(m%lambda)//', mu = '//rtoa(m%mu)//', rho = '//rtoa(m%rho)// &
+                              ', quadrature '//itoa(s%nq)//', elements '//itoa(s%nel))
+            else
+               call files%say('material '//itoa(s%mat)//': rigid, rho = '//rtoa(m%rho)// &
+                              ', elements '//itoa(s%nel))
+            end if
+         end associate
+      end do
+      call stp%initial_stable_step(dts, e)
+      if (e > 0) call files%say('stable step of the initial mesh '//rtoa(dts)//' (element '//itoa(e)//')')
+      call files%say('total mass '//rtoa(sum(stp%st%mass)))
+      call files%say(stp%contact%summary())
+   end subroutine report_summary
+
+   !> Final time, energy balance, the error if the run failed, wall time per phase, contact
+   !> statistics and the files written.
+   subroutine report_final(files, stp, err, wall, field_files)
+      type(history_files_t), intent(inout) :: files
+      type(stepper_t), intent(in) :: stp
+      type(error_t), allocatable, intent(in) :: err
+      real(wp), intent(in) :: wall                !< wall time of the whole run
+      character(len=*), intent(in) :: field_files !< the .h5 and .xdmf written, or ''
+      real(wp) :: ts
+      call files%say('')
+      associate (st => stp%st, c => stp%contact)
+         if (stp%started) then
+            call files%say('final time '//rtoa(st%t)//' after '//itoa(int(st%step))//' steps')
+            call files%say('energy: kinetic '//rtoa(st%kinetic)//', strain '// &
+                           rtoa(st%strain + st%hourglass)//', external work '//rtoa(st%wext)// &
+                           ', contact work '//rtoa(st%wcon)//', initial total '//rtoa(st%total0))
+         end if
+         if (allocated(err)) call files%say('error: '//err%message)
+         call files%say('wall time '//rtoa(wall)//' s')
+         if (st%step > 0) then
+            ts = max(stp%time_steps, 1.0e-9_wp)
+            call files%say('time in steps '//rtoa(stp%time_steps)//' s: elements and stable step '// &
+                           rtoa(stp%time_forces)//' s, contact search '//rtoa(c%time_search)// &
+                           ' s, contact corrector '//rtoa(c%time_corrector)//' s')
+            call files%say('steps per second '//rtoa(real(st%step, wp)/ts)// &
+                           ', element-steps per second '//rtoa(real(st%step, wp)*st%nelem/ts))
+         end if
+         if (c%active) then
+            call files%say('contact: largest penetration over the run '//rtoa(c%max_penetration)// &
+                           ', redundant constraints removed '//itoa(c%nredundant)// &
+                           ', steps whose corrector reached its pass limit '//itoa(c%corr%pass_limit_hits))
+            call files%say('contact corrector: factorizations '//itoa(c%corr%nsolves)// &
+                           ' (dense '//itoa(c%corr%ndense)//', sparse '//itoa(c%corr%nsparse)// &
+                           '), sparse symbolic analyses '//itoa(c%corr%sparse%nanalyze))
+         end if
+      end associate
+      call files%say('files written: '//files%his_path//' '//files%ene_path//' '//files%out_path// &
+                     field_files)
+   end subroutine report_final
+
+end module exic_io_report
