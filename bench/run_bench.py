@@ -291,15 +291,15 @@ def compare(args, run):
 
 
 PARTS = {
-    "element loop (forces)": [r"exic_explicit_solver_MOD_solver_forces"],
-    "stable step": [r"exic_explicit_solver_MOD_solver_stable_dt"],
+    "element loop (forces)": [r"exic_explicit_assembly_MOD_internal_forces"],
+    "stable step": [r"exic_explicit_assembly_MOD_stable_step"],
     "update (displacement, predictor, velocity)": [r"MOD_cd_displacement", r"MOD_cd_predictor",
                                                    r"MOD_cd_velocity"],
-    "energies": [r"exic_explicit_solver_MOD_solver_energies"],
+    "energies": [r"exic_explicit_assembly_MOD_kinetic_energy"],
     "history output": [r"exic_io_history_MOD_files_his_row", r"exic_io_history_MOD_files_ene_row"],
     "contact search (normals, broad and narrow phase, gaps)": [r"exic_contact_contact_MOD_contact_correct"],
     "contact corrector": [r"exic_contact_corrector_MOD_corrector_solve"],
-    "field output": [r"exic_explicit_solver_MOD_all_stresses", r"exic_io_fields_MOD_\w*write_step"],
+    "field output": [r"exic_explicit_assembly_MOD_all_stresses", r"exic_io_fields_MOD_\w*write_step"],
 }
 
 

@@ -5,27 +5,17 @@
 !> so that the test can kill it with SIGTERM. Started without arguments (as `fpm test` does with
 !> every program under test/), it does nothing and succeeds.
 program field_writer_child
-   use, intrinsic :: iso_c_binding, only: c_int
    use, intrinsic :: iso_fortran_env, only: error_unit
    use exic_base_error, only: error_t
    use exic_io_fields, only: field_writer_t
    use test_fields, only: write_synthetic
+   use park, only: park_until_killed
    implicit none
-
-   interface
-      !> unsigned int sleep(unsigned int seconds);
-      function c_sleep(seconds) bind(C, name='sleep') result(left)
-         import :: c_int
-         integer(c_int), value :: seconds
-         integer(c_int) :: left
-      end function c_sleep
-   end interface
 
    type(field_writer_t) :: w
    type(error_t), allocatable :: err
    character(len=4096) :: stem, nsteps_text, marker
-   integer :: nsteps, u, ios, i
-   integer(c_int) :: left
+   integer :: nsteps, ios
 
    if (command_argument_count() /= 3) then
       print '(a)', 'field_writer_child: helper of the field output tests; nothing to do without arguments'
@@ -42,11 +32,5 @@ program field_writer_child
       write (error_unit, '(a)') 'field_writer_child: '//err%message
       error stop 2
    end if
-   open (newunit=u, file=trim(marker), status='replace', action='write')
-   write (u, '(a)') 'ready'
-   close (u)
-   do i = 1, 120
-      left = c_sleep(1_c_int)
-   end do
-   error stop 'field_writer_child: nobody killed me within 2 minutes'
+   call park_until_killed(trim(marker), 'ready')
 end program field_writer_child

@@ -1,7 +1,13 @@
-!> The exic test driver: runs every test module and prints 'N passed, M failed' last.
+!> The exic test driver: runs the suites the command line selects and prints
+!> 'N passed, M failed' last (test/testing.f90).
+!>
+!>     fpm test                      every suite
+!>     fpm test -- contact legacy    the suites whose name contains 'contact' or 'legacy'
+!>     fpm test -- --list            the suite names
 program exic_tests
-   use testing, only: suite_t
+   use testing, only: runner_t
    use test_linalg, only: run_linalg_tests
+   use test_corrector, only: run_corrector_tests
    use test_contact_geom, only: run_contact_geom_tests
    use test_element, only: run_element_tests
    use test_fields, only: run_fields_tests
@@ -11,20 +17,23 @@ program exic_tests
    use test_deck, only: run_deck_tests
    use test_inputs, only: run_inputs_tests
    use test_legacy, only: run_legacy_tests
+   use test_layers, only: run_layers_tests
    implicit none
-   type(suite_t) :: s
+   type(runner_t) :: r
 
-   ! each area adds one call here
-   call run_linalg_tests(s)
-   call run_contact_geom_tests(s)
-   call run_element_tests(s)
-   call run_fields_tests(s)
-   call run_physics_tests(s)
-   call run_contact_tests(s)
-   call run_run_output_tests(s)
-   call run_deck_tests(s)
-   call run_inputs_tests(s)
-   call run_legacy_tests(s)
-   print '(i0,a,i0,a)', s%passed, ' passed, ', s%failed, ' failed'
-   if (s%failed > 0) error stop 1
+   call r%init()
+   ! each suite adds one line here
+   call r%run('layers', run_layers_tests)
+   call r%run('linalg', run_linalg_tests)
+   call r%run('corrector', run_corrector_tests)
+   call r%run('contact_geom', run_contact_geom_tests)
+   call r%run('element', run_element_tests)
+   call r%run('fields', run_fields_tests)
+   call r%run('physics', run_physics_tests)
+   call r%run('contact', run_contact_tests)
+   call r%run('run_output', run_run_output_tests)
+   call r%run('deck', run_deck_tests)
+   call r%run('inputs', run_inputs_tests)
+   call r%run('legacy', run_legacy_tests)
+   call r%finish()
 end program exic_tests

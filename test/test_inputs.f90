@@ -2,14 +2,13 @@
 !> answers (doc/contact-verification.md), and two contact faults that the seed's examples
 !> (inputs/paper) brought to light stay fixed.
 module test_inputs
-   use exic_base_kinds, only: wp, i8
+   use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
    use exic_io_model, only: model_t
    use exic_material_material, only: MAT_SOLID
    use exic_io_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
-   use exic_contact_corrector, only: constraints_t, corrector_t
    use testing, only: suite_t, check, check_close, section
    use deck_runner, only: run_dir, write_text, read_table, column
    implicit none
@@ -37,7 +36,6 @@ contains
       call bars_deck(s, 'two_pass', rho0, rho0)
       call bars_deck(s, 'unlike_bars', 0.5_wp, 1.0_wp)
       call section(s, 'inputs: contact faults found by the seed''s examples')
-      call corrector_complementarity(s)
       call compliant_corner(s)
       call unlike_tips(s)
    end subroutine run_inputs_tests
@@ -201,182 +199,6 @@ contains
                        name//': momentum of bar 2 after separation (4 % of m1 v0)')
    end subroutine bars_deck
 
-   !> The corrector's multipliers solve the complementarity problem p >= 0, g = g~ + c S p >= 0,
-   !> p g = 0 exactly. Instances: one where releasing every tensile multiplier at once and never
-   !> re-checking those released left a gap open by 2.03 (the fault the decks of 7.4 showed as
-   !> two bar ends passing through each other), and 300 pseudo-random ones; the reference
-   !> solution is found by trying every active set.
-   subroutine corrector_complementarity(s)
-      type(suite_t), intent(inout) :: s
-      integer :: inst, m, nnode, i, worst_inst, nskip
-      integer, allocatable :: nodes(:, :)
-      real(wp), allocatable :: alpha(:), sgn(:), gap(:), minv(:)
-      real(wp) :: worst, err_i
-      integer(i8) :: seed
-      logical :: found_all
-
-      ! the instance the old active-set loop got wrong
-      nodes = reshape([1, 2, 4, 3, 2, 1, 1, 4, 2], [3, 3])
-      alpha = [0.71_wp, 0.21_wp, 0.4_wp]
-      sgn = [-1.0_wp, 1.0_wp, -1.0_wp]
-      gap = [-2.02_wp, -2.04_wp, -0.1_wp]
-      minv = [0.8_wp, 0.7_wp, 1.2_wp, 0.5_wp]
-      found_all = .true.
-      call lcp_error(nodes, alpha, sgn, gap, minv, err_i, found_all)
-      call check(s, found_all .and. err_i <= 1.0e-10_wp, &
-                 'corrector: multipliers of the instance with a released, still violated gap', &
-                 'difference from the complementarity solution '//rtoa(err_i))
-      seed = 12345_i8
-      worst = 0.0_wp
-      worst_inst = 0
-      nskip = 0
-      found_all = .true.
-      do inst = 1, 300
-         m = 2 + int(3.0_wp*rnd(seed))
-         nnode = 5 + int(3.0_wp*rnd(seed))
-         deallocate (nodes, alpha, sgn, gap, minv)
-         allocate (nodes(3, m), alpha(m), sgn(m), gap(m), minv(nnode))
-         do i = 1, m
-            call three_distinct(seed, nnode, nodes(:, i))
-            alpha(i) = rnd(seed)
-            sgn(i) = merge(1.0_wp, -1.0_wp, rnd(seed) < 0.5_wp)
-            gap(i) = 2.0_wp*rnd(seed) - 1.2_wp
-         end do
-         minv = 0.5_wp + 1.5_wp*[(rnd(seed), i=1, nnode)]
-         call lcp_error(nodes, alpha, sgn, gap, minv, err_i, found_all)
-         if (err_i < 0.0_wp) then
-            nskip = nskip + 1           ! dependent constraints: S singular
-            cycle
-         end if
-         if (err_i > worst) then
-            worst = err_i
-            worst_inst = inst
-         end if
-      end do
-      call check(s, found_all .and. worst <= 1.0e-9_wp .and. nskip <= 100, 'corrector: multipliers of 300 '// &
-                 'random instances solve the complementarity problem', 'largest difference '//rtoa(worst)// &
-                 ' (instance '//itoa(worst_inst)//'), singular instances skipped '//itoa(nskip))
-   end subroutine corrector_complementarity
-
-   !> Solve one instance (1-D constraints along x: node s against the point (1 - alpha) m1 +
-   !> alpha m2, normal sgn x) with the corrector and by enumeration; err: largest difference of
-   !> the multipliers, relative to the largest; err = -1 for an instance whose constraints are
-   !> dependent (S singular: skipped). found is cleared when the corrector fails or an instance
-   !> has no complementarity solution (not expected for independent constraints).
-   subroutine lcp_error(nodes, alpha, sgn, gap, minv, err, found)
-      integer, intent(in) :: nodes(:, :)
-      real(wp), intent(in) :: alpha(:), sgn(:), gap(:), minv(:)
-      real(wp), intent(out) :: err
-      logical, intent(inout) :: found
-      type(constraints_t) :: cs
-      type(corrector_t) :: corr
-      type(error_t), allocatable :: e
-      real(wp), allocatable :: a(:, :), f(:, :), mi(:, :), smat(:, :), pref(:), g(:), pf(:)
-      real(wp) :: c
-      integer :: m, nn, i, j, k, mask, nf
-      integer, allocatable :: idx(:)
-      logical :: ok
-
-      m = size(gap)
-      nn = size(minv)
-      c = 1.0_wp
-      call cs%reserve(m)
-      do i = 1, m
-         call cs%add(nodes(1, i), nodes(2, i), nodes(3, i), alpha(i), [sgn(i), 0.0_wp], gap(i), 0.0_wp, 1)
-      end do
-      allocate (a(2, nn), f(2, nn), mi(2, nn), source=0.0_wp)
-      mi(1, :) = minv
-      mi(2, :) = minv
-      call corr%solve(cs, nn, mi, c, a, f, e)
-      err = huge(1.0_wp)
-      if (allocated(e)) then
-         found = .false.
-         return
-      end if
-      ! S = G^T M^-1 G along x
-      allocate (smat(m, m), pref(m), g(m))
-      smat = 0.0_wp
-      do i = 1, m
-         do j = 1, m
-            do k = 1, 3
-               smat(i, j) = smat(i, j) + sgn(i)*sgn(j)*weight(i, nodes(k, j))*cs%w(k, j)*minv(nodes(k, j))
-            end do
-         end do
-      end do
-      ! dependent constraints (S singular) have no unique solution: skip
-      allocate (pf(m))
-      call dense_solve(smat, gap, pf, ok)
-      deallocate (pf)
-      if (.not. ok) then
-         err = -1.0_wp
-         return
-      end if
-      ! enumeration of the active sets
-      ok = .false.
-      do mask = 0, 2**m - 1
-         idx = pack([(i, i=1, m)], [(btest(mask, i - 1), i=1, m)])
-         nf = size(idx)
-         pref = 0.0_wp
-         if (nf > 0) then
-            allocate (pf(nf))
-            call dense_solve(smat(idx, idx), -gap(idx)/c, pf, ok)
-            pref(idx) = pf
-            deallocate (pf)
-            if (.not. ok) cycle
-         end if
-         g = gap + c*matmul(smat, pref)
-         if (all(pref >= -1.0e-12_wp*max(1.0_wp, maxval(abs(pref)))) .and. &
-             all(g >= -1.0e-10_wp*max(1.0_wp, maxval(abs(gap))))) then
-            ok = .true.
-            exit
-         end if
-         ok = .false.
-      end do
-      if (.not. ok) then
-         found = .false.
-         return
-      end if
-      err = maxval(abs(cs%p(1:m) - pref))/max(1.0_wp, maxval(abs(pref)))
-   contains
-      !> Weight of node nd in constraint i (sum over its occurrences).
-      real(wp) function weight(ic, nd)
-         integer, intent(in) :: ic, nd
-         integer :: q
-         weight = 0.0_wp
-         do q = 1, 3
-            if (nodes(q, ic) == nd) weight = weight + cs%w(q, ic)
-         end do
-      end function weight
-   end subroutine lcp_error
-
-   !> Gaussian elimination with partial pivoting; ok false for a (nearly) singular matrix.
-   subroutine dense_solve(amat, b, x, ok)
-      real(wp), intent(in) :: amat(:, :), b(:)
-      real(wp), intent(out) :: x(:)
-      logical, intent(out) :: ok
-      real(wp) :: w(size(b), size(b) + 1), scale, tmp(size(b) + 1)
-      integer :: n, i, k, p
-      n = size(b)
-      w(:, 1:n) = amat
-      w(:, n + 1) = b
-      scale = maxval(abs(amat))
-      ok = .false.
-      do k = 1, n
-         p = k - 1 + maxloc(abs(w(k:n, k)), 1)
-         if (abs(w(p, k)) <= 1.0e-9_wp*scale) return
-         tmp = w(k, :)
-         w(k, :) = w(p, :)
-         w(p, :) = tmp
-         do i = k + 1, n
-            w(i, k:) = w(i, k:) - w(i, k)/w(k, k)*w(k, k:)
-         end do
-      end do
-      do k = n, 1, -1
-         x(k) = (w(k, n + 1) - dot_product(w(k, k + 1:n), x(k + 1:n)))/w(k, k)
-      end do
-      ok = .true.
-   end subroutine dense_solve
-
    !> Seed 7.2 to t = 0.03 at the largest step: the corner (30, 2) of the struck end (node 217)
    !> slides outward over the indented face; it must stay in front of the face polyline through
    !> nodes 330, 337, 344 ((30, 1), (30, 2), (30, 3)). With the depth up to which a node found
@@ -496,30 +318,5 @@ contains
       end do
       k = 0
    end function first_column
-
-   !> A pseudo-random number in [0, 1) (64-bit linear congruential generator).
-   real(wp) function rnd(seed)
-      integer(i8), intent(inout) :: seed
-      seed = ieor(seed, ishft(seed, 13))
-      seed = ieor(seed, ishft(seed, -7))
-      seed = ieor(seed, ishft(seed, 17))
-      rnd = real(iand(ishft(seed, -11), 2_i8**52 - 1_i8), wp)/2.0_wp**52
-   end function rnd
-
-   !> Three distinct node numbers in 1..n.
-   subroutine three_distinct(seed, n, k)
-      integer(i8), intent(inout) :: seed
-      integer, intent(in) :: n
-      integer, intent(out) :: k(3)
-      k(1) = 1 + int(n*rnd(seed))
-      do
-         k(2) = 1 + int(n*rnd(seed))
-         if (k(2) /= k(1)) exit
-      end do
-      do
-         k(3) = 1 + int(n*rnd(seed))
-         if (k(3) /= k(1) .and. k(3) /= k(2)) exit
-      end do
-   end subroutine three_distinct
 
 end module test_inputs

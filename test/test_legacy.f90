@@ -23,7 +23,7 @@ module test_legacy
                                      exic_contact_step, exic_contact_pair_results, exic_contact_ncon, &
                                      exic_contact_constraints, exic_contact_work, exic_contact_free, &
                                      exic_contact_error_message
-   use testing, only: suite_t, check, check_close, section
+   use testing, only: suite_t, check, check_close, section, skip, fpm_command
    use deck_runner, only: run_dir, run_deck, read_table, column
    implicit none
    private
@@ -491,7 +491,14 @@ contains
       logical, intent(out) :: built
       integer :: stat, cstat
       logical :: there
-      call execute_command_line('bash examples/legacy_host/build.sh '//prefix//' '//bindir// &
+      character(len=:), allocatable :: fpm
+      fpm = fpm_command()
+      if (len(fpm) == 0) then
+         built = .false.
+         call skip(s, 'install exic and build the F77 and C hosts (and their 27 checks)', 'fpm ($EXIC_FPM or on PATH)', 27)
+         return
+      end if
+      call execute_command_line('EXIC_FPM='//fpm//' bash examples/legacy_host/build.sh '//prefix//' '//bindir// &
                                 ' > build/legacy_build.log 2>&1', exitstat=stat, cmdstat=cstat)
       built = stat == 0 .and. cstat == 0
       call check(s, built, 'fpm install and the host builds succeed (log: build/legacy_build.log)')

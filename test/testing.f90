@@ -1,20 +1,109 @@
-!> A minimal test harness: every check counts as one pass or one failure.
+!> A small test harness: suites run by name, every check counts as one pass or one failure,
+!> and a check that needs a tool this machine lacks counts as skipped.
+!>
+!> The driver (test/main.f90) registers every suite with `call runner%run(name, procedure)`;
+!> `fpm test -- word [word ...]` runs only the suites whose name contains one of the words
+!> (`fpm test -- --list` lists them). The last line is always `N passed, M failed`, the line
+!> before it the number of skipped checks with the missing tools; the program stops with a
+!> non-zero code on any failure.
 module testing
    use exic_base_kinds, only: wp
    use, intrinsic :: iso_fortran_env, only: output_unit
    implicit none
    private
 
-   public :: suite_t, check, check_close, section
+   public :: suite_t, runner_t, suite_procedure, check, check_close, section, skip
+   public :: have_command, have_python_modules, python_command, fpm_command
 
    !> Running totals of one test run.
    type :: suite_t
       integer :: passed = 0
       integer :: failed = 0
+      integer :: skipped = 0
       character(len=:), allocatable :: current
+      character(len=:), allocatable :: missing     !< tools whose absence skipped checks
    end type suite_t
 
+   abstract interface
+      !> A suite: a procedure that runs its checks into `s`.
+      subroutine suite_procedure(s)
+         import :: suite_t
+         type(suite_t), intent(inout) :: s
+      end subroutine suite_procedure
+   end interface
+
+   !> Runs the suites the command line selects.
+   type :: runner_t
+      type(suite_t) :: s
+      character(len=64), allocatable :: words(:)   !< selection words (none: every suite)
+      logical :: list_only = .false.
+      integer :: nrun = 0
+   contains
+      procedure :: init => runner_init
+      procedure :: run => runner_run
+      procedure :: finish => runner_finish
+   end type runner_t
+
 contains
+
+   !> Read the selection words from the command line.
+   subroutine runner_init(self)
+      class(runner_t), intent(inout) :: self
+      integer :: k, n, m
+      character(len=64) :: arg
+      character(len=64), allocatable :: words(:)
+      n = command_argument_count()
+      allocate (words(n))
+      m = 0
+      do k = 1, n
+         call get_command_argument(k, arg)
+         if (arg == '--list') then
+            self%list_only = .true.
+         else if (len_trim(arg) > 0) then
+            m = m + 1
+            words(m) = arg
+         end if
+      end do
+      self%words = words(1:m)
+      self%s%missing = ''
+   end subroutine runner_init
+
+   !> Run suite `name` when the selection asks for it.
+   subroutine runner_run(self, name, suite)
+      class(runner_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      procedure(suite_procedure) :: suite
+      integer :: k
+      logical :: selected
+      selected = size(self%words) == 0
+      do k = 1, size(self%words)
+         if (index(name, trim(self%words(k))) > 0) selected = .true.
+      end do
+      if (.not. selected) return
+      if (self%list_only) then
+         write (output_unit, '(a)') name
+         return
+      end if
+      self%nrun = self%nrun + 1
+      write (output_unit, '(a)') '#### suite '//name
+      flush (output_unit)
+      call suite(self%s)
+   end subroutine runner_run
+
+   !> The closing lines; stops with code 1 on any failure or when no suite was selected.
+   subroutine runner_finish(self)
+      class(runner_t), intent(inout) :: self
+      if (self%list_only) return
+      if (self%nrun == 0) then
+         write (output_unit, '(a)') 'no suite matches the words given (fpm test -- --list lists them)'
+         self%s%failed = self%s%failed + 1
+      end if
+      if (self%s%skipped > 0) write (output_unit, '(i0,a)') self%s%skipped, &
+         ' skipped (missing: '//self%s%missing//')'
+      write (output_unit, '(i0,a,i0,a)') self%s%passed, ' passed, ', self%s%failed, ' failed'
+      flush (output_unit)
+      if (self%s%failed > 0) error stop 1
+   end subroutine runner_finish
 
    !> Start a named group of checks (printed as a heading).
    subroutine section(s, name)
@@ -45,6 +134,23 @@ contains
       flush (output_unit)
    end subroutine check
 
+   !> Record `n` checks called `name` as skipped because `tool` is missing.
+   subroutine skip(s, name, tool, n)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name, tool
+      integer, intent(in), optional :: n
+      integer :: k
+      k = 1
+      if (present(n)) k = n
+      s%skipped = s%skipped + k
+      write (output_unit, '(a)') '   SKIP  '//name//' ('//tool//' not found)'
+      flush (output_unit)
+      if (index(s%missing, tool) == 0) then
+         if (len(s%missing) > 0) s%missing = s%missing//', '
+         s%missing = s%missing//tool
+      end if
+   end subroutine skip
+
    !> Check |actual - expected| <= tol and report both values.
    subroutine check_close(s, actual, expected, tol, name)
       type(suite_t), intent(inout) :: s
@@ -55,5 +161,49 @@ contains
          ' |diff| ', abs(actual - expected), ' tol ', tol
       call check(s, abs(actual - expected) <= tol .and. actual == actual, name//'  ('//trim(buf)//')')
    end subroutine check_close
+
+   !> A command of that name is on PATH (`name` is a fixed word of the test, never user text).
+   logical function have_command(name) result(found)
+      character(len=*), intent(in) :: name
+      integer :: code, stat
+      call execute_command_line('command -v '//name//' > /dev/null 2>&1', exitstat=code, cmdstat=stat)
+      found = stat == 0 .and. code == 0
+   end function have_command
+
+   !> The Python that the tests run scripts with: the project's .venv when present, else python3.
+   function python_command() result(cmd)
+      character(len=:), allocatable :: cmd
+      logical :: venv
+      inquire (file='.venv/bin/python', exist=venv)
+      if (venv) then
+         cmd = '.venv/bin/python'
+      else
+         cmd = 'python3'
+      end if
+   end function python_command
+
+   !> That Python imports every module of the comma-separated list `mods` (e.g. 'meshio,h5py').
+   logical function have_python_modules(mods) result(found)
+      character(len=*), intent(in) :: mods
+      integer :: code, stat
+      call execute_command_line(python_command()//' -c "import '//mods//'" > /dev/null 2>&1', &
+                                exitstat=code, cmdstat=stat)
+      found = stat == 0 .and. code == 0
+   end function have_python_modules
+
+   !> The fpm command the legacy host build uses: $EXIC_FPM, else fpm on PATH, else ''.
+   function fpm_command() result(cmd)
+      character(len=:), allocatable :: cmd
+      integer :: l, stat
+      call get_environment_variable('EXIC_FPM', length=l, status=stat)
+      if (stat == 0 .and. l > 0) then
+         allocate (character(len=l) :: cmd)
+         call get_environment_variable('EXIC_FPM', cmd)
+      else if (have_command('fpm')) then
+         cmd = 'fpm'
+      else
+         cmd = ''
+      end if
+   end function fpm_command
 
 end module testing

@@ -5,6 +5,7 @@ module bench_legacy_hooks
    use exic_base_error, only: error_t
    use exic_base_clock, only: wall_time
    use exic_explicit_step, only: stepper_t, contact_hook_t
+   use exic_explicit_central, only: positions
    use exic_contact_contact, only: contact_t
    use exic_legacy_interfaces, only: exic_contact_step
    implicit none
@@ -57,24 +58,12 @@ contains
       real(wp) :: t0, t1
       integer :: ierr
       t0 = wall_time()
-      call form_x(nnode, self%stp%st%x0, self%stp%st%u, self%x)
+      call positions(nnode, self%stp%st%x0, self%stp%st%u, self%x)
       t1 = wall_time()
       call exic_contact_step(self%h, nnode, self%x, vt, a, dt_prev, dt, fcon, nactive, ierr)
       self%time = self%time + (wall_time() - t1)
       self%time_x = self%time_x + (t1 - t0)
       if (ierr /= 0) error stop 'exic-bench-legacy: step failed'
    end subroutine api_correct
-
-   !> x = x0 + u, as a host that keeps displacements forms its positions.
-   subroutine form_x(n, x0, u, x)
-      integer, intent(in) :: n
-      real(wp), intent(in) :: x0(2, n), u(2, n)
-      real(wp), intent(out) :: x(2, n)
-      integer :: i
-      do i = 1, n
-         x(1, i) = x0(1, i) + u(1, i)
-         x(2, i) = x0(2, i) + u(2, i)
-      end do
-   end subroutine form_x
 
 end module bench_legacy_hooks

@@ -16,12 +16,23 @@ module exic_driver
    implicit none
    private
 
-   public :: run_options_t, run_model
+   public :: run_options_t, run_model, fields_observer
+
+   abstract interface
+      !> Told after each field output time is written and flushed: how many there are and t.
+      subroutine fields_observer(count, t)
+         import :: wp
+         integer, intent(in) :: count
+         real(wp), intent(in) :: t
+      end subroutine fields_observer
+   end interface
 
    !> How a run is made.
    type :: run_options_t
       character(len=:), allocatable :: base   !< output path without extension: dir/stem
       logical :: quiet = .false.              !< no console progress lines
+      !> called after every field output time, when associated (a library user following the run)
+      procedure(fields_observer), pointer, nopass :: on_fields => null()
    end type run_options_t
 
    !> A run: the step, its outputs and the console.
@@ -30,6 +41,7 @@ module exic_driver
       type(output_t) :: out
       type(progress_t) :: progress
       integer :: print_inc = 0                 !< PRINt,ENERgy interval (0: none)
+      procedure(fields_observer), pointer, nopass :: on_fields => null()
    end type run_t
 
 contains
@@ -45,6 +57,7 @@ contains
       character(len=:), allocatable :: field_files
 
       wall_start = wall_time()
+      r%on_fields => opts%on_fields
       call r%out%open(opts%base, err)
       if (.not. allocated(err)) call report_preamble(r%out%files, model)
       if (.not. allocated(err)) call r%stp%init(model%mesh, model%materials, model%contact, err)
@@ -70,7 +83,7 @@ contains
       type(run_t), intent(inout) :: r
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: err
-      integer :: pc, depth
+      integer :: pc, depth, nfields
       integer :: remaining(MAX_LOOP_DEPTH)
 
       pc = 1
@@ -103,7 +116,10 @@ contains
             case ('time')
                call start(r, model, err)
                if (.not. allocated(err)) call r%out%record(model, r%stp)
+               nfields = r%out%fields%count()
                if (.not. allocated(err)) call r%out%fields_due(r%stp, err)
+               if (.not. allocated(err) .and. r%out%fields%count() > nfields .and. associated(r%on_fields)) &
+                  call r%on_fields(r%out%fields%count(), r%stp%st%t)
                if (.not. allocated(err) .and. c%v(1) > 0.0_wp) then
                   r%stp%tmax = c%v(1)
                   if (r%stp%st%t >= r%stp%tmax*(1.0_wp - TIME_TOL) .and. depth > 0) then

@@ -81,15 +81,22 @@ contains
       class(constraints_t), intent(inout) :: self
       integer, intent(in) :: m
       self%n = 0
-      call grow(self%node, m, 3)
-      call grow(self%w, m, 3)
-      call grow(self%nrm, m, 2)
-      call grow(self%gap, m)
-      call grow(self%gap_now, m)
-      call grow(self%pair, m)
-      call grow(self%p, m)
-      call grow(self%active, m)
+      call grow_all(self, m)
    end subroutine constraints_reserve
+
+   !> Every array of `cs` holds at least m candidates, keeping its contents.
+   subroutine grow_all(cs, m)
+      type(constraints_t), intent(inout) :: cs
+      integer, intent(in) :: m
+      call grow(cs%node, m, 3)
+      call grow(cs%w, m, 3)
+      call grow(cs%nrm, m, 2)
+      call grow(cs%gap, m)
+      call grow(cs%gap_now, m)
+      call grow(cs%pair, m)
+      call grow(cs%p, m)
+      call grow(cs%active, m)
+   end subroutine grow_all
 
    !> Append one candidate (the arrays grow, keeping their contents, when full).
    subroutine constraints_add(self, s, m1, m2, alpha, nrm, gap, gap_now, pair)
@@ -98,18 +105,7 @@ contains
       real(wp), intent(in) :: alpha, nrm(2), gap, gap_now
       integer :: k
       k = self%n + 1
-      if (.not. allocated(self%gap)) then
-         call self%reserve(64)
-      else if (k > size(self%gap)) then
-         call grow(self%node, k, 3)
-         call grow(self%w, k, 3)
-         call grow(self%nrm, k, 2)
-         call grow(self%gap, k)
-         call grow(self%gap_now, k)
-         call grow(self%pair, k)
-         call grow(self%p, k)
-         call grow(self%active, k)
-      end if
+      call grow_all(self, max(k, 64))
       self%n = k
       self%node(:, k) = [s, m1, m2]
       self%w(:, k) = [1.0_wp, -(1.0_wp - alpha), -alpha]

@@ -127,7 +127,7 @@ contains
       real(wp), intent(inout) :: f(2, nnode)
       real(wp), intent(out) :: wint, jmin
       integer, intent(out) :: ebad
-      real(wp) :: ux(4), uy(4), fx(4), fy(4), gx(4), gy(4), jg, we
+      real(wp) :: ux(4), uy(4), fx(4), fy(4), gx(4), gy(4), we
       real(wp), dimension(4*NBLOCK) :: f11, f12, f21, f22, js, wt, p11, p12, p21, p22, wq
       integer :: e, e0, k, nb, g, q, a
 
@@ -139,22 +139,11 @@ contains
          ! kinematics of the block's points q = 4 (k - 1) + g
          do k = 1, nb
             e = e0 + k - 1
-            do a = 1, 4
-               ux(a) = u(1, conn(a, e))
-               uy(a) = u(2, conn(a, e))
-            end do
+            call gather(nnode, u, conn(:, e), ux, uy)
             do g = 1, 4
                q = 4*(k - 1) + g
-               gx = gdn(1:4, g, e)
-               gy = gdn(5:8, g, e)
-               f11(q) = 1.0_wp + (ux(1)*gx(1) + ux(2)*gx(2) + ux(3)*gx(3) + ux(4)*gx(4))
-               f12(q) = ux(1)*gy(1) + ux(2)*gy(2) + ux(3)*gy(3) + ux(4)*gy(4)
-               f21(q) = uy(1)*gx(1) + uy(2)*gx(2) + uy(3)*gx(3) + uy(4)*gx(4)
-               f22(q) = 1.0_wp + (uy(1)*gy(1) + uy(2)*gy(2) + uy(3)*gy(3) + uy(4)*gy(4))
-               jg = f11(q)*f22(q) - f12(q)*f21(q)
-               jmin = min(jmin, jg)
-               if (jg <= 0.0_wp .and. ebad == 0) ebad = e
-               js(q) = merge(jg, 1.0_wp, jg > 0.0_wp)
+               call point_kinematics(ux, uy, gdn(1:4, g, e), gdn(5:8, g, e), e, f11(q), f12(q), f21(q), &
+                                     f22(q), js(q), jmin, ebad)
                wt(q) = wdj(g, e)
             end do
          end do
@@ -207,7 +196,7 @@ contains
       real(wp), intent(inout) :: f(2, nnode)
       real(wp), intent(out) :: wint, whg, jmin
       integer, intent(out) :: ebad
-      real(wp) :: ux(4), uy(4), gx(4), gy(4), ga(4), jg, a0, qx, qy, k, kh
+      real(wp) :: ux(4), uy(4), gx(4), gy(4), ga(4), a0, qx, qy, k, kh
       real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, js, p11, p12, p21, p22, wq
       integer :: e, e0, i, nb, a
 
@@ -221,30 +210,16 @@ contains
          ! kinematics of the block's centroids
          do i = 1, nb
             e = e0 + i - 1
-            do a = 1, 4
-               ux(a) = u(1, conn(a, e))
-               uy(a) = u(2, conn(a, e))
-            end do
-            gx = gdn(1:4, 1, e)
-            gy = gdn(5:8, 1, e)
-            f11(i) = 1.0_wp + (ux(1)*gx(1) + ux(2)*gx(2) + ux(3)*gx(3) + ux(4)*gx(4))
-            f12(i) = ux(1)*gy(1) + ux(2)*gy(2) + ux(3)*gy(3) + ux(4)*gy(4)
-            f21(i) = uy(1)*gx(1) + uy(2)*gx(2) + uy(3)*gx(3) + uy(4)*gx(4)
-            f22(i) = 1.0_wp + (uy(1)*gy(1) + uy(2)*gy(2) + uy(3)*gy(3) + uy(4)*gy(4))
-            jg = f11(i)*f22(i) - f12(i)*f21(i)
-            jmin = min(jmin, jg)
-            if (jg <= 0.0_wp .and. ebad == 0) ebad = e
-            js(i) = merge(jg, 1.0_wp, jg > 0.0_wp)
+            call gather(nnode, u, conn(:, e), ux, uy)
+            call point_kinematics(ux, uy, gdn(1:4, 1, e), gdn(5:8, 1, e), e, f11(i), f12(i), f21(i), &
+                                  f22(i), js(i), jmin, ebad)
          end do
          ! the law at every centroid of the block, weighted by the reference areas
          call nh_piola(nb, lambda, mu, f11, f12, f21, f22, js, wdj(1, e0:e0 + nb - 1), p11, p12, p21, p22, wq)
          ! mean and hourglass forces
          do i = 1, nb
             e = e0 + i - 1
-            do a = 1, 4
-               ux(a) = u(1, conn(a, e))
-               uy(a) = u(2, conn(a, e))
-            end do
+            call gather(nnode, u, conn(:, e), ux, uy)
             gx = gdn(1:4, 1, e)
             gy = gdn(5:8, 1, e)
             ga = gam(:, e)
@@ -265,6 +240,38 @@ contains
          end do
       end do
    end subroutine q4_force_1pt
+
+   !> The displacements ux(4), uy(4) of the element with nodes en(4).
+   pure subroutine gather(nnode, u, en, ux, uy)
+      integer, intent(in) :: nnode, en(4)
+      real(wp), intent(in) :: u(2, nnode)
+      real(wp), intent(out) :: ux(4), uy(4)
+      integer :: a
+      do a = 1, 4
+         ux(a) = u(1, en(a))
+         uy(a) = u(2, en(a))
+      end do
+   end subroutine gather
+
+   !> F = 1 + sum_a u_a (x) grad0 N_a at a point with reference gradients gx = dN/dX, gy = dN/dY;
+   !> J = det F updates jmin, and ebad (when 0) becomes `e` where J <= 0; js is J, or 1 where
+   !> J <= 0 (so that the law stays finite on an element the caller will reject).
+   pure subroutine point_kinematics(ux, uy, gx, gy, e, f11, f12, f21, f22, js, jmin, ebad)
+      real(wp), intent(in) :: ux(4), uy(4), gx(4), gy(4)
+      integer, intent(in) :: e
+      real(wp), intent(out) :: f11, f12, f21, f22, js
+      real(wp), intent(inout) :: jmin
+      integer, intent(inout) :: ebad
+      real(wp) :: jg
+      f11 = 1.0_wp + (ux(1)*gx(1) + ux(2)*gx(2) + ux(3)*gx(3) + ux(4)*gx(4))
+      f12 = ux(1)*gy(1) + ux(2)*gy(2) + ux(3)*gy(3) + ux(4)*gy(4)
+      f21 = uy(1)*gx(1) + uy(2)*gx(2) + uy(3)*gx(3) + uy(4)*gx(4)
+      f22 = 1.0_wp + (uy(1)*gy(1) + uy(2)*gy(2) + uy(3)*gy(3) + uy(4)*gy(4))
+      jg = f11*f22 - f12*f21
+      jmin = min(jmin, jg)
+      if (jg <= 0.0_wp .and. ebad == 0) ebad = e
+      js = merge(jg, 1.0_wp, jg > 0.0_wp)
+   end subroutine point_kinematics
 
    !> Row-sum lumped mass m_a = rho integral N_a dA0 (2x2 Gauss, exact for the bilinear
    !> element), accumulated into mass(nnode). The element masses sum to rho A0 exactly.

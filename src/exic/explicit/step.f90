@@ -124,19 +124,12 @@ contains
    subroutine stepper_start(self, err)
       class(stepper_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
-      integer :: ebad
 
       if (self%started) return
       self%started = .true.
+      call forces_and_dt(self, err)
+      if (allocated(err)) return
       associate (st => self%st)
-         call positions(st%nnode, st%x0, st%u, self%x)
-         call internal_forces(st, self%sets, ebad)
-         if (ebad /= 0) then
-            call inverted_error(st, ebad, err)
-            return
-         end if
-         call choose_dt(self, err, 'DT')
-         if (allocated(err)) return
          st%a = st%minv*(st%fext - st%fint)
          ! at t(0) the predictor velocity is the initial velocity itself and
          ! x(1) = x(0) + dt v(0) + dt^2/2 a(0): the corrector's c is dt^2/2 (dt(n) = 0)
@@ -152,7 +145,6 @@ contains
    subroutine stepper_advance(self, err)
       class(stepper_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
-      integer :: ebad
       real(wp) :: t0, t1
       logical :: contact_on
 
@@ -168,13 +160,7 @@ contains
 
          ! 2-3. forces and dt(n+1) at t(n+1)
          t1 = wall_time()
-         call positions(st%nnode, st%x0, st%u, self%x)
-         call internal_forces(st, self%sets, ebad)
-         if (ebad /= 0) then
-            call inverted_error(st, ebad, err)
-            return
-         end if
-         call choose_dt(self, err, 'DT')
+         call forces_and_dt(self, err)
          self%time_forces = self%time_forces + (wall_time() - t1)
          if (allocated(err)) return
          ! 4. predictor, eq. 4.3-4.4 (v~ only when there is contact to search)
@@ -192,6 +178,23 @@ contains
       self%time_steps = self%time_steps + (wall_time() - t0)
       call check_health(self%st, err)
    end subroutine stepper_advance
+
+   !> Steps 2-3 (and at t = 0): positions x = x0 + u, internal forces, dt(n+1); an inverted
+   !> element is an error naming it.
+   subroutine forces_and_dt(self, err)
+      type(stepper_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      integer :: ebad
+      associate (st => self%st)
+         call positions(st%nnode, st%x0, st%u, self%x)
+         call internal_forces(st, self%sets, ebad)
+         if (ebad /= 0) then
+            call inverted_error(st, ebad, err)
+            return
+         end if
+         call choose_dt(self, err, 'DT')
+      end associate
+   end subroutine forces_and_dt
 
    !> Step 5: the corrector of exic's contact or of the host's hook, on the positions self%x.
    subroutine correct(self, vt, err)
