@@ -2,7 +2,7 @@
 # They install what is missing (Debian packages, fpm in a local venv), build, and run.
 
 SHELL := /bin/bash
-APT_PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf5-dev \
+APT_PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf5-dev libgmsh-dev \
                 pkg-config hdf5-tools python3-venv
 VENV    := .venv
 PYTHON  := $(VENV)/bin/python
