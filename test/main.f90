@@ -11,6 +11,7 @@ program exic_tests
    use test_deck, only: run_deck_tests
    use test_inputs, only: run_inputs_tests
    use test_legacy, only: run_legacy_tests
+   use test_gmsh, only: run_gmsh_tests
    implicit none
    type(suite_t) :: s
 
@@ -24,6 +25,7 @@ program exic_tests
    call run_run_output_tests(s)
    call run_deck_tests(s)
    call run_inputs_tests(s)
+   call run_gmsh_tests(s)
    call run_legacy_tests(s)
    print '(i0,a,i0,a)', s%passed, ' passed, ', s%failed, ' failed'
    if (s%failed > 0) error stop 1

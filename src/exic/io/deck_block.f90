@@ -172,7 +172,7 @@ contains
       !> orientation check.
       subroutine check_collapsed(err)
          type(error_t), allocatable, intent(out) :: err
-         integer :: ie, je, side
+         integer :: ie, je, side, c1, corner(4)
          real(wp) :: h, tol, p(2)
          character(len=:), allocatable :: edge, hint
          h = max(maxval(xb(1, :)) - minval(xb(1, :)), maxval(xb(2, :)) - minval(xb(2, :)))
@@ -190,12 +190,15 @@ contains
          else
             edge = 'the inside of the block (the map folds)'
          end if
-         p = xb(:, (je - 1)*(nr + 1) + ie)
-         if (kind == BLOCK_POLAR) then
+         c1 = (je - 1)*(nr + 1) + ie
+         corner = [c1, c1 + 1, c1 + nr + 2, c1 + nr + 1]
+         p = xb(:, corner(side))
+         if (kind == BLOCK_POLAR .and. norm2(p - b%origin) <= tol) then
             hint = ': a POLAr edge at r = 0 collapses to the centre ('//rtoa(b%origin(1))//', '// &
                    rtoa(b%origin(2))//') and its elements would have two corners at one point; '// &
                    'start the POLAr block at r > 0, or mesh a disk with GMSH (doc/gmsh.md) or '// &
-                   'with a centre square BLOCk and a ring of CARTesian BLOCks joined by TIE'
+                   'with a centre square BLOCk and a ring of CARTesian BLOCks joined by TIE '// &
+                   '(as inputs/paper/common/ex75_disk.inc does)'
          else
             hint = ': expected four distinct corners and mid-side nodes that keep the map one-to-one'
          end if
