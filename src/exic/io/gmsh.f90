@@ -5,6 +5,8 @@
 !> (`.geo` files), copy out what exic needs, finalize. Every status code is checked; a failure
 !> becomes an error carrying Gmsh's own last message, and the library is finalized before
 !> returning (a failed Gmsh call leaves it unusable until then). Gmsh's warnings are returned.
+!> Arrays the library returns are copied and released with gmshFree; a failed call sets no
+!> output, so nothing is released then.
 !>
 !> What is copied, in Gmsh's own numbering (tags): every node (x, y, z); the 4-node
 !> quadrilaterals of the 2-D entities with the physical surface each belongs to; the 2-node
@@ -135,8 +137,10 @@ contains
       character(len=:), allocatable :: msg
       call gmshLoggerGetLastError(p, ierr)
       msg = ''
-      if (ierr == 0) msg = c_string(p)
-      call gmshFree(p)
+      if (ierr == 0) then
+         msg = c_string(p)
+         call gmshFree(p)
+      end if
       if (len(msg) > 0) then
          call make_error(err, 'Gmsh failed '//what//': '//msg)
       else
@@ -226,7 +230,6 @@ contains
          call gmshModelGetEntities(p, n, int(dim, c_int), ierr)
       end if
       if (ierr /= 0) then
-         call gmshFree(p)
          allocate (tags(0))
          call failed('listing the model''s entities', err)
          return
@@ -245,7 +248,6 @@ contains
       integer(c_int) :: ierr
       call gmshModelMeshGetElementTypes(p, n, int(dim, c_int), int(tag, c_int), ierr)
       if (ierr /= 0) then
-         call gmshFree(p)
          call failed('listing element types', err)
          return
       end if
@@ -266,8 +268,6 @@ contains
       call gmshModelMeshGetElementsByType(int(etype, c_int), pe, ne, pn, nnt, int(tag, c_int), &
                                           0_c_size_t, 1_c_size_t, ierr)
       if (ierr /= 0) then
-         call gmshFree(pe)
-         call gmshFree(pn)
          call failed('reading elements', err)
          return
       end if
@@ -294,8 +294,9 @@ contains
       integer(c_size_t) :: nc
       call gmshModelMeshGetElementProperties(int(etype, c_int), pname, dim, order, nn, pcoord, &
                                              nc, nprim, ierr)
-      name = 'type '//itoa(etype)
-      if (ierr == 0) name = c_string(pname)//' (Gmsh type '//itoa(etype)//')'
+      name = 'Gmsh type '//itoa(etype)
+      if (ierr /= 0) return
+      name = c_string(pname)//' (Gmsh type '//itoa(etype)//')'
       call gmshFree(pname)
       call gmshFree(pcoord)
    end function type_name
@@ -366,7 +367,6 @@ contains
          if (nq(k) == 0) cycle
          call gmshModelGetPhysicalGroupsForEntity(2_c_int, int(surfs(k), c_int), p, np, ierr)
          if (ierr /= 0) then
-            call gmshFree(p)
             call failed('reading the physical groups of surface '//itoa(surfs(k)), err)
             return
          end if
@@ -448,7 +448,6 @@ contains
          gm%curves(k)%tag = groups(k)
          call gmshModelGetPhysicalName(1_c_int, int(groups(k), c_int), p, ierr)
          if (ierr /= 0) then
-            call gmshFree(p)
             call failed('reading the name of Physical Curve '//itoa(groups(k)), err)
             return
          end if
@@ -456,7 +455,6 @@ contains
          call gmshFree(p)
          call gmshModelGetEntitiesForPhysicalGroup(1_c_int, int(groups(k), c_int), p, n, ierr)
          if (ierr /= 0) then
-            call gmshFree(p)
             call failed('reading the curves of Physical Curve '//itoa(groups(k)), err)
             return
          end if
@@ -501,9 +499,6 @@ contains
       call gmshModelMeshGetNodes(pt, nt, pc, nc, pp, np, -1_c_int, -1_c_int, 0_c_int, 0_c_int, &
                                  ierr)
       if (ierr /= 0) then
-         call gmshFree(pt)
-         call gmshFree(pc)
-         call gmshFree(pp)
          call failed('reading the nodes', err)
          return
       end if
