@@ -42,6 +42,8 @@ contains
       call example_mesh(s)
       call section(s, 'gmsh: numbering of GMSH bodies mixed with BLOCk bodies')
       call numbering(s)
+      call section(s, 'gmsh: clockwise quadrilaterals are reversed')
+      call clockwise_surface(s)
       call section(s, 'gmsh: same histories as the BLOCk mesh, and from the .geo at run time')
       call same_histories(s)
       call section(s, 'gmsh: a Gmsh half and a BLOCk half joined by TIE')
@@ -228,6 +230,44 @@ contains
          call check(s, mesh%edge_sets(k)%nedge == 64, 'both copies'' rims are in edge set 11')
       end associate
    end subroutine numbering
+
+   !> A surface whose curve loop runs clockwise: Gmsh's quadrilaterals come clockwise (negative
+   !> area), exic reverses them, and the bottom curve's edges run in +x with the square above.
+   subroutine clockwise_surface(s)
+      type(suite_t), intent(inout) :: s
+      type(model_t) :: m
+      integer :: e, k
+      real(wp) :: total
+      logical :: ok
+      call write_file('cw.geo', 'Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; '// &
+                      'Point(3) = {1, 1, 0}; Point(4) = {0, 1, 0};'//nl// &
+                      'Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};'//nl// &
+                      'Curve Loop(1) = {-4, -3, -2, -1}; Plane Surface(1) = {1};'//nl// &
+                      'Transfinite Curve{1:4} = 3; Transfinite Surface{1}; Recombine Surface{1};'// &
+                      nl//'Physical Surface(1) = {1}; Physical Curve(5) = {1};')
+      call write_file('cw.inp', head//'GMSH,cw.geo'//nl//tail)
+      if (.not. load(s, tmp//'cw.inp', m)) return
+      total = 0.0_wp
+      ok = m%mesh%nelem == 4
+      do e = 1, m%mesh%nelem
+         ok = ok .and. area(m, e) > 0.0_wp
+         total = total + area(m, e)
+      end do
+      call check(s, ok, 'the 4 clockwise Gmsh quadrilaterals are made counter-clockwise')
+      call check_close(s, total, 1.0_wp, 1.0e-11_wp, 'their areas sum to the unit square')
+      k = find_edge_set(m%mesh%edge_sets, 5)
+      ok = k > 0
+      if (ok) then
+         associate (es => m%mesh%edge_sets(k), x => m%mesh%x)
+            ok = es%nedge == 2
+            do e = 1, es%nedge
+               ok = ok .and. x(1, es%edge(2, e)) > x(1, es%edge(1, e)) .and. &
+                    x(2, es%edge(1, e)) == 0.0_wp .and. x(2, es%edge(2, e)) == 0.0_wp
+            end do
+         end associate
+      end if
+      call check(s, ok, 'the bottom curve''s 2 edges run in +x (the square on their left)')
+   end subroutine clockwise_surface
 
    !> Largest |a - b| over the rows, per column, relative to the column's largest |a| or to
    !> `floor` when that is larger (1 for a penetration column, which is round-off itself); the
@@ -430,6 +470,9 @@ contains
                nl//' PAIR,1,SELF,1'//nl//'END CONTact'//nl//tail, g + 3, 'expected a physical curve')
       call bad('g15', head//'GMSH,half.geo,0,0'//nl//'GMSH,half.geo,0,1'//nl//tail, g + 1, &
                'element 1 is already defined at')
+      call write_file('line.geo', 'Point(1) = {0, 0, 0, 0.5}; Point(2) = {1, 0, 0, 0.5};'//nl// &
+                      'Line(1) = {1, 2};'//nl//'Physical Curve(1) = {1};')
+      call bad('g16', head//'GMSH,line.geo'//nl//tail, g, 'no 4-node quadrilaterals')
    contains
       subroutine bad(tag, text, line, word)
          character(len=*), intent(in) :: tag, text, word
