@@ -71,8 +71,8 @@ contains
       logical, intent(in) :: generate
       type(gmsh_mesh_t), intent(out) :: gm
       type(error_t), allocatable, intent(out) :: err
-      type(error_t), allocatable :: cleanup
       integer(c_int) :: ierr
+      logical :: logging
 
       gm%warnings = ''
       call gmshInitialize(0_c_int, c_null_ptr, 0_c_int, ierr)
@@ -81,21 +81,30 @@ contains
                          itoa(int(ierr))//')')
          return
       end if
+      logging = .false.
       call gmshOptionSetNumber('General.Terminal'//c_null_char, 0.0_c_double, ierr)
       if (ierr == 0) call gmshLoggerStart(ierr)
       if (ierr /= 0) then
          call failed('setting up its logger', err)
       else
+         logging = .true.
          call read_model(path, generate, gm, err)
       end if
-      call collect_warnings(gm%warnings)
-      call gmshLoggerStop(ierr)
-      call gmshFinalize(ierr)
-      if (ierr /= 0 .and. .not. allocated(err)) then
-         call make_error(cleanup, 'the Gmsh library failed to finalize (status '// &
-                         itoa(int(ierr))//')')
-         call move_alloc(cleanup, err)
+      if (logging) then
+         call collect_warnings(gm%warnings, ierr)
+         if (ierr /= 0) call cleanup_failed('returning its messages')
+         call gmshLoggerStop(ierr)
+         if (ierr /= 0) call cleanup_failed('stopping its logger')
       end if
+      call gmshFinalize(ierr)
+      if (ierr /= 0) call cleanup_failed('finalizing')
+   contains
+      !> A failure after the model was read: reported unless an earlier error is.
+      subroutine cleanup_failed(what)
+         character(len=*), intent(in) :: what
+         if (.not. allocated(err)) call make_error(err, 'the Gmsh library failed '//what// &
+                                                   ' (status '//itoa(int(ierr))//')')
+      end subroutine cleanup_failed
    end subroutine gmsh_read
 
    !> Open, optionally mesh, and copy the model out.
@@ -148,13 +157,14 @@ contains
       end if
    end subroutine failed
 
-   !> Gmsh's warning messages, newline separated, appended to `warnings`.
-   subroutine collect_warnings(warnings)
+   !> Gmsh's warning messages, newline separated, appended to `warnings`; `ierr` is the
+   !> status of gmshLoggerGet.
+   subroutine collect_warnings(warnings, ierr)
       character(len=:), allocatable, intent(inout) :: warnings
+      integer(c_int), intent(out) :: ierr
       type(c_ptr) :: log
       type(c_ptr), pointer :: lines(:)
       integer(c_size_t) :: n
-      integer(c_int) :: ierr
       integer :: k
       character(len=:), allocatable :: line
       call gmshLoggerGet(log, n, ierr)
