@@ -270,8 +270,9 @@ contains
    end subroutine clockwise_surface
 
    !> Largest |a - b| over the rows, per column, relative to the column's largest |a| or to
-   !> `floor` when that is larger (1 for a penetration column, which is round-off itself); the
-   !> tables must have the same shape and times.
+   !> `floor` when that is larger; a penetration column (residual gaps of about 1e-7, closed
+   !> again every step) is compared with the length scale 1. The tables must have the same shape
+   !> and times.
    subroutine compare_tables(s, fa, fb, tol, floor, what, pen_column)
       type(suite_t), intent(inout) :: s
       character(len=*), intent(in) :: fa, fb, what
@@ -296,7 +297,7 @@ contains
       at = ''
       do k = 1, size(a, 1)
          scale = max(maxval(abs(a(k, :))), floor)
-         ! a penetration is round-off itself: compare it with the length scale (1)
+         ! residual penetrations (about 1e-7) against the length scale (1)
          if (k == kp .or. scale == 0.0_wp) scale = 1.0_wp
          d = maxval(abs(a(k, :) - b(k, :)))/scale
          if (d > worst) then
