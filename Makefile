@@ -2,7 +2,7 @@
 # They install what is missing (Debian packages, fpm in a local venv), build, and run.
 
 SHELL := /bin/bash
-APT_PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf5-dev \
+APT_PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf5-dev libgmsh-dev \
                 pkg-config hdf5-tools python3-venv
 VENV    := .venv
 PYTHON  := $(VENV)/bin/python
@@ -46,7 +46,13 @@ venv: $(FPM)
 setup: deps venv
 
 # --- build and run ----------------------------------------------------------
+# fpm 0.12 does not recompile a program's own modules (tests, app, benchmarks) when a library
+# module they use changes its interface, and can keep a stale libexic.a when sources are added or
+# renamed; those objects and the archive are cheap to rebuild, so drop them.
+STALE = find build -path '*/exic/*' \( -name 'test_*' -o -name 'app_*' -o -name 'bench_*' -o -name 'libexic.a' \) -delete 2>/dev/null || true
+
 build: setup
+	@$(STALE)
 	$(FPM) build $(RELEASE)
 
 run: build
@@ -57,6 +63,7 @@ run: build
 # The legacy API tests install exic with this fpm (examples/legacy_host/build.sh).
 test: setup
 	@find build -path '*/test/exic-test' -type f -delete 2>/dev/null || true
+	@$(STALE)
 	EXIC_FPM=$(abspath $(FPM)) $(FPM) test
 
 # the release binary that `build` made

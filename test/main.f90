@@ -18,6 +18,7 @@ program exic_tests
    use test_inputs, only: run_inputs_tests
    use test_legacy, only: run_legacy_tests
    use test_layers, only: run_layers_tests
+   use test_gmsh, only: run_gmsh_tests
    implicit none
    type(runner_t) :: r
 
@@ -34,6 +35,7 @@ program exic_tests
    call r%run('run_output', run_run_output_tests)
    call r%run('deck', run_deck_tests)
    call r%run('inputs', run_inputs_tests)
+   call r%run('gmsh', run_gmsh_tests)
    call r%run('legacy', run_legacy_tests)
    call r%finish()
 end program exic_tests

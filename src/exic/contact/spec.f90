@@ -20,6 +20,8 @@ module exic_contact_spec
       integer :: by = 0                      !< SURF_REGION, SURF_MATERIAL, SURF_FACETS or SURF_NODES
       integer :: ref = 0                     !< region or material number
       integer, allocatable :: facets(:, :)   !< (2, nfacet) node pairs, body on the left of n1->n2
+      integer :: physical = 0                !< [ext] PHYSical,c: SURF_FACETS filled from edge set c
+      character(len=:), allocatable :: physical_where   !< file:line of the PHYSical record
       integer, allocatable :: nodes(:)       !< (nnode) slave nodes of a SURF_NODES set
       character(len=:), allocatable :: where
    end type surface_spec_t

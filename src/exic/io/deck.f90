@@ -23,20 +23,23 @@ module exic_io_deck
                              where, check_command, looks_like_data, read_parameters, &
                              unknown_keyword, itoa
    use exic_io_deck_mesh, only: builder_t, builder_init, cmd_coordinates, cmd_elements, &
-                                cmd_region, cmd_block, cmd_boundary, cmd_ebound, cmd_cbound, &
+                                cmd_region, cmd_boundary, cmd_ebound, cmd_cbound, &
                                 cmd_nodal_values, cmd_global, cmd_initial
+   use exic_io_deck_block, only: cmd_block, cmd_shift
+   use exic_io_deck_gmsh, only: cmd_gmsh, cmd_pbound
    use exic_io_deck_material, only: cmd_material
    use exic_io_deck_contact, only: cmd_contact
-   use exic_io_deck_finish, only: finish_mesh, check_contact, cmd_tie
+   use exic_io_deck_finish, only: finish_mesh, check_contact, cmd_tie, physical_surfaces
    use exic_io_deck_batch, only: read_batch, read_batch_data
    implicit none
    private
 
    public :: read_deck
 
-   character(len=16), parameter :: mesh_commands(15) = [character(len=16) :: 'PARAmeters', &
+   character(len=16), parameter :: mesh_commands(18) = [character(len=16) :: 'PARAmeters', &
       'COORdinates', 'ELEMents', 'REGIon', 'BLOCk', 'BOUNdary', 'EBOUndary', 'CBOUndary', &
-      'FORCe', 'DISPlacement', 'GLOBal', 'MATErial', 'INITial', 'CONTact', 'END']
+      'FORCe', 'DISPlacement', 'GLOBal', 'MATErial', 'INITial', 'CONTact', 'END', 'SHIFt', &
+      'GMSH', 'PBOUndary']
 
 contains
 
@@ -89,6 +92,8 @@ contains
       call read_mesh(rd, b, model, iend, err)
       if (allocated(err)) return
       call finish_mesh(rd, b, iend, counts, ictl, model, err)
+      if (allocated(err)) return
+      call physical_surfaces(model%contact, model%mesh, err)
       if (allocated(err)) return
       call check_contact(model%contact, model%mesh, err)
       if (allocated(err)) return
@@ -216,6 +221,12 @@ contains
             call cmd_region(rd, b, i, err)
          else if (keyword_is(w, 'bloc')) then
             call cmd_block(rd, b, i, err)
+         else if (keyword_is(w, 'shif')) then
+            call cmd_shift(rd, b, i, err)
+         else if (keyword_is(w, 'gmsh')) then
+            call cmd_gmsh(rd, b, i, err)
+         else if (keyword_is(w, 'pbou')) then
+            call cmd_pbound(rd, b, i, err)
          else if (keyword_is(w, 'boun')) then
             call cmd_boundary(rd, b, err)
          else if (keyword_is(w, 'ebou')) then

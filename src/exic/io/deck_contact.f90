@@ -3,7 +3,8 @@
 !>
 !> Records (blank records are skipped, except that a blank ends a FACEts list):
 !> `SURFace,id` then one of `REGIon,r` | `MATErial,m` | `FACEts` + records `f, ng, n1, n2`
-!> (gaps generated as for ELEMents: copies of the previous facet with non-zero nodes + ng);
+!> (gaps generated as for ELEMents: copies of the previous facet with non-zero nodes + ng) |
+!> **[ext]** `PHYSical,c` (the edges of edge set c, a Gmsh physical curve, resolved after END);
 !> `PAIR,id,NTOS|SYMMetric,s,m` | `PAIR,id,SELF,s`; `AUTOmatic`; method records after a PAIR
 !> or AUTOmatic: `LAGRange`, `PENAlty,k`, `PENAlty,SCALe,f` (f defaults to 0.1),
 !> `DETEction,SWEPt|STATic`. `END CONTact` (or `END`) closes the block.
@@ -22,9 +23,9 @@ module exic_io_deck_contact
 
    public :: cmd_contact
 
-   character(len=12), parameter :: words(9) = [character(len=12) :: 'SURFace', 'REGIon', &
-                                               'MATErial', 'FACEts', 'PAIR', 'AUTOmatic', &
-                                               'LAGRange', 'PENAlty', 'DETEction']
+   character(len=12), parameter :: words(10) = [character(len=12) :: 'SURFace', 'REGIon', &
+                                                'MATErial', 'FACEts', 'PAIR', 'AUTOmatic', &
+                                                'LAGRange', 'PENAlty', 'DETEction', 'PHYSical']
 
 contains
 
@@ -60,7 +61,8 @@ contains
          if (keyword_is(w, 'end')) exit
          if (keyword_is(w, 'surf')) then
             call new_surface(i, err)
-         else if (keyword_is(w, 'regi') .or. keyword_is(w, 'mate') .or. keyword_is(w, 'face')) then
+         else if (keyword_is(w, 'regi') .or. keyword_is(w, 'mate') .or. keyword_is(w, 'face') .or. &
+                  keyword_is(w, 'phys')) then
             call describe(i, w, err)
          else if (keyword_is(w, 'pair')) then
             call new_pair(i, err)
@@ -123,12 +125,19 @@ contains
          end if
          if (surf(cur)%by /= 0) then
             call fail(rd, i, 'SURFace '//itoa(surf(cur)%id)//' is already described: expected '// &
-                      'one of REGIon, MATErial or FACEts', err)
+                      'one of REGIon, MATErial, FACEts or PHYSical', err)
             return
          end if
          if (keyword_is(w, 'face')) then
             surf(cur)%by = SURF_FACETS
             call read_facets(rd, surf(cur), err)
+         else if (keyword_is(w, 'phys')) then
+            surf(cur)%by = SURF_FACETS
+            surf(cur)%physical_where = where(rd, i)
+            call int_field(rd, i, 2, 'SURFace PHYSical,c', surf(cur)%physical, err)
+            if (allocated(err)) return
+            if (surf(cur)%physical < 1) call fail(rd, i, 'SURFace PHYSical,c: expected a '// &
+                                                  'physical curve tag c >= 1', err)
          else
             if (keyword_is(w, 'regi')) then
                surf(cur)%by = SURF_REGION
@@ -270,7 +279,8 @@ contains
          do k = 1, nsurf
             if (surf(k)%by == 0) then
                call make_error(err, surf(k)%where//': SURFace '//itoa(surf(k)%id)//' has no '// &
-                               'description: expected REGIon,r, MATErial,m or FACEts after it')
+                               'description: expected REGIon,r, MATErial,m, FACEts or '// &
+                               'PHYSical,c after it')
                return
             end if
          end do

@@ -1,12 +1,15 @@
 !> What happens at the mesh END of a deck: the mesh is sized to its highest node and element
-!> numbers and checked, EBOUndary then CBOUndary sets and the mesh-phase initial velocities are
-!> applied, and TIE records merge coincident nodes.
+!> numbers and checked, EBOUndary, PBOUndary then CBOUndary sets and the mesh-phase initial
+!> velocities are applied, contact surfaces given by PHYSical take their edge sets, and TIE
+!> records merge coincident nodes.
 !>
 !> Checks (each error names file:line of the record that made the item): every element number
 !> 1..nelem defined; every element node defined; every element's material has a MATErial set;
 !> every element counter-clockwise with positive area and a positive cross product of the two
-!> edges at each corner (so a clockwise, inverted or non-convex element is an error); regions
-!> and materials named by INITial or CONTact exist; FACEts nodes are element nodes.
+!> edges at each corner (so a clockwise, inverted or non-convex element is an error, and an
+!> element with two corners at one point is named as such); regions and materials named by
+!> INITial or CONTact exist; FACEts nodes are element nodes; PBOUndary and PHYSical name edge
+!> sets of the mesh, and PHYSical ones lie on the boundary.
 !> Tolerances scale with the mesh size h = the larger side of the bounding box of the nodes used
 !> by elements: EBOUndary and CBOUndary LINEar 1e-6 h (CBOUndary GAP overrides), TIE 1e-8 h.
 module exic_io_deck_finish
@@ -16,6 +19,7 @@ module exic_io_deck_finish
    use exic_mesh_tie, only: tie_map, apply_tie
    use exic_material_material, only: MAT_UNDEFINED
    use exic_contact_spec, only: contact_spec_t, SURF_REGION, SURF_MATERIAL, SURF_FACETS
+   use exic_mesh_edge_set, only: find_edge_set, edge_set_nodes, edge_set_ids
    use exic_io_model, only: model_t
    use exic_io_records, only: keyword_is
    use exic_io_reader, only: reader_t, fail, warn, where, itoa, rtoa, word, field, int_field, &
@@ -25,6 +29,7 @@ module exic_io_deck_finish
    private
 
    public :: finish_mesh, check_contact, cmd_tie, used_nodes, mesh_size, nearest_node
+   public :: physical_surfaces
 
 contains
 
@@ -101,6 +106,7 @@ contains
          mesh%conn = b%m%conn(:, 1:ne)
          mesh%mat = b%m%mat(1:ne)
          mesh%region = b%m%region(1:ne)
+         if (allocated(b%m%edge_sets)) mesh%edge_sets = b%m%edge_sets
       end associate
       m = 0
       do k = 1, b%nmat
@@ -129,13 +135,11 @@ contains
          end do
          m = model%mesh%mat(e)
          if (m > size(model%materials)) then
-            call fail(rd, b%erec(e), 'element '//itoa(e)//' uses material '//itoa(m)// &
-                      ', which has no MATErial set: expected MATErial,'//itoa(m), err)
+            call missing_material(rd, b, e, m, model%mesh, err)
             return
          end if
          if (b%mat_rec(m) == 0 .or. model%materials(m)%kind == MAT_UNDEFINED) then
-            call fail(rd, b%erec(e), 'element '//itoa(e)//' uses material '//itoa(m)// &
-                      ', which has no MATErial set: expected MATErial,'//itoa(m), err)
+            call missing_material(rd, b, e, m, model%mesh, err)
             return
          end if
       end do
@@ -144,9 +148,30 @@ contains
       call check_counts(rd, ictl, counts, nn, ne, size(model%materials), err)
       if (allocated(err)) return
       call apply_ebound(rd, b, model%mesh)
+      call apply_pbound(rd, b, model%mesh, err)
+      if (allocated(err)) return
       call apply_cbound(rd, b, model%mesh)
       call apply_initial(rd, b, model%mesh, err)
    end subroutine finish_mesh
+
+   !> An element's material set missing: `err` names it (for a GMSH element, the physical
+   !> surface that asked for it).
+   subroutine missing_material(rd, b, e, m, mesh, err)
+      type(reader_t), intent(in) :: rd
+      type(builder_t), intent(in) :: b
+      integer, intent(in) :: e, m
+      type(mesh_t), intent(in) :: mesh
+      type(error_t), allocatable, intent(out) :: err
+      if (keyword_is(word(rd, b%erec(e), 1), 'gmsh')) then
+         call fail(rd, b%erec(e), 'element '//itoa(e)//' of Gmsh Physical Surface '// &
+                   itoa(mesh%region(e))//' uses material set '//itoa(m)//', which has no '// &
+                   'MATErial set: expected MATErial,'//itoa(m)//' (physical surface t takes '// &
+                   'material set t)', err)
+      else
+         call fail(rd, b%erec(e), 'element '//itoa(e)//' uses material '//itoa(m)// &
+                   ', which has no MATErial set: expected MATErial,'//itoa(m), err)
+      end if
+   end subroutine missing_material
 
    !> Non-zero counts of the control record are upper bounds.
    subroutine check_counts(rd, ictl, counts, nn, ne, nm, err)
@@ -171,7 +196,7 @@ contains
       type(builder_t), intent(in) :: b
       type(mesh_t), intent(in) :: mesh
       type(error_t), allocatable, intent(out) :: err
-      integer :: e, k, c(4)
+      integer :: e, k, c(4), j
       real(wp) :: xe(2, 4), area, cross, e1(2), e2(2)
       character(len=:), allocatable :: nodes
       do e = 1, mesh%nelem
@@ -185,7 +210,14 @@ contains
             cross = e1(1)*e2(2) - e1(2)*e2(1)
             if (cross <= 0.0_wp .or. area <= 0.0_wp) then
                nodes = itoa(c(1))//' '//itoa(c(2))//' '//itoa(c(3))//' '//itoa(c(4))
-               if (area <= 0.0_wp) then
+               j = collapsed_corner(xe)
+               if (j > 0) then
+                  call fail(rd, b%erec(e), 'element '//itoa(e)//' (nodes '//nodes// &
+                            ') has two corners at one point: nodes '//itoa(c(j))//' and '// &
+                            itoa(c(modulo(j, 4) + 1))//' at ('//rtoa(xe(1, j))//', '// &
+                            rtoa(xe(2, j))//'): expected four distinct corners (a 4-node '// &
+                            'element cannot be collapsed to a triangle)', err)
+               else if (area <= 0.0_wp) then
                   call fail(rd, b%erec(e), 'element '//itoa(e)//' (nodes '//nodes// &
                             ') has non-positive area '//rtoa(area)//': expected counter-clockwise'// &
                             ' nodes', err)
@@ -221,6 +253,74 @@ contains
          if (hits == 0) call warn(rd, b%ebou(k)%rec, 'EBOUndary matched no node of the mesh')
       end do
    end subroutine apply_ebound
+
+   !> First corner j of an element whose next corner (j+1, cyclic) coincides with it (0: none).
+   pure integer function collapsed_corner(xe) result(j)
+      real(wp), intent(in) :: xe(2, 4)
+      real(wp) :: h
+      h = max(maxval(xe(1, :)) - minval(xe(1, :)), maxval(xe(2, :)) - minval(xe(2, :)))
+      do j = 1, 4
+         if (norm2(xe(:, j) - xe(:, modulo(j, 4) + 1)) <= 1.0e-12_wp*h) return
+      end do
+      j = 0
+   end function collapsed_corner
+
+   !> PBOUndary items in input order, on every node of their edge set (ADD: > 0 fixes, < 0
+   !> releases, 0 keeps; SET replaces). An unknown edge set is an error.
+   subroutine apply_pbound(rd, b, mesh, err)
+      type(reader_t), intent(in) :: rd
+      type(builder_t), intent(in) :: b
+      type(mesh_t), intent(inout) :: mesh
+      type(error_t), allocatable, intent(out) :: err
+      integer, allocatable :: nodes(:)
+      integer :: k, s, j
+      do k = 1, b%npbou
+         s = find_edge_set(mesh%edge_sets, b%pbou(k)%id)
+         if (s == 0) then
+            call fail(rd, b%pbou(k)%rec, 'PBOUndary: physical curve '//itoa(b%pbou(k)%id)// &
+                      ' is not in the mesh: expected one of the physical curves of the GMSH '// &
+                      'meshes (here: '//edge_set_ids(mesh%edge_sets)//')', err)
+            return
+         end if
+         nodes = edge_set_nodes(mesh%edge_sets(s))
+         do j = 1, size(nodes)
+            call set_codes(mesh%bc(:, nodes(j)), b%pbou(k)%code, b%pbou(k)%set)
+         end do
+      end do
+   end subroutine apply_pbound
+
+   !> Contact surfaces given by `PHYSical,c` take the edges of edge set c as their facets; the
+   !> set must exist and lie on the boundary (each edge used by one element).
+   subroutine physical_surfaces(spec, mesh, err)
+      type(contact_spec_t), intent(inout) :: spec
+      type(mesh_t), intent(in) :: mesh
+      type(error_t), allocatable, intent(out) :: err
+      integer :: k, s, inner
+      if (.not. spec%active) return
+      do k = 1, size(spec%surfaces)
+         associate (sp => spec%surfaces(k))
+            if (sp%physical == 0) cycle
+            s = find_edge_set(mesh%edge_sets, sp%physical)
+            if (s == 0) then
+               call make_error(err, sp%physical_where//': SURFace '//itoa(sp%id)// &
+                               ': physical curve '//itoa(sp%physical)//' is not in the mesh: '// &
+                               'expected one of the physical curves of the GMSH meshes (here: '// &
+                               edge_set_ids(mesh%edge_sets)//')')
+               return
+            end if
+            inner = count(mesh%edge_sets(s)%other /= 0)
+            if (inner > 0) then
+               call make_error(err, sp%physical_where//': SURFace '//itoa(sp%id)// &
+                               ': physical curve '//itoa(sp%physical)//' has '//itoa(inner)// &
+                               ' of its '//itoa(mesh%edge_sets(s)%nedge)//' edges between two '// &
+                               'elements: expected a curve on the boundary of a body (a contact '// &
+                               'surface has its body on one side)')
+               return
+            end if
+            sp%facets = mesh%edge_sets(s)%edge
+         end associate
+      end do
+   end subroutine physical_surfaces
 
    !> CBOUndary items after the edge sets (SET replaces, ADD combines).
    subroutine apply_cbound(rd, b, mesh)

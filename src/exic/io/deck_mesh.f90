@@ -1,15 +1,16 @@
 !> Mesh-phase commands of a deck (input language, section 3) into a growable mesh builder.
 !>
 !> Nodes and elements are numbered by the deck; the builder grows to the highest number seen.
-!> Edge (EBOUndary) and coordinate (CBOUndary) boundary sets and the region/material forms of
-!> INITial,VELOcity are kept and applied after the mesh END (see exic_io_deck_finish).
+!> Edge (EBOUndary), physical-curve (PBOUndary) and coordinate (CBOUndary) boundary sets and the
+!> region/material forms of INITial,VELOcity are kept and applied after the mesh END (see
+!> exic_io_deck_finish). BLOCk and SHIFt are in exic_io_deck_block, GMSH and PBOUndary in
+!> exic_io_deck_gmsh.
 module exic_io_deck_mesh
    use exic_base_kinds, only: wp
    use exic_base_grow, only: grow
    use exic_base_error, only: error_t
    use exic_mesh_mesh, only: mesh_t
    use exic_material_material, only: material_t
-   use exic_mesh_block, only: BLOCK_CARTESIAN, BLOCK_POLAR, block_coordinates, block_connectivity
    use exic_io_records, only: keyword_is
    use exic_io_reader, only: next_in_set, reader_t, next_record, next_nonblank, back_one, nfields, &
                              field, word, has_field, real_field, int_field, fail, warn, where, &
@@ -17,10 +18,10 @@ module exic_io_deck_mesh
    implicit none
    private
 
-   public :: builder_t, ebou_t, cbou_t, init_t, genvec_t
+   public :: builder_t, ebou_t, cbou_t, pbou_t, init_t, genvec_t
    public :: builder_init, ensure_node, ensure_elem, gen_step, node_record
-   public :: cmd_coordinates, cmd_elements, cmd_region, cmd_block, cmd_boundary, cmd_ebound, &
-             cmd_cbound, cmd_nodal_values, cmd_global, cmd_initial
+   public :: cmd_coordinates, cmd_elements, cmd_region, cmd_boundary, cmd_ebound, &
+             cmd_cbound, cmd_nodal_values, cmd_global, cmd_initial, set_mode
 
    integer, parameter, public :: CB_NODE = 1, CB_LINE = 2
    !> Largest node or element number accepted (guards against a typo allocating huge arrays).
@@ -36,7 +37,16 @@ module exic_io_deck_mesh
       integer :: rec = 0
    end type ebou_t
 
-   !> One CBOUndary NODE or LINE item, applied after the EBOUndary sets.
+   !> One PBOUndary record `tag, c1, c2`: codes on every node of an edge set (physical curve),
+   !> applied after the EBOUndary sets.
+   type :: pbou_t
+      integer :: id = 0
+      integer :: code(2) = 0
+      logical :: set = .false.            !< PBOU,SET replaces; default ADD (as EBOUndary)
+      integer :: rec = 0
+   end type pbou_t
+
+   !> One CBOUndary NODE or LINE item, applied after the EBOUndary and PBOUndary sets.
    type :: cbou_t
       integer :: kind = CB_NODE
       real(wp) :: p(2, 2) = 0.0_wp        !< the point, or the two ends of the segment
@@ -68,16 +78,17 @@ module exic_io_deck_mesh
       integer, allocatable :: nrec(:)           !< record that last defined each node
       integer :: region = 0                     !< REGIon of the elements that follow
       integer :: block_mat = 0                  !< material of the previous BLOCk (0: none yet)
+      real(wp) :: origin(2) = 0.0_wp            !< SHIFt: centre of POLAr blocks
       integer :: nmat = 0
       type(material_t), allocatable :: mats(:)  !< growable, indexed by set number
       integer, allocatable :: mat_rec(:)        !< record of each MATErial command (0: none)
-      integer :: nebou = 0, ncbou = 0, ninit = 0
+      integer :: nebou = 0, ncbou = 0, ninit = 0, npbou = 0
       type(ebou_t), allocatable :: ebou(:)
+      type(pbou_t), allocatable :: pbou(:)
       type(cbou_t), allocatable :: cbou(:)
       type(init_t), allocatable :: init(:)
    end type builder_t
 
-   character(len=12), parameter :: block_types(2) = [character(len=12) :: 'CARTesian', 'POLAr']
    character(len=12), parameter :: cbou_words(3) = [character(len=12) :: 'NODE', 'LINEar', 'GAP']
 
 contains
@@ -101,7 +112,7 @@ contains
       b%m%region = 0
       b%edef = .false.
       b%erec = 0
-      allocate (b%mats(8), b%mat_rec(8), b%ebou(8), b%cbou(8), b%init(8))
+      allocate (b%mats(8), b%mat_rec(8), b%ebou(8), b%cbou(8), b%init(8), b%pbou(8))
       b%mat_rec = 0
    end subroutine builder_init
 
@@ -427,177 +438,6 @@ contains
       end if
       b%region = r
    end subroutine cmd_region
-
-   !> BLOCk: header `CARTesian|POLAr, nr, ns, node1, elmt1, mat`, optional `QUADrilateral 4` and
-   !> `MATErial m` records, master nodes `k, x, y`, blank.
-   subroutine cmd_block(rd, b, icmd, err)
-      type(reader_t), intent(inout) :: rd
-      type(builder_t), intent(inout) :: b
-      integer, intent(in) :: icmd
-      type(error_t), allocatable, intent(out) :: err
-      character(len=*), parameter :: what = 'BLOCk header CARTesian|POLAr, nr, ns, node1, elmt1, mat'
-      integer :: i, kind, nr, ns, node1, elmt1, mat, extra, k, e, n, j
-      real(wp) :: master(2, 9)
-      logical :: given(9)
-      character(len=:), allocatable :: missing
-      real(wp), allocatable :: xb(:, :)
-      integer, allocatable :: cb(:, :)
-
-      call next_record(rd, i)
-      if (i == 0) then
-         call fail(rd, i, 'BLOCk: expected the header record '//what(14:), err)
-         return
-      end if
-      if (rd%src%rec(i)%blank .or. looks_like_data(rd, i)) then
-         call fail(rd, i, 'BLOCk: expected the header record '//what(14:), err)
-         return
-      end if
-      if (keyword_is(word(rd, i, 1), 'cart')) then
-         kind = BLOCK_CARTESIAN
-      else if (keyword_is(word(rd, i, 1), 'pola')) then
-         kind = BLOCK_POLAR
-      else if (keyword_is(word(rd, i, 1), 'cyli') .or. keyword_is(word(rd, i, 1), 'sphe')) then
-         call fail(rd, i, 'BLOCk type '//field(rd, i, 1)//' is 3-D and not supported: expected '// &
-                   'CARTesian or POLAr', err)
-         return
-      else
-         call unknown_keyword(rd, i, 'BLOCk type', field(rd, i, 1), block_types, err)
-         return
-      end if
-      call int_field(rd, i, 2, what, nr, err)
-      if (.not. allocated(err)) call int_field(rd, i, 3, what, ns, err)
-      if (.not. allocated(err)) call int_field(rd, i, 4, what, node1, err)
-      if (.not. allocated(err)) call int_field(rd, i, 5, what, elmt1, err)
-      if (.not. allocated(err)) call int_field(rd, i, 6, what, mat, err)
-      if (allocated(err)) return
-      do k = 7, 8
-         call int_field(rd, i, k, what//', rskip, btype', extra, err)
-         if (allocated(err)) return
-         if (extra /= 0) then
-            call fail(rd, i, 'BLOCk: rskip and btype other than 0 are not supported: expected 0', err)
-            return
-         end if
-      end do
-      if (nr < 1 .or. ns < 1) then
-         call fail(rd, i, what//': expected nr >= 1 and ns >= 1', err)
-         return
-      end if
-      if (node1 < 0 .or. mat < 0) then
-         call fail(rd, i, what//': expected node1 >= 0 and mat >= 0', err)
-         return
-      end if
-      if (real(node1, wp) + real(nr + 1, wp)*real(ns + 1, wp) > MAX_NUMBER .or. &
-          real(elmt1, wp) + real(nr, wp)*real(ns, wp) > MAX_NUMBER) then
-         call fail(rd, i, what//': expected node and element numbers up to '//itoa(MAX_NUMBER), err)
-         return
-      end if
-      call master_nodes(rd, mat, master, given, err)
-      if (allocated(err)) return
-      if (.not. all(given(1:4))) then
-         missing = ''
-         do k = 1, 4
-            if (.not. given(k)) missing = missing//' '//itoa(k)
-         end do
-         call fail(rd, icmd, 'BLOCk: missing corner master node(s)'//missing// &
-                   ': expected corners 1, 2, 3 and 4', err)
-         return
-      end if
-      if (mat == 0) mat = max(b%block_mat, 1)
-      b%block_mat = mat
-      if (node1 == 0) node1 = b%m%nnode + 1
-      allocate (xb(2, (nr + 1)*(ns + 1)))
-      call block_coordinates(kind, nr, ns, master, given, xb)
-      call ensure_node(b, node1 + (nr + 1)*(ns + 1) - 1)
-      do k = 1, size(xb, 2)
-         n = node1 + k - 1
-         if (b%m%defined(n) .and. b%nrec(n) /= icmd) then
-            call fail(rd, icmd, 'BLOCk: node '//itoa(n)//' is already defined at '// &
-                      where(rd, b%nrec(n))//': expected node1 beyond the nodes in use, or 0', err)
-            return
-         end if
-         b%m%x(:, n) = xb(:, k)
-         b%m%defined(n) = .true.
-         b%nrec(n) = icmd
-      end do
-      if (elmt1 < 0) return
-      if (elmt1 == 0) elmt1 = b%m%nelem + 1
-      allocate (cb(4, nr*ns))
-      call block_connectivity(nr, ns, node1, cb)
-      call ensure_elem(b, elmt1 + nr*ns - 1)
-      do j = 1, nr*ns
-         e = elmt1 + j - 1
-         if (b%edef(e)) then
-            call fail(rd, icmd, 'BLOCk: element '//itoa(e)//' is already defined at '// &
-                      where(rd, b%erec(e))//': expected elmt1 beyond the elements in use, or 0', err)
-            return
-         end if
-         b%edef(e) = .true.
-         b%erec(e) = icmd
-         b%m%conn(:, e) = cb(:, j)
-         b%m%mat(e) = mat
-         b%m%region(e) = b%region
-      end do
-   end subroutine cmd_block
-
-   !> Master-node records of a BLOCk (and its QUADrilateral/MATErial sub-records).
-   subroutine master_nodes(rd, mat, master, given, err)
-      type(reader_t), intent(inout) :: rd
-      integer, intent(inout) :: mat
-      real(wp), intent(out) :: master(2, 9)
-      logical, intent(out) :: given(9)
-      type(error_t), allocatable, intent(out) :: err
-      character(len=*), parameter :: what = 'BLOCk master node k, x, y'
-      character(len=16), parameter :: subs(3) = [character(len=16) :: 'QUADrilateral', &
-                                                  'MATErial', 'master node k']
-      integer :: i, k, nq
-      master = 0.0_wp
-      given = .false.
-      do
-         call next_in_set(rd, i)
-         if (i == 0) return
-         if (.not. looks_like_data(rd, i) .and. any(given)) then
-            call check_data_record(rd, i, 'BLOCk master node', err)
-            if (allocated(err)) return
-         end if
-         if (.not. looks_like_data(rd, i)) then
-            if (keyword_is(word(rd, i, 1), 'quad')) then
-               call int_field(rd, i, 2, 'BLOCk QUADrilateral n', nq, err)
-               if (allocated(err)) return
-               if (nq /= 4 .and. nq /= 0) then
-                  call fail(rd, i, 'BLOCk: QUADrilateral '//itoa(nq)//' is not supported: '// &
-                            'expected 4', err)
-                  return
-               end if
-            else if (keyword_is(word(rd, i, 1), 'mate')) then
-               call int_field(rd, i, 2, 'BLOCk MATErial m', mat, err)
-               if (allocated(err)) return
-               if (mat < 1) then
-                  call fail(rd, i, 'BLOCk MATErial m: expected m >= 1', err)
-                  return
-               end if
-            else
-               call unknown_keyword(rd, i, 'BLOCk record', field(rd, i, 1), subs, err)
-               return
-            end if
-            cycle
-         end if
-         call int_field(rd, i, 1, what, k, err)
-         if (allocated(err)) return
-         if (k < 1 .or. k > 9) then
-            call fail(rd, i, what//': k = '//itoa(k)//': expected k in 1..9', err)
-            return
-         end if
-         if (given(k)) then
-            call fail(rd, i, what//': master node '//itoa(k)//' given twice: expected it once', err)
-            return
-         end if
-         call real_field(rd, i, 2, what, master(1, k), err)
-         if (allocated(err)) return
-         call real_field(rd, i, 3, what, master(2, k), err)
-         if (allocated(err)) return
-         given(k) = .true.
-      end do
-   end subroutine master_nodes
 
    !> EBOUndary[,SET|ADD]: `i, x_i, c1, c2`, kept for after END.
    subroutine cmd_ebound(rd, b, icmd, err)

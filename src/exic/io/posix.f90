@@ -1,11 +1,12 @@
-!> The few C library (POSIX) file operations exic needs, with status codes turned into errors.
+!> The few C library (POSIX) operations exic needs, with status codes turned into errors.
 module exic_io_posix
-   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char
+   use, intrinsic :: iso_c_binding, only: c_char, c_int, c_null_char, c_ptr, c_size_t, &
+                                          c_associated, c_f_pointer
    use exic_base_error, only: error_t, make_error
    implicit none
    private
 
-   public :: rename_file
+   public :: rename_file, c_string
 
    interface
       !> int rename(const char *oldpath, const char *newpath);
@@ -14,6 +15,13 @@ module exic_io_posix
          character(kind=c_char), dimension(*), intent(in) :: oldpath, newpath
          integer(c_int) :: status
       end function c_rename
+
+      !> size_t strlen(const char *s);
+      pure function c_strlen(s) bind(C, name='strlen') result(n)
+         import :: c_ptr, c_size_t
+         type(c_ptr), value, intent(in) :: s
+         integer(c_size_t) :: n
+      end function c_strlen
    end interface
 
 contains
@@ -27,5 +35,21 @@ contains
          call make_error(err, "cannot rename '"//from//"' to '"//to//"'")
       end if
    end subroutine rename_file
+
+   !> A copy of the null-terminated C string at `p` ('' for a null pointer).
+   function c_string(p) result(s)
+      type(c_ptr), intent(in) :: p
+      character(len=:), allocatable :: s
+      character(kind=c_char), pointer :: chars(:)
+      integer :: n, k
+      n = 0
+      if (c_associated(p)) n = int(c_strlen(p))
+      allocate (character(len=n) :: s)
+      if (n == 0) return
+      call c_f_pointer(p, chars, [n])
+      do k = 1, n
+         s(k:k) = chars(k)
+      end do
+   end function c_string
 
 end module exic_io_posix

@@ -20,7 +20,7 @@ module exic_io_records
 
    public :: field_t, record_t, source_t
    public :: read_source, split_fields, to_lower, keyword_is, keyword_key, nearest_keyword
-   public :: edit_distance
+   public :: edit_distance, dirname
 
    !> Longest record accepted (characters, trailing blanks excluded).
    integer, parameter, public :: MAX_RECORD_LENGTH = 256

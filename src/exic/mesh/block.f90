@@ -9,8 +9,11 @@
 !> corners only is bilinear; an off-centre or off-line mid-side node grades or bends its edge.
 !>
 !> POLAr blocks give master nodes as (r, theta in degrees); the map interpolates (r, theta)
-!> and every generated node is then converted to x = r cos(theta), y = r sin(theta), as FEAP
-!> converts generated nodes. A POLAr edge of constant r is therefore an exact circular arc.
+!> and every generated node is then converted to x = x0 + r cos(theta), y = y0 + r sin(theta),
+!> as FEAP converts generated nodes, about the origin (x0, y0) of the last SHIFt command
+!> (default (0, 0)). A POLAr edge of constant r is therefore an exact circular arc. An edge at
+!> r = 0 collapses to the origin: `collapsed_edge` finds such edges (of any block) so that the
+!> reader can say so instead of generating elements with two coincident corners.
 !>
 !> Numbering: node(i, j) = node1 + j (nr+1) + i; element (i, j), i = 1..nr, j = 1..ns, is
 !> elmt1 + (j-1) nr + (i-1) with nodes [a, a+1, a+1+R, a+R], a = node(i-1, j-1), R = nr+1.
@@ -21,7 +24,7 @@ module exic_mesh_block
 
    integer, parameter, public :: BLOCK_CARTESIAN = 1, BLOCK_POLAR = 2
 
-   public :: block_coordinates, block_connectivity, block_shape
+   public :: block_coordinates, block_connectivity, block_shape, collapsed_edge
 
    real(wp), parameter :: xi_master(9) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp, 0.0_wp, 1.0_wp, &
                                           0.0_wp, -1.0_wp, 0.0_wp]
@@ -32,11 +35,12 @@ contains
 
    !> Coordinates of the (nr+1)(ns+1) nodes of a block, local order i fastest.
    !> `master(:, k)` holds master node k (x, y or r, theta-degrees); `given(k)` says whether it was
-   !> given. Corners 1-4 must be given.
-   pure subroutine block_coordinates(kind, nr, ns, master, given, x)
+   !> given. Corners 1-4 must be given. `origin` is the centre (x0, y0) of POLAr blocks.
+   pure subroutine block_coordinates(kind, nr, ns, master, given, origin, x)
       integer, intent(in) :: kind, nr, ns
       real(wp), intent(in) :: master(2, 9)
       logical, intent(in) :: given(9)
+      real(wp), intent(in) :: origin(2)
       real(wp), intent(out) :: x(2, (nr + 1)*(ns + 1))
       real(wp) :: m(2, 9), shp(9), xi, eta, r, t
       real(wp), parameter :: deg = acos(-1.0_wp)/180.0_wp
@@ -63,8 +67,8 @@ contains
             if (kind == BLOCK_POLAR) then
                r = x(1, k)
                t = x(2, k)*deg
-               x(1, k) = r*cos(t)
-               x(2, k) = r*sin(t)
+               x(1, k) = origin(1) + r*cos(t)
+               x(2, k) = origin(2) + r*sin(t)
             end if
          end do
       end do
@@ -125,5 +129,30 @@ contains
          end do
       end do
    end subroutine block_connectivity
+
+   !> First element edge of a block whose two nodes coincide (distance <= tol): on return
+   !> (i, j) is the element (1-based, i along r) and `side` its edge 1-4 (edges 1-2, 2-3, 3-4,
+   !> 4-1 of the element); side = 0 when every edge has a length above tol.
+   pure subroutine collapsed_edge(nr, ns, x, tol, i, j, side)
+      integer, intent(in) :: nr, ns
+      real(wp), intent(in) :: x(2, (nr + 1)*(ns + 1)), tol
+      integer, intent(out) :: i, j, side
+      integer :: c(4), k
+      side = 0
+      do j = 1, ns
+         do i = 1, nr
+            c(1) = (j - 1)*(nr + 1) + i
+            c(2) = c(1) + 1
+            c(3) = c(2) + nr + 1
+            c(4) = c(1) + nr + 1
+            do k = 1, 4
+               if (norm2(x(:, c(k)) - x(:, c(mod(k, 4) + 1))) <= tol) then
+                  side = k
+                  return
+               end if
+            end do
+         end do
+      end do
+   end subroutine collapsed_edge
 
 end module exic_mesh_block

@@ -1,6 +1,7 @@
 !> The mesh: reference coordinates, 4-node connectivity, regions, materials and nodal data.
 module exic_mesh_mesh
    use exic_base_kinds, only: wp
+   use exic_mesh_edge_set, only: edge_set_t
    implicit none
    private
 
@@ -19,6 +20,7 @@ module exic_mesh_mesh
       real(wp), allocatable :: force(:, :)      !< (2, nnode) constant nodal forces
       real(wp), allocatable :: disp(:, :)       !< (2, nnode) prescribed displacement values
       real(wp), allocatable :: v0(:, :)         !< (2, nnode) initial velocity
+      type(edge_set_t), allocatable :: edge_sets(:)  !< named edge sets (Gmsh physical curves)
    end type mesh_t
 
 end module exic_mesh_mesh

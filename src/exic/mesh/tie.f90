@@ -8,7 +8,7 @@
 !> element are inactive everywhere in exic. Boundary codes of a group are combined (max), nodal
 !> forces are summed onto the survivor, and prescribed displacements and initial velocities are
 !> the survivor's own unless it has none (all zero), in which case the first non-zero one of the
-!> group is taken.
+!> group is taken. Edge sets (mesh%edge_sets) are remapped like the connectivity.
 module exic_mesh_tie
    use exic_base_kinds, only: wp, i8
    use exic_mesh_mesh, only: mesh_t
@@ -156,12 +156,19 @@ contains
    subroutine apply_tie(mesh, map)
       type(mesh_t), intent(inout) :: mesh
       integer, intent(in) :: map(:)
-      integer :: n, s, e, k
+      integer :: n, s, e, k, j
       do e = 1, mesh%nelem
          do k = 1, 4
             if (mesh%conn(k, e) >= 1) mesh%conn(k, e) = map(mesh%conn(k, e))
          end do
       end do
+      if (allocated(mesh%edge_sets)) then
+         do k = 1, size(mesh%edge_sets)
+            do j = 1, mesh%edge_sets(k)%nedge
+               mesh%edge_sets(k)%edge(:, j) = map(mesh%edge_sets(k)%edge(:, j))
+            end do
+         end do
+      end if
       do n = 1, mesh%nnode
          s = map(n)
          if (s == n) cycle
