@@ -46,14 +46,19 @@ venv: $(FPM)
 setup: deps venv
 
 # --- build and run ----------------------------------------------------------
-# fpm 0.12 does not recompile a program's own modules (tests, app, benchmarks) when a library
-# module they use changes its interface, and can keep a stale libexic.a when sources are added or
-# renamed; those objects and the archive are cheap to rebuild, so drop them.
+# fpm 0.12 rebuilds a source when it changed or when a module it uses was rebuilt in the same
+# run: after a build that stopped on an error, the users of the modules it had already rebuilt
+# are never rebuilt, and programs then run with objects of two layouts of one type. So a
+# failed build drops every object (the next build starts clean), and the programs' own
+# objects (tests, app, benchmarks) and the archive, cheap to rebuild, are dropped before
+# every build.
 STALE = find build -path '*/exic/*' \( -name 'test_*' -o -name 'app_*' -o -name 'bench_*' -o -name 'libexic.a' \) -delete 2>/dev/null || true
+# $(call fpm_build,ARGS): fpm build ARGS; on failure remove every object and fail
+fpm_build = $(FPM) build $(1) || { rm -rf build/gfortran_*; exit 1; }
 
 build: setup
 	@$(STALE)
-	$(FPM) build $(RELEASE)
+	@$(call fpm_build,$(RELEASE))
 
 run: build
 	@mkdir -p $(OUTDIR)
@@ -64,6 +69,7 @@ run: build
 test: setup
 	@find build -path '*/test/exic-test' -type f -delete 2>/dev/null || true
 	@$(STALE)
+	@$(call fpm_build,--tests)
 	EXIC_FPM=$(abspath $(FPM)) $(FPM) test
 
 # the release binary that `build` made

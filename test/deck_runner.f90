@@ -8,7 +8,7 @@ module deck_runner
    implicit none
    private
 
-   public :: run_dir, write_text, run_deck, read_table, column
+   public :: run_dir, write_text, run_deck, read_table, column, file_has
 
    !> Where test runs write their decks and outputs.
    character(len=*), parameter :: run_dir = 'build/test_runs'
@@ -102,5 +102,24 @@ contains
       end do
       k = 0
    end function column
+
+   !> True when a line of the file contains `text`.
+   logical function file_has(path, text) result(found)
+      character(len=*), intent(in) :: path, text
+      character(len=4096) :: line
+      integer :: u, ios
+      found = .false.
+      open (newunit=u, file=path, status='old', action='read', iostat=ios)
+      if (ios /= 0) return
+      do
+         read (u, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         if (index(line, text) > 0) then
+            found = .true.
+            exit
+         end if
+      end do
+      close (u)
+   end function file_has
 
 end module deck_runner

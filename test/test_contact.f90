@@ -8,7 +8,7 @@ module test_contact
    use exic_base_kinds, only: wp
    use exic_base_strings, only: rtoa
    use testing, only: suite_t, check, check_close, section
-   use deck_runner, only: run_dir, run_deck, read_table, column
+   use deck_runner, only: run_dir, run_deck, read_table, column, file_has
    implicit none
    private
 
@@ -207,8 +207,9 @@ contains
    !> A block at 1/4 of its wave speed against a rigid plate thinner than one step of travel (and
    !> the travel deeper than the search depth, 0.1 of the mean segment length):
    !> SWEPt detection stops it at the plate, STATic detection (documented) lets it through.
-   function thin_target_deck(detection) result(deck)
-      character(len=*), intent(in) :: detection
+   !> `check` is a BATCh line before the loop ('' for none).
+   function thin_target_deck(detection, check) result(deck)
+      character(len=*), intent(in) :: detection, check
       character(len=:), allocatable :: deck
       deck = 'FEAP * * block against a thin plate'//nl//'0 0 0 2 2 4'//nl// &
              'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 400 0'//nl//'    DENSity 1'//nl//nl// &
@@ -220,7 +221,7 @@ contains
              'INITial,VELOcity'//nl//'  REGIon,1,5,0'//nl//nl// &
              'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
              '  PAIR,1,NTOS,1,2'//nl//'    DETEction,'//detection//nl//'END CONTact'//nl//nl//'END'//nl// &
-             'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,100'//nl// &
+             'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//check//nl//'  LOOP,,100'//nl// &
              '    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
              '  disp,6,1'//nl//'  cont,1,4'//nl//nl//'STOP'
    end function thin_target_deck
@@ -231,7 +232,7 @@ contains
       character(len=64), allocatable :: names(:)
       real(wp), allocatable :: d(:, :), e(:, :)
       integer :: stage
-      call run_deck('thin_swept', thin_target_deck('SWEPt'), stage, msg)
+      call run_deck('thin_swept', thin_target_deck('SWEPt', ''), stage, msg)
       call check(s, stage == 0, 'thin target, swept detection, runs', msg)
       if (stage /= 0) return
       call read_table(run_dir//'/thin_swept.ene', names, e)
@@ -240,13 +241,21 @@ contains
       call read_table(run_dir//'/thin_swept.his', names, d)
       call check(s, maxval(d(2, :)) <= 0.005_wp + 1.0e-10_wp, 'swept detection stops the face at the plate', &
                  'largest face displacement '//rtoa(maxval(d(2, :)))//' (plate at 0.005)')
-      call run_deck('thin_static', thin_target_deck('STATic'), stage, msg)
-      call check(s, stage == 0, 'thin target, static detection, runs', msg)
+      ! the nodes that went through are found behind the plate and pushed out across it: the
+      ! contact feeds energy, and the energy guard stops the run naming the pair
+      call run_deck('thin_static', thin_target_deck('STATic', ''), stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'exceeds the energy put in') > 0 .and. &
+                 index(msg, 'contact pair 1') > 0, 'thin target, static detection: the energy guard stops '// &
+                 'the run and names contact pair 1', msg)
+      call run_deck('thin_static_free', thin_target_deck('STATic', '  CHECk,ENERgy,0.01,1000'), stage, msg)
+      call check(s, stage == 0, 'thin target, static detection, with the guard''s stop limit raised, runs', msg)
       if (stage /= 0) return
-      call read_table(run_dir//'/thin_static.his', names, d)
+      call read_table(run_dir//'/thin_static_free.his', names, d)
       call check(s, d(2, size(d, 2)) > 0.05_wp, &
                  'static detection misses the crossing: the block passes through (documented)', &
                  'final face displacement '//rtoa(d(2, size(d, 2))))
+      call check(s, file_has(run_dir//'/thin_static_free.out', 'warning: the physical energy'), &
+                 'the energy growth past the warning limit is a warning in <stem>.out')
    end subroutine thin_target_test
 
    !> Penalty: finite penetration that falls as k grows, and a stable step that falls as k grows.

@@ -716,6 +716,12 @@ contains
                'expected TIE, PARAmeters or BATCh')
       call bad('b50', [character(len=L) :: h, mt, 'BLOCk', ' CART 2 2.5 0 0 1', ' 1 0 0', '', en], 9, &
                'expected an integer')
+      call bad('b51', [character(len=L) :: bt, ' CHECk,ENERgy,0.2,0.1', 'END', 'STOP'], 17, &
+               'expected 0 < warn <= stop')
+      call bad('b52', [character(len=L) :: bt, ' CHECk,FORCe', 'END', 'STOP'], 17, &
+               'nearest known keyword: ENERgy')
+      call bad('b53', [character(len=L) :: bt, ' CHECk,ENERgy,0.01,0.1,7', 'END', 'STOP'], 17, &
+               'is not used')
    contains
       subroutine bad(tag, lines, line, word, file)
          character(len=*), intent(in) :: tag

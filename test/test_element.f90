@@ -448,7 +448,7 @@ contains
       real(wp), parameter :: nus(4) = [0.0_wp, 0.3_wp, 0.45_wp, 0.49_wp]
       real(wp) :: xq(2, 4), kmat(8, 8), mmat(8, 8), m(4), ev(8), work(64), dtx, dte, ratio
       real(wp) :: rmin(2), rmax(2), lambda, mu, rho, arat, skew, th, hmin, r(2, 2), pert
-      integer :: nq, iq, inu, info, ebad, emin, nbad(2), nfail(2), k
+      integer :: nq, iq, inu, info, ebad, emin, efold, nbad(2), nfail(2), k
       integer(int64) :: seed
       type(setup_t) :: st
       character(len=100) :: buf
@@ -500,7 +500,7 @@ contains
                end if
                dtx = 2.0_wp/sqrt(ev(8))
                call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, st%wdj, lambda, mu, &
-                                 rho, dte, emin)
+                                 rho, dte, emin, efold)
                ratio = dte/dtx
                rmin(nq) = min(rmin(nq), ratio)
                rmax(nq) = max(rmax(nq), ratio)
@@ -539,7 +539,7 @@ contains
       type(suite_t), intent(inout) :: s
       real(wp), intent(in) :: rho
       real(wp) :: xq(2, 4), lambda, mu, dte, dtx
-      integer :: nq, ebad, emin
+      integer :: nq, ebad, emin, efold
       type(setup_t) :: st
 
       ! the square's a/(sqrt(2) c)
@@ -548,7 +548,7 @@ contains
       do nq = 2, 1, -1
          call make_setup(nq, xq, reshape([1, 2, 3, 4], [4, 1]), st, ebad)
          call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, st%wdj, lambda, mu, rho, &
-                           dte, emin)
+                           dte, emin, efold)
          dtx = 2.0_wp/sqrt(2.0_wp)/sqrt((lambda + 2.0_wp*mu)/rho)
          call check_close(s, dte, dtx, 1e-14_wp*dtx, trim(qname(nq))//': square, a/(sqrt(2) c)')
       end do
@@ -556,7 +556,7 @@ contains
       do nq = 2, 1, -1
          call make_setup(nq, xq, reshape([1, 2, 3, 4], [4, 1]), st, ebad)
          call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, st%wdj, lambda, mu, rho, &
-                           dte, emin)
+                           dte, emin, efold)
          ! area 3 x 2 - 0.5 x 0.8 = 5.6, longest diagonal |(3.8, 2.5)|
          dtx = 5.6_wp/norm2([3.8_wp, 2.5_wp])/sqrt((lambda + 2.0_wp*mu)/rho)
          call check_close(s, dte, dtx, 1e-13_wp*dtx, trim(qname(nq))//': parallelogram, A/(d_max c)')
@@ -564,7 +564,7 @@ contains
       ! current geometry: a uniform dilatation J scales L by sqrt(J) and c^2 by the tangent
       xq = xq*1.1_wp
       call q4_stable_dt(st%nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, st%wdj, lambda, mu, rho, &
-                        dte, emin)
+                        dte, emin, efold)
       dtx = 1.1_wp*5.6_wp/norm2([3.8_wp, 2.5_wp]) &
             /sqrt((lambda + 2.0_wp*mu - 2.0_wp*lambda*log(1.21_wp))/rho)
       call check_close(s, dte, dtx, 1e-13_wp*dtx, 'dilated parallelogram: tangent wave speed at J')
@@ -597,7 +597,7 @@ contains
       real(wp), allocatable :: x0(:, :), u(:, :), f(:, :), xb(:, :)
       integer, allocatable :: conn(:, :)
       real(wp) :: w, whg, jmin, dtmin
-      integer :: nq, ebad, emin
+      integer :: nq, ebad, emin, efold
       type(setup_t) :: st
 
       call make_patch(x0, conn)
@@ -611,8 +611,21 @@ contains
          call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad)
          call check(s, ebad == 3 .and. jmin <= 0.0_wp, 'node pushed through: ebad names element 3')
          call check(s, all(abs(f) < huge(1.0_wp)) .and. w == w, 'forces stay finite')
-         call q4_stable_dt(nq, 4, 9, conn, x0 + u, st%wdj, lam0, mu0, 1.0_wp, dtmin, emin)
+         call q4_stable_dt(nq, 4, 9, conn, x0 + u, st%wdj, lam0, mu0, 1.0_wp, dtmin, emin, efold)
          call check(s, emin == 3 .and. dtmin == 0.0_wp, 'stable step: zero, element 3')
+         call check(s, efold == 3, 'stable step: element 3 is folded at a corner')
+      end do
+      ! node 9 (only in element 4) moved inside the element: a re-entrant corner whose area stays
+      ! positive, so the centroid of the one-point rule does not see the fold
+      u = 0.0_wp
+      u(:, 9) = [1.3_wp, 1.1_wp] - x0(:, 9)
+      call make_setup(1, x0, conn, st, ebad)
+      call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad)
+      call check(s, ebad == 0 .and. jmin > 0.0_wp, 're-entrant corner: the one-point centroid J stays positive')
+      do nq = 2, 1, -1
+         call make_setup(nq, x0, conn, st, ebad)
+         call q4_stable_dt(nq, 4, 9, conn, x0 + u, st%wdj, lam0, mu0, 1.0_wp, dtmin, emin, efold)
+         call check(s, efold == 4, trim(qname(nq))//': re-entrant corner in the current mesh flags element 4')
       end do
       call section(s, 'inversion flags, reference geometry')
       ! a re-entrant (positive area) element 4: corner det J0 < 0

@@ -4,7 +4,7 @@ module test_run_output
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
    use testing, only: suite_t, check, section, skip, have_command, have_python_modules
-   use deck_runner, only: run_dir, run_deck, read_table, write_text
+   use deck_runner, only: run_dir, run_deck, read_table, write_text, file_has
    use test_fields, only: run_python
    implicit none
    private
@@ -64,18 +64,18 @@ contains
       h5 = run_dir//'/fields_run.h5'
       call execute_command_line('h5dump -H '//h5//' > '//run_dir//'/fields_run.h5dump 2>&1', exitstat=status)
       call check(s, status == 0, 'h5dump reads the run''s .h5')
-      call check(s, has_line(run_dir//'/fields_run.h5dump', 'DATASET "displacement"') .and. &
-                 has_line(run_dir//'/fields_run.h5dump', 'DATASET "stress"') .and. &
-                 has_line(run_dir//'/fields_run.h5dump', 'DATASET "contact_force"') .and. &
-                 has_line(run_dir//'/fields_run.h5dump', 'DATASET "connectivity"'), &
+      call check(s, file_has(run_dir//'/fields_run.h5dump', 'DATASET "displacement"') .and. &
+                 file_has(run_dir//'/fields_run.h5dump', 'DATASET "stress"') .and. &
+                 file_has(run_dir//'/fields_run.h5dump', 'DATASET "contact_force"') .and. &
+                 file_has(run_dir//'/fields_run.h5dump', 'DATASET "connectivity"'), &
                  'mesh, displacement, stress and contact-force datasets are there')
       call read_h5_vector(h5, '/time', times)
       nt = size(times)
       ! 60 steps with output every 5: t = 0, 5 dt, ..., 60 dt
       call check(s, nt == 13, 'one output time every 5 steps', 'output times: '//itoa(nt))
-      call check(s, has_line(run_dir//'/fields_run.h5dump', '( '//itoa(nt)//', 45, 2 )'), &
+      call check(s, file_has(run_dir//'/fields_run.h5dump', '( '//itoa(nt)//', 45, 2 )'), &
                  'displacement shape (times, 45 nodes, 2)')
-      call check(s, has_line(run_dir//'/fields_run.h5dump', '( '//itoa(nt)//', 26, 7 )'), &
+      call check(s, file_has(run_dir//'/fields_run.h5dump', '( '//itoa(nt)//', 26, 7 )'), &
                  'stress shape (times, 26 elements, 7)')
       ! the x-displacement of node 13 (the struck tip) at output k against the history row at that time
       k = nt/2
@@ -184,24 +184,5 @@ contains
       end do
       close (u)
    end function last_number
-
-   !> True when a line of the file contains `text`.
-   logical function has_line(path, text) result(found)
-      character(len=*), intent(in) :: path, text
-      character(len=1024) :: line
-      integer :: u, ios
-      found = .false.
-      open (newunit=u, file=path, status='old', action='read', iostat=ios)
-      if (ios /= 0) return
-      do
-         read (u, '(a)', iostat=ios) line
-         if (ios /= 0) exit
-         if (index(line, text) > 0) then
-            found = .true.
-            exit
-         end if
-      end do
-      close (u)
-   end function has_line
 
 end module test_run_output

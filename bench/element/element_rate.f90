@@ -10,7 +10,7 @@ program element_rate
    use exic_element_quad4, only: q4_reference, q4_force_2x2, q4_force_1pt, q4_stable_dt
    implicit none
    integer, parameter :: nx = 120, ny = 24, nrep = 5
-   integer :: nel, nnode, nsteps, i, j, e, rep, ebad, emin, step, nargs
+   integer :: nel, nnode, nsteps, i, j, e, rep, ebad, emin, efold, step, nargs
    integer, allocatable :: conn(:, :)
    real(wp), allocatable :: x0(:, :), u(:, :), f(:, :)
    real(wp), allocatable :: gdn2(:, :, :), wdj2(:, :), gdn1(:, :, :), wdj1(:, :), gam(:, :)
@@ -78,7 +78,7 @@ program element_rate
       call system_clock(c0)
       call cpu_time(p0)
       do step = 1, nsteps
-         call q4_stable_dt(2, nel, nnode, conn, x0 + u, wdj2, lambda, mu, 0.1_wp, dtmin, emin)
+         call q4_stable_dt(2, nel, nnode, conn, x0 + u, wdj2, lambda, mu, 0.1_wp, dtmin, emin, efold)
          chk = chk + dtmin
       end do
       call system_clock(c1)

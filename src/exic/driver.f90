@@ -3,6 +3,7 @@
 !> The step itself is src/exic/explicit/step.f90 (`stepper_t`), the files src/exic/io/output.f90
 !> and src/exic/io/report.f90; this module only decides, command by command, what to call.
 module exic_driver
+   use, intrinsic :: iso_fortran_env, only: error_unit
    use exic_base_kinds, only: wp, i8
    use exic_base_constants, only: TIME_TOL
    use exic_base_error, only: error_t, make_error
@@ -138,6 +139,8 @@ contains
                call r%out%open_fields(model, r%stp, c%v(1), err)
             case ('prin')
                r%print_inc = max(1, nint(c%v(1)))
+            case ('chec')
+               call r%stp%set_energy_limits(c%v(1), c%v(2))
             case default
                call make_error(err, 'solution command '//trim(c%name)//' is not implemented', c%where)
             end select
@@ -192,10 +195,15 @@ contains
       end associate
    end subroutine step
 
-   !> Move what the stepper has to report into <stem>.out.
+   !> Move what the stepper has to report into <stem>.out, and its warnings to the console.
    subroutine pass_messages(r)
       type(run_t), intent(inout) :: r
-      if (r%stp%messages%count > 0) call r%out%files%say(r%stp%messages%take())
+      character(len=:), allocatable :: text
+      if (r%stp%messages%count == 0) return
+      text = r%stp%messages%take()
+      call r%out%files%say(text)
+      write (error_unit, '(a)') 'exic: '//text
+      flush (error_unit)
    end subroutine pass_messages
 
 end module exic_driver

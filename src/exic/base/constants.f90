@@ -13,4 +13,11 @@ module exic_base_constants
    !> the rounding of t = sum of the steps never adds or drops a step or an output.
    real(wp), parameter, public :: TIME_TOL = 1.0e-12_wp
 
+   !> The energy guard (src/exic/explicit/step.f90): the physical energy (kinetic + strain +
+   !> hourglass) may exceed the energy put in (initial energy + work of the external forces and
+   !> of prescribed motion) by ENERGY_WARN of the energy put in before the run warns, and by
+   !> ENERGY_STOP before it stops. A deck sets both with [ext] `CHECk,ENERgy,warn,stop`.
+   real(wp), parameter, public :: ENERGY_WARN = 0.01_wp
+   real(wp), parameter, public :: ENERGY_STOP = 0.10_wp
+
 end module exic_base_constants

@@ -73,6 +73,9 @@ module exic_contact_contact
       integer :: id = 0
       real(wp) :: fnormal = 0.0_wp, force(2) = 0.0_wp, penetration = 0.0_wp
       real(wp) :: pmax = 0.0_wp                !< largest multiplier (nodal normal force)
+      !> work of the pair's multipliers over the run: sum over steps and constraints of
+      !> -p g(n+1), the gap each closes by t(n+2) (positive: the pair pushed bodies apart)
+      real(wp) :: work = 0.0_wp
       integer :: nactive = 0
    end type pair_result_t
 
@@ -422,6 +425,7 @@ contains
                r%nactive = r%nactive + 1
                r%fnormal = r%fnormal + self%cs%p(i)
                r%pmax = max(r%pmax, self%cs%p(i))
+               r%work = r%work - self%cs%p(i)*self%cs%gap_now(i)
                r%force = r%force + self%cs%p(i)*self%cs%nrm(:, i)
             end associate
          end do
@@ -513,7 +517,8 @@ contains
    end function contact_stable_dt
 
    !> A TPLOt `cont,pair,comp` value: 1 normal force, 2-3 force x, y on the slave side,
-   !> 4 active constraints, 5 largest penetration at t(n+1), 6 largest multiplier [ext].
+   !> 4 active constraints, 5 largest penetration at t(n+1), 6 largest multiplier [ext],
+   !> 7 work of the pair's multipliers over the run (pair_result_t%work) [ext].
    real(wp) function contact_pair_value(self, pair, comp) result(val)
       class(contact_t), intent(in) :: self
       integer, intent(in) :: pair, comp
@@ -535,6 +540,8 @@ contains
             val = self%results(k)%penetration
          case (6)
             val = self%results(k)%pmax
+         case (7)
+            val = self%results(k)%work
          end select
          return
       end do

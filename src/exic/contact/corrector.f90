@@ -69,6 +69,7 @@ module exic_contact_corrector
       real(wp), allocatable :: fwork(:, :)          !< (2, nnode) G p of the current pass
       logical, allocatable :: drop(:)               !< (m) left out of the pass's factorization
       logical, allocatable :: infeasible(:)         !< (m) candidates that switch sides
+      real(wp), allocatable :: psafe(:)             !< (m) last pass's multipliers with none tensile
       integer, allocatable :: nstart(:), nlist(:)   !< node -> candidates incidence (CSR)
    contains
       procedure :: solve => corrector_solve
@@ -138,6 +139,7 @@ contains
       type(error_t), allocatable, intent(out) :: err
       integer :: m, nact, pass, k, i, nbad, ninf, best, budget, last
       real(wp) :: g
+      logical :: have_safe
 
       m = cs%n
       self%passes = 0
@@ -166,6 +168,8 @@ contains
       best = huge(1)
       budget = 3
       pass = 0
+      have_safe = .false.
+      call grow(self%psafe, m)
       do
          pass = pass + 1
          ! the active set F: every other candidate is dropped from the factorization
@@ -184,6 +188,10 @@ contains
          do k = 1, m
             if (.not. self%drop(k)) cs%p(k) = self%sol(k)
          end do
+         if (all(cs%p(1:m) >= 0.0_wp)) then
+            self%psafe(1:m) = cs%p(1:m)
+            have_safe = .true.
+         end if
          call apply(cs, nnode, self%fwork)
          ninf = 0
          last = 0
@@ -201,9 +209,16 @@ contains
          end do
          if (ninf == 0) exit
          if (pass >= self%max_passes) then
-            ! give up on the step: keep the compressive part of the last solution
+            ! give up on the step: keep the last pass whose multipliers were all compressive (its
+            ! gaps may stay open and are closed by the next step's corrector), or no contact force
+            ! at all; never a tensile multiplier, which would pull bodies together and feed them
+            ! energy
             self%pass_limit_hits = self%pass_limit_hits + 1
-            cs%p(1:m) = max(cs%p(1:m), 0.0_wp)
+            if (have_safe) then
+               cs%p(1:m) = self%psafe(1:m)
+            else
+               cs%p(1:m) = 0.0_wp
+            end if
             call apply(cs, nnode, self%fwork)
             exit
          end if

@@ -313,8 +313,10 @@ contains
    !> tapers beyond 10:1, nu in [0, 0.499], hourglass coefficient up to 0.25), phi L/c stayed below
    !> 0.995 of the limit; L/c alone exceeds it by up to 2% for tapers of 1.6:1 and by 45% for
    !> wedge-like quads. An element with A <= 0 or phi^2 <= 0 gives dt_e = 0.
-   !> dtmin: the smallest dt_e; emin: the (local) element that gives it.
-   pure subroutine q4_stable_dt(nq, nel, nnode, conn, x, wdj, lambda, mu, rho0, dtmin, emin)
+   !> dtmin: the smallest dt_e; emin: the (local) element that gives it; efold: the first (local)
+   !> element folded at a corner (a corner triangle of non-positive area, i.e. det J <= 0 at that
+   !> node, which the Gauss points of either rule need not see), 0 if none.
+   pure subroutine q4_stable_dt(nq, nel, nnode, conn, x, wdj, lambda, mu, rho0, dtmin, emin, efold)
       integer, intent(in) :: nq                    !< 1 or 2
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
@@ -322,7 +324,7 @@ contains
       real(wp), intent(in) :: wdj(nq*nq, nel)
       real(wp), intent(in) :: lambda, mu, rho0
       real(wp), intent(out) :: dtmin
-      integer, intent(out) :: emin
+      integer, intent(out) :: emin, efold
       real(wp), parameter :: s3 = 0.57735026918962576451_wp
       real(wp) :: xe(4), ye(4), d1x, d1y, d2x, d2y, area, dmax2, dt2, dtmin2, tmin, phi2, c0, c1
       integer :: e
@@ -336,6 +338,7 @@ contains
       end if
       dtmin2 = huge(1.0_wp)
       emin = 0
+      efold = 0
       do e = 1, nel
          xe = x(1, conn(:, e))
          ye = x(2, conn(:, e))
@@ -346,6 +349,7 @@ contains
          area = 0.5_wp*(d1x*d2y - d1y*d2x)
          ! corner triangles (a-1, a, a+1)
          tmin = min(tri(4, 1, 2), tri(1, 2, 3), tri(2, 3, 4), tri(3, 4, 1))
+         if (.not. (tmin > 0.0_wp .and. area > 0.0_wp) .and. efold == 0) efold = e
          phi2 = c0 + c1*tmin/merge(area, 1.0_wp, area > 0.0_wp)
          if (area > 0.0_wp .and. phi2 > 0.0_wp) then
             dmax2 = max(d1x*d1x + d1y*d1y, d2x*d2x + d2y*d2y)

@@ -138,22 +138,25 @@ contains
    end subroutine internal_forces
 
    !> Smallest critical step over the deformable elements at the current coordinates
-   !> x(2, nnode), and its (global) element (0 when there is no deformable element).
-   subroutine stable_step(st, sets, x, dtmin, emin)
+   !> x(2, nnode), and its (global) element (0 when there is no deformable element); efold: the
+   !> first (global) element folded at a corner (q4_stable_dt), 0 if none.
+   subroutine stable_step(st, sets, x, dtmin, emin, efold)
       type(state_t), intent(in) :: st
       type(element_set_t), intent(in) :: sets(:)
       real(wp), intent(in) :: x(2, st%nnode)
       real(wp), intent(out) :: dtmin
-      integer, intent(out) :: emin
-      integer :: k, e
+      integer, intent(out) :: emin, efold
+      integer :: k, e, ef
       real(wp) :: d
 
       dtmin = huge(1.0_wp)
       emin = 0
+      efold = 0
       do k = 1, size(sets)
          associate (s => sets(k))
             if (s%kind /= MAT_SOLID) cycle
-            call q4_stable_dt(s%nq, s%nel, st%nnode, s%conn, x, s%wdj, s%lambda, s%mu, s%rho, d, e)
+            call q4_stable_dt(s%nq, s%nel, st%nnode, s%conn, x, s%wdj, s%lambda, s%mu, s%rho, d, e, ef)
+            if (ef /= 0 .and. efold == 0) efold = s%elems(ef)
             if (d < dtmin) then
                dtmin = d
                emin = s%elems(e)

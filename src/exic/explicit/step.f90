@@ -9,14 +9,18 @@
 !>   4. predictor a~ = M^-1 (F - P), v~ = v(n) + dt(n)/2 (a(n) + a~)        (eq. 4.3-4.4)
 !>   5. contact corrector: a(n+1) = a~ + M^-1 G p, every active gap closed at t(n+2)  (4.5-4.7)
 !>   6. v(n+1) = v(n) + dt(n)/2 (a(n) + a(n+1)); works of external and contact forces
-!>   7. kinetic energy, momentum and the health check (NaN, runaway energy)
+!>   7. kinetic energy, momentum and the health check: a non-finite value stops the run naming
+!>      its node and element; the energy guard warns when the physical energy exceeds the
+!>      energy put in by `energy_warn` of it and stops past `energy_stop` (doc/decisions.md,
+!>      "Energy guard")
 !> `start` makes the state at t = 0 consistent first: forces, dt(0), a(0) with the corrector
 !> acting on the initial velocity (bodies touching at t = 0 are caught at once).
 !>
 !> The stepper writes no file: what it has to report it adds to `messages`.
 module exic_explicit_step
    use exic_base_kinds, only: wp
-   use exic_base_constants, only: DEFAULT_CFL, TIME_TOL
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use exic_base_constants, only: DEFAULT_CFL, TIME_TOL, ENERGY_WARN, ENERGY_STOP
    use exic_base_error, only: error_t, make_error
    use exic_base_strings, only: itoa, rtoa
    use exic_base_clock, only: wall_time
@@ -32,6 +36,9 @@ module exic_explicit_step
    private
 
    public :: stepper_t, contact_hook_t
+
+   !> Pass-limit warnings of the corrector written to the report; later ones are only counted.
+   integer, parameter :: MAX_PASS_WARNINGS = 10
 
    !> Contact brought by a host instead of exic's own (the legacy API's hosts, in tests and
    !> benchmarks): called at step 5 with the same plain arrays as contact_t%correct.
@@ -70,6 +77,13 @@ module exic_explicit_step
       integer :: dt_element = 0                       !< element that sets it (0: penalty or none)
       real(wp) :: tmax = -1.0_wp                      !< end time to land on (TIME,,tmax; < 0: none)
       logical :: dt_warned = .false.
+      ! energy guard: limits as fractions of the energy put in, and the worst growth seen
+      real(wp) :: energy_warn = ENERGY_WARN
+      real(wp) :: energy_stop = ENERGY_STOP
+      logical :: energy_warned = .false.
+      real(wp) :: growth_max = 0.0_wp                 !< largest growth / energy put in
+      real(wp) :: growth_max_t = 0.0_wp               !< time of it
+      integer :: pass_limit_warnings = 0              !< corrector pass-limit warnings written
       ! work arrays of a step, (2, nnode)
       real(wp), allocatable :: x(:, :)                !< x(n+1) = x0 + u
       real(wp), allocatable :: du(:, :), a_old(:, :), vt(:, :), fcon_old(:, :)
@@ -83,6 +97,7 @@ module exic_explicit_step
       procedure :: set_cfl => stepper_set_cfl
       procedure :: set_fixed_dt => stepper_set_fixed_dt
       procedure :: set_velocity => stepper_set_velocity
+      procedure :: set_energy_limits => stepper_set_energy_limits
       procedure :: initial_stable_step => stepper_initial_stable_step
       procedure :: has_contact => stepper_has_contact
    end type stepper_t
@@ -176,7 +191,7 @@ contains
       ! 7. energies and health
       call kinetic_energy(self%st)
       self%time_steps = self%time_steps + (wall_time() - t0)
-      call check_health(self%st, err)
+      call check_health(self, err)
    end subroutine stepper_advance
 
    !> Steps 2-3 (and at t = 0): positions x = x0 + u, internal forces, dt(n+1); an inverted
@@ -201,6 +216,8 @@ contains
       type(stepper_t), intent(inout) :: self
       real(wp), intent(in) :: vt(:, :)
       type(error_t), allocatable, intent(out) :: err
+      integer :: hits
+      hits = self%contact%corr%pass_limit_hits
       associate (st => self%st)
          st%nactive = 0
          if (associated(self%hook)) then
@@ -209,6 +226,16 @@ contains
          else if (self%contact%active) then
             call self%contact%correct(st%nnode, self%x, vt, st%a, st%minv, st%dt_prev, st%dt, st%fcon, &
                                       st%nactive, err)
+         end if
+         if (self%contact%corr%pass_limit_hits > hits) then
+            self%pass_limit_warnings = self%pass_limit_warnings + 1
+            if (self%pass_limit_warnings <= MAX_PASS_WARNINGS) &
+               call self%messages%add('warning: the contact corrector reached its pass limit at step '// &
+                                      itoa(int(st%step))//', t = '//rtoa(st%t)//'; the last set of '// &
+                                      'compressive multipliers was kept')
+            if (self%pass_limit_warnings == MAX_PASS_WARNINGS) &
+               call self%messages%add('warning: further pass-limit warnings are only counted (<stem>.out, '// &
+                                      'contact statistics)')
          end if
       end associate
    end subroutine correct
@@ -249,13 +276,22 @@ contains
       end associate
    end subroutine stepper_set_velocity
 
+   !> CHECk,ENERgy,warn,stop: the energy guard's limits (fractions of the energy put in).
+   subroutine stepper_set_energy_limits(self, warn, stop)
+      class(stepper_t), intent(inout) :: self
+      real(wp), intent(in) :: warn, stop
+      self%energy_warn = warn
+      self%energy_stop = stop
+   end subroutine stepper_set_energy_limits
+
    !> Stable step of the mesh as it is now (before `start`: the initial mesh) and its element.
    subroutine stepper_initial_stable_step(self, dtmin, emin)
       class(stepper_t), intent(inout) :: self
       real(wp), intent(out) :: dtmin
       integer, intent(out) :: emin
+      integer :: efold
       call positions(self%st%nnode, self%st%x0, self%st%u, self%x)
-      call stable_step(self%st, self%sets, self%x, dtmin, emin)
+      call stable_step(self%st, self%sets, self%x, dtmin, emin, efold)
    end subroutine stepper_initial_stable_step
 
    !> Set dt(n+1): fixed (checked against the stable limit) or CFL x the stable limit, from the
@@ -265,11 +301,22 @@ contains
       type(error_t), allocatable, intent(out) :: err
       character(len=*), intent(in) :: where
       character(len=200) :: buf
-      integer :: n
+      integer :: n, efold
       real(wp) :: target, dtp
 
       associate (st => self%st)
-         call stable_step(st, self%sets, self%x, self%dt_stable, self%dt_element)
+         call stable_step(st, self%sets, self%x, self%dt_stable, self%dt_element, efold)
+         if (efold /= 0) then
+            call make_error(err, 'element '//itoa(efold)//' inverted (J <= 0 at a corner: folded) at t = '// &
+                            rtoa(st%t)//', step '//itoa(int(st%step)))
+            return
+         end if
+         if (.not. (self%dt_stable > 0.0_wp .and. ieee_is_finite(self%dt_stable)) .and. &
+             self%dt_stable < huge(1.0_wp)) then
+            call make_error(err, 'the stable step of element '//itoa(self%dt_element)//' is '// &
+                            rtoa(self%dt_stable)//' at t = '//rtoa(st%t)//', step '//itoa(int(st%step)))
+            return
+         end if
          if (self%contact%any_penalty) then
             ! a penalty spring adds its frequency to that of the elements at its nodes:
             ! omega^2 <= omega_elements^2 + omega_penalty^2, i.e. 1/dt^2 adds up
@@ -316,20 +363,145 @@ contains
       end associate
    end subroutine choose_dt
 
-   !> Stop on NaN or runaway energy.
-   subroutine check_health(st, err)
-      type(state_t), intent(in) :: st
+   !> Stop on a non-finite value, naming where it first appears; the energy guard.
+   !>
+   !> E = kinetic + strain + hourglass, E_in = E(0) + W_ext (the energy put in),
+   !> growth = (E - E_in) / (|E(0)| + |W_ext|): past energy_warn a warning (once), past
+   !> energy_stop an error naming the largest contributor (doc/decisions.md, "Energy guard").
+   subroutine check_health(self, err)
+      type(stepper_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
-      real(wp) :: e, scale
-      e = st%kinetic + st%strain + st%hourglass
-      scale = abs(st%total0) + abs(st%wext) + abs(st%wcon) + tiny(1.0_wp)
-      if (.not. (e == e) .or. .not. (st%wext == st%wext)) then
-         call make_error(err, 'NaN in the solution at t = '//rtoa(st%t)//', step '//itoa(int(st%step)))
-      else if (e > 10.0_wp*scale) then
-         call make_error(err, 'runaway energy at t = '//rtoa(st%t)//': kinetic + strain = '// &
-                         rtoa(e)//' against '//rtoa(scale)//' put in; the step is probably unstable')
-      end if
+      real(wp) :: e, put_in, growth
+      character(len=:), allocatable :: what
+      associate (st => self%st)
+         e = st%kinetic + st%strain + st%hourglass
+         if (.not. (ieee_is_finite(e) .and. ieee_is_finite(st%wext) .and. ieee_is_finite(st%wcon))) then
+            call make_error(err, 'a value is not finite at t = '//rtoa(st%t)//', step '// &
+                            itoa(int(st%step))//': '//first_nonfinite(self))
+            return
+         end if
+         put_in = abs(st%total0) + abs(st%wext)
+         if (put_in > 0.0_wp) then
+            growth = (e - (st%total0 + st%wext))/put_in
+         else
+            growth = merge(huge(1.0_wp), 0.0_wp, e > 0.0_wp)
+         end if
+         if (growth > self%growth_max) then
+            self%growth_max = growth
+            self%growth_max_t = st%t
+         end if
+         if (growth <= self%energy_warn) return
+         if (put_in > 0.0_wp) then
+            what = 'the physical energy (kinetic + strain) exceeds the energy put in (initial energy '// &
+                   '+ external work) by '//percent(growth)//' of it at t = '//rtoa(st%t)//', step '// &
+                   itoa(int(st%step))
+         else
+            what = 'kinetic + strain energy '//rtoa(e)//' appeared with no energy put in at t = '// &
+                   rtoa(st%t)//', step '//itoa(int(st%step))
+         end if
+         if (growth > self%energy_stop) then
+            call make_error(err, what//' (stop limit '//percent(self%energy_stop)//'); largest '// &
+                            'contributor: '//contributor(self, put_in))
+         else if (.not. self%energy_warned) then
+            self%energy_warned = .true.
+            call self%messages%add('warning: '//what//' (warning limit '//percent(self%energy_warn)// &
+                                   '); largest contributor: '//contributor(self, put_in))
+         end if
+      end associate
    end subroutine check_health
+
+   !> A fraction as a percentage with three significant digits.
+   function percent(x) result(text)
+      real(wp), intent(in) :: x
+      character(len=:), allocatable :: text
+      character(len=32) :: buf
+      if (x >= huge(1.0_wp)) then
+         text = 'all'
+      else
+         write (buf, '(es10.3)') 100.0_wp*x
+         text = trim(adjustl(buf))//' %'
+      end if
+   end function percent
+
+   !> Where the energy grew most: the contact pair whose multipliers did the most positive work
+   !> (pushing bodies apart), when that work is at least half the warning margin; else the
+   !> element whose nodes carry the largest kinetic energy (a local instability shows there).
+   function contributor(self, put_in) result(text)
+      type(stepper_t), intent(in) :: self
+      real(wp), intent(in) :: put_in
+      character(len=:), allocatable :: text
+      integer :: k, kbest, e, ebest, i, j
+      real(wp) :: wbest, ek, ebig
+      kbest = 0
+      wbest = 0.0_wp
+      if (self%contact%active) then
+         do k = 1, size(self%contact%results)
+            if (self%contact%results(k)%work > wbest) then
+               wbest = self%contact%results(k)%work
+               kbest = k
+            end if
+         end do
+      end if
+      ebest = 0
+      ebig = -1.0_wp
+      do k = 1, size(self%sets)
+         do j = 1, self%sets(k)%nel
+            ek = 0.0_wp
+            do i = 1, 4
+               associate (n => self%sets(k)%conn(i, j))
+                  ek = ek + 0.5_wp*self%st%mass(n)*(self%st%v(1, n)**2 + self%st%v(2, n)**2)
+               end associate
+            end do
+            if (ek > ebig) then
+               ebig = ek
+               ebest = self%sets(k)%elems(j)
+            end if
+         end do
+      end do
+      if (kbest > 0 .and. wbest > 0.5_wp*put_in*self%energy_warn) then
+         text = 'contact pair '//itoa(self%contact%results(kbest)%id)//', whose multipliers did '// &
+                rtoa(wbest)//' of work ('//percent(wbest/max(put_in, tiny(1.0_wp)))//' of the energy put in)'
+      else
+         e = ebest
+         text = 'element '//itoa(e)//', whose nodes carry kinetic energy '//rtoa(ebig)//' ('// &
+                percent(ebig/max(put_in, tiny(1.0_wp)))//' of the energy put in)'
+      end if
+   end function contributor
+
+   !> The first node (and an element using it) whose displacement, velocity, acceleration or
+   !> internal force is not finite.
+   function first_nonfinite(self) result(text)
+      type(stepper_t), intent(in) :: self
+      character(len=:), allocatable :: text
+      integer :: i, k, j
+      character(len=12) :: what
+      text = 'no node has a non-finite value (the energy sums overflowed)'
+      associate (st => self%st)
+         do i = 1, st%nnode
+            if (.not. all(ieee_is_finite(st%u(:, i)))) then
+               what = 'displacement'
+            else if (.not. all(ieee_is_finite(st%v(:, i)))) then
+               what = 'velocity'
+            else if (.not. all(ieee_is_finite(st%a(:, i)))) then
+               what = 'acceleration'
+            else if (.not. all(ieee_is_finite(st%fint(:, i)))) then
+               what = 'force'
+            else
+               cycle
+            end if
+            text = 'the '//trim(what)//' of node '//itoa(i)
+            do k = 1, size(self%sets)
+               do j = 1, self%sets(k)%nel
+                  if (any(self%sets(k)%conn(:, j) == i)) then
+                     text = text//' (element '//itoa(self%sets(k)%elems(j))//')'
+                     return
+                  end if
+               end do
+            end do
+            return
+         end do
+      end associate
+   end function first_nonfinite
 
    !> The error for an element whose Jacobian is no longer positive.
    subroutine inverted_error(st, ebad, err)

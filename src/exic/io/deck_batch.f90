@@ -11,10 +11,11 @@
 !> - `init` option `rate`, `velo`, `regi` or `mate`: every INITial command carries
 !>   data(2, nnode) and given(nnode), read after END (rate/velo) or computed (regi/mate:
 !>   v(1) = r or m, v(2:3) = vx, vy; every node of those elements is given);
-!> - `outp` option `hdf5`, v(1) = dt_out; `prin` option `ener`, v(1) = n.
+!> - `outp` option `hdf5`, v(1) = dt_out; `prin` option `ener`, v(1) = n;
+!> - [ext] `chec` option `ener`, v(1) = warn, v(2) = stop (energy guard limits).
 module exic_io_deck_batch
    use exic_base_kinds, only: wp
-   use exic_base_constants, only: DEFAULT_CFL
+   use exic_base_constants, only: DEFAULT_CFL, ENERGY_WARN, ENERGY_STOP
    use exic_base_error, only: error_t, make_error
    use exic_mesh_mesh, only: mesh_t
    use exic_io_model, only: model_t
@@ -32,9 +33,9 @@ module exic_io_deck_batch
 
    public :: read_batch, read_batch_data
 
-   character(len=12), parameter :: commands(11) = [character(len=12) :: 'TRANsient', 'DT', &
+   character(len=12), parameter :: commands(12) = [character(len=12) :: 'TRANsient', 'DT', &
                                                    'LOOP', 'NEXT', 'TIME', 'FORM', 'TPLOt', &
-                                                   'INITial', 'OUTPut', 'PRINt', 'END']
+                                                   'INITial', 'OUTPut', 'PRINt', 'CHECk', 'END']
    character(len=12), parameter :: requests(9) = [character(len=12) :: 'disp', 'velo', 'acce', &
                                                   'stre', 'reac', 'cont', 'mome', 'show', 'ener']
 
@@ -163,6 +164,8 @@ contains
          else
             c%option = 'hdf5'
          end if
+      case ('chec')
+         call parse_check(rd, i, c, err)
       case ('prin')
          if (.not. keyword_is(opt, 'ener')) then
             call fail(rd, i, 'PRINt,'//field(rd, i, 2)//' is not supported: expected PRINt,ENERgy,n', err)
@@ -172,6 +175,28 @@ contains
          end if
       end select
    end subroutine parse_command
+
+   !> [ext] CHECk,ENERgy,warn,stop: the energy guard's limits as fractions of the energy put in
+   !> (blank: ENERGY_WARN, ENERGY_STOP of src/exic/base/constants.f90); 0 < warn <= stop.
+   subroutine parse_check(rd, i, c, err)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i
+      type(command_t), intent(inout) :: c
+      type(error_t), allocatable, intent(out) :: err
+      character(len=12), parameter :: opts(1) = [character(len=12) :: 'ENERgy']
+      if (.not. keyword_is(c%option, 'ener')) then
+         call unknown_keyword(rd, i, 'CHECk option', field(rd, i, 2), opts, err)
+         return
+      end if
+      c%option = 'ener'
+      if (.not. has_field(rd, i, 3)) c%v(1) = ENERGY_WARN
+      if (.not. has_field(rd, i, 4)) c%v(2) = ENERGY_STOP
+      if (.not. (c%v(1) > 0.0_wp .and. c%v(2) >= c%v(1) .and. c%v(2) < huge(1.0_wp))) &
+         call fail(rd, i, 'CHECk,ENERgy,warn,stop = '//rtoa(c%v(1))//', '//rtoa(c%v(2))// &
+                   ': expected 0 < warn <= stop', err)
+      if (has_field(rd, i, 5)) call fail(rd, i, 'CHECk,ENERgy,warn,stop takes two values; the fifth field '// &
+                                         field(rd, i, 5)//' is not used', err)
+   end subroutine parse_check
 
    !> v must be an integer >= 1.
    subroutine positive_int(rd, i, v, what, err)
@@ -434,9 +459,9 @@ contains
             return
          end if
       case (REQ_CONT)
-         if (r%comp < 1 .or. r%comp > 6) then
-            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1..6 (normal force, '// &
-                      'force x, force y, active constraints, penetration, largest multiplier)', err)
+         if (r%comp < 1 .or. r%comp > 7) then
+            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1..7 (normal force, '// &
+                      'force x, force y, active constraints, penetration, largest multiplier, work)', err)
             return
          end if
          call check_pair(id)

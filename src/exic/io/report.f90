@@ -76,6 +76,10 @@ contains
             call files%say('energy: kinetic '//rtoa(st%kinetic)//', strain '// &
                            rtoa(st%strain + st%hourglass)//', external work '//rtoa(st%wext)// &
                            ', contact work '//rtoa(st%wcon)//', initial total '//rtoa(st%total0))
+            call files%say('energy guard: largest growth of the physical energy over the energy put in '// &
+                           rtoa(100.0_wp*max(stp%growth_max, 0.0_wp))//' % (at t = '//rtoa(stp%growth_max_t)// &
+                           '); limits: warning '//rtoa(100.0_wp*stp%energy_warn)//' %, stop '// &
+                           rtoa(100.0_wp*stp%energy_stop)//' %')
          end if
          if (allocated(err)) call files%say('error: '//err%message)
          call files%say('wall time '//rtoa(wall)//' s')
@@ -90,7 +94,8 @@ contains
          if (c%active) then
             call files%say('contact: largest penetration over the run '//rtoa(c%max_penetration)// &
                            ', redundant constraints removed '//itoa(c%nredundant)// &
-                           ', steps whose corrector reached its pass limit '//itoa(c%corr%pass_limit_hits))
+                           ', steps whose corrector reached its pass limit '//itoa(c%corr%pass_limit_hits)// &
+                           ' (each kept its last compressive multipliers)')
             call files%say('contact corrector: factorizations '//itoa(c%corr%nsolves)// &
                            ' (dense '//itoa(c%corr%ndense)//', sparse '//itoa(c%corr%nsparse)// &
                            '), sparse symbolic analyses '//itoa(c%corr%sparse%nanalyze))
