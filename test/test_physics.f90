@@ -3,7 +3,7 @@ module test_physics
    use exic_base_kinds, only: wp
    use exic_base_strings, only: rtoa
    use testing, only: suite_t, check, check_close, section
-   use deck_runner, only: run_dir, run_deck, read_table, column, write_text
+   use deck_runner, only: run_dir, run_deck, read_table, column, write_text, file_has
    use exic_base_error, only: error_t
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
@@ -27,6 +27,8 @@ contains
       call energy_test(s, 1)
       call section(s, 'physics: stable step')
       call stability_tests(s)
+      call section(s, 'physics: an overflowing energy stops the run before any non-finite row')
+      call overflow_test(s)
       call section(s, 'physics: element inversion stops the run')
       call inversion_test(s)
       call section(s, 'physics: objectivity under a 90-degree rigid rotation')
@@ -292,5 +294,30 @@ contains
       call read_table(run_dir//'/crush.ene', names, d)
       call check(s, size(d, 2) >= 10 .and. all(d == d), 'energies kept up to the failing step, no NaN')
    end subroutine inversion_test
+
+   !> v0 = 1e155 overflows the kinetic energy at t = 0: the run fails (exit 1) saying so, and
+   !> no output file holds a non-finite number.
+   subroutine overflow_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, deck
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: d(:, :)
+      integer :: stage
+      deck = 'FEAP * * overflow'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'BLOCk'//nl//'  CARTesian,4,2,0,0,1'//nl//'    1,0,0'//nl//'    2,1,0'//nl//'    3,1,0.5'//nl// &
+             '    4,0,0.5'//nl//nl//'INITial,VELOcity'//nl//'  MATErial,1,1e155,0'//nl//nl// &
+             'END'//nl//'BATCh'//nl//'  TPLOt,,1'//nl//'  LOOP,,10'//nl// &
+             '    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//'  velo,1,1'//nl//nl//'STOP'
+      call run_deck('overflow', deck, stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'not finite') > 0 .and. index(msg, 't = ') > 0, &
+                 'an overflowing kinetic energy stops the run, saying so', msg)
+      call check(s, .not. file_has(run_dir//'/overflow.ene', 'Infinity') .and. &
+                 .not. file_has(run_dir//'/overflow.ene', 'NaN') .and. &
+                 .not. file_has(run_dir//'/overflow.his', 'Infinity') .and. &
+                 .not. file_has(run_dir//'/overflow.his', 'NaN'), 'no non-finite number in .ene or .his')
+      call read_table(run_dir//'/overflow.ene', names, d)
+      call check(s, all(d == d) .and. all(abs(d) <= huge(1.0_wp)), '.ene reads back finite')
+   end subroutine overflow_test
 
 end module test_physics

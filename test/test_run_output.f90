@@ -21,6 +21,8 @@ contains
       call readback_test(s)
       call section(s, 'run output: a run killed by SIGTERM halfway')
       call killed_run_test(s)
+      call section(s, 'run output: an output interval far below the time step')
+      call tiny_interval_test(s)
    end subroutine run_run_output_tests
 
    !> A 12 x 2 bar hitting a rigid wall at a fixed step 1e-3: fields every `every` steps,
@@ -163,6 +165,30 @@ contains
       end do
       close (u)
    end subroutine read_h5_vector
+
+   !> OUTPut,HDF5,1e-12 with a step of 1e-3: fields once per step (61 output times for 60 steps),
+   !> a warning in <stem>.out, and no loop over the 1e9 intervals each step jumps over.
+   subroutine tiny_interval_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, deck
+      real(wp), allocatable :: times(:)
+      integer :: stage
+      deck = bar_deck(60, 1)
+      deck = deck(:index(deck, 'OUTPut,HDF5,') + 11)//'1e-12'//deck(index(deck, 'OUTPut,HDF5,') + 16:)
+      call check(s, index(deck, 'OUTPut,HDF5,1e-12'//nl) > 0, 'deck with OUTPut,HDF5,1e-12 written')
+      call run_deck('tiny_interval', deck, stage, msg)
+      call check(s, stage == 0, 'a run with OUTPut,HDF5,1e-12 and a step of 1e-3 finishes', msg)
+      if (stage /= 0) return
+      call check(s, file_has(run_dir//'/tiny_interval.out', 'fields are written once per step'), &
+                 'the interval below the step is a warning in <stem>.out')
+      if (.not. have_command('h5dump')) then
+         call skip(s, 'output times read back', 'h5dump')
+         return
+      end if
+      call read_h5_vector(run_dir//'/tiny_interval.h5', '/time', times)
+      call check(s, size(times) == 61, 'one output time per step (61 for 60 steps)', &
+                 'output times '//itoa(size(times)))
+   end subroutine tiny_interval_test
 
    !> The last number on the lines of a file (0 if none).
    real(wp) function last_number(path) result(x)

@@ -154,6 +154,7 @@ contains
          call kinetic_energy(st)
          st%total0 = st%kinetic + st%strain + st%hourglass
       end associate
+      call check_health(self, err)
    end subroutine stepper_start
 
    !> One explicit step (FORM,EXPLicit), steps 1-7 of the module header.

@@ -4,9 +4,11 @@
 !> and for fields when an output time is due (`fields_due`); the final state is always written
 !> (`final`). Values come from the stepper's state; nothing here changes it.
 module exic_io_output
+   use, intrinsic :: iso_fortran_env, only: error_unit
    use exic_base_kinds, only: wp, i8
    use exic_base_constants, only: TIME_TOL
    use exic_base_error, only: error_t
+   use exic_base_strings, only: rtoa
    use exic_io_model, only: model_t
    use exic_io_program, only: REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, REQ_REAC, REQ_CONT, REQ_MOME
    use exic_io_history, only: history_files_t
@@ -30,6 +32,7 @@ module exic_io_output
       real(wp) :: field_dt = 0.0_wp                 !< OUTPut,HDF5 interval (0: no field output)
       real(wp) :: field_next = 0.0_wp               !< time of the next field output
       real(wp) :: field_last = -huge(1.0_wp)        !< time of the last field output
+      logical :: warned_interval = .false.          !< the interval-below-the-step warning was given
    contains
       procedure :: open => output_open
       procedure :: begin => output_begin
@@ -159,13 +162,26 @@ contains
                             stp%contact%edges(), err)
    end subroutine output_open_fields
 
-   !> Write the fields when an output time is due.
+   !> Write the fields when an output time is due. The next output time is the first multiple
+   !> of the interval after t: with an interval below the time step the fields are written once
+   !> per step (the stepper's report says so once), and the schedule skips the intervals a long
+   !> step jumped over at once rather than one by one.
    subroutine output_fields_due(self, stp, err)
       class(output_t), intent(inout) :: self
       type(stepper_t), intent(in) :: stp
       type(error_t), allocatable, intent(out) :: err
+      real(wp) :: behind
       if (.not. self%fields%is_open()) return
       if (stp%st%t < self%field_next*(1.0_wp - TIME_TOL)) return
+      if (self%field_dt < stp%st%dt_prev .and. .not. self%warned_interval) then
+         self%warned_interval = .true.
+         call self%files%say('warning: the OUTPut,HDF5 interval '//rtoa(self%field_dt)//' is below the '// &
+                             'time step '//rtoa(stp%st%dt_prev)//': fields are written once per step')
+         write (error_unit, '(a)') 'exic: warning: the OUTPut,HDF5 interval '//rtoa(self%field_dt)// &
+            ' is below the time step '//rtoa(stp%st%dt_prev)//': fields are written once per step'
+      end if
+      behind = (stp%st%t - self%field_next)/self%field_dt
+      if (behind > 64.0_wp) self%field_next = self%field_next + aint(behind - 1.0_wp)*self%field_dt
       do while (self%field_next <= stp%st%t*(1.0_wp + TIME_TOL))
          self%field_next = self%field_next + self%field_dt
       end do
