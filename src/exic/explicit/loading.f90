@@ -465,6 +465,9 @@ contains
             if (b%kind /= RB_FREE) cycle
             call rigid_levers(b, st%nnode, st%x0, st%u, self%rb%r)
             call rigid_fit_velocity(b, st%nnode, self%rb%r, self%wlump, st%v, b%v, b%om)
+            ! V(n) of the coming step (at t = 0 the predictor starts from it)
+            b%vn = b%v
+            b%omn = b%om
             call rigid_node_motion(b, st%nnode, self%rb%r, b%v, b%om, b%a, b%al, st%v, st%a)
          end associate
       end do
