@@ -38,6 +38,7 @@ contains
       call stretched_edge(s)
       call deforming_edge(s)
       call spinning_ring(s)
+      call physical_edge(s)
       call section(s, 'loads: a rigid punch driven into a block')
       call punch(s, 'MOTIon,REGIon,2,0,-vp'//nl, 'motion')
       call punch(s, 'INITial,VELOcity'//nl//'  REGIon,2,0,-vp'//nl//nl, 'initial velocity')
@@ -493,6 +494,49 @@ contains
          end do
       end function ang_mom
    end subroutine spinning_ring
+
+   !> A unit square meshed by Gmsh (4 x 4, physical curves 5 = top, 6 = bottom) with a pressure
+   !> p = 2 on curve 5 (CSURface PHYSical), ramped over 20 periods of its lowest mode and held,
+   !> its bottom fixed (PBOUndary 6): the edge forces add up to p times the deformed top's chord
+   !> at t = 0 and at every step, and the bottom's reaction sum (reac,PHYSical,6,2) averages p
+   !> times the top's length over the hold within 0.1 %.
+   subroutine physical_edge(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, deck
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: d(:, :)
+      real(wp) :: rsum, w, dtr, lmean
+      integer :: stage, i
+      call write_text(run_dir//'/phys_square.geo', 'Point(1) = {0, 0, 0}; Point(2) = {1, 0, 0}; '// &
+                      'Point(3) = {1, 1, 0}; Point(4) = {0, 1, 0};'//nl// &
+                      'Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};'//nl// &
+                      'Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};'//nl// &
+                      'Transfinite Curve{1:4} = 5; Transfinite Surface{1}; Recombine Surface{1};'//nl// &
+                      'Physical Surface(1) = {1}; Physical Curve(5) = {3}; Physical Curve(6) = {1};')
+      deck = head//solid//'GMSH,phys_square.geo'//nl//'PBOUndary,6,1,1'//nl//'CSURface'//nl//'  NORMal'//nl// &
+             '  PHYSical,5,2'//nl//nl//'END'//nl//'BATCh'//nl//'  PROPortional,,1'//nl//'  TPLOt,,1'//nl// &
+             '  LOOP,,1000000'//nl//'    TIME,,3'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
+             '2, 0'//nl//'0, 0, 2, 1'//nl//nl//'  reac,PHYSical,6,2'//nl//'  disp,,1,0,1'//nl// &
+             '  disp,,1,1,1'//nl//nl//'STOP'
+      call run_deck('phys_edge', deck, stage, msg)
+      call check(s, stage == 0, 'pressure on a Gmsh physical curve runs', msg)
+      if (stage /= 0) return
+      call read_table(run_dir//'/phys_edge.his', names, d)
+      rsum = 0.0_wp
+      w = 0.0_wp
+      lmean = 0.0_wp
+      do i = 2, size(d, 2)
+         if (d(1, i) <= 2.0_wp) cycle
+         dtr = d(1, i) - d(1, i - 1)
+         rsum = rsum + 0.5_wp*(d(2, i) + d(2, i - 1))*dtr
+         lmean = lmean + 0.5_wp*((1.0_wp + d(4, i) - d(3, i)) + (1.0_wp + d(4, i - 1) - d(3, i - 1)))*dtr
+         w = w + dtr
+      end do
+      rsum = rsum/w
+      lmean = lmean/w
+      call check(s, abs(rsum - 2.0_wp*lmean) <= 1.0e-3_wp*2.0_wp*lmean, 'mean reaction over the held '// &
+                 'bottom = p x the top''s length within 0.1 %', rtoa(rsum)//' against '//rtoa(2.0_wp*lmean))
+   end subroutine physical_edge
 
    !> A rigid punch (width 0.5) driven at constant velocity 0.2 into a block (1 x 1, bottom fixed),
    !> by MOTIon or by an initial velocity, its nodes (the slaves of the pair) on the block's: the

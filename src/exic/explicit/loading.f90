@@ -286,7 +286,6 @@ contains
       integer, allocatable :: elems(:)
       logical :: on(st%nnode)
       integer :: e, j, k, nfree
-      real(wp) :: m, s(2), jj, area, sa(2), ja, xc(2), p(2)
 
       elems = pack([(e, e=1, mesh%nelem)], is_rigid .and. mesh%region == region)
       nfree = count(materials(mesh%mat(elems))%free)
@@ -328,61 +327,77 @@ contains
                return
             end if
          end do
-         ! centroid: of the mass, or of the area for a massless body; then m, I about it
-         p = st%x0(:, b%nodes(1))
-         m = 0.0_wp
-         s = 0.0_wp
-         jj = 0.0_wp
-         area = 0.0_wp
-         sa = 0.0_wp
-         ja = 0.0_wp
-         do j = 1, size(elems)
-            e = elems(j)
-            call q4_mass_moments(1, st%nnode, mesh%conn(:, e:e), st%x0, materials(mesh%mat(e))%rho, p, m, s, jj)
-            call q4_mass_moments(1, st%nnode, mesh%conn(:, e:e), st%x0, 1.0_wp, p, area, sa, ja)
-         end do
-         if (b%kind == RB_FREE) then
-            ! point masses of deformable elements at shared nodes
-            do j = 1, b%nnode
-               k = b%nodes(j)
-               m = m + mdef(k)
-               s = s + mdef(k)*(st%x0(:, k) - p)
-            end do
-         end if
-         if (m > 0.0_wp) then
-            xc = p + s/m
-         else
-            xc = p + sa/area
-         end if
-         m = 0.0_wp
-         s = 0.0_wp
-         jj = 0.0_wp
-         do j = 1, size(elems)
-            e = elems(j)
-            call q4_mass_moments(1, st%nnode, mesh%conn(:, e:e), st%x0, materials(mesh%mat(e))%rho, xc, m, s, jj)
-         end do
-         if (b%kind == RB_FREE) then
-            do j = 1, b%nnode
-               k = b%nodes(j)
-               m = m + mdef(k)
-               jj = jj + mdef(k)*sum((st%x0(:, k) - xc)**2)
-            end do
-            if (.not. (m > 0.0_wp .and. jj > 0.0_wp)) then
-               call make_error(err, 'the free rigid body of region '//itoa(region)//' has no mass: '// &
-                               'expected DENSity rho > 0')
-               return
-            end if
-         end if
-         b%mass = m
-         b%inertia = jj
-         b%xc0 = xc
-         b%xc = xc
-         allocate (b%s(2, b%nnode))
-         do j = 1, b%nnode
-            b%s(:, j) = st%x0(:, b%nodes(j)) - xc
-         end do
+         call body_moments(b, mesh, materials, st, elems, mdef, err)
       end associate
    end subroutine make_body
+
+   !> Body b's mass, centroid and inertia from its rigid elements `elems` (2x2 Gauss) and, for a
+   !> free body, the deformable lumped masses mdef at its nodes; the centroid is that of the mass
+   !> (of the area for a massless body), and the reference offsets s_k of its nodes.
+   subroutine body_moments(b, mesh, materials, st, elems, mdef, err)
+      type(rigid_body_t), intent(inout) :: b
+      type(mesh_t), intent(in) :: mesh
+      type(material_t), intent(in) :: materials(:)
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: elems(:)
+      real(wp), intent(in) :: mdef(:)
+      type(error_t), allocatable, intent(out) :: err
+      integer :: e, j, k
+      real(wp) :: m, s(2), jj, area, sa(2), ja, xc(2), p(2)
+      ! centroid: of the mass, or of the area for a massless body; then m, I about it
+      p = st%x0(:, b%nodes(1))
+      m = 0.0_wp
+      s = 0.0_wp
+      jj = 0.0_wp
+      area = 0.0_wp
+      sa = 0.0_wp
+      ja = 0.0_wp
+      do j = 1, size(elems)
+         e = elems(j)
+         call q4_mass_moments(1, st%nnode, mesh%conn(:, e:e), st%x0, materials(mesh%mat(e))%rho, p, m, s, jj)
+         call q4_mass_moments(1, st%nnode, mesh%conn(:, e:e), st%x0, 1.0_wp, p, area, sa, ja)
+      end do
+      if (b%kind == RB_FREE) then
+         ! point masses of deformable elements at shared nodes
+         do j = 1, b%nnode
+            k = b%nodes(j)
+            m = m + mdef(k)
+            s = s + mdef(k)*(st%x0(:, k) - p)
+         end do
+      end if
+      if (m > 0.0_wp) then
+         xc = p + s/m
+      else
+         xc = p + sa/area
+      end if
+      m = 0.0_wp
+      s = 0.0_wp
+      jj = 0.0_wp
+      do j = 1, size(elems)
+         e = elems(j)
+         call q4_mass_moments(1, st%nnode, mesh%conn(:, e:e), st%x0, materials(mesh%mat(e))%rho, xc, m, s, jj)
+      end do
+      if (b%kind == RB_FREE) then
+         do j = 1, b%nnode
+            k = b%nodes(j)
+            m = m + mdef(k)
+            jj = jj + mdef(k)*sum((st%x0(:, k) - xc)**2)
+         end do
+         if (.not. (m > 0.0_wp .and. jj > 0.0_wp)) then
+            call make_error(err, 'the free rigid body of region '//itoa(b%region)//' has no mass: '// &
+                            'expected DENSity rho > 0')
+            return
+         end if
+      end if
+      b%mass = m
+      b%inertia = jj
+      b%xc0 = xc
+      b%xc = xc
+      allocate (b%s(2, b%nnode))
+      do j = 1, b%nnode
+         b%s(:, j) = st%x0(:, b%nodes(j)) - xc
+      end do
+   end subroutine body_moments
 
    !> Sorted regions of the elements marked in `mask`.
    function unique_regions(region, mask) result(u)
