@@ -10,6 +10,7 @@ module test_loads
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
    use exic_explicit_step, only: stepper_t
+   use exic_explicit_loads, only: prop_fn_t, prop_eval, prop_value, FN_TYPE1, FN_TABLE, FN_RAMP
    use testing, only: suite_t, check, check_close, section
    use deck_runner, only: run_dir, run_deck, read_table, column, write_text
    implicit none
@@ -27,14 +28,18 @@ contains
 
    subroutine run_loads_tests(s)
       type(suite_t), intent(inout) :: s
-      call section(s, 'loads: gravity')
-      call free_fall(s)
+      call section(s, 'loads: proportional functions')
+      call functions(s)
+      call section(s, 'loads: gravity and body forces')
+      call free_fall(s, 'GRAVity,0,-9.81'//nl, 'GRAVity')
+      call free_fall(s, '', 'BODY')
       call first_touch(s)
       call resting_block(s)
       call section(s, 'loads: proportional loads on a 1-D bar')
       call bar_ramp_hold(s)
       call bar_prescribed_end(s)
       call section(s, 'loads: edge loads (CSURface)')
+      call edge_values(s)
       call stretched_edge(s)
       call deforming_edge(s)
       call spinning_ring(s)
@@ -42,6 +47,7 @@ contains
       call section(s, 'loads: a rigid punch driven into a block')
       call punch(s, 'MOTIon,REGIon,2,0,-vp'//nl, 'motion')
       call punch(s, 'INITial,VELOcity'//nl//'  REGIon,2,0,-vp'//nl//nl, 'initial velocity')
+      call spun_body(s)
       call section(s, 'loads: input errors name file:line')
       call bad_input(s)
    end subroutine run_loads_tests
@@ -80,21 +86,26 @@ contains
              '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//after//nl//'STOP'
    end function batch
 
-   !> A block under gravity alone falls freely: u = -g t^2/2, v = -g t, a = -g at every step to
-   !> round-off (central difference integrates a constant acceleration exactly), no lateral
-   !> motion, and kinetic + strain - external work stays zero.
-   subroutine free_fall(s)
+   !> A block (density 2) under gravity alone, or under BODY 0 -19.62 (the same force per unit
+   !> volume), falls freely: u = -g t^2/2, v = -g t, a = -g at every step to round-off (central
+   !> difference integrates a constant acceleration exactly), no lateral motion, its angular
+   !> momentum about the origin (mome,1,3) is -m X_c g t, and kinetic + strain - external work
+   !> stays zero.
+   subroutine free_fall(s, load, what)
       type(suite_t), intent(inout) :: s
-      character(len=:), allocatable :: msg
+      character(len=*), intent(in) :: load, what
+      character(len=:), allocatable :: msg, mat
       character(len=64), allocatable :: names(:), en(:)
       real(wp), allocatable :: d(:, :), e(:, :)
       integer :: stage, i, kt
       real(wp), parameter :: g = 9.81_wp, tmax = 0.5_wp
-      real(wp) :: eu, ev, ea, ex, et, t
-      call run_deck('free_fall', head//solid//block(2, 2, 1, 1, 1, 1, 0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp)// &
-                    'GRAVity,0,-9.81'//nl//batch('0.5', '  disp,9,2'//nl//'  velo,9,2'//nl// &
-                    '  acce,5,2'//nl//'  disp,1,1'//nl), stage, msg)
-      call check(s, stage == 0, 'free fall deck runs', msg)
+      real(wp) :: eu, ev, ea, ex, et, el, t
+      mat = 'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'//nl//'    DENSity 2'//nl
+      if (what == 'BODY') mat = mat//'    BODY 0 -19.62'//nl
+      call run_deck('free_fall', head//mat//nl//block(2, 2, 1, 1, 1, 1, 0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp)// &
+                    load//batch('0.5', '  disp,9,2'//nl//'  velo,9,2'//nl// &
+                    '  acce,5,2'//nl//'  disp,1,1'//nl//'  mome,1,3'//nl), stage, msg)
+      call check(s, stage == 0, what//': free fall deck runs', msg)
       if (stage /= 0) return
       call read_table(run_dir//'/free_fall.his', names, d)
       call read_table(run_dir//'/free_fall.ene', en, e)
@@ -104,24 +115,28 @@ contains
       ea = 0.0_wp
       ex = 0.0_wp
       et = 0.0_wp
+      el = 0.0_wp
       do i = 1, size(d, 2)
          t = d(1, i)
          eu = max(eu, abs(d(2, i) + 0.5_wp*g*t*t))
          ev = max(ev, abs(d(3, i) + g*t))
          ea = max(ea, abs(d(4, i) + g))
          ex = max(ex, abs(d(5, i)))
+         el = max(el, abs(d(6, i) + 2.0_wp*0.5_wp*g*t))
          et = max(et, abs(e(kt, i)))
       end do
-      call check(s, abs(d(1, size(d, 2)) - tmax) < 1.0e-12_wp, 'free fall reaches t = 0.5')
-      call check(s, eu <= 1.0e-13_wp*g*tmax**2, 'free fall: u = -g t^2/2 at every step', 'largest error '//rtoa(eu))
-      call check(s, ev <= 1.0e-13_wp*g*tmax, 'free fall: v = -g t at every step', 'largest error '//rtoa(ev))
+      call check(s, abs(d(1, size(d, 2)) - tmax) < 1.0e-12_wp, what//': free fall reaches t = 0.5')
+      call check(s, eu <= 1.0e-13_wp*g*tmax**2, what//': u = -g t^2/2 at every step', 'largest error '//rtoa(eu))
+      call check(s, ev <= 1.0e-13_wp*g*tmax, what//': v = -g t at every step', 'largest error '//rtoa(ev))
+      call check(s, el <= 1.0e-12_wp*g*tmax, what//': angular momentum -m X_c g t (mome,1,3)', &
+                 'largest error '//rtoa(el))
       ! a is formed from the element forces of the translated block, zero up to the round-off of
       ! their gradients: E |u| eps / (rho h) (E = 1000, |u| <= 1.23, rho = 2, h = 0.5)
       call check(s, ea <= 100.0_wp*epsilon(1.0_wp)*1000.0_wp*1.23_wp/(2.0_wp*0.5_wp), &
-                 'free fall: a = -g at every step (to round-off)', 'largest error '//rtoa(ea))
-      call check(s, ex <= 1.0e-15_wp, 'free fall: no lateral motion', 'largest '//rtoa(ex))
-      call check(s, et <= 1.0e-13_wp*g*tmax**2*0.5_wp*g, 'free fall: kinetic + strain - external work '// &
-                 'stays 0', 'largest '//rtoa(et))
+                 what//': a = -g at every step (to round-off)', 'largest error '//rtoa(ea))
+      call check(s, ex <= 1.0e-15_wp, what//': no lateral motion', 'largest '//rtoa(ex))
+      call check(s, et <= 1.0e-13_wp*g*tmax**2*g, what//': kinetic + strain - external work stays 0', &
+                 'largest '//rtoa(et))
    end subroutine free_fall
 
    !> A block released at height h = 0.05 above a rigid floor (g = 10) first touches it at
@@ -315,6 +330,129 @@ contains
                  'energy balance with the work of the prescribed motion within 0.5 %', &
                  'largest drift '//rtoa(100.0_wp*dmax)//' %')
    end subroutine bar_prescribed_end
+
+   !> Type 1 and 2 functions and the sum rule against their definitions; p' and p'' of type 1
+   !> (k = 0..3) against central differences of p.
+   subroutine functions(s)
+      type(suite_t), intent(inout) :: s
+      type(prop_fn_t) :: f(3)
+      real(wp) :: p, dp, ddp, pp, pm, q, dq, ddq, h, t, worst1, worst2
+      integer :: k, j
+      f(1)%kind = FN_TYPE1
+      f(1)%tmin = 0.5_wp
+      f(1)%tmax = 3.0_wp
+      f(1)%a = [0.3_wp, 0.7_wp, 1.3_wp, 2.1_wp]
+      worst1 = 0.0_wp
+      worst2 = 0.0_wp
+      h = 1.0e-4_wp
+      do k = 0, 3
+         f(1)%k = k
+         do j = 1, 9
+            t = 0.6_wp + 0.27_wp*real(j, wp)
+            call prop_eval(f(1), t, p, dp, ddp)
+            call prop_eval(f(1), t + h, pp, q, ddq)
+            call prop_eval(f(1), t - h, pm, q, ddq)
+            worst1 = max(worst1, abs(dp - (pp - pm)/(2.0_wp*h)))
+            worst2 = max(worst2, abs(ddp - (pp - 2.0_wp*p + pm)/h**2))
+         end do
+      end do
+      ! truncation h^2 p'''/6 <= 1e-8 x 300/6 and round-off eps / h^2 x 6 = 1.3e-7: 1e-6, 1e-5
+      call check(s, worst1 <= 1.0e-6_wp .and. worst2 <= 1.0e-5_wp, 'type 1: p'' and p'''' against central '// &
+                 'differences (k = 0..3)', rtoa(worst1)//', '//rtoa(worst2))
+      f(1)%k = 2
+      call prop_eval(f(1), 1.0_wp, p, dp, ddp)
+      call check_close(s, p, 0.3_wp + 0.7_wp*0.5_wp + 1.3_wp*sin(2.1_wp*0.5_wp)**2, 1.0e-15_wp, &
+                       'type 1: a1 + a2 (t - tmin) + a3 sin^k(a4 (t - tmin))')
+      call prop_eval(f(1), 0.49_wp, p, dp, ddp)
+      call prop_eval(f(1), 3.01_wp, q, dq, ddq)
+      call check(s, p == 0.0_wp .and. q == 0.0_wp .and. dp == 0.0_wp .and. dq == 0.0_wp, 'type 1: 0 outside '// &
+                 '[tmin, tmax]')
+      f(2)%kind = FN_TABLE
+      f(2)%tab = reshape([0.0_wp, 0.0_wp, 1.0_wp, 2.0_wp, 1.0_wp, 5.0_wp, 2.0_wp, 5.0_wp], [2, 4])
+      call prop_eval(f(2), 0.25_wp, p, dp, ddp)
+      call check(s, p == 0.5_wp .and. dp == 2.0_wp .and. ddp == 0.0_wp, 'table: linear between points')
+      call prop_eval(f(2), 1.0_wp, p, dp, ddp)
+      call prop_eval(f(2), 1.0_wp + 1.0e-9_wp, q, dq, ddq)
+      call check(s, p == 2.0_wp .and. abs(q - 5.0_wp) < 1.0e-12_wp, 'table: a time given twice is a jump '// &
+                 '(first value at it, second after)')
+      call prop_eval(f(2), -1.0_wp, p, dp, ddp)
+      call prop_eval(f(2), 9.0_wp, q, dq, ddq)
+      call check(s, p == 0.0_wp .and. q == 5.0_wp .and. dq == 0.0_wp, 'table: constant beyond the ends')
+      f(3)%kind = FN_RAMP
+      call prop_value(f, 0, 0.75_wp, p, dp, ddp)
+      call check_close(s, p, (0.3_wp + 0.7_wp*0.25_wp + 1.3_wp*sin(2.1_wp*0.25_wp)**2) + 1.5_wp + 0.75_wp, &
+                       1.0e-15_wp, 'function 0 is the sum of all functions')
+      call prop_value(f(1:0), 0, 0.75_wp, p, dp, ddp)
+      call check(s, p == 1.0_wp .and. dp == 0.0_wp, 'function 0 is 1 when there are none')
+   end subroutine functions
+
+   !> Edge loads at t = 0 on a 2 x 1 block's top: a pressure interpolated linearly from 1 at
+   !> x = 0 to 3 at x = 2 adds up to its integral, -4 (downward), with the moment of its
+   !> centroid (x = 7/6); a tangential traction 0.5 from point 1 (x = 2) to point 2 (x = 0) adds
+   !> up to (-1, 0).
+   subroutine edge_values(s)
+      type(suite_t), intent(inout) :: s
+      type(model_t) :: model
+      type(stepper_t) :: stp
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: deck
+      real(wp) :: fy, mz, fx
+      integer :: i
+      deck = head//solid//block(4, 1, 1, 1, 1, 1, 0.0_wp, 0.0_wp, 2.0_wp, 1.0_wp)//'CSURface'//nl// &
+             '  NORMal'//nl//'  LINEar'//nl//'    1,0,1,1'//nl//'    2,2,1,3'//nl//'  TANGential'//nl// &
+             '  LINEar'//nl//'    1,2,1,0.5'//nl//'    2,0,1,0.5'//nl//nl//'END'//nl//'BATCh'//nl//'END'// &
+             nl//'STOP'
+      call setup_stepper('edge_values', deck, model, stp, err)
+      if (.not. allocated(err)) call stp%start(err)
+      call check(s, .not. allocated(err), 'edge values set up', merge_msg(err))
+      if (allocated(err)) return
+      fy = 0.0_wp
+      mz = 0.0_wp
+      fx = 0.0_wp
+      do i = 1, stp%st%nnode
+         fy = fy + stp%st%fext(2, i)
+         fx = fx + stp%st%fext(1, i)
+         mz = mz + stp%st%x0(1, i)*stp%st%fext(2, i)
+      end do
+      call check_close(s, fy, -4.0_wp, 1.0e-14_wp, 'linear pressure: resultant = its integral')
+      call check_close(s, mz/fy, 7.0_wp/6.0_wp, 1.0e-14_wp, 'linear pressure: at its centroid')
+      call check_close(s, fx, -1.0_wp, 1.0e-14_wp, 'tangential traction from point 1 to point 2')
+   end subroutine edge_values
+
+   !> A RIGId square driven by MOTIon,REGIon,1,0.5,0,2 (velocity (0.5, 0), spin 2 about its
+   !> centroid): after 0.5 its centroid has moved 0.25, it has turned by 1 (rigi,1,1 and 3), and
+   !> its nodes sit on the rigid placement.
+   subroutine spun_body(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, deck
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: d(:, :)
+      integer :: stage, n
+      real(wp) :: t, xc, yc, x9, y9, c, sn
+      deck = head//'MATErial,1'//nl//'  RIGId'//nl//'    DENSity 1'//nl//nl// &
+             block(2, 2, 1, 1, 1, 1, 0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp)//'MOTIon,REGIon,1,0.5,0,2'//nl// &
+             'END'//nl//'BATCh'//nl//'  DT,,1e-3'//nl//'  TPLOt,,1'//nl//'  LOOP,,500'//nl//'    TIME'//nl// &
+             '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//'  rigi,1,1'//nl//'  rigi,1,3'//nl// &
+             '  rigi,1,6'//nl//'  disp,9,1'//nl//'  disp,9,2'//nl//nl//'STOP'
+      call run_deck('spun', deck, stage, msg)
+      call check(s, stage == 0, 'a spun rigid body runs', msg)
+      if (stage /= 0) return
+      call read_table(run_dir//'/spun.his', names, d)
+      n = size(d, 2)
+      t = d(1, n)
+      call check(s, abs(d(2, n) - 0.5_wp*t) <= 1.0e-12_wp .and. abs(d(3, n) - 2.0_wp*t) <= 1.0e-12_wp .and. &
+                 abs(d(4, n) - 2.0_wp) <= 1.0e-12_wp, 'centroid moved v t, turned omega t at omega', &
+                 'at t = '//rtoa(t)//': '//rtoa(d(2, n))//', '//rtoa(d(3, n)))
+      ! node 9 = corner (1, 1): offset (0.5, 0.5) from the centroid, turned by 2 t
+      c = cos(2.0_wp*t)
+      sn = sin(2.0_wp*t)
+      xc = 0.5_wp + 0.5_wp*t
+      yc = 0.5_wp
+      x9 = xc + c*0.5_wp - sn*0.5_wp
+      y9 = yc + sn*0.5_wp + c*0.5_wp
+      call check(s, abs(1.0_wp + d(5, n) - x9) <= 1.0e-12_wp .and. abs(1.0_wp + d(6, n) - y9) <= 1.0e-12_wp, &
+                 'its corner on the rigid placement', rtoa(1.0_wp + d(5, n))//', '//rtoa(1.0_wp + d(6, n)))
+   end subroutine spun_body
 
    !> A block whose every node is prescribed (x stretched as eps X sin(w t), FPROportional
    !> giving the x dofs function 1 and the y dofs function 2 = 1): the pressure on its top edge
