@@ -48,6 +48,7 @@ contains
       call punch(s, 'MOTIon,REGIon,2,0,-vp'//nl, 'motion')
       call punch(s, 'INITial,VELOcity'//nl//'  REGIon,2,0,-vp'//nl//nl, 'initial velocity')
       call spun_body(s)
+      call driven_region(s)
       call section(s, 'loads: input errors name file:line')
       call bad_input(s)
    end subroutine run_loads_tests
@@ -453,6 +454,33 @@ contains
       call check(s, abs(1.0_wp + d(5, n) - x9) <= 1.0e-12_wp .and. abs(1.0_wp + d(6, n) - y9) <= 1.0e-12_wp, &
                  'its corner on the rigid placement', rtoa(1.0_wp + d(5, n))//', '//rtoa(1.0_wp + d(6, n)))
    end subroutine spun_body
+
+   !> A deformable region driven by MOTIon,REGIon,1,0.3,-0.2 (every node prescribed): it
+   !> translates as (0.3, -0.2) t to round-off, and with no load the reaction sum over the
+   !> region is zero.
+   subroutine driven_region(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: d(:, :)
+      integer :: stage, i
+      real(wp) :: eu, er, t
+      call run_deck('driven_region', head//solid//block(2, 2, 1, 1, 1, 1, 0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp)// &
+                    'MOTIon,REGIon,1,0.3,-0.2'//nl//batch('0.5', '  disp,9,1'//nl//'  disp,5,2'//nl// &
+                    '  velo,9,2'//nl//'  reac,REGIon,1,2'//nl), stage, msg)
+      call check(s, stage == 0, 'a driven deformable region runs', msg)
+      if (stage /= 0) return
+      call read_table(run_dir//'/driven_region.his', names, d)
+      eu = 0.0_wp
+      er = 0.0_wp
+      do i = 1, size(d, 2)
+         t = d(1, i)
+         eu = max(eu, abs(d(2, i) - 0.3_wp*t), abs(d(3, i) + 0.2_wp*t), abs(d(4, i) + 0.2_wp))
+         er = max(er, abs(d(5, i)))
+      end do
+      call check(s, eu <= 1.0e-14_wp, 'driven region translates as (0.3, -0.2) t', 'largest error '//rtoa(eu))
+      call check(s, er <= 1.0e-12_wp, 'its reaction sum is zero with no load', 'largest '//rtoa(er))
+   end subroutine driven_region
 
    !> A block whose every node is prescribed (x stretched as eps X sin(w t), FPROportional
    !> giving the x dofs function 1 and the y dofs function 2 = 1): the pressure on its top edge
