@@ -534,6 +534,7 @@ contains
                  rtoa(lmin)//' .. '//rtoa(lmax))
       call check(s, worst <= 1.0e-13_wp*p*lmax, 'edge pressure resultant = p x deformed length at every step', &
                  'largest difference '//rtoa(worst))
+      print '(a,es10.3,a)', '   info  stretched edge: resultant - p x length up to ', worst/(p*lmax), ' of p L'
       call check(s, worst_f <= 1.0e-13_wp*p*lmax, 'fext of the top nodes carries it', rtoa(worst_f))
    end subroutine stretched_edge
 
@@ -643,6 +644,8 @@ contains
                  'energy)', 'W = '//rtoa(wrev)//', kinetic '//rtoa(kin0))
       call check(s, worst_l <= 1.0e-12_wp*abs(l0), 'angular momentum constant to round-off', &
                  'largest change '//rtoa(worst_l)//' of '//rtoa(l0))
+      print '(a,es10.3,a,es10.3,a,es10.3)', '   info  ring: net work over a revolution / kinetic energy ', &
+         abs(wrev)/kin0, '; W + p dA ', worst_w/(p*a0), ' of p A; angular momentum change ', worst_l/abs(l0)
    contains
       real(wp) function loop_area() result(a)
          integer :: q, i1, i2
