@@ -447,8 +447,8 @@ contains
          if (growth <= self%energy_warn) return
          if (put_in > 0.0_wp) then
             what = 'the physical energy (kinetic + strain) exceeds the energy put in (initial energy '// &
-                   '+ external work + work of prescribed motion) by '//percent(growth)//' of it at t = '//rtoa(st%t)//', step '// &
-                   itoa(int(st%step))
+                   '+ external work + work of prescribed motion) by '//percent(growth)//' of it at t = '// &
+                   rtoa(st%t)//', step '//itoa(int(st%step))
          else
             what = 'kinetic + strain energy '//rtoa(e)//' appeared with no energy put in at t = '// &
                    rtoa(st%t)//', step '//itoa(int(st%step))
