@@ -44,9 +44,11 @@ class Run:
         return self.his[f"{kind}(n{node},{dof})"]
 
     def energy(self):
-        """Mechanical energy kinetic + strain - external work at every row of <stem>.ene."""
+        """Mechanical energy kinetic + strain - external work - work of the prescribed motion at
+        every row of <stem>.ene (the last column is absent in files of older runs: 0)."""
         e = self.ene
-        return e["kinetic"] + e["strain"] - e["external_work"]
+        w = e["kinetic"] + e["strain"] - e["external_work"]
+        return w - e["prescribed_work"] if "prescribed_work" in e else w
 
     # --- <stem>.out --------------------------------------------------------------------------
     def out_number(self, pattern):

@@ -61,7 +61,7 @@ contains
       r%on_fields => opts%on_fields
       call r%out%open(opts%base, err)
       if (.not. allocated(err)) call report_preamble(r%out%files, model)
-      if (.not. allocated(err)) call r%stp%init(model%mesh, model%materials, model%contact, err)
+      if (.not. allocated(err)) call r%stp%init(model%mesh, model%materials, model%contact, err, model%loads)
       if (.not. allocated(err)) then
          call report_summary(r%out%files, model, r%stp)
          call r%progress%begin(opts%quiet)
@@ -92,8 +92,8 @@ contains
       do while (pc <= size(model%program))
          associate (c => model%program(pc))
             select case (c%name)
-            case ('tran')
-               continue
+            case ('tran', 'prop')
+               continue          ! PROPortional: the functions hold for the whole run (read with the deck)
             case ('dt')
                if (c%option == 'cfl') then
                   call r%stp%set_cfl(c%v(1), c%where, err)

@@ -25,6 +25,7 @@ module exic_contact_contact
    use exic_contact_broad, only: broad_t, broad_search
    use exic_contact_detect, only: contact_set_t, detect_contacts
    use exic_contact_corrector, only: constraints_t, corrector_t
+   use exic_contact_rigid_dofs, only: rigid_dofs_t
    implicit none
    private
 
@@ -359,7 +360,9 @@ contains
    !> arrays). x = x(n+1), vt = v~(n+1) (eq. 4.4), a = a~(n+1) on entry and a(n+1) on exit,
    !> minv the inverse mass per dof (0: rigid, prescribed or inactive), dt_prev = dt(n) (0 at
    !> t = 0), dt = dt(n+1); fcon = nodal contact forces, nactive = constraints in force.
-   subroutine contact_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err)
+   !> `rb`: the free rigid bodies, three-dof bodies in the corrector (doc/loads.md, section 5);
+   !> the caller moves them with the contact forces on their nodes.
+   subroutine contact_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err, rb)
       class(contact_t), intent(inout) :: self
       integer, intent(in) :: nnode
       real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode), dt_prev, dt
@@ -367,6 +370,7 @@ contains
       real(wp), intent(inout) :: fcon(2, nnode)
       integer, intent(out) :: nactive
       type(error_t), allocatable, intent(out) :: err
+      type(rigid_dofs_t), intent(inout), optional :: rb
       integer :: k, j, i, node
       real(wp) :: c, gnow, pen, t0, t1
 
@@ -413,7 +417,7 @@ contains
       if (self%cs%n > 0) then
          ! c = dt(n+1) (dt(n) + dt(n+1)) / 2, eq. 4.7
          c = 0.5_wp*dt*(dt_prev + dt)
-         call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err)
+         call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb)
          self%time_corrector = self%time_corrector + (wall_time() - t1)
          if (allocated(err)) return
          self%nredundant = self%nredundant + self%corr%nredundant

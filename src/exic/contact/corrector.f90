@@ -20,12 +20,18 @@
 !> densely (LAPACK), steps with more use SuiteSparse LDL' with AMD ordering, whose symbolic
 !> analysis is reused while the candidates' pattern is unchanged (across the passes of a step,
 !> and across steps).
+!>
+!> Free rigid bodies (doc/loads.md, section 5) join as three-dof bodies when the caller passes
+!> their `rigid_dofs_t`: S gains g_i^b . M_b^-1 g_j^b for every body two constraints touch, and
+!> the corrected gaps of a pass count the bodies' accelerations. The caller applies the bodies'
+!> share of G p (the nodal contact forces on their nodes) to the bodies.
 module exic_contact_corrector
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
    use exic_base_grow, only: grow
    use exic_linalg_sparse_ldl, only: sparse_ldl_t
    use exic_linalg_dense_spd, only: dense_spd_t
+   use exic_contact_rigid_dofs, only: rigid_dofs_t
    implicit none
    private
 
@@ -128,7 +134,8 @@ contains
    !> for three more passes), then only the last one in candidate order (Murty's rule, finite
    !> for the positive definite S of independent constraints). Constraints the factorization
    !> finds redundant carry p = 0 and are never infeasible.
-   subroutine corrector_solve(self, cs, nnode, minv, c, a, fcon, err)
+   !> `rb`: the free rigid bodies (their nodes have minv = 0), when the model has any.
+   subroutine corrector_solve(self, cs, nnode, minv, c, a, fcon, err, rb)
       class(corrector_t), intent(inout) :: self
       type(constraints_t), intent(inout) :: cs
       integer, intent(in) :: nnode
@@ -137,6 +144,7 @@ contains
       real(wp), intent(inout) :: a(2, nnode)
       real(wp), intent(inout) :: fcon(2, nnode)
       type(error_t), allocatable, intent(out) :: err
+      type(rigid_dofs_t), intent(inout), optional :: rb
       integer :: m, nact, pass, k, i, nbad, ninf, best, budget, last
       real(wp) :: g
       logical :: have_safe
@@ -163,7 +171,8 @@ contains
       call grow(self%sol, m)
       call grow(self%bad, m)
       self%rhs(1:m) = -cs%gap(1:m)/c
-      call assemble(self, cs, nnode, minv, m)
+      if (present(rb)) call rb%prepare(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m))
+      call assemble(self, cs, nnode, minv, m, rb)
 
       best = huge(1)
       budget = 3
@@ -193,11 +202,15 @@ contains
             have_safe = .true.
          end if
          call apply(cs, nnode, self%fwork)
+         if (present(rb)) call rb%accelerations(m, cs%p(1:m))
          ninf = 0
          last = 0
          do i = 1, m
             if (cs%active(i)) then
                self%infeasible(i) = cs%p(i) < 0.0_wp
+            else if (present(rb)) then
+               g = cs%gap(i) + c*(gap_change(cs, i, nnode, minv, self%fwork) + rb%gap_part(i))
+               self%infeasible(i) = g < -self%gap_tol
             else
                g = cs%gap(i) + c*gap_change(cs, i, nnode, minv, self%fwork)
                self%infeasible(i) = g < -self%gap_tol
@@ -309,13 +322,15 @@ contains
    end subroutine build_incidence
 
    !> S = G^T M^-1 G over all m candidates: dense (m <= dense_limit) or in compressed columns
-   !> with the full pattern (the pivoting passes drop constraints in the factorization).
-   subroutine assemble(self, cs, nnode, minv, m)
+   !> with the full pattern (the pivoting passes drop constraints in the factorization). With
+   !> free rigid bodies `rb`, each column gains the coupling of the bodies its candidate touches.
+   subroutine assemble(self, cs, nnode, minv, m, rb)
       type(corrector_t), intent(inout) :: self
       type(constraints_t), intent(in) :: cs
       integer, intent(in) :: nnode, m
       real(wp), intent(in) :: minv(2, nnode)
-      integer :: j, k, nd, q, i, nnz, first, l
+      type(rigid_dofs_t), intent(in), optional :: rb
+      integer :: j, k, nd, q, i, nnz, first, l, qj, b, e
       real(wp) :: v
 
       if (m <= self%dense_limit) then
@@ -340,30 +355,48 @@ contains
                i = self%nlist(q)
                v = cs%w(k, j)*node_weight(cs, i, nd)* &
                    (cs%nrm(1, j)*minv(1, nd)*cs%nrm(1, i) + cs%nrm(2, j)*minv(2, nd)*cs%nrm(2, i))
-               if (m <= self%dense_limit) then
-                  self%s(i, j) = self%s(i, j) + v
-               else
-                  if (self%mark(i) /= j) then
-                     self%mark(i) = j
-                     nnz = nnz + 1
-                     call grow(self%ai, nnz)
-                     call grow(self%ax, nnz)
-                     self%ai(nnz) = i
-                     self%ax(nnz) = v
-                  else
-                     do l = first, nnz
-                        if (self%ai(l) == i) then
-                           self%ax(l) = self%ax(l) + v
-                           exit
-                        end if
-                     end do
-                  end if
-               end if
+               call add_entry(i, v)
             end do
          end do
+         if (present(rb)) then
+            ! every candidate i on a body b that candidate j touches: S(i, j) += g_i^b . M_b^-1 g_j^b
+            do qj = 1, rb%nslot(j)
+               b = rb%sbody(qj, j)
+               do e = rb%bstart(b), rb%bstart(b + 1) - 1
+                  i = rb%bcand(e)
+                  v = dot_product(rb%sg(:, rb%bslot(e), i), rb%minv(:, b)*rb%sg(:, qj, j))
+                  call add_entry(i, v)
+               end do
+            end do
+         end if
          if (m > self%dense_limit) call sort_column(self%ai(first:nnz), self%ax(first:nnz))
          self%ap(j + 1) = nnz + 1
       end do
+   contains
+      !> S(i, j) += v (dense), or into column j of the compressed columns.
+      subroutine add_entry(i, v)
+         integer, intent(in) :: i
+         real(wp), intent(in) :: v
+         if (m <= self%dense_limit) then
+            self%s(i, j) = self%s(i, j) + v
+         else
+            if (self%mark(i) /= j) then
+               self%mark(i) = j
+               nnz = nnz + 1
+               call grow(self%ai, nnz)
+               call grow(self%ax, nnz)
+               self%ai(nnz) = i
+               self%ax(nnz) = v
+            else
+               do l = first, nnz
+                  if (self%ai(l) == i) then
+                     self%ax(l) = self%ax(l) + v
+                     exit
+                  end if
+               end do
+            end if
+         end if
+      end subroutine add_entry
    end subroutine assemble
 
    !> The weight of node `nd` in candidate `i` (sum over its occurrences).

@@ -42,6 +42,7 @@ module exic_explicit_state
       ! energy balance
       real(wp) :: kinetic = 0.0_wp, strain = 0.0_wp, hourglass = 0.0_wp
       real(wp) :: wext = 0.0_wp, wcon = 0.0_wp, total0 = 0.0_wp
+      real(wp) :: wpm = 0.0_wp                  !< work of the prescribed motion (doc/loads.md, section 3)
       real(wp) :: momentum(2) = 0.0_wp
       real(wp) :: jmin = 1.0_wp
       integer :: nactive = 0                    !< active contact constraints

@@ -16,6 +16,11 @@
 !> `start` makes the state at t = 0 consistent first: forces, dt(0), a(0) with the corrector
 !> acting on the initial velocity (bodies touching at t = 0 are caught at once).
 !>
+!> Loads that vary in time or follow the geometry, prescribed motion and rigid bodies with a
+!> state (doc/loads.md) enter through `ld` (src/exic/explicit/loading.f90) at fixed points: after
+!> steps 1, 2, 4, 5 and 6 and the kinetic energy of step 7; the work of the prescribed motion
+!> counts as energy put in. A deck without them leaves `ld` inactive and steps exactly as before.
+!>
 !> The stepper writes no file: what it has to report it adds to `messages`.
 module exic_explicit_step
    use exic_base_kinds, only: wp
@@ -32,6 +37,8 @@ module exic_explicit_step
    use exic_explicit_state, only: state_t, element_set_t
    use exic_explicit_assembly, only: assembly_init, internal_forces, stable_step, kinetic_energy
    use exic_explicit_central, only: cd_displacement, cd_predictor, cd_velocity, positions
+   use exic_explicit_loads, only: load_spec_t
+   use exic_explicit_loading, only: loading_t
    implicit none
    private
 
@@ -66,6 +73,7 @@ module exic_explicit_step
       type(state_t) :: st
       type(element_set_t), allocatable :: sets(:)
       type(contact_t) :: contact                      !< exic's contact (inactive without CONTact)
+      type(loading_t) :: ld                           !< loads, prescribed motion, rigid bodies
       class(contact_hook_t), pointer :: hook => null() !< a host's contact instead, when associated
       type(messages_t) :: messages                    !< warnings for the run's report
       logical :: started = .false.                    !< `start` has made the state at t = 0
@@ -104,17 +112,21 @@ module exic_explicit_step
 
 contains
 
-   !> Element sets, state and contact of a mesh; `spec` inactive (the default) for no contact.
-   subroutine stepper_init(self, mesh, materials, spec, err)
+   !> Element sets, state and contact of a mesh; `spec` inactive (the default) for no contact;
+   !> `loads`: the deck's loads and prescribed motion (doc/loads.md), absent for none.
+   subroutine stepper_init(self, mesh, materials, spec, err, loads)
       class(stepper_t), intent(inout) :: self
       type(mesh_t), intent(in) :: mesh
       type(material_t), intent(in) :: materials(:)
       type(contact_spec_t), intent(in) :: spec
       type(error_t), allocatable, intent(out) :: err
+      type(load_spec_t), intent(in), optional :: loads
       integer :: n, k
       real(wp) :: modulus
 
       call assembly_init(mesh, materials, self%st, self%sets, err)
+      if (allocated(err)) return
+      call self%ld%init(mesh, materials, self%st, self%sets, err, loads)
       if (allocated(err)) return
       n = self%st%nnode
       allocate (self%x(2, n), self%du(2, n), self%a_old(2, n), self%vt(2, n), self%fcon_old(2, n), &
@@ -142,16 +154,32 @@ contains
 
       if (self%started) return
       self%started = .true.
+      if (self%ld%has_free .and. associated(self%hook)) then
+         call make_error(err, 'free rigid bodies need exic''s own contact, not a host''s contact hook')
+         return
+      end if
+      call self%ld%begin(self%st)
       call forces_and_dt(self, err)
       if (allocated(err)) return
       associate (st => self%st)
+         if (self%ld%active) call self%ld%forces(st, self%x, .true.)
          st%a = st%minv*(st%fext - st%fint)
          ! at t(0) the predictor velocity is the initial velocity itself and
          ! x(1) = x(0) + dt v(0) + dt^2/2 a(0): the corrector's c is dt^2/2 (dt(n) = 0)
          st%dt_prev = 0.0_wp
+         if (self%ld%active) then
+            self%vt = st%v
+            call self%ld%predict(st, self%vt, 0.0_wp)
+            st%v = self%vt
+         end if
          call correct(self, st%v, err)
          if (allocated(err)) return
+         if (self%ld%active) then
+            call self%ld%corrected(st)
+            call self%ld%finish(st, self%du, 0.0_wp, .true.)
+         end if
          call kinetic_energy(st)
+         if (self%ld%active) call self%ld%energy(st)
          st%total0 = st%kinetic + st%strain + st%hourglass
       end associate
       call check_health(self, err)
@@ -173,24 +201,36 @@ contains
          st%dt_prev = st%dt
          st%step = st%step + 1
          if (contact_on) self%fcon_old = st%fcon
+         if (self%ld%active) call self%ld%place(st, self%du)
 
          ! 2-3. forces and dt(n+1) at t(n+1)
          t1 = wall_time()
          call forces_and_dt(self, err)
          self%time_forces = self%time_forces + (wall_time() - t1)
          if (allocated(err)) return
+         if (self%ld%active) call self%ld%forces(st, self%x, .false.)
          ! 4. predictor, eq. 4.3-4.4 (v~ only when there is contact to search)
          call cd_predictor(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%v, self%a_old, st%a, &
                            contact_on, self%vt)
+         if (self%ld%active) call self%ld%predict(st, self%vt, 0.5_wp*st%dt_prev)
          ! 5. contact corrector, eq. 4.5-4.7
          call correct(self, self%vt, err)
          if (allocated(err)) return
+         if (self%ld%active) call self%ld%corrected(st)
          ! 6. v(n+1) and the work of external and contact forces over the step (trapezoid rule)
-         call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, st%fext, self%du, contact_on, &
-                          self%fcon_old, st%fcon, st%v, st%wext, st%wcon)
+         if (self%ld%varying) then
+            ! loads that vary in time: the trapezoid rule 1/2 (F(n) + F(n+1)) . du
+            call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, self%ld%favg, self%du, contact_on, &
+                             self%fcon_old, st%fcon, st%v, st%wext, st%wcon)
+         else
+            call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, st%fext, self%du, contact_on, &
+                             self%fcon_old, st%fcon, st%v, st%wext, st%wcon)
+         end if
+         if (self%ld%active) call self%ld%finish(st, self%du, 0.5_wp*st%dt_prev, .false.)
       end associate
       ! 7. energies and health
       call kinetic_energy(self%st)
+      if (self%ld%active) call self%ld%energy(self%st)
       self%time_steps = self%time_steps + (wall_time() - t0)
       call check_health(self, err)
    end subroutine stepper_advance
@@ -224,6 +264,9 @@ contains
          if (associated(self%hook)) then
             call self%hook%correct(st%nnode, self%x, vt, st%a, st%minv, st%dt_prev, st%dt, st%fcon, &
                                    st%nactive, err)
+         else if (self%contact%active .and. self%ld%has_free) then
+            call self%contact%correct(st%nnode, self%x, vt, st%a, st%minv, st%dt_prev, st%dt, st%fcon, &
+                                      st%nactive, err, self%ld%rb)
          else if (self%contact%active) then
             call self%contact%correct(st%nnode, self%x, vt, st%a, st%minv, st%dt_prev, st%dt, st%fcon, &
                                       st%nactive, err)
@@ -273,7 +316,9 @@ contains
       associate (st => self%st)
          where (spread(given, 1, 2)) st%v = data
          where (st%minv == 0.0_wp .and. .not. spread(st%rigid, 1, 2)) st%v = 0.0_wp
+         call self%ld%velocities_set(st, self%started)
          if (self%started) call kinetic_energy(st)
+         if (self%started .and. self%ld%active) call self%ld%energy(st)
       end associate
    end subroutine stepper_set_velocity
 
@@ -366,13 +411,14 @@ contains
 
    !> Stop on a non-finite value, naming where it first appears; the energy guard.
    !>
-   !> E = kinetic + strain + hourglass, E_in = E(0) + W_ext (the energy put in),
-   !> growth = (E - E_in) / (|E(0)| + |W_ext|): past energy_warn a warning (once), past
+   !> E = kinetic + strain + hourglass, E_in = E(0) + W_ext + W_pm (the energy put in, W_pm the
+   !> work of the prescribed motion, doc/loads.md section 3),
+   !> growth = (E - E_in) / (|E(0)| + |W_ext| + |W_pm|): past energy_warn a warning (once), past
    !> energy_stop an error naming the largest contributor (doc/decisions.md, "Energy guard").
    subroutine check_health(self, err)
       type(stepper_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
-      real(wp) :: e, put_in, growth
+      real(wp) :: e, put_in, growth, w_in
       character(len=:), allocatable :: what
       associate (st => self%st)
          e = st%kinetic + st%strain + st%hourglass
@@ -381,9 +427,16 @@ contains
                             itoa(int(st%step))//': '//first_nonfinite(self))
             return
          end if
-         put_in = abs(st%total0) + abs(st%wext)
+         if (self%ld%active) then
+            ! loads and prescribed motion: the larger of two estimates of their work (loading.f90)
+            w_in = self%ld%work_in(st)
+            put_in = abs(st%total0) + max(abs(st%wext) + abs(st%wpm), abs(w_in))
+         else
+            w_in = st%wext + st%wpm
+            put_in = abs(st%total0) + abs(st%wext) + abs(st%wpm)
+         end if
          if (put_in > 0.0_wp) then
-            growth = (e - (st%total0 + st%wext))/put_in
+            growth = (e - (st%total0 + w_in))/put_in
          else
             growth = merge(huge(1.0_wp), 0.0_wp, e > 0.0_wp)
          end if
@@ -394,8 +447,8 @@ contains
          if (growth <= self%energy_warn) return
          if (put_in > 0.0_wp) then
             what = 'the physical energy (kinetic + strain) exceeds the energy put in (initial energy '// &
-                   '+ external work) by '//percent(growth)//' of it at t = '//rtoa(st%t)//', step '// &
-                   itoa(int(st%step))
+                   '+ external work + work of prescribed motion) by '//percent(growth)//' of it at t = '// &
+                   rtoa(st%t)//', step '//itoa(int(st%step))
          else
             what = 'kinetic + strain energy '//rtoa(e)//' appeared with no energy put in at t = '// &
                    rtoa(st%t)//', step '//itoa(int(st%step))

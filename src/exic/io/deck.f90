@@ -31,15 +31,17 @@ module exic_io_deck
    use exic_io_deck_contact, only: cmd_contact
    use exic_io_deck_finish, only: finish_mesh, check_contact, cmd_tie, physical_surfaces
    use exic_io_deck_batch, only: read_batch, read_batch_data
+   use exic_io_deck_loads, only: loads_builder_t, cmd_fpro, cmd_gravity, cmd_motion, cmd_csurface, &
+                                 finish_loads, check_functions
    implicit none
    private
 
    public :: read_deck
 
-   character(len=16), parameter :: mesh_commands(18) = [character(len=16) :: 'PARAmeters', &
+   character(len=16), parameter :: mesh_commands(22) = [character(len=16) :: 'PARAmeters', &
       'COORdinates', 'ELEMents', 'REGIon', 'BLOCk', 'BOUNdary', 'EBOUndary', 'CBOUndary', &
       'FORCe', 'DISPlacement', 'GLOBal', 'MATErial', 'INITial', 'CONTact', 'END', 'SHIFt', &
-      'GMSH', 'PBOUndary']
+      'GMSH', 'PBOUndary', 'FPROportional', 'CSURface', 'GRAVity', 'MOTIon']
 
 contains
 
@@ -83,13 +85,14 @@ contains
       type(model_t), intent(inout) :: model
       type(error_t), allocatable, intent(out) :: err
       type(builder_t) :: b
+      type(loads_builder_t) :: lb
       integer :: i, iend, ictl, counts(3), n
       integer, allocatable :: map(:)
 
       call read_head(rd, model, ictl, counts, err)
       if (allocated(err)) return
       call builder_init(b)
-      call read_mesh(rd, b, model, iend, err)
+      call read_mesh(rd, b, lb, model, iend, err)
       if (allocated(err)) return
       call finish_mesh(rd, b, iend, counts, ictl, model, err)
       if (allocated(err)) return
@@ -116,9 +119,13 @@ contains
          end if
          if (allocated(err)) return
       end do
+      call finish_loads(rd, lb, model, map, err)
+      if (allocated(err)) return
       call read_batch(rd, i, model, err)
       if (allocated(err)) return
       call read_batch_data(rd, model, map, err)
+      if (allocated(err)) return
+      call check_functions(rd, lb, model%loads, err)
    end subroutine read_all
 
    !> Parameters before the title, the title record and the control record.
@@ -185,9 +192,10 @@ contains
    end subroutine read_head
 
    !> Mesh commands up to END; `iend` is the END record.
-   subroutine read_mesh(rd, b, model, iend, err)
+   subroutine read_mesh(rd, b, lb, model, iend, err)
       type(reader_t), intent(inout) :: rd
       type(builder_t), intent(inout) :: b
+      type(loads_builder_t), intent(inout) :: lb
       type(model_t), intent(inout) :: model
       integer, intent(out) :: iend
       type(error_t), allocatable, intent(out) :: err
@@ -245,6 +253,14 @@ contains
             call cmd_initial(rd, b, i, err)
          else if (keyword_is(w, 'cont')) then
             call cmd_contact(rd, i, model%contact, err)
+         else if (keyword_is(w, 'fpro')) then
+            call cmd_fpro(rd, lb, err)
+         else if (keyword_is(w, 'csur')) then
+            call cmd_csurface(rd, lb, i, err)
+         else if (keyword_is(w, 'grav')) then
+            call cmd_gravity(rd, lb, model%loads, i, err)
+         else if (keyword_is(w, 'moti')) then
+            call cmd_motion(rd, lb, i, err)
          else if (keyword_is(w, 'batc') .or. keyword_is(w, 'tie') .or. keyword_is(w, 'stop')) then
             call fail(rd, i, field(rd, i, 1)//' inside the mesh: expected END to close the mesh '// &
                       'first', err)

@@ -12,7 +12,8 @@
 !>   data(2, nnode) and given(nnode), read after END (rate/velo) or computed (regi/mate:
 !>   v(1) = r or m, v(2:3) = vx, vy; every node of those elements is given);
 !> - `outp` option `hdf5`, v(1) = dt_out; `prin` option `ener`, v(1) = n;
-!> - [ext] `chec` option `ener`, v(1) = warn, v(2) = stop (energy guard limits).
+!> - [ext] `chec` option `ener`, v(1) = warn, v(2) = stop (energy guard limits);
+!> - `prop` v(1) = n1, v(2) = n2 (>= n1): proportional functions read after END (deck_loads).
 module exic_io_deck_batch
    use exic_base_kinds, only: wp
    use exic_base_constants, only: DEFAULT_CFL, ENERGY_WARN, ENERGY_STOP
@@ -20,7 +21,10 @@ module exic_io_deck_batch
    use exic_mesh_mesh, only: mesh_t
    use exic_io_model, only: model_t
    use exic_io_program, only: MAX_LOOP_DEPTH, command_t, request_t, REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, &
-                              REQ_REAC, REQ_CONT, REQ_MOME
+                              REQ_REAC, REQ_CONT, REQ_MOME, REQ_REAC_REGION, REQ_REAC_SET, REQ_RIGI
+   use exic_material_material, only: MAT_RIGID
+   use exic_mesh_edge_set, only: find_edge_set, edge_set_ids
+   use exic_io_deck_loads, only: read_prop_data
    use exic_io_records, only: keyword_is, keyword_key
    use exic_io_expression, only: evaluate
    use exic_io_reader, only: next_in_set, reader_t, next_nonblank, field, word, has_field, &
@@ -33,11 +37,13 @@ module exic_io_deck_batch
 
    public :: read_batch, read_batch_data
 
-   character(len=12), parameter :: commands(12) = [character(len=12) :: 'TRANsient', 'DT', &
+   character(len=12), parameter :: commands(13) = [character(len=12) :: 'TRANsient', 'DT', &
                                                    'LOOP', 'NEXT', 'TIME', 'FORM', 'TPLOt', &
-                                                   'INITial', 'OUTPut', 'PRINt', 'CHECk', 'END']
-   character(len=12), parameter :: requests(9) = [character(len=12) :: 'disp', 'velo', 'acce', &
-                                                  'stre', 'reac', 'cont', 'mome', 'show', 'ener']
+                                                   'INITial', 'OUTPut', 'PRINt', 'CHECk', 'END', &
+                                                   'PROPortional']
+   character(len=12), parameter :: requests(10) = [character(len=12) :: 'disp', 'velo', 'acce', &
+                                                   'stre', 'reac', 'cont', 'mome', 'show', 'ener', &
+                                                   'rigi']
 
 contains
 
@@ -166,6 +172,8 @@ contains
          end if
       case ('chec')
          call parse_check(rd, i, c, err)
+      case ('prop')
+         call parse_prop(rd, i, c, err)
       case ('prin')
          if (.not. keyword_is(opt, 'ener')) then
             call fail(rd, i, 'PRINt,'//field(rd, i, 2)//' is not supported: expected PRINt,ENERgy,n', err)
@@ -197,6 +205,27 @@ contains
       if (has_field(rd, i, 5)) call fail(rd, i, 'CHECk,ENERgy,warn,stop takes two values; the fifth field '// &
                                          field(rd, i, 5)//' is not used', err)
    end subroutine parse_check
+
+   !> PROPortional,,n1[,n2]: functions n1..n2 (n2 blank or 0: n1 alone), read after END.
+   subroutine parse_prop(rd, i, c, err)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i
+      type(command_t), intent(inout) :: c
+      type(error_t), allocatable, intent(out) :: err
+      if (len_trim(c%option) > 0) then
+         call fail(rd, i, 'PROPortional,'//field(rd, i, 2)//': expected PROPortional,,n1[,n2] (the '// &
+                   'function numbers in fields 3 and 4, the second field empty)', err)
+         return
+      end if
+      call positive_int(rd, i, c%v(1), 'PROPortional,,n1,n2: n1', err)
+      if (allocated(err)) return
+      if (c%v(2) == 0.0_wp) c%v(2) = c%v(1)
+      call positive_int(rd, i, c%v(2), 'PROPortional,,n1,n2: n2', err)
+      if (allocated(err)) return
+      if (c%v(2) < c%v(1) .or. c%v(2) > 1000.0_wp) &
+         call fail(rd, i, 'PROPortional,,n1,n2 = '//itoa(nint(c%v(1)))//', '//itoa(nint(c%v(2)))// &
+                   ': expected n1 <= n2 <= 1000', err)
+   end subroutine parse_prop
 
    !> v must be an integer >= 1.
    subroutine positive_int(rd, i, v, what, err)
@@ -312,6 +341,8 @@ contains
                call read_requests(rd, model, map, req, nreq, err)
             else if (c%name == 'init' .and. (c%option == 'rate' .or. c%option == 'velo')) then
                call read_init_data(rd, model%mesh, map, c, err)
+            else if (c%name == 'prop') then
+               call read_prop_data(rd, model%loads, nint(c%v(1)), nint(c%v(2)), c%where, err)
             end if
          end associate
          if (allocated(err)) return
@@ -329,7 +360,8 @@ contains
                       ' ended the data set before this record)', err)
          else
             call fail(rd, i, 'expected STOP after the data of the BATCh commands (one data '// &
-                      'set per TPLOt and INITial,RATE|VELOcity, each ended by a blank record)', err)
+                      'set per TPLOt and INITial,RATE|VELOcity, one per PROPortional function, '// &
+                      'each ended by a blank record)', err)
          end if
       end if
    end subroutine read_batch_data
@@ -434,6 +466,8 @@ contains
          r%kind = REQ_CONT
       else if (keyword_is(w, 'mome')) then
          r%kind = REQ_MOME
+      else if (keyword_is(w, 'rigi')) then
+         r%kind = REQ_RIGI
       else if (is_command(w)) then
          call fail(rd, i, field(rd, i, 1)//' inside the TPLOt requests: expected a blank record '// &
                    'to end the requests', err)
@@ -443,6 +477,10 @@ contains
          return
       end if
       what = 'TPLOt request '//w//',id,comp[,x,y]'
+      if (r%kind == REQ_REAC .and. (keyword_is(word(rd, i, 2), 'regi') .or. keyword_is(word(rd, i, 2), 'phys'))) then
+         call reaction_sum(err)
+         return
+      end if
       call int_field(rd, i, 2, what, id, err)
       if (.not. allocated(err)) call int_field(rd, i, 3, what, r%comp, err)
       if (allocated(err)) return
@@ -468,10 +506,21 @@ contains
          r%id = id
          return
       case (REQ_MOME)
-         if (r%comp /= 1 .and. r%comp /= 2) then
-            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1 (x) or 2 (y)', err)
+         if (r%comp < 1 .or. r%comp > 3) then
+            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1 (x), 2 (y) or 3 '// &
+                      '(angular momentum about the origin)', err)
          else if (.not. any(model%mesh%region == id)) then
             call fail(rd, i, what//': region '//itoa(id)//' has no elements: expected a region number', err)
+         end if
+         r%id = id
+         return
+      case (REQ_RIGI)
+         if (r%comp < 1 .or. r%comp > 6) then
+            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1..6 (centroid '// &
+                      'displacement x, y, rotation, centroid velocity x, y, angular velocity)', err)
+         else if (.not. rigid_region(id)) then
+            call fail(rd, i, what//': region '//itoa(id)//' has no rigid elements: expected the '// &
+                      'region of a RIGId body', err)
          end if
          r%id = id
          return
@@ -514,6 +563,37 @@ contains
       end if
       r%id = e
    contains
+      !> reac,REGIon,r,dof | reac,PHYSical,c,dof: the sum over the nodes of a region or edge set.
+      subroutine reaction_sum(err)
+         type(error_t), allocatable, intent(out) :: err
+         what = 'TPLOt request reac,'//field(rd, i, 2)//',id,dof'
+         call int_field(rd, i, 3, what, id, err)
+         if (.not. allocated(err)) call int_field(rd, i, 4, what, r%comp, err)
+         if (allocated(err)) return
+         if (r%comp /= 1 .and. r%comp /= 2) then
+            call fail(rd, i, what//': dof '//itoa(r%comp)//': expected dof 1 or 2', err)
+         else if (keyword_is(word(rd, i, 2), 'regi')) then
+            r%kind = REQ_REAC_REGION
+            if (.not. any(model%mesh%region == id)) call fail(rd, i, what//': region '//itoa(id)// &
+                                                               ' has no elements: expected a region number', err)
+         else
+            r%kind = REQ_REAC_SET
+            if (find_edge_set(model%mesh%edge_sets, id) == 0) call fail(rd, i, what// &
+               ': physical curve '//itoa(id)//' is not in the mesh: expected one of the physical '// &
+               'curves of the GMSH meshes (here: '//edge_set_ids(model%mesh%edge_sets)//')', err)
+         end if
+         r%id = id
+      end subroutine reaction_sum
+      !> Region `id` has rigid elements.
+      logical function rigid_region(id)
+         integer, intent(in) :: id
+         integer :: k
+         rigid_region = .false.
+         do k = 1, model%mesh%nelem
+            if (model%mesh%region(k) /= id) cycle
+            if (model%materials(model%mesh%mat(k))%kind == MAT_RIGID) rigid_region = .true.
+         end do
+      end function rigid_region
       subroutine check_pair(id)
          integer, intent(in) :: id
          if (.not. model%contact%active) then

@@ -2,16 +2,18 @@
 !>
 !> ```
 !> MATErial,ma
-!>   SOLId | RIGId                   element type record
+!>   SOLId | RIGId | RIGId,FREE       element type record (FREE [ext]: a free rigid body)
 !>   ELAStic NEOHookean E nu         (ELAStic ISOTropic E nu: read as NEOHookean, with a warning)
 !>   DENSity rho
 !>   QUADrature 1|2                  [ext]
 !>   HOURglass h                     [ext]
+!>   BODY bx by                      body force per unit reference volume (FEAP)
 !>   MASS LUMPed                     (explicit runs always use lumped mass)
 !>   PLANe STRAin | FINIte           accepted (exic's only setting)
 !> ```
 !> A set is checked when its blank record is read: element type given; for SOLId E > 0,
-!> -1 < nu < 0.5 and rho > 0; for RIGId rho >= 0.
+!> -1 < nu < 0.5 and rho > 0; for RIGId rho >= 0; for RIGId,FREE rho > 0 (a free body needs a
+!> mass).
 module exic_io_deck_material
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
@@ -26,9 +28,9 @@ module exic_io_deck_material
 
    public :: cmd_material
 
-   character(len=16), parameter :: props(9) = [character(len=16) :: 'SOLId', 'RIGId', &
-                                               'ELAStic', 'DENSity', 'QUADrature', 'HOURglass', &
-                                               'MASS', 'PLANe', 'FINIte']
+   character(len=16), parameter :: props(10) = [character(len=16) :: 'SOLId', 'RIGId', &
+                                                'ELAStic', 'DENSity', 'QUADrature', 'HOURglass', &
+                                                'MASS', 'PLANe', 'FINIte', 'BODY']
 
 contains
 
@@ -39,7 +41,7 @@ contains
       integer, intent(out) :: ma
       type(material_t), intent(out) :: mat
       type(error_t), allocatable, intent(out) :: err
-      integer :: i, ielas, idens
+      integer :: i, ielas, idens, irig
       logical :: has_e, has_rho
 
       call int_field(rd, icmd, 2, 'MATErial,ma', ma, err)
@@ -53,6 +55,7 @@ contains
       has_rho = .false.
       ielas = icmd
       idens = icmd
+      irig = icmd
       do
          call next_record(rd, i)
          if (i == 0) exit
@@ -79,6 +82,13 @@ contains
                mat%kind = MAT_SOLID
             else
                mat%kind = MAT_RIGID
+               irig = i
+               if (keyword_is(word(rd, i, 2), 'free')) then
+                  mat%free = .true.
+               else if (len(word(rd, i, 2)) > 0) then
+                  call fail(rd, i, 'RIGId,'//field(rd, i, 2)//': expected RIGId (fixed or driven) '// &
+                            'or RIGId,FREE (a free rigid body)', err)
+               end if
             end if
          else if (keyword_is(w, 'elas')) then
             if (keyword_is(word(rd, i, 2), 'isot')) then
@@ -123,6 +133,9 @@ contains
                field(rd, i, 2)//'" is not supported: expected PLANe STRAin', err)
          else if (keyword_is(w, 'fini')) then
             continue
+         else if (keyword_is(w, 'body')) then
+            call real_field(rd, i, 2, 'BODY bx by', mat%body(1), err)
+            if (.not. allocated(err)) call real_field(rd, i, 3, 'BODY bx by', mat%body(2), err)
          else
             call check_data_record(rd, i, 'MATErial', err)
             if (.not. allocated(err)) call unknown_keyword(rd, i, 'MATErial record', &
@@ -156,6 +169,11 @@ contains
             if (mat%rho < 0.0_wp) call fail(rd, idens, 'MATErial '//itoa(ma)//': rho = '// &
                                             rtoa(mat%rho)//': expected DENSity rho >= 0', err)
             if (has_e) call warn(rd, ielas, 'ELAStic ignored for a RIGId material')
+            if (mat%free .and. .not. allocated(err) .and. .not. (mat%rho > 0.0_wp)) &
+               call fail(rd, irig, 'MATErial '//itoa(ma)//': a free rigid body (RIGId,FREE) needs '// &
+                         'its mass: expected DENSity rho > 0', err)
+            if (.not. mat%free .and. any(mat%body /= 0.0_wp)) call warn(rd, icmd, 'BODY ignored '// &
+               'for a fixed or driven RIGId material (it moves only as prescribed)')
          end select
          if (.not. has_rho .and. mat%kind == MAT_RIGID) mat%rho = 0.0_wp
       end subroutine check

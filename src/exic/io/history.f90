@@ -11,10 +11,11 @@ module exic_io_history
 
    public :: history_files_t, ENERGY_COLUMNS
 
-   !> Column names of <stem>.ene, in order.
+   !> Column names of <stem>.ene, in order (prescribed_work [ext], doc/loads.md section 3,
+   !> appended after the older columns so that they keep their positions).
    character(len=*), parameter :: ENERGY_COLUMNS = &
       't step dt kinetic strain external_work contact_work total drift momentum_x momentum_y '// &
-      'active hourglass'
+      'active hourglass prescribed_work'
 
    !> The three text files of one run.
    type :: history_files_t
@@ -89,13 +90,14 @@ contains
 
    !> One row of <stem>.ene.
    subroutine files_ene_row(self, t, step, dt, kinetic, strain, wext, wcon, total, drift, &
-                            momentum, nactive, hourglass)
+                            momentum, nactive, hourglass, wpm)
       class(history_files_t), intent(inout) :: self
       real(wp), intent(in) :: t, dt, kinetic, strain, wext, wcon, total, drift, momentum(2), hourglass
+      real(wp), intent(in) :: wpm      !< work of the prescribed motion
       integer(i8), intent(in) :: step
       integer, intent(in) :: nactive
-      write (self%ene, '(es24.16,i12,9es24.16,i10,es24.16)') t, step, dt, kinetic, strain, wext, &
-         wcon, total, drift, momentum, nactive, hourglass
+      write (self%ene, '(es24.16,i12,9es24.16,i10,2es24.16)') t, step, dt, kinetic, strain, wext, &
+         wcon, total, drift, momentum, nactive, hourglass, wpm
       call self%maybe_flush()
    end subroutine files_ene_row
 

@@ -5,6 +5,7 @@ module exic_io_model
    use exic_material_material, only: material_t
    use exic_contact_spec, only: contact_spec_t
    use exic_io_program, only: command_t, request_t
+   use exic_explicit_loads, only: load_spec_t
    implicit none
    private
 
@@ -17,6 +18,7 @@ module exic_io_model
       type(mesh_t) :: mesh
       type(material_t), allocatable :: materials(:)    !< indexed by material set number
       type(contact_spec_t) :: contact
+      type(load_spec_t) :: loads                       !< loads and prescribed motion (doc/loads.md)
       type(command_t), allocatable :: program(:)       !< BATCh commands in order
       type(request_t), allocatable :: requests(:)      !< TPLOt requests in order
       character(len=:), allocatable :: echo            !< the deck's records, for <stem>.out

@@ -10,15 +10,24 @@ module exic_io_output
    use exic_base_error, only: error_t
    use exic_base_strings, only: rtoa
    use exic_io_model, only: model_t
-   use exic_io_program, only: REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, REQ_REAC, REQ_CONT, REQ_MOME
+   use exic_io_program, only: REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, REQ_REAC, REQ_CONT, REQ_MOME, &
+                              REQ_REAC_REGION, REQ_REAC_SET, REQ_RIGI
+   use exic_mesh_edge_set, only: find_edge_set, edge_set_nodes
    use exic_io_history, only: history_files_t
    use exic_io_fields, only: field_writer_t
    use exic_explicit_step, only: stepper_t
    use exic_explicit_assembly, only: element_stress, all_stresses
+   use exic_explicit_loading, only: reaction
+   use exic_explicit_rigid, only: RB_PLAIN, RB_FREE
    implicit none
    private
 
    public :: output_t
+
+   !> The nodes a reaction-sum request adds up.
+   type :: node_list_t
+      integer, allocatable :: nodes(:)
+   end type node_list_t
 
    !> The run's output files and their schedules.
    type :: output_t
@@ -29,6 +38,7 @@ module exic_io_output
       integer(i8) :: last_row_step = -1
       real(wp), allocatable :: values(:)            !< one history row
       integer, allocatable :: region_of_node(:)     !< region of the elements that use each node
+      type(node_list_t), allocatable :: sums(:)     !< nodes of each reaction-sum request
       real(wp) :: field_dt = 0.0_wp                 !< OUTPut,HDF5 interval (0: no field output)
       real(wp) :: field_next = 0.0_wp               !< time of the next field output
       real(wp) :: field_last = -huge(1.0_wp)        !< time of the last field output
@@ -59,8 +69,9 @@ contains
       class(output_t), intent(inout) :: self
       type(model_t), intent(in) :: model
       character(len=32), allocatable :: labels(:)
-      character(len=4), parameter :: names(7) = ['disp', 'velo', 'acce', 'stre', 'reac', 'cont', 'mome']
-      character(len=1), parameter :: tags(7) = ['n', 'n', 'n', 'e', 'n', 'p', 'r']
+      character(len=4), parameter :: names(10) = ['disp', 'velo', 'acce', 'stre', 'reac', 'cont', 'mome', &
+                                                   'reac', 'reac', 'rigi']
+      character(len=1), parameter :: tags(10) = ['n', 'n', 'n', 'e', 'n', 'p', 'r', 'r', 'c', 'r']
       integer :: k, nreq, e
 
       nreq = 0
@@ -77,7 +88,30 @@ contains
       do e = 1, model%mesh%nelem
          self%region_of_node(model%mesh%conn(:, e)) = model%mesh%region(e)
       end do
+      call sum_nodes(self, model)
    end subroutine output_begin
+
+   !> The nodes of every reaction-sum request: of a region's elements, or of an edge set.
+   subroutine sum_nodes(self, model)
+      type(output_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      logical :: on(model%mesh%nnode)
+      integer :: k, e
+      allocate (self%sums(size(self%values)))
+      do k = 1, size(self%values)
+         associate (q => model%requests(k))
+            if (q%kind == REQ_REAC_REGION) then
+               on = .false.
+               do e = 1, model%mesh%nelem
+                  if (model%mesh%region(e) == q%id) on(model%mesh%conn(:, e)) = .true.
+               end do
+               self%sums(k)%nodes = pack([(e, e=1, model%mesh%nnode)], on)
+            else if (q%kind == REQ_REAC_SET) then
+               self%sums(k)%nodes = edge_set_nodes(model%mesh%edge_sets(find_edge_set(model%mesh%edge_sets, q%id)))
+            end if
+         end associate
+      end do
+   end subroutine sum_nodes
 
    !> The history and energy rows of the current state when the TPLOt interval is due (always
    !> at step 0, never twice for one step).
@@ -114,37 +148,124 @@ contains
                call element_stress(st, stp%sets, q%id, sig)
                self%values(k) = sig(q%comp)
             case (REQ_REAC)
-               ! force the support exerts on the body: M a = F + R - P with a = 0 on a fixed dof
-               self%values(k) = st%fint(q%comp, q%id) - st%fext(q%comp, q%id)
+               ! force the support exerts on the body: R = M a + P - F - fcon (doc/loads.md, 3)
+               self%values(k) = reaction(st, q%id, q%comp)
             case (REQ_CONT)
                self%values(k) = stp%contact%pair_value(q%id, q%comp)
             case (REQ_MOME)
                self%values(k) = region_momentum(self, stp, q%id, q%comp)
+            case (REQ_REAC_REGION, REQ_REAC_SET)
+               self%values(k) = reaction_sum(stp, self%sums(k)%nodes, q%comp)
+            case (REQ_RIGI)
+               self%values(k) = body_value(stp, q%id, q%comp)
             end select
          end associate
       end do
       associate (st => stp%st)
          call self%files%his_row(st%t, self%values)
-         total = st%kinetic + st%strain + st%hourglass - st%wext - st%wcon
+         total = st%kinetic + st%strain + st%hourglass - st%wext - st%wcon - st%wpm
          denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass, tiny(1.0_wp))
          drift = (total - st%total0)/denom
          call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
-                                 st%wcon, total, drift, st%momentum, st%nactive, st%hourglass)
+                                 st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm)
       end associate
       self%last_row_step = stp%st%step
    end subroutine write_rows
 
-   !> Linear momentum component `comp` of the nodes of region `region` (TPLOt `mome` [ext]).
+   !> Linear momentum component `comp` (1, 2) or angular momentum about the origin (3) of the
+   !> nodes of region `region` and of its free rigid body (TPLOt `mome` [ext]).
    real(wp) function region_momentum(self, stp, region, comp) result(p)
       type(output_t), intent(in) :: self
       type(stepper_t), intent(in) :: stp
       integer, intent(in) :: region, comp
-      integer :: i
+      integer :: i, ib
+      real(wp) :: x(2)
       p = 0.0_wp
-      do i = 1, stp%st%nnode
-         if (self%region_of_node(i) == region) p = p + stp%st%mass(i)*stp%st%v(comp, i)
-      end do
+      associate (st => stp%st)
+         do i = 1, st%nnode
+            if (self%region_of_node(i) /= region) cycle
+            if (comp <= 2) then
+               p = p + st%mass(i)*st%v(comp, i)
+            else
+               x = st%x0(:, i) + st%u(:, i)
+               p = p + st%mass(i)*(x(1)*st%v(2, i) - x(2)*st%v(1, i))
+            end if
+         end do
+      end associate
+      ib = stp%ld%body_index(region)
+      if (ib == 0) return
+      associate (b => stp%ld%bodies(ib))
+         if (b%kind /= RB_FREE) return
+         if (comp <= 2) then
+            p = p + b%mass*b%v(comp)
+         else
+            p = p + b%mass*(b%xc(1)*b%v(2) - b%xc(2)*b%v(1)) + b%inertia*b%om
+         end if
+      end associate
    end function region_momentum
+
+   !> Sum of the reactions R = M a + P - F - fcon (dof `comp`) over the prescribed dofs of
+   !> `nodes` (TPLOt `reac,REGIon|PHYSical` [ext]); free rigid bodies' nodes are not prescribed.
+   real(wp) function reaction_sum(stp, nodes, comp) result(r)
+      type(stepper_t), intent(in) :: stp
+      integer, intent(in) :: nodes(:), comp
+      integer :: j, i, ib
+      r = 0.0_wp
+      do j = 1, size(nodes)
+         i = nodes(j)
+         if (.not. stp%st%active(i) .or. stp%st%minv(comp, i) /= 0.0_wp) cycle
+         ib = stp%ld%body_of(i)
+         if (ib > 0) then
+            if (stp%ld%bodies(ib)%kind == RB_FREE) cycle
+         end if
+         r = r + reaction(stp%st, i, comp)
+      end do
+   end function reaction_sum
+
+   !> TPLOt `rigi,region,comp` [ext]: the rigid body of `region`: 1-2 centroid displacement,
+   !> 3 rotation, 4-5 centroid velocity, 6 angular velocity. A plain RIGId body (fixed, or with
+   !> its initial velocity) is reported from its nodes (mass-weighted; it does not rotate).
+   real(wp) function body_value(stp, region, comp) result(val)
+      type(stepper_t), intent(in) :: stp
+      integer, intent(in) :: region, comp
+      integer :: ib, j, k
+      real(wp) :: w, wsum, acc(2)
+      logical :: massless
+      val = 0.0_wp
+      ib = stp%ld%body_index(region)
+      if (ib == 0) return
+      associate (b => stp%ld%bodies(ib), st => stp%st)
+         if (b%kind /= RB_PLAIN) then
+            select case (comp)
+            case (1, 2)
+               val = b%xc(comp) - b%xc0(comp)
+            case (3)
+               val = b%th
+            case (4, 5)
+               val = b%v(comp - 3)
+            case (6)
+               val = b%om
+            end select
+            return
+         end if
+         if (comp == 3 .or. comp == 6) return
+         wsum = 0.0_wp
+         acc = 0.0_wp
+         massless = sum(st%mass(b%nodes)) <= 0.0_wp
+         do j = 1, b%nnode
+            k = b%nodes(j)
+            w = st%mass(k)
+            if (massless) w = 1.0_wp
+            wsum = wsum + w
+            if (comp <= 2) then
+               acc(comp) = acc(comp) + w*st%u(comp, k)
+            else
+               acc(comp - 3) = acc(comp - 3) + w*st%v(comp - 3, k)
+            end if
+         end do
+         val = sum(acc)/wsum
+      end associate
+   end function body_value
 
    !> OUTPut,HDF5,dt_out: open <stem>.h5 and <stem>.xdmf with the mesh (once). The first output
    !> time is now, then every dt_out.

@@ -7,6 +7,8 @@ module exic_io_program
    ! TPLOt request kinds
    integer, parameter, public :: REQ_DISP = 1, REQ_VELO = 2, REQ_ACCE = 3, REQ_STRE = 4, &
                                  REQ_REAC = 5, REQ_CONT = 6, REQ_MOME = 7
+   !> [ext] reaction sums over a region's or an edge set's nodes, a rigid body's motion
+   integer, parameter, public :: REQ_REAC_REGION = 8, REQ_REAC_SET = 9, REQ_RIGI = 10
 
    public :: command_t, request_t
 
@@ -27,7 +29,7 @@ module exic_io_program
    !> One TPLOt request. Nearest-node/element requests keep their point until the mesh is known.
    type :: request_t
       integer :: kind = 0                    !< REQ_*
-      integer :: id = 0                      !< node, element or pair number
+      integer :: id = 0                      !< node, element, pair, region or edge set number
       integer :: comp = 0                    !< dof or component
       logical :: by_point = .false.          !< pick the nearest node/element centroid to xy
       real(wp) :: xy(2) = 0.0_wp

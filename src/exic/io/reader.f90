@@ -18,11 +18,12 @@ module exic_io_reader
 
    !> Every command keyword of the language (mesh, solution and top level), used to tell a
    !> command that was read inside a data set.
-   character(len=12), parameter :: all_commands(34) = [character(len=12) :: 'PARAmeters', &
+   character(len=12), parameter :: all_commands(39) = [character(len=12) :: 'PARAmeters', &
       'COORdinates', 'ELEMents', 'REGIon', 'BLOCk', 'BOUNdary', 'EBOUndary', 'CBOUndary', &
       'FORCe', 'DISPlacement', 'GLOBal', 'MATErial', 'INITial', 'CONTact', 'END', 'FEAP', 'TIE', &
       'BATCh', 'STOP', 'INCLude', 'LOOP', 'NEXT', 'TRANsient', 'TIME', 'FORM', 'TPLOt', 'OUTPut', &
-      'PRINt', 'DT', 'SURFace', 'PAIR', 'SHIFt', 'GMSH', 'PBOUndary']
+      'PRINt', 'DT', 'SURFace', 'PAIR', 'SHIFt', 'GMSH', 'PBOUndary', 'FPROportional', &
+      'CSURface', 'GRAVity', 'MOTIon', 'PROPortional']
 
    !> The deck's records and the reading state.
    type :: reader_t

@@ -8,6 +8,8 @@ module exic_io_report
    use exic_io_model, only: model_t
    use exic_io_history, only: history_files_t
    use exic_explicit_step, only: stepper_t
+   use exic_explicit_rigid, only: RB_FREE, RB_DRIVEN
+   use exic_explicit_loads, only: FN_UNDEFINED
    implicit none
    private
 
@@ -37,7 +39,7 @@ contains
       type(model_t), intent(in) :: model
       type(stepper_t), intent(inout) :: stp
       integer :: k, e
-      real(wp) :: dts
+      real(wp) :: dts, total
       call files%say('')
       call files%say('nodes (highest number) '//itoa(stp%st%nnode)//', active '// &
                      itoa(count(stp%st%active))//', elements '//itoa(stp%st%nelem))
@@ -56,9 +58,41 @@ contains
       end do
       call stp%initial_stable_step(dts, e)
       if (e > 0) call files%say('stable step of the initial mesh '//rtoa(dts)//' (element '//itoa(e)//')')
-      call files%say('total mass '//rtoa(sum(stp%st%mass)))
+      total = sum(stp%st%mass)
+      do k = 1, size(stp%ld%bodies)
+         if (stp%ld%bodies(k)%kind == RB_FREE) total = total + stp%ld%bodies(k)%mass
+      end do
+      call files%say('total mass '//rtoa(total))
+      call loads_summary(files, stp)
       call files%say(stp%contact%summary())
    end subroutine report_summary
+
+   !> Free and driven rigid bodies, proportional functions, gravity and edge loads.
+   subroutine loads_summary(files, stp)
+      type(history_files_t), intent(inout) :: files
+      type(stepper_t), intent(in) :: stp
+      integer :: k
+      associate (ld => stp%ld)
+         do k = 1, size(ld%bodies)
+            associate (b => ld%bodies(k))
+               if (b%kind == RB_FREE) then
+                  call files%say('free rigid body of region '//itoa(b%region)//': mass '//rtoa(b%mass)// &
+                                 ', centroid ('//rtoa(b%xc0(1))//', '//rtoa(b%xc0(2))//'), inertia '// &
+                                 rtoa(b%inertia)//', nodes '//itoa(b%nnode))
+               else if (b%kind == RB_DRIVEN) then
+                  call files%say('driven rigid body of region '//itoa(b%region)//' (MOTIon): centroid ('// &
+                                 rtoa(b%xc0(1))//', '//rtoa(b%xc0(2))//'), nodes '//itoa(b%nnode))
+               end if
+            end associate
+         end do
+         if (count(ld%spec%fn%kind /= FN_UNDEFINED) > 0) &
+            call files%say('proportional functions: '//itoa(count(ld%spec%fn%kind /= FN_UNDEFINED)))
+         if (ld%spec%has_gravity) call files%say('gravity ('//rtoa(ld%spec%gravity(1))//', '// &
+                                                 rtoa(ld%spec%gravity(2))//'), function '// &
+                                                 itoa(ld%spec%gravity_prop))
+         if (ld%spec%nedge > 0) call files%say('edge loads (CSURface): '//itoa(ld%spec%nedge)//' edges')
+      end associate
+   end subroutine loads_summary
 
    !> Final time, energy balance, the error if the run failed, wall time per phase, contact
    !> statistics and the files written.

@@ -1,4 +1,5 @@
-!> Material sets: the compressible neo-Hookean solid of the seed's eq. 7.2, or a rigid body.
+!> Material sets: the compressible neo-Hookean solid of the seed's eq. 7.2, or a rigid body
+!> (fixed or driven with infinite mass, or free with the mass and inertia of its elements).
 module exic_material_material
    use exic_base_kinds, only: wp
    implicit none
@@ -16,6 +17,8 @@ module exic_material_material
       real(wp) :: rho = 0.0_wp                       !< reference density
       integer :: quadrature = 2                      !< 2: 2x2 Gauss; 1: one point + hourglass control
       real(wp) :: hourglass = 0.1_wp                 !< hourglass coefficient for quadrature 1
+      real(wp) :: body(2) = 0.0_wp                   !< BODY bx by: force per unit reference volume
+      logical :: free = .false.                      !< RIGId,FREE: a free rigid body (3 dofs)
       character(len=:), allocatable :: where         !< file:line of the MATErial record
    end type material_t
 
