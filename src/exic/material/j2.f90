@@ -11,7 +11,7 @@
 !> Each step: trial b_e from the stored Cp^-1 (J18), yield test q_trial <= Y (J19), radial
 !> return of the Kirchhoff deviator (Simo & Hughes, Box 9.1, with b_e for bbar_e; closed form for
 !> linear hardening (J22), safeguarded scalar Newton otherwise (J21, J23)), the spherical part of
-!> b_e from det b_e = J^2 (J24, J25), Cp^-1 = F^-1 b_e F^-T (J26), the dissipation of the
+!> b_e from det b_e = J^2 (J24, J25a-c), Cp^-1 = F^-1 b_e F^-T (J26), the dissipation of the
 !> continuous model at the returned state (J27), adiabatic heating (J17).
 !>
 !> Deformation gradients are 3-D with the block form [F11 F12 0; F21 F22 0; 0 0 F33]: F33 = 1 in
