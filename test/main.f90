@@ -21,6 +21,7 @@ program exic_tests
    use test_gmsh, only: run_gmsh_tests
    use test_loads, only: run_loads_tests
    use test_rigid, only: run_rigid_tests
+   use test_plasticity, only: run_plasticity_tests
    implicit none
    type(runner_t) :: r
 
@@ -31,6 +32,7 @@ program exic_tests
    call r%run('corrector', run_corrector_tests)
    call r%run('contact_geom', run_contact_geom_tests)
    call r%run('element', run_element_tests)
+   call r%run('plasticity', run_plasticity_tests)
    call r%run('fields', run_fields_tests)
    call r%run('physics', run_physics_tests)
    call r%run('contact', run_contact_tests)
