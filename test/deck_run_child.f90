@@ -1,11 +1,11 @@
 !> Child process of the "killed run" test in test_run_output.
 !>
-!> `deck_run_child DECK BASE` reads DECK and runs it quietly through the library, writing
+!> `deck_run_child --child DECK BASE` reads DECK and runs it quietly through the library, writing
 !> BASE.his/.ene/.out (and .h5/.xdmf when the deck asks), as the exic command does.
-!> `deck_run_child DECK BASE N MARKER` does the same but, once N field output times are written
+!> `deck_run_child --child DECK BASE N MARKER` does the same but, once N field output times are written
 !> and flushed, creates the file MARKER and waits (up to 2 minutes) without closing anything,
-!> so that the test can kill it at a known point. Started without arguments (as `fpm test`
-!> does with every program under test/), it does nothing.
+!> so that the test can kill it at a known point. Without `--child` first (as `fpm test` starts
+!> every program under test/, with the suite words given to it), it does nothing.
 program deck_run_child
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
@@ -21,18 +21,19 @@ program deck_run_child
    character(len=4096) :: deck, base, arg, marker
    integer :: park_after, ios
 
-   if (command_argument_count() /= 2 .and. command_argument_count() /= 4) then
-      print '(a)', 'deck_run_child: helper of the run output tests; nothing to do without arguments'
+   call get_command_argument(1, arg)
+   if (arg /= '--child' .or. (command_argument_count() /= 3 .and. command_argument_count() /= 5)) then
+      print '(a)', 'deck_run_child: helper of the run output tests; nothing to do without --child'
       stop
    end if
-   call get_command_argument(1, deck)
-   call get_command_argument(2, base)
+   call get_command_argument(2, deck)
+   call get_command_argument(3, base)
    park_after = 0
-   if (command_argument_count() == 4) then
-      call get_command_argument(3, arg)
+   if (command_argument_count() == 5) then
+      call get_command_argument(4, arg)
       read (arg, *, iostat=ios) park_after
       if (ios /= 0) error stop 'deck_run_child: N must be an integer'
-      call get_command_argument(4, marker)
+      call get_command_argument(5, marker)
       opts%on_fields => park
    end if
    call read_deck(trim(deck), model, err)

@@ -1,9 +1,9 @@
 !> Child process of the "killed writer" test in test_fields.
 !>
-!> `field_writer_child STEM N MARKER` writes the synthetic mesh and N output times to STEM.h5 and
+!> `field_writer_child --child STEM N MARKER` writes the synthetic mesh and N output times to STEM.h5 and
 !> STEM.xdmf, creates the file MARKER, and then waits (up to 2 minutes) without closing anything,
-!> so that the test can kill it with SIGTERM. Started without arguments (as `fpm test` does with
-!> every program under test/), it does nothing and succeeds.
+!> so that the test can kill it with SIGTERM. Without `--child` first (as `fpm test` starts every
+!> program under test/, with the suite words given to it), it does nothing and succeeds.
 program field_writer_child
    use, intrinsic :: iso_fortran_env, only: error_unit
    use exic_base_error, only: error_t
@@ -17,13 +17,14 @@ program field_writer_child
    character(len=4096) :: stem, nsteps_text, marker
    integer :: nsteps, ios
 
-   if (command_argument_count() /= 3) then
-      print '(a)', 'field_writer_child: helper of the field output tests; nothing to do without arguments'
+   call get_command_argument(1, stem)
+   if (stem /= '--child' .or. command_argument_count() /= 4) then
+      print '(a)', 'field_writer_child: helper of the field output tests; nothing to do without --child'
       stop
    end if
-   call get_command_argument(1, stem)
-   call get_command_argument(2, nsteps_text)
-   call get_command_argument(3, marker)
+   call get_command_argument(2, stem)
+   call get_command_argument(3, nsteps_text)
+   call get_command_argument(4, marker)
    read (nsteps_text, *, iostat=ios) nsteps
    if (ios /= 0) error stop 'field_writer_child: N must be an integer'
 

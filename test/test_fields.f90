@@ -376,7 +376,7 @@ contains
       if (.not. exists) return
 
       script = 'rm -f '//marker//' '//status_file//' '//stem//'.h5 '//stem//'.xdmf; '// &
-               child//' '//stem//' 4 '//marker//' > '//DIR//'/killed.log 2>&1 & pid=$!; i=0; '// &
+               child//' --child '//stem//' 4 '//marker//' > '//DIR//'/killed.log 2>&1 & pid=$!; i=0; '// &
                'while [ ! -e '//marker//' ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; '// &
                'kill -TERM $pid; wait $pid 2> /dev/null; echo $? > '//status_file
       call execute_command_line(script)

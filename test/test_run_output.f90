@@ -124,7 +124,7 @@ contains
       call write_text(base//'.inp', bar_deck(20000000, 2))
       call execute_command_line('rm -f '//base//'.h5 '//base//'.xdmf '//base//'.ready '//base//'.status')
       ! start the run, wait (at most 120 s) until it has flushed nout output times, then kill it
-      script = child//' '//base//'.inp '//base//' '//itoa(nout)//' '//base//'.ready > '//base// &
+      script = child//' --child '//base//'.inp '//base//' '//itoa(nout)//' '//base//'.ready > '//base// &
                '.log 2>&1 & pid=$!; while [ ! -e '//base//'.ready ] && [ $SECONDS -lt 120 ]; do sleep 0.05; done; '// &
                'kill -TERM $pid; wait $pid; echo $? > '//base//'.status'
       call execute_command_line('bash -c '''//script//'''', exitstat=status)
