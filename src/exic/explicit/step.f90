@@ -411,7 +411,8 @@ contains
 
    !> Stop on a non-finite value, naming where it first appears; the energy guard.
    !>
-   !> E = kinetic + strain + hourglass, E_in = E(0) + W_ext + W_pm (the energy put in, W_pm the
+   !> E = kinetic + strain + hourglass (+ the frictional dissipation, energy that left, with
+   !> friction: doc/friction.md section 5), E_in = E(0) + W_ext + W_pm (the energy put in, W_pm the
    !> work of the prescribed motion, doc/loads.md section 3),
    !> growth = (E - E_in) / (|E(0)| + |W_ext| + |W_pm|): past energy_warn a warning (once), past
    !> energy_stop an error naming the largest contributor (doc/decisions.md, "Energy guard").
@@ -427,6 +428,8 @@ contains
                             itoa(int(st%step))//': '//first_nonfinite(self))
             return
          end if
+         ! frictional dissipation is energy that left the bodies (doc/friction.md, section 5)
+         if (self%contact%friction) e = e + self%contact%dissipation
          if (self%ld%active) then
             ! loads and prescribed motion: the larger of two estimates of their work (loading.f90)
             w_in = self%ld%work_in(st)
@@ -446,7 +449,8 @@ contains
          end if
          if (growth <= self%energy_warn) return
          if (put_in > 0.0_wp) then
-            what = 'the physical energy (kinetic + strain) exceeds the energy put in (initial energy '// &
+            what = 'the physical energy (kinetic + strain'//trim(merge(' + frictional dissipation', &
+                   '                         ', self%contact%friction))//') exceeds the energy put in (initial energy '// &
                    '+ external work + work of prescribed motion) by '//percent(growth)//' of it at t = '// &
                    rtoa(st%t)//', step '//itoa(int(st%step))
          else

@@ -28,9 +28,11 @@ module exic_io_fields
    !> 5 pressure, 6 von Mises, 7 J), as they appear in the XDMF file and in `/fields/stress`.
    character(len=9), parameter :: STRESS_NAMES(7) = [character(len=9) :: 'sxx', 'syy', 'szz', &
                                                      'sxy', 'pressure', 'von_mises', 'J']
-   !> Names of the nodal vector fields, datasets `/fields/<name>`.
-   character(len=13), parameter :: NODE_VECTORS(4) = [character(len=13) :: 'displacement', &
-                                                      'velocity', 'acceleration', 'contact_force']
+   !> Names of the nodal vector fields, datasets `/fields/<name>`; the last, the nodal friction
+   !> force (doc/friction.md), only when the run has friction (`nvec`).
+   character(len=14), parameter :: NODE_VECTORS(5) = [character(len=14) :: 'displacement', &
+                                                      'velocity', 'acceleration', 'contact_force', &
+                                                      'friction_force']
 
    character(len=*), parameter :: NL = achar(10)
 
@@ -41,6 +43,7 @@ module exic_io_fields
       character(len=:), allocatable :: xdmf_path   !< the .xdmf file
       character(len=:), allocatable :: h5_ref      !< the .h5 file as the .xdmf names it
       integer :: nnode = 0, nelem = 0
+      integer :: nvec = 4                           !< nodal vectors written (5: with friction_force)
       integer :: ntime = 0                          !< output times written so far
       real(wp) :: t_last = 0.0_wp
       integer :: nenergy = -1                       !< -1 until the first write_step
@@ -61,15 +64,17 @@ contains
    !> Create `path_h5` and `path_xdmf` and write the mesh: reference coordinates x0(2, nnode),
    !> connectivity conn(4, nelem) (1-based here; stored 0-based), region and material numbers
    !> per element, and the contact edges surf_edges(2, nedge) (node pairs, 1-based; may be empty).
-   !> Both files must be in one directory unless `path_h5` is absolute.
+   !> Both files must be in one directory unless `path_h5` is absolute. `friction`: the run has
+   !> friction; every output time then also holds the nodal friction force.
    subroutine writer_open(self, path_h5, path_xdmf, nnode, nelem, x0, conn, region, mat, &
-                          surf_edges, err)
+                          surf_edges, err, friction)
       class(field_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path_h5, path_xdmf
       integer, intent(in) :: nnode, nelem
       real(wp), intent(in), contiguous :: x0(:, :)
       integer, intent(in), contiguous :: conn(:, :), region(:), mat(:), surf_edges(:, :)
       type(error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: friction
       type(error_t), allocatable :: err2
 
       if (self%h5%is_open()) then
@@ -85,6 +90,10 @@ contains
       self%xdmf_path = path_xdmf
       self%nnode = nnode
       self%nelem = nelem
+      self%nvec = 4
+      if (present(friction)) then
+         if (friction) self%nvec = 5
+      end if
       self%ntime = 0
       self%t_last = 0.0_wp
       self%nenergy = -1
@@ -95,7 +104,7 @@ contains
       call self%h5%create(path_h5, err)
       if (allocated(err)) return
       call write_mesh(self%h5, x0, conn, region, mat, surf_edges, err)
-      if (.not. allocated(err)) call create_field_series(self%h5, nnode, nelem, err)
+      if (.not. allocated(err)) call create_field_series(self%h5, nnode, nelem, self%nvec, err)
       if (.not. allocated(err)) call self%h5%flush(err)
       if (.not. allocated(err)) call write_xdmf(self, err)
       if (allocated(err)) call self%h5%close(err2)
@@ -105,9 +114,10 @@ contains
    !> acceleration a and contact force fcont, each (2, nnode); the contact flag active(nnode)
    !> (1 where a node carries an active constraint); the stress sig(7, nelem) (sxx, syy, szz,
    !> sxy, pressure, von Mises, J); and the energies with their names (the same names, in the
-   !> same order, at every call). Flushes the .h5 file, then rewrites the .xdmf file.
+   !> same order, at every call); ffric(2, nnode), the nodal friction force, when the writer was
+   !> opened with friction. Flushes the .h5 file, then rewrites the .xdmf file.
    subroutine writer_write_step(self, t, step, u, v, a, sig, fcont, active, energies, &
-                                energy_names, err)
+                                energy_names, err, ffric)
       class(field_writer_t), intent(inout) :: self
       real(wp), intent(in) :: t
       integer(i8), intent(in) :: step
@@ -116,10 +126,19 @@ contains
       real(wp), intent(in) :: energies(:)
       character(len=*), intent(in) :: energy_names(:)
       type(error_t), allocatable, intent(out) :: err
+      real(wp), intent(in), contiguous, optional :: ffric(:, :)
       integer :: i
 
       call check_step(self, t, u, v, a, sig, fcont, active, energies, energy_names, err)
       if (allocated(err)) return
+      if (self%nvec == 5) then
+         if (.not. present(ffric)) then
+            call make_error(err, 'field output: the friction force is missing')
+         else if (any(shape(ffric) /= [2, self%nnode])) then
+            call make_error(err, 'field output: the friction force must be (2, nnode)')
+         end if
+         if (allocated(err)) return
+      end if
       if (self%nenergy < 0) then
          call create_energy_series(self, energy_names, err)
          if (allocated(err)) return
@@ -129,6 +148,7 @@ contains
       if (.not. allocated(err)) call self%h5%append('/fields/velocity', v, err)
       if (.not. allocated(err)) call self%h5%append('/fields/acceleration', a, err)
       if (.not. allocated(err)) call self%h5%append('/fields/contact_force', fcont, err)
+      if (.not. allocated(err) .and. self%nvec == 5) call self%h5%append('/fields/friction_force', ffric, err)
       if (.not. allocated(err)) call self%h5%append('/fields/contact_active', active, err)
       if (.not. allocated(err)) call self%h5%append('/fields/stress', sig, err)
       do i = 1, size(energies)
@@ -138,7 +158,7 @@ contains
       ! /time and /step last: their length is the number of complete output times
       if (.not. allocated(err)) call self%h5%append('/time', t, err)
       if (.not. allocated(err)) call self%h5%append('/step', step, err)
-      if (.not. allocated(err)) call create_views(self%h5, self%ntime, self%nnode, self%nelem, t, step, err)
+      if (.not. allocated(err)) call create_views(self%h5, self%ntime, self%nnode, self%nelem, self%nvec, t, step, err)
       if (.not. allocated(err)) call self%h5%flush(err)
       if (allocated(err)) then
          self%broken = .true.
@@ -291,9 +311,9 @@ contains
    end subroutine write_mesh
 
    !> Create the empty series /time, /step and /fields/*, and the groups /energies and /xdmf.
-   subroutine create_field_series(h5, nnode, nelem, err)
+   subroutine create_field_series(h5, nnode, nelem, nvec, err)
       type(hdf5_file_t), intent(inout) :: h5
-      integer, intent(in) :: nnode, nelem
+      integer, intent(in) :: nnode, nelem, nvec
       type(error_t), allocatable, intent(out) :: err
       integer :: i
       integer :: none(0)
@@ -301,7 +321,7 @@ contains
       call h5%create_series('/time', DTYPE_REAL, none, err)
       if (.not. allocated(err)) call h5%create_series('/step', DTYPE_INT64, none, err)
       if (.not. allocated(err)) call h5%create_group('/fields', err)
-      do i = 1, size(NODE_VECTORS)
+      do i = 1, nvec
          if (allocated(err)) return
          call h5%create_series('/fields/'//trim(NODE_VECTORS(i)), DTYPE_REAL, [2, nnode], err)
          if (.not. allocated(err)) call h5%write_attr('/fields/'//trim(NODE_VECTORS(i)), 'center', &
@@ -358,9 +378,9 @@ contains
    end subroutine create_energy_series
 
    !> Create /xdmf/NNNNNN (k = output index, 0-based) holding views of slab k of every field.
-   subroutine create_views(h5, k, nnode, nelem, t, step, err)
+   subroutine create_views(h5, k, nnode, nelem, nvec, t, step, err)
       type(hdf5_file_t), intent(inout) :: h5
-      integer, intent(in) :: k, nnode, nelem
+      integer, intent(in) :: k, nnode, nelem, nvec
       real(wp), intent(in) :: t
       integer(i8), intent(in) :: step
       type(error_t), allocatable, intent(out) :: err
@@ -372,7 +392,7 @@ contains
       if (.not. allocated(err)) call h5%write_attr(g, 'time', t, err)
       if (.not. allocated(err)) call h5%write_attr(g, 'step', step, err)
       ! nodal vectors (2, nnode, k) -> (3, nnode), third component zero
-      do i = 1, size(NODE_VECTORS)
+      do i = 1, nvec
          if (allocated(err)) return
          call h5%create_view(g//'/'//trim(NODE_VECTORS(i)), '/fields/'//trim(NODE_VECTORS(i)), &
                              DTYPE_REAL, [3, nnode], [0, 0], [2, nnode], [0, 0, k], [2, nnode, 1], err)
@@ -443,7 +463,7 @@ contains
           '        <Geometry GeometryType="XY">'//NL// &
           data_item(nn//' 2', 'Float', '8', f//'/mesh/coordinates')// &
           '        </Geometry>'//NL
-      do i = 1, size(NODE_VECTORS)
+      do i = 1, self%nvec
          s = s//attribute(trim(NODE_VECTORS(i)), 'Vector', 'Node', &
                           data_item(nn//' 3', 'Float', '8', g//trim(NODE_VECTORS(i))))
       end do

@@ -11,11 +11,12 @@ module exic_io_history
 
    public :: history_files_t, ENERGY_COLUMNS
 
-   !> Column names of <stem>.ene, in order (prescribed_work [ext], doc/loads.md section 3,
-   !> appended after the older columns so that they keep their positions).
+   !> Column names of <stem>.ene, in order (prescribed_work [ext], doc/loads.md section 3, and
+   !> friction_dissipation [ext], doc/friction.md section 5, appended after the older columns so
+   !> that they keep their positions).
    character(len=*), parameter :: ENERGY_COLUMNS = &
       't step dt kinetic strain external_work contact_work total drift momentum_x momentum_y '// &
-      'active hourglass prescribed_work'
+      'active hourglass prescribed_work friction_dissipation'
 
    !> The three text files of one run.
    type :: history_files_t
@@ -90,14 +91,15 @@ contains
 
    !> One row of <stem>.ene.
    subroutine files_ene_row(self, t, step, dt, kinetic, strain, wext, wcon, total, drift, &
-                            momentum, nactive, hourglass, wpm)
+                            momentum, nactive, hourglass, wpm, dfric)
       class(history_files_t), intent(inout) :: self
       real(wp), intent(in) :: t, dt, kinetic, strain, wext, wcon, total, drift, momentum(2), hourglass
       real(wp), intent(in) :: wpm      !< work of the prescribed motion
+      real(wp), intent(in) :: dfric    !< frictional dissipation
       integer(i8), intent(in) :: step
       integer, intent(in) :: nactive
-      write (self%ene, '(es24.16,i12,9es24.16,i10,2es24.16)') t, step, dt, kinetic, strain, wext, &
-         wcon, total, drift, momentum, nactive, hourglass, wpm
+      write (self%ene, '(es24.16,i12,9es24.16,i10,3es24.16)') t, step, dt, kinetic, strain, wext, &
+         wcon, total, drift, momentum, nactive, hourglass, wpm, dfric
       call self%maybe_flush()
    end subroutine files_ene_row
 

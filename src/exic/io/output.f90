@@ -167,7 +167,8 @@ contains
          denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass, tiny(1.0_wp))
          drift = (total - st%total0)/denom
          call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
-                                 st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm)
+                                 st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm, &
+                                 stp%contact%dissipation)
       end associate
       self%last_row_step = stp%st%step
    end subroutine write_rows
@@ -280,7 +281,7 @@ contains
       self%field_next = stp%st%t
       call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, model%mesh%nelem, &
                             model%mesh%x, model%mesh%conn, model%mesh%region, model%mesh%mat, &
-                            stp%contact%edges(), err)
+                            stp%contact%edges(), err, stp%contact%friction)
    end subroutine output_open_fields
 
    !> Write the fields when an output time is due. The next output time is the first multiple
@@ -309,23 +310,31 @@ contains
       call write_fields(self, stp, err)
    end subroutine output_fields_due
 
-   !> The fields of the current state.
+   !> The fields of the current state; with friction also the nodal friction force and the
+   !> frictional dissipation (doc/friction.md).
    subroutine write_fields(self, stp, err)
       type(output_t), intent(inout) :: self
       type(stepper_t), intent(in) :: stp
       type(error_t), allocatable, intent(out) :: err
       real(wp), allocatable :: sig(:, :)
       integer, allocatable :: flag(:)
-      real(wp) :: energies(5)
-      character(len=16), parameter :: names(5) = [character(len=16) :: 'kinetic', 'strain', &
-                                                   'external_work', 'contact_work', 'hourglass']
+      real(wp) :: energies(6)
+      character(len=20), parameter :: names(6) = [character(len=20) :: 'kinetic', 'strain', &
+                                                   'external_work', 'contact_work', 'hourglass', &
+                                                   'friction_dissipation']
       associate (st => stp%st)
          allocate (sig(7, st%nelem), flag(st%nnode))
          call all_stresses(st, stp%sets, sig)
          flag = merge(1, 0, st%fcon(1, :) /= 0.0_wp .or. st%fcon(2, :) /= 0.0_wp)
-         energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass]
-         call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                     energies, names, err)
+         energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass, &
+                     stp%contact%dissipation]
+         if (stp%contact%friction) then
+            call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
+                                        energies, names, err, stp%contact%ffric)
+         else
+            call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
+                                        energies(1:5), names(1:5), err)
+         end if
          self%field_last = st%t
       end associate
    end subroutine write_fields
