@@ -15,6 +15,7 @@ program exic_tests
    use test_physics, only: run_physics_tests
    use test_contact, only: run_contact_tests
    use test_run_output, only: run_run_output_tests
+   use test_console, only: run_console_tests
    use test_deck, only: run_deck_tests
    use test_inputs, only: run_inputs_tests
    use test_legacy, only: run_legacy_tests
@@ -35,6 +36,7 @@ program exic_tests
    call r%run('physics', run_physics_tests)
    call r%run('contact', run_contact_tests)
    call r%run('run_output', run_run_output_tests)
+   call r%run('console', run_console_tests)
    call r%run('deck', run_deck_tests)
    call r%run('inputs', run_inputs_tests)
    call r%run('gmsh', run_gmsh_tests)

@@ -65,6 +65,7 @@ module exic_io_fields
       procedure :: open => writer_open
       procedure :: write_step => writer_write_step
       procedure :: close => writer_close
+      procedure :: mark_failed => writer_mark_failed
       procedure :: is_open => writer_is_open
       procedure :: count => writer_count
    end type field_writer_t
@@ -212,6 +213,16 @@ contains
       if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
       call self%series%abandon()
    end subroutine writer_close
+
+   !> Record that the run failed: the root attribute `failed` of the .h5 file holds `message`
+   !> (the last output time is then the state the run stopped in), flushed at once.
+   subroutine writer_mark_failed(self, message, err)
+      class(field_writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: message
+      type(error_t), allocatable, intent(out) :: err
+      call self%h5%write_attr('/', 'failed', message, err)
+      if (.not. allocated(err)) call self%h5%flush(err)
+   end subroutine writer_mark_failed
 
    !> True between a successful `open` and `close`.
    logical function writer_is_open(self)

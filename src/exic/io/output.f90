@@ -13,6 +13,7 @@ module exic_io_output
    use exic_io_program, only: REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, REQ_REAC, REQ_CONT, REQ_MOME
    use exic_io_history, only: history_files_t
    use exic_io_fields, only: field_writer_t
+   use exic_io_report, only: energy_balance
    use exic_explicit_step, only: stepper_t
    use exic_explicit_assembly, only: element_stress, all_stresses
    implicit none
@@ -40,6 +41,7 @@ module exic_io_output
       procedure :: open_fields => output_open_fields
       procedure :: fields_due => output_fields_due
       procedure :: final => output_final
+      procedure :: failed => output_failed
       procedure :: close => output_close
    end type output_t
 
@@ -99,7 +101,7 @@ contains
       type(model_t), intent(in) :: model
       type(stepper_t), intent(in) :: stp
       integer :: k
-      real(wp) :: sig(7), total, drift, denom
+      real(wp) :: sig(7), total, drift
 
       do k = 1, size(self%values)
          associate (q => model%requests(k), st => stp%st)
@@ -125,9 +127,7 @@ contains
       end do
       associate (st => stp%st)
          call self%files%his_row(st%t, self%values)
-         total = st%kinetic + st%strain + st%hourglass - st%wext - st%wcon
-         denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass, tiny(1.0_wp))
-         drift = (total - st%total0)/denom
+         call energy_balance(st, total, drift)
          call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
                                  st%wcon, total, drift, st%momentum, st%nactive, st%hourglass)
       end associate
@@ -218,6 +218,23 @@ contains
       if (self%last_row_step /= stp%st%step) call write_rows(self, model, stp)
       if (self%fields%is_open() .and. stp%st%t > self%field_last) call write_fields(self, stp, err)
    end subroutine output_final
+
+   !> After a failed run: the fields of the state the stepper holds (the step it stopped in), if
+   !> fields are written and that time is not in the file yet, and the failure `message` as the
+   !> attribute `failed` of the .h5 file (doc/fields.md). The history files get no row.
+   subroutine output_failed(self, stp, message, err)
+      class(output_t), intent(inout) :: self
+      type(stepper_t), intent(in) :: stp
+      character(len=*), intent(in) :: message
+      type(error_t), allocatable, intent(out) :: err
+      if (.not. self%fields%is_open()) return
+      if (stp%st%t > self%field_last) then
+         call write_fields(self, stp, err)
+         if (allocated(err)) return
+         call self%files%say('fields of the state at the failure written (t = '//rtoa(stp%st%t)//')')
+      end if
+      call self%fields%mark_failed(message, err)
+   end subroutine output_failed
 
    !> Close the field files (reporting a failure in <stem>.out) and the text files.
    subroutine output_close(self)
