@@ -12,6 +12,7 @@ program exic_tests
    use test_element, only: run_element_tests
    use test_fields, only: run_fields_tests
    use test_xdmf, only: run_xdmf_tests
+   use test_viewers, only: run_viewers_tests
    use test_physics, only: run_physics_tests
    use test_contact, only: run_contact_tests
    use test_run_output, only: run_run_output_tests
@@ -33,6 +34,7 @@ program exic_tests
    call r%run('element', run_element_tests)
    call r%run('fields', run_fields_tests)
    call r%run('xdmf', run_xdmf_tests)
+   call r%run('viewers', run_viewers_tests)
    call r%run('physics', run_physics_tests)
    call r%run('contact', run_contact_tests)
    call r%run('run_output', run_run_output_tests)
