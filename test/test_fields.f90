@@ -330,7 +330,40 @@ contains
                  'exit code '//itoa(code))
       code = run_python('tools/plot_history.py '//DIR//'/no_such_run -o '//plots//' 2> /dev/null')
       call check(s, code == 1, 'plot_history.py fails on a missing run', 'exit code '//itoa(code))
+      ! the run's output times are 0.25, 0.5, 0.75: 2.0 is after the run
+      code = run_python('tools/plot_fields.py '//h5//' -t 0.5 2.0 -o '//DIR//'/late.png 2> '//DIR//'/late.err')
+      inquire (file=DIR//'/late.png', exist=exists)
+      call check(s, code == 2 .and. .not. exists .and. file_has_text(DIR//'/late.err', 'time 2 outside the run'), &
+                 'plot_fields.py refuses a time after the run, saying so on stderr', 'exit code '//itoa(code))
+      code = run_python('tools/plot_fields.py '//h5//' -t 2.0 --clamp --nodal -o '//DIR//'/late.png 2> '// &
+                        DIR//'/late.err > /dev/null')
+      inquire (file=DIR//'/late.png', exist=exists)
+      call check(s, code == 0 .and. exists .and. file_has_text(DIR//'/late.err', 'warning'), &
+                 'with --clamp it draws the last output time (nodal contours) and warns', 'exit code '//itoa(code))
+      code = run_python('tools/animate_fields.py '//h5//' -c von_mises -o '//DIR//'/anim.gif > /dev/null && '// &
+                        python_command()//' -c "from PIL import Image; import sys; '// &
+                        'sys.exit(0 if Image.open('''//DIR//'/anim.gif'').n_frames == 3 else 1)"')
+      call check(s, code == 0, 'animate_fields.py writes a GIF of the 3 output times', 'exit code '//itoa(code))
+      code = run_python('tools/plot_summary.py test/data/fields/sample -o '//plots//'/summary.png > /dev/null')
+      inquire (file=plots//'/summary.png', exist=exists)
+      call check(s, code == 0 .and. exists, 'plot_summary.py draws the summary page', 'exit code '//itoa(code))
    end subroutine check_plots
+
+   !> The file exists and contains `text`.
+   logical function file_has_text(path, text) result(found)
+      character(len=*), intent(in) :: path, text
+      character(len=1024) :: line
+      integer :: u, ios
+      found = .false.
+      open (newunit=u, file=path, status='old', action='read', iostat=ios)
+      if (ios /= 0) return
+      do
+         read (u, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         if (index(line, text) > 0) found = .true.
+      end do
+      close (u)
+   end function file_has_text
 
    !> write_step errors on an open writer with 3 outputs: nothing is written.
    subroutine check_step_errors(s, w)
