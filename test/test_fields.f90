@@ -253,6 +253,10 @@ contains
       call h5dump('', '-d /last/a/displacement '//h5, ok, space, vals)
       call check(s, ok .and. same(vals, reshape(want, [3*NNODE_T])), '/last/a/displacement is u(t3), z = 0', &
                  list_text(vals))
+      call h5dump('', '-d /last/a/output '//h5, ok, space, vals)
+      call check(s, ok .and. same(vals, [2.0_wp]), '/last/a/output names output 2', list_text(vals))
+      call h5dump('', '-d /last/b/output '//h5, ok, space, vals)
+      call check(s, ok .and. same(vals, [1.0_wp]), '/last/b/output names output 1', list_text(vals))
       call h5dump('', '-d /last/b/cell_von_mises '//h5, ok, space, vals)
       call synthetic_step(2, t, step, u, v, a, sig, fcont, active, energies)
       call check(s, ok .and. same(vals, sig(6, :)), '/last/b still holds t2, the output before', &
@@ -331,6 +335,7 @@ contains
       code = run_python('tools/plot_history.py '//DIR//'/no_such_run -o '//plots//' 2> /dev/null')
       call check(s, code == 1, 'plot_history.py fails on a missing run', 'exit code '//itoa(code))
       ! the run's output times are 0.25, 0.5, 0.75: 2.0 is after the run
+      call execute_command_line('rm -f '//DIR//'/late.png '//DIR//'/anim.gif')
       code = run_python('tools/plot_fields.py '//h5//' -t 0.5 2.0 -o '//DIR//'/late.png 2> '//DIR//'/late.err')
       inquire (file=DIR//'/late.png', exist=exists)
       call check(s, code == 2 .and. .not. exists .and. file_has_text(DIR//'/late.err', 'time 2 outside the run'), &

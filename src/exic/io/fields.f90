@@ -76,10 +76,12 @@ contains
    !> mesh: reference coordinates x0(2, nnode), connectivity conn(4, nelem) (1-based here; stored
    !> 0-based), region and material numbers per element, and the contact edges surf_edges(2, nedge)
    !> (node pairs, 1-based; may be empty). `cell_names` names the element values of each output
-   !> time (default STRESS_NAMES; letters, digits and '_'). The files must share one directory
-   !> unless `path_h5` is absolute.
+   !> time (default STRESS_NAMES; letters, digits and '_'). `energy_names`, when given, creates the
+   !> energy series now instead of at the first output time (then every object of the file exists
+   !> after `open`, as HDF5's single-writer/multiple-reader mode requires). The files must share
+   !> one directory unless `path_h5` is absolute.
    subroutine writer_open(self, path_h5, path_xdmf, nnode, nelem, x0, conn, region, mat, &
-                          surf_edges, err, cell_names)
+                          surf_edges, err, cell_names, energy_names)
       class(field_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path_h5, path_xdmf
       integer, intent(in) :: nnode, nelem
@@ -87,6 +89,7 @@ contains
       integer, intent(in), contiguous :: conn(:, :), region(:), mat(:), surf_edges(:, :)
       type(error_t), allocatable, intent(out) :: err
       character(len=*), intent(in), optional :: cell_names(:)
+      character(len=*), intent(in), optional :: energy_names(:)
       type(error_t), allocatable :: err2
       character(len=:), allocatable :: ref
 
@@ -128,6 +131,7 @@ contains
       call write_mesh(self%h5, x0, conn, region, mat, surf_edges, err)
       if (.not. allocated(err)) call create_field_series(self, err)
       if (.not. allocated(err)) call create_last_buffers(self, err)
+      if (.not. allocated(err) .and. present(energy_names)) call create_energy_series(self, energy_names, err)
       if (.not. allocated(err)) call self%h5%flush(err)
       if (.not. allocated(err)) call self%series%create(series_path(path_xdmf), series_head(), &
                                                         series_tail(), err)
@@ -450,7 +454,7 @@ contains
          if (allocated(err)) return
          g = '/last/'//BUFFER(b)
          call self%h5%create_group(g, err)
-         if (.not. allocated(err)) call self%h5%write_attr(g, 'output', -1, err)
+         if (.not. allocated(err)) call self%h5%write(g//'/output', [-1], err)
          do i = 1, size(NODE_VECTORS)
             if (.not. allocated(err)) call self%h5%write(g//'/'//trim(NODE_VECTORS(i)), zero3, err)
          end do
@@ -492,7 +496,7 @@ contains
          if (.not. allocated(err)) call self%h5%rewrite(g//'/node_'//trim(self%comp_names(i)), &
                                                         self%col_node, err)
       end do
-      if (.not. allocated(err)) call self%h5%write_attr(g, 'output', self%ntime, err)
+      if (.not. allocated(err)) call self%h5%rewrite(g//'/output', [self%ntime], err)
    end subroutine write_last_buffer
 
    !> Create one series /energies/<name> per energy (at the first output time).

@@ -21,6 +21,10 @@ module exic_io_output
 
    public :: output_t
 
+   !> The energies of the field output, datasets /energies/<name>.
+   character(len=16), parameter :: ENERGY_NAMES(5) = [character(len=16) :: 'kinetic', 'strain', &
+                                                      'external_work', 'contact_work', 'hourglass']
+
    !> The run's output files and their schedules.
    type :: output_t
       type(history_files_t) :: files                !< <stem>.his, .ene, .out
@@ -159,7 +163,7 @@ contains
       self%field_next = stp%st%t
       call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, model%mesh%nelem, &
                             model%mesh%x, model%mesh%conn, model%mesh%region, model%mesh%mat, &
-                            stp%contact%edges(), err)
+                            stp%contact%edges(), err, energy_names=ENERGY_NAMES)
    end subroutine output_open_fields
 
    !> Write the fields when an output time is due. The next output time is the first multiple
@@ -196,15 +200,13 @@ contains
       real(wp), allocatable :: sig(:, :)
       integer, allocatable :: flag(:)
       real(wp) :: energies(5)
-      character(len=16), parameter :: names(5) = [character(len=16) :: 'kinetic', 'strain', &
-                                                   'external_work', 'contact_work', 'hourglass']
       associate (st => stp%st)
          allocate (sig(7, st%nelem), flag(st%nnode))
          call all_stresses(st, stp%sets, sig)
          flag = merge(1, 0, st%fcon(1, :) /= 0.0_wp .or. st%fcon(2, :) /= 0.0_wp)
          energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass]
          call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                     energies, names, err)
+                                     energies, ENERGY_NAMES, err)
          self%field_last = st%t
       end associate
    end subroutine write_fields
