@@ -2,8 +2,9 @@
 !>
 !> `hdf5_file_t` owns one file handle. It creates groups, fixed datasets (written once, or
 !> rewritten whole), extendible "series" (chunked, unlimited last dimension, grown one slab at a
-!> time), virtual "series views" that show a block of every slab of a series, and attributes. Every HDF5 status is checked; a failure becomes an `error_t` naming
-!> the operation, the object and the file, and every handle opened on the way is closed again.
+!> time), virtual "series views" that show a block of every slab of a series, and attributes.
+!> Every HDF5 status is checked; a failure becomes an `error_t` naming the operation, the object
+!> and the file, and every handle opened on the way is closed again.
 !>
 !> Shapes are given in Fortran order. HDF5 stores them reversed, so a Fortran array x(2, n)
 !> reads as shape (n, 2) in C, Python (h5py) and h5dump.
