@@ -11,7 +11,7 @@ RELEASE := --profile release --flag "-O3 -march=native -funroll-loops -ffp-contr
 EXAMPLE ?= inputs/examples/impact.inp
 OUTDIR  ?= out
 
-.PHONY: all setup deps venv build run test verify bench plots install legacy-host clean help
+.PHONY: all setup deps venv build run test test-viewers verify bench plots install legacy-host clean help
 
 all: build
 
@@ -22,12 +22,13 @@ help:
 	@echo "make bench    run the benchmarks and regenerate doc/performance figures"
 	@echo "make plots DECK=path.inp [OUTDIR=out]   run a deck, draw its histories and contours"
 	@echo "              into OUTDIR/plots"
-	@echo "make install PREFIX=dir    install libexic.a, module files and include/exic_contact.h"
+	@echo "make test-viewers  install ParaView (Debian packages) and check it reads the field output"
+	@echo "make install PREFIX=dir    install the exic program, libexic.a, module files and the C header"
 	@echo "make legacy-host PREFIX=dir   build examples/legacy_host against that installation"
 
 # --- set-up -----------------------------------------------------------------
-deps:
-	@missing=""; for p in $(APT_PACKAGES); do \
+# $(call apt_install,PACKAGES): install the Debian packages of the list that are missing
+apt_install = missing=""; for p in $(1); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
 	done; \
 	if [ -n "$$missing" ]; then \
@@ -35,6 +36,9 @@ deps:
 	  SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO=sudo; \
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing; \
 	fi
+
+deps:
+	@$(call apt_install,$(APT_PACKAGES))
 
 $(FPM): tools/requirements.txt | deps
 	@if [ ! -x $(PYTHON) ]; then python3 -m venv $(VENV) 2>/dev/null || /usr/bin/python3 -m venv $(VENV); fi
@@ -72,6 +76,17 @@ test: setup
 	@$(call fpm_build,--tests)
 	EXIC_FPM=$(abspath $(FPM)) $(FPM) test
 
+# Optional: the `viewers` suite (ParaView reads the field output headless), which `make test`
+# skips when pvpython is missing. ParaView is several hundred MB of Debian packages, so only
+# this target installs it.
+VIEWER_PACKAGES := paraview python3-paraview xvfb xauth
+test-viewers: setup
+	@$(call apt_install,$(VIEWER_PACKAGES))
+	@find build -path '*/test/exic-test' -type f -delete 2>/dev/null || true
+	@$(STALE)
+	@$(call fpm_build,--tests)
+	$(FPM) test exic-test -- viewers
+
 # the release binary that `build` made
 EXIC = $$($(FPM) run $(RELEASE) --runner echo exic 2>/dev/null | tail -n 1)
 
@@ -90,9 +105,10 @@ bench: setup
 	$(FPM) build $(RELEASE)
 	$(PYTHON) bench/run_bench.py --fpm $(FPM) --release '$(RELEASE)' --only $(BENCH_ONLY) $(BENCH_ARGS)
 
+# The exic program, libexic.a, the module files and the C header, nothing else (no benchmark
+# program): tools/install.sh installs with fpm into build/install-stage and copies those.
 install: setup
-	$(FPM) install $(RELEASE) --prefix $(or $(PREFIX),$(CURDIR)/dist)
-	install -m 644 include/exic_contact.h $(or $(PREFIX),$(CURDIR)/dist)/include/
+	EXIC_FPM=$(abspath $(FPM)) tools/install.sh $(or $(PREFIX),$(CURDIR)/dist) $(RELEASE)
 
 legacy-host: install
 	$(MAKE) -C examples/legacy_host PREFIX=$(abspath $(or $(PREFIX),$(CURDIR)/dist)) \

@@ -102,12 +102,15 @@ contains
          '  <stem>.his  time histories requested by TPLOt (a # header names the columns)', &
          '  <stem>.ene  energy balance and momentum', &
          '  <stem>.out  deck echo, mesh and material summary, stable step, energy balance, wall time', &
-         '  <stem>.h5 and <stem>.xdmf  fields, when the deck asks for OUTPut,HDF5', &
-         'next to the deck, or under DIR with -o DIR.', &
+         '  <stem>.h5, <stem>.xdmf (last output time) and <stem>_series.xdmf (every one):', &
+         '              fields, when the deck asks for OUTPut,HDF5 (doc/fields.md)', &
+         'next to the deck, or under DIR with -o DIR. A progress line (percentage, time, step,', &
+         'steps per second, wall time, ETA, energy drift) is shown as the run goes and a summary', &
+         'at the end.', &
          '', &
          'options:', &
          '  -o DIR      write the outputs under DIR (created if missing)', &
-         '  -q          no progress lines on the console', &
+         '  -q          no progress line and no final summary on the console', &
          '  --version   print the version', &
          '  -h, --help  this text', &
          '', &

@@ -11,9 +11,12 @@ program exic_tests
    use test_contact_geom, only: run_contact_geom_tests
    use test_element, only: run_element_tests
    use test_fields, only: run_fields_tests
+   use test_xdmf, only: run_xdmf_tests
+   use test_viewers, only: run_viewers_tests
    use test_physics, only: run_physics_tests
    use test_contact, only: run_contact_tests
    use test_run_output, only: run_run_output_tests
+   use test_console, only: run_console_tests
    use test_deck, only: run_deck_tests
    use test_inputs, only: run_inputs_tests
    use test_legacy, only: run_legacy_tests
@@ -34,9 +37,12 @@ program exic_tests
    call r%run('element', run_element_tests)
    call r%run('plasticity', run_plasticity_tests)
    call r%run('fields', run_fields_tests)
+   call r%run('xdmf', run_xdmf_tests)
+   call r%run('viewers', run_viewers_tests)
    call r%run('physics', run_physics_tests)
    call r%run('contact', run_contact_tests)
    call r%run('run_output', run_run_output_tests)
+   call r%run('console', run_console_tests)
    call r%run('deck', run_deck_tests)
    call r%run('inputs', run_inputs_tests)
    call r%run('gmsh', run_gmsh_tests)

@@ -11,10 +11,15 @@ build the commit before the change (git worktree) and the change, then run this.
 
 --allow-extra-columns N: the new .ene may carry N trailing columns the old one has not (a change
 that adds a column); the shared columns must still be identical.
+
+--layout-change (with --fields): a change of the field file layout; only the datasets both files
+have are compared, and the datasets added and removed are listed once at the end (per-time
+groups such as /xdmf/000012 are shown as /xdmf/<k>).
 """
 import argparse
 import hashlib
 import pathlib
+import re
 import subprocess
 import sys
 import tempfile
@@ -40,20 +45,39 @@ def strip_columns(path, extra):
     return out
 
 
-def compare_h5(a, b):
+def datasets(f):
+    import h5py
+    names = []
+    f.visit(lambda n: names.append(n) if isinstance(f[n], h5py.Dataset) else None)
+    return names
+
+
+def generic(name):
+    """A dataset name with its per-time group numbers replaced by <k>."""
+    return re.sub(r"/\d{6,}/", "/<k>/", "/" + name)
+
+
+def compare_h5(a, b, layout=None):
+    """Datasets of `a` that differ from those of `b`. With `layout` (a dict of two sets), only
+    the datasets of both are compared, and the names only in `a` ("added") or only in `b`
+    ("removed") are collected there instead of counted."""
     import h5py
     import numpy as np
     diffs = []
     with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
-        names = []
-        fa.visit(lambda n: names.append(n) if isinstance(fa[n], h5py.Dataset) else None)
-        for n in names:
-            if n not in fb:
-                diffs.append(f"{n} missing")
+        na, nb = datasets(fa), set(datasets(fb))
+        for n in na:
+            if n not in nb:
+                if layout is None:
+                    diffs.append(f"{n} missing")
+                else:
+                    layout["added"].add(generic(n))
                 continue
             x, y = fa[n][()], fb[n][()]
             if np.shape(x) != np.shape(y) or not np.array_equal(x, y):
                 diffs.append(n)
+        if layout is not None:
+            layout["removed"].update(generic(n) for n in nb - set(na))
     return diffs
 
 
@@ -64,12 +88,15 @@ def main():
     ap.add_argument("--decks", default="inputs", help="folder searched for *.inp (default inputs)")
     ap.add_argument("--fields", action="store_true", help="compare the .h5 datasets too")
     ap.add_argument("--allow-extra-columns", type=int, default=0)
+    ap.add_argument("--layout-change", action="store_true",
+                    help="compare only the datasets both .h5 files have; list those added and removed")
     ap.add_argument("--timeout", type=float, default=600.0)
     args = ap.parse_args()
 
     root = pathlib.Path(args.decks)
     decks = sorted(p for p in root.rglob("*.inp") if "common" not in p.parts)
     bad = 0
+    layout = {"added": set(), "removed": set()} if args.layout_change else None
     with tempfile.TemporaryDirectory() as tmp:
         for deck in decks:
             dn = pathlib.Path(tmp, "new", deck.stem)
@@ -90,7 +117,7 @@ def main():
                 if not same:
                     notes.append(f"{ext} differs")
             if args.fields and (dr / (deck.stem + ".h5")).exists():
-                d = compare_h5(dn / (deck.stem + ".h5"), dr / (deck.stem + ".h5"))
+                d = compare_h5(dn / (deck.stem + ".h5"), dr / (deck.stem + ".h5"), layout)
                 if d:
                     notes.append(".h5 differs: " + ", ".join(d[:5]))
             status = "identical" if not notes else "DIFFERENT: " + "; ".join(notes)
@@ -99,6 +126,9 @@ def main():
             rows = sum(1 for l in his.read_text().splitlines() if not l.startswith("#")) if his.exists() else 0
             print(f"{str(deck):45s} {rows:7d} rows  {status}", flush=True)
     print(f"{len(decks) - bad} of {len(decks)} decks identical")
+    if layout is not None:
+        print("datasets added: " + (", ".join(sorted(layout["added"])) or "none"))
+        print("datasets removed: " + (", ".join(sorted(layout["removed"])) or "none"))
     return 1 if bad else 0
 
 

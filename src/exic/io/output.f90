@@ -15,6 +15,7 @@ module exic_io_output
    use exic_mesh_edge_set, only: find_edge_set, edge_set_nodes
    use exic_io_history, only: history_files_t
    use exic_io_fields, only: field_writer_t
+   use exic_io_report, only: energy_balance
    use exic_explicit_step, only: stepper_t
    use exic_explicit_assembly, only: element_stress, all_stresses
    use exic_explicit_loading, only: reaction
@@ -28,6 +29,10 @@ module exic_io_output
    type :: node_list_t
       integer, allocatable :: nodes(:)
    end type node_list_t
+
+   !> The energies of the field output, datasets /energies/<name>.
+   character(len=16), parameter :: ENERGY_NAMES(5) = [character(len=16) :: 'kinetic', 'strain', &
+                                                      'external_work', 'contact_work', 'hourglass']
 
    !> The run's output files and their schedules.
    type :: output_t
@@ -50,6 +55,7 @@ module exic_io_output
       procedure :: open_fields => output_open_fields
       procedure :: fields_due => output_fields_due
       procedure :: final => output_final
+      procedure :: failed => output_failed
       procedure :: close => output_close
    end type output_t
 
@@ -133,7 +139,7 @@ contains
       type(model_t), intent(in) :: model
       type(stepper_t), intent(in) :: stp
       integer :: k
-      real(wp) :: sig(7), total, drift, denom
+      real(wp) :: sig(7), total, drift
 
       do k = 1, size(self%values)
          associate (q => model%requests(k), st => stp%st)
@@ -163,9 +169,7 @@ contains
       end do
       associate (st => stp%st)
          call self%files%his_row(st%t, self%values)
-         total = st%kinetic + st%strain + st%hourglass - st%wext - st%wcon - st%wpm
-         denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass, tiny(1.0_wp))
-         drift = (total - st%total0)/denom
+         call energy_balance(st, total, drift)
          call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
                                  st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm)
       end associate
@@ -280,7 +284,7 @@ contains
       self%field_next = stp%st%t
       call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, model%mesh%nelem, &
                             model%mesh%x, model%mesh%conn, model%mesh%region, model%mesh%mat, &
-                            stp%contact%edges(), err)
+                            stp%contact%edges(), err, energy_names=ENERGY_NAMES)
    end subroutine output_open_fields
 
    !> Write the fields when an output time is due. The next output time is the first multiple
@@ -317,15 +321,13 @@ contains
       real(wp), allocatable :: sig(:, :)
       integer, allocatable :: flag(:)
       real(wp) :: energies(5)
-      character(len=16), parameter :: names(5) = [character(len=16) :: 'kinetic', 'strain', &
-                                                   'external_work', 'contact_work', 'hourglass']
       associate (st => stp%st)
          allocate (sig(7, st%nelem), flag(st%nnode))
          call all_stresses(st, stp%sets, sig)
          flag = merge(1, 0, st%fcon(1, :) /= 0.0_wp .or. st%fcon(2, :) /= 0.0_wp)
          energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass]
          call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                     energies, names, err)
+                                     energies, ENERGY_NAMES, err)
          self%field_last = st%t
       end associate
    end subroutine write_fields
@@ -339,6 +341,23 @@ contains
       if (self%last_row_step /= stp%st%step) call write_rows(self, model, stp)
       if (self%fields%is_open() .and. stp%st%t > self%field_last) call write_fields(self, stp, err)
    end subroutine output_final
+
+   !> After a failed run: the fields of the state the stepper holds (the step it stopped in), if
+   !> fields are written and that time is not in the file yet, and the failure `message` as the
+   !> attribute `failed` of the .h5 file (doc/fields.md). The history files get no row.
+   subroutine output_failed(self, stp, message, err)
+      class(output_t), intent(inout) :: self
+      type(stepper_t), intent(in) :: stp
+      character(len=*), intent(in) :: message
+      type(error_t), allocatable, intent(out) :: err
+      if (.not. self%fields%is_open()) return
+      if (stp%st%t > self%field_last) then
+         call write_fields(self, stp, err)
+         if (allocated(err)) return
+         call self%files%say('fields of the state at the failure written (t = '//rtoa(stp%st%t)//')')
+      end if
+      call self%fields%mark_failed(message, err)
+   end subroutine output_failed
 
    !> Close the field files (reporting a failure in <stem>.out) and the text files.
    subroutine output_close(self)

@@ -10,10 +10,11 @@ module exic_io_report
    use exic_explicit_step, only: stepper_t
    use exic_explicit_rigid, only: RB_FREE, RB_DRIVEN
    use exic_explicit_loads, only: FN_UNDEFINED
+   use exic_explicit_state, only: state_t
    implicit none
    private
 
-   public :: report_preamble, report_summary, report_final
+   public :: report_preamble, report_summary, report_final, console_summary, energy_balance
 
 contains
 
@@ -138,5 +139,42 @@ contains
       call files%say('files written: '//files%his_path//' '//files%ene_path//' '//files%out_path// &
                      field_files)
    end subroutine report_final
+
+   !> The energy balance of <stem>.ene: total = kinetic + strain + hourglass - external work -
+   !> contact work - prescribed work, and its drift from the initial total relative to the largest of |initial
+   !> total| and the physical energy now.
+   pure subroutine energy_balance(st, total, drift)
+      type(state_t), intent(in) :: st
+      real(wp), intent(out) :: total, drift
+      real(wp) :: denom
+      total = st%kinetic + st%strain + st%hourglass - st%wext - st%wcon - st%wpm
+      denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass, tiny(1.0_wp))
+      drift = (total - st%total0)/denom
+   end subroutine energy_balance
+
+   !> The lines printed on the console at the end of a run: steps, wall time and rates (the
+   !> figures of <stem>.out), the largest penetration, and the energy balance of the last
+   !> <stem>.ene row.
+   function console_summary(stp, wall) result(text)
+      type(stepper_t), intent(in) :: stp
+      real(wp), intent(in) :: wall                !< wall time of the whole run
+      character(len=:), allocatable :: text
+      character(len=*), parameter :: NL = achar(10)
+      real(wp) :: ts, total, drift
+      associate (st => stp%st, c => stp%contact)
+         text = 'exic: '//itoa(int(st%step))//' steps to t = '//rtoa(st%t)//', wall time '//rtoa(wall)//' s'
+         if (st%step > 0) then
+            ts = max(stp%time_steps, 1.0e-9_wp)
+            text = text//NL//'exic: steps per second '//rtoa(real(st%step, wp)/ts)// &
+                   ', element-steps per second '//rtoa(real(st%step, wp)*st%nelem/ts)
+         end if
+         if (c%active) text = text//NL//'exic: largest penetration over the run '//rtoa(c%max_penetration)
+         call energy_balance(st, total, drift)
+         text = text//NL//'exic: energy: initial total '//rtoa(st%total0)//', kinetic '//rtoa(st%kinetic)// &
+                ', strain '//rtoa(st%strain + st%hourglass)//', external work '//rtoa(st%wext)// &
+                ', contact work '//rtoa(st%wcon)//NL//'exic: energy balance: total '//rtoa(total)// &
+                ', drift '//rtoa(drift)
+      end associate
+   end function console_summary
 
 end module exic_io_report
