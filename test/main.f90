@@ -19,6 +19,7 @@ program exic_tests
    use test_legacy, only: run_legacy_tests
    use test_layers, only: run_layers_tests
    use test_gmsh, only: run_gmsh_tests
+   use test_hostile, only: run_hostile_tests
    implicit none
    type(runner_t) :: r
 
@@ -36,6 +37,7 @@ program exic_tests
    call r%run('deck', run_deck_tests)
    call r%run('inputs', run_inputs_tests)
    call r%run('gmsh', run_gmsh_tests)
+   call r%run('hostile', run_hostile_tests)
    call r%run('legacy', run_legacy_tests)
    call r%finish()
 end program exic_tests
