@@ -146,6 +146,7 @@ contains
       type(suite_t), intent(inout) :: s
       type(model_t) :: m
       type(error_t), allocatable :: err
+      integer :: u
       call expect_error(s, 'INCLude,/dev/zero is refused with file:line', 'zero.inp', &
                         head//'INCLude,/dev/zero'//nl//tail, tmp//'zero.inp:15:', &
                         'not a regular file')
@@ -158,6 +159,12 @@ contains
       call check(s, allocated(err), 'a deck that is a device is refused')
       if (allocated(err)) call check(s, has(err%message, 'not a regular file'), &
                                      'and the message says so', err%message)
+      open (newunit=u, file=tmp//'empty.inp', status='replace', action='write')
+      close (u)
+      call read_deck(tmp//'empty.inp', m, err)
+      call check(s, allocated(err), 'an empty file (0 bytes) is refused')
+      if (allocated(err)) call check(s, has(err%message, tmp//'empty.inp:1: the deck is empty: '// &
+                                     'expected a title record'), 'naming file:1', err%message)
       call read_deck(tmp, m, err)
       call check(s, allocated(err), 'a deck that is a directory is refused')
       if (allocated(err)) call check(s, has(err%message, 'is a directory'), &
