@@ -31,19 +31,47 @@ NAMED = re.compile(r"\b(node|element|pair|region)\s+\d+", re.I)
 FILE_LINE = re.compile(r"^exic: error: [^\s:][^:]*:\d+: ", re.M)
 
 
-def run(exic, deck, outdir, timeout, extra=()):
-    """Run `exic deck -q -o outdir`; a dict with code, class, seconds, stderr, message."""
-    t0 = time.time()
+def _head_tail(path, n=1 << 16):
+    """The first and last n bytes of a file as text (all of it when shorter)."""
     try:
-        p = subprocess.run([exic, deck, "-q", "-o", outdir, *extra], capture_output=True,
-                           text=True, errors="replace", timeout=timeout, start_new_session=True)
-        code, out, err = p.returncode, p.stdout, p.stderr
-        hung = False
-    except subprocess.TimeoutExpired as e:
-        code, hung = None, True
-        out = (e.stdout or b"").decode(errors="replace") if isinstance(e.stdout, bytes) else (e.stdout or "")
-        err = (e.stderr or b"").decode(errors="replace") if isinstance(e.stderr, bytes) else (e.stderr or "")
+        with open(path, "rb") as f:
+            data = f.read(n)
+            f.seek(0, os.SEEK_END)
+            size = f.tell()
+            if size > 2 * n:
+                f.seek(size - n)
+                data += b"\n...\n" + f.read()
+            elif size > n:
+                f.seek(n)
+                data += f.read()
+    except OSError:
+        return ""
+    return data.decode(errors="replace")
+
+
+def run(exic, deck, outdir, timeout, extra=()):
+    """Run `exic deck -q -o outdir`; a dict with code, class, seconds, stderr, message. The
+    console goes to files (a run may print without end), of which the ends are read."""
+    t0 = time.time()
+    base = os.path.join(outdir, os.path.splitext(os.path.basename(deck))[0])
+    with open(base + ".stdout", "wb") as fo, open(base + ".stderr", "wb") as fe:
+        p = subprocess.Popen([exic, deck, "-q", "-o", outdir, *extra], stdout=fo, stderr=fe,
+                             start_new_session=True)
+        try:
+            code = p.wait(timeout=timeout)
+            hung = False
+        except subprocess.TimeoutExpired:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
+            code, hung = None, True
     secs = time.time() - t0
+    out = _head_tail(base + ".stdout")
+    err = _head_tail(base + ".stderr")
+    for ext in (".stdout", ".stderr"):
+        try:
+            os.remove(base + ext)
+        except OSError:
+            pass
     msg = ""
     for line in err.splitlines():
         if line.startswith("exic: error:"):
@@ -210,21 +238,74 @@ def energy_warned(out_path):
     return bool(re.search(r"warning:.*energy", text, re.I))
 
 
+def _letters_in_text(path):
+    """First token with a letter other than E in the lines after the '#' header of a text
+    table, read in blocks (a long run's table may be gigabytes): 'line: token' or None."""
+    pat = re.compile(r"[A-DF-Za-df-z]")
+    line = 1
+    carry = ""
+    first = True
+    with open(path, errors="replace") as f:
+        while True:
+            block = f.read(1 << 22)
+            if not block:
+                break
+            block = carry + block
+            cut = block.rfind("\n") + 1 if len(block) >= (1 << 22) else len(block)
+            carry, block = block[cut:], block[:cut]
+            if first:
+                first = False
+                if block.startswith("#"):
+                    nl = block.find("\n")
+                    block = block[nl + 1:] if nl >= 0 else ""
+                    line += 1
+            m = pat.search(block)
+            if m:
+                return f"{line + block[:m.start()].count(chr(10))}: {block[m.start():m.start() + 12].split()[0]}"
+            line += block.count("\n")
+    return None
+
+
+def _nonfinite_h5(path):
+    """Datasets of <stem>.h5 (not the /xdmf views) holding a non-finite value, read in slabs."""
+    import h5py
+    bad = []
+    try:
+        with h5py.File(path, "r") as f:
+            def visit(name, obj):
+                if not (isinstance(obj, h5py.Dataset) and obj.dtype.kind == "f" and obj.size):
+                    return
+                if obj.ndim == 0:
+                    ok = np.isfinite(obj[()])
+                else:
+                    per = max(1, obj.size // max(obj.shape[0], 1))
+                    step = max(1, (1 << 22) // per)
+                    ok = all(np.isfinite(obj[k:k + step]).all() for k in range(0, obj.shape[0], step))
+                if not ok:
+                    bad.append(f"{os.path.basename(path)}:{name}")
+            for g in ("mesh", "fields", "energies", "time"):
+                if g in f:
+                    if isinstance(f[g], h5py.Dataset):
+                        visit(g, f[g])
+                    else:
+                        f[g].visititems(visit)
+    except OSError:
+        pass
+    return bad
+
+
 def nonfinite_in_outputs(stem):
-    """Non-finite numbers in <stem>.his, .ene (any token), .out (outside the deck echo and the
-    error and warning lines) and the datasets of <stem>.h5: a list of 'file: token'."""
+    """Non-finite numbers in <stem>.his, .ene (any token with a letter other than E), .out
+    (outside the deck echo and the error and warning lines) and the datasets of <stem>.h5: a
+    list of 'file:line: token' or 'file:dataset'."""
     bad = []
     tok = re.compile(r"(?<![A-Za-z_])(nan|[+-]?inf(inity)?)(?![A-Za-z_])", re.I)
     for ext in (".his", ".ene"):
         p = stem + ext
         if os.path.exists(p):
-            with open(p, errors="replace") as f:
-                text = f.read()
-            body = text.split("\n", 1)[1] if text.startswith("#") and "\n" in text else text
-            m = re.search(r"[A-DF-Za-df-z]", body)     # numbers hold no letter but E
-            if m:
-                line = body[:m.start()].count("\n") + 2
-                bad.append(f"{os.path.basename(p)}:{line}: {body[m.start():m.start() + 12].split()[0]}")
+            hit = _letters_in_text(p)
+            if hit:
+                bad.append(f"{os.path.basename(p)}:{hit}")
     p = stem + ".out"
     if os.path.exists(p):
         echo = False
@@ -240,23 +321,8 @@ def nonfinite_in_outputs(stem):
                     if m:
                         bad.append(f"{os.path.basename(p)}:{n}: {m.group(0)}")
                         break
-    p = stem + ".h5"
-    if os.path.exists(p):
-        import h5py
-        try:
-            with h5py.File(p, "r") as f:
-                def visit(name, obj):
-                    if isinstance(obj, h5py.Dataset) and obj.dtype.kind == "f" and obj.size:
-                        if not np.isfinite(obj[()]).all():
-                            bad.append(f"{os.path.basename(p)}:{name}")
-                for g in ("mesh", "fields", "energies", "time"):     # not the /xdmf views
-                    if g in f:
-                        if isinstance(f[g], h5py.Dataset):
-                            visit(g, f[g])
-                        else:
-                            f[g].visititems(visit)
-        except OSError:
-            pass
+    if os.path.exists(stem + ".h5"):
+        bad += _nonfinite_h5(stem + ".h5")
     return bad
 
 
