@@ -73,6 +73,7 @@ def write(load, figdir, doc, log):
     _todo(sc, fz, lg, lg6, w)
     with open(doc, "w") as f:
         f.write("\n".join(out) + "\n")
+    _saved_readme()
     log(f"report: {os.path.relpath(doc, ROOT)}")
 
 
@@ -113,6 +114,21 @@ def _scenes(data, w, figdir):
     if stop:
         w("Stops by reason: " + ", ".join(f"{k} {v}" for k, v in reasons.most_common()) +
           f"; {named} of {len(stop)} messages name a node, element or pair.\n")
+    if stop:
+        w("Stops against the impact speed (the largest body speed of the scene over the smallest wave "
+          "speed of its solid bodies) and the quadrature:\n")
+        w("| speed / c | scenes | stopped | inversion | energy |")
+        w("|---|---:|---:|---:|---:|")
+        for lo, hi in ((0.0, 0.1), (0.1, 0.2), (0.2, 10.0)):
+            rs = [r for r in res if lo <= max(b["speed_over_c"] for b in r["bodies"]) < hi]
+            st = [r for r in rs if r["class"] == "stopped"]
+            w(f"| {lo:g}-{hi if hi < 10 else 'max'} | {len(rs)} | {len(st)} ({pct(len(st), len(rs))}) | "
+              f"{sum(1 for r in st if r.get('reason') == 'inversion')} | "
+              f"{sum(1 for r in st if r.get('reason') == 'energy')} |")
+        one = [r for r in res if any(b["quad"] == 1 and not b["rigid"] for b in r["bodies"])]
+        w(f"\nScenes with a one-point (QUADrature 1) body: {len(one)}, of which stopped "
+          f"{sum(1 for r in one if r['class'] == 'stopped')}; scenes with 2x2 bodies only: "
+          f"{n - len(one)}, stopped {sum(1 for r in res if r not in one and r['class'] == 'stopped')}.\n")
     g = [((r.get("energy") or {}).get("max") or 0.0) for r in fin]
     pen = [((r.get("penetration") or {}).get("relative") or 0.0) for r in fin]
     ew = [r.get("energy_warned") for r in fin]
@@ -370,3 +386,29 @@ def _todo(sc, fz, lg, lg6, w):
                 items.append(f"- long {r['kind']}: energy growth {fmt(100 * e['max'])} %")
     w("\n".join(items) if items else "None found in this campaign.")
     w("")
+
+
+def _saved_readme():
+    """test/data/stress/README.md: every saved deck with the note of its first comment line."""
+    import glob
+    d = os.path.join(ROOT, "test", "data", "stress")
+    files = sorted(glob.glob(os.path.join(d, "*.inp")))
+    if not files:
+        return
+    lines = ["# Decks saved by the stress suite", "",
+             "Written by `make stress` (tools/stress/, doc/stability.md): the worst random scenes of each "
+             "kind of failure, the fuzzed decks that failed, and the decks of the long runs. Each deck's "
+             "first comment line (`! stress...`) says what it showed when it was saved. Scenes and long "
+             "runs are self-contained (`exic test/data/stress/NAME.inp -o out`); a fuzzed deck is a "
+             "mutant of a deck of inputs/ and may INCLude that deck's `common/` files: copy it next to "
+             "its original to run it.", ""]
+    for f in files:
+        note = ""
+        with open(f, encoding="latin-1") as fh:
+            for line in fh:
+                if line.startswith("! stress"):
+                    note = line.split(":", 1)[1].strip() if ":" in line else line[2:].strip()
+                    break
+        lines.append(f"- `{os.path.basename(f)}`: {note or 'long run of the stress suite (section 4)'}")
+    with open(os.path.join(d, "README.md"), "w") as fh:
+        fh.write("\n".join(lines) + "\n")

@@ -159,7 +159,7 @@ def save_failing_scenes(results, decks, seed):
     for r in picked:
         note = describe(r)
         with open(os.path.join(SAVED, r["name"] + ".inp"), "w") as f:
-            f.write(decks[r["name"]].replace("\n", f"\n! stress: {note}\n", 1))
+            f.write(f"! stress: {note}\n" + decks[r["name"]])
 
 
 def describe(r):
