@@ -11,13 +11,15 @@ RELEASE := --profile release --flag "-O3 -march=native -funroll-loops -ffp-contr
 EXAMPLE ?= inputs/examples/impact.inp
 OUTDIR  ?= out
 
-.PHONY: all setup deps venv build run test test-viewers verify bench plots install legacy-host clean help
+.PHONY: all setup deps venv build run test test-viewers verify stress bench plots install legacy-host clean help
 
 all: build
 
 help:
 	@echo "make run      set up, build (release) and run the main example ($(EXAMPLE))"
 	@echo "make test     set up and run the whole test suite (fpm test, bounds checked)"
+	@echo "make stress   random scenes, fuzzed decks, CFL sweeps, long runs -> doc/stability.md"
+	@echo "              (about 30 minutes; STRESS_ARGS=--long for 10^6-step runs)"
 	@echo "make verify   run the decks of inputs/ and regenerate doc/verification.md"
 	@echo "make bench    run the benchmarks and regenerate doc/performance figures"
 	@echo "make plots DECK=path.inp [OUTDIR=out]   run a deck, draw its histories and contours"
@@ -92,6 +94,14 @@ EXIC = $$($(FPM) run $(RELEASE) --runner echo exic 2>/dev/null | tail -n 1)
 
 verify: build
 	$(PYTHON) tools/verify.py --exic "$(EXIC)"
+
+# Stress suite (doc/stability.md, doc/stability/): 500 random scenes, 2,000 fuzzed decks, CFL
+# sweeps of the seed's 7.2 and 7.3, long runs of 5e4-1e5 steps; two processes at a time, each
+# run under a timeout. STRESS_ARGS passes options: --long (10^6-step runs), --seed N,
+# --only scenes,fuzz,cfl,long, --scenes N, --fuzz N (tools/stress/stress.py --help).
+STRESS_ARGS ?=
+stress: build
+	$(PYTHON) tools/stress/stress.py --exic "$(EXIC)" $(STRESS_ARGS)
 
 plots: build
 	@if [ -z "$(DECK)" ]; then echo "usage: make plots DECK=path/to/deck.inp [OUTDIR=out]"; exit 2; fi

@@ -4,6 +4,7 @@ program exic_main
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
+   use exic_io_posix, only: make_directories
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    implicit none
 
@@ -67,10 +68,12 @@ contains
       call get_command_argument(k, s)
    end function argument
 
-   !> dir/stem of the outputs: the deck's stem, next to the deck or under `dir`.
+   !> dir/stem of the outputs: the deck's stem, next to the deck or under `dir` (created with
+   !> its parents by mkdir(2); no shell is involved).
    function output_base(path, dir) result(base)
       character(len=*), intent(in) :: path, dir
       character(len=:), allocatable :: base, stem, parent
+      type(error_t), allocatable :: err
       integer :: slash, dot
       slash = index(path, '/', back=.true.)
       stem = path(slash + 1:)
@@ -78,7 +81,8 @@ contains
       dot = index(stem, '.', back=.true.)
       if (dot > 1) stem = stem(:dot - 1)
       if (len(dir) > 0) then
-         call execute_command_line('mkdir -p "'//dir//'"')
+         call make_directories(dir, err)
+         if (allocated(err)) call die('-o '//dir//': '//err%message)
          base = dir//'/'//stem
       else
          base = parent//stem

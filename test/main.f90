@@ -25,6 +25,7 @@ program exic_tests
    use test_loads, only: run_loads_tests
    use test_rigid, only: run_rigid_tests
    use test_plasticity, only: run_plasticity_tests
+   use test_hostile, only: run_hostile_tests
    implicit none
    type(runner_t) :: r
 
@@ -48,6 +49,7 @@ program exic_tests
    call r%run('gmsh', run_gmsh_tests)
    call r%run('loads', run_loads_tests)
    call r%run('rigid', run_rigid_tests)
+   call r%run('hostile', run_hostile_tests)
    call r%run('legacy', run_legacy_tests)
    call r%finish()
 end program exic_tests

@@ -32,6 +32,7 @@ module exic_io_reader
       type(param_table_t) :: params
       character(len=:), allocatable :: warnings !< newline-separated "file:line: warning: ..."
       integer :: set_end = -1                   !< index of the blank record that last ended a set
+      character(len=:), allocatable :: deck     !< the deck's path (errors of an empty deck)
    end type reader_t
 
 contains
@@ -136,7 +137,11 @@ contains
       j = i
       if (j < 1 .or. j > rd%src%n) j = rd%src%n
       if (j < 1) then
-         call make_error(err, msg)
+         if (allocated(rd%deck)) then
+            call make_error(err, 'the deck is empty: '//msg, rd%deck, 1)
+         else
+            call make_error(err, msg)
+         end if
       else if (i < 1 .or. i > rd%src%n) then
          call make_error(err, 'end of input: '//msg, rd%src%rec(j)%file, rd%src%rec(j)%line)
       else
