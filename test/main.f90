@@ -19,6 +19,7 @@ program exic_tests
    use test_legacy, only: run_legacy_tests
    use test_layers, only: run_layers_tests
    use test_gmsh, only: run_gmsh_tests
+   use test_math, only: run_math_tests
    implicit none
    type(runner_t) :: r
 
@@ -26,6 +27,7 @@ program exic_tests
    ! each suite adds one line here
    call r%run('layers', run_layers_tests)
    call r%run('linalg', run_linalg_tests)
+   call r%run('math', run_math_tests)
    call r%run('corrector', run_corrector_tests)
    call r%run('contact_geom', run_contact_geom_tests)
    call r%run('element', run_element_tests)
