@@ -20,6 +20,7 @@ program exic_tests
    use test_layers, only: run_layers_tests
    use test_gmsh, only: run_gmsh_tests
    use test_math, only: run_math_tests
+   use test_threads, only: run_threads_tests
    implicit none
    type(runner_t) :: r
 
@@ -33,6 +34,7 @@ program exic_tests
    call r%run('element', run_element_tests)
    call r%run('fields', run_fields_tests)
    call r%run('physics', run_physics_tests)
+   call r%run('threads', run_threads_tests)
    call r%run('contact', run_contact_tests)
    call r%run('run_output', run_run_output_tests)
    call r%run('deck', run_deck_tests)
