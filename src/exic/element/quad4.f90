@@ -444,13 +444,21 @@ contains
       integer :: k, a, n
       ! scalar loads: faster here than the vector gather instructions (measured)
       !GCC$ novector
-      do k = 1, NBLOCK
+      do k = 1, nb
          do a = 1, 4
-            n = conn(a, min(k, nb))
+            n = conn(a, k)
             xe(k, a) = x0(1, n)
             ye(k, a) = x0(2, n)
             uxe(k, a) = u(1, n)
             uye(k, a) = u(2, n)
+         end do
+      end do
+      do a = 1, 4
+         do k = nb + 1, NBLOCK
+            xe(k, a) = xe(nb, a)
+            ye(k, a) = ye(nb, a)
+            uxe(k, a) = uxe(nb, a)
+            uye(k, a) = uye(nb, a)
          end do
       end do
    end subroutine gather
@@ -515,7 +523,8 @@ contains
    !> corner triangle and the area positive), 0 where it is. With A the area, T the smallest
    !> corner triangle and D the longest diagonal squared, phi^2 A^2 = (c0 A + c1 T) A, so
    !>     dt^2 = phi^2 A^2/(D c^2) = (c0 A + c1 T) A/(D c^2)
-   !> takes one division, and phi^2 > 0 is c0 A + c1 T > 0 (A > 0).
+   !> takes one division, and phi^2 > 0 is c0 A + c1 T > 0 (A > 0). Areas are formed doubled
+   !> (2 A, 2 T, 2 A0; the halving is exact and cancels: D is multiplied by 4 instead).
    pure subroutine stable_block(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2, good)
       integer, intent(in) :: nq
       real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, xc, yc
@@ -523,8 +532,8 @@ contains
       real(wp), intent(out), dimension(NBLOCK) :: dt2, good
       real(wp), parameter :: s3 = 0.57735026918962576451_wp
       real(wp), dimension(NBLOCK) :: num, den, jr, c2, ok
-      real(wp) :: c0, c1, d1x, d1y, d2x, d2y, area, a0, tmin, pa, ph
-      integer :: k
+      real(wp) :: c0, c1, d1x, d1y, d2x, d2y, a2, a02, t2, pa, ph, ex(4), ey(4)
+      integer :: k, a
 
       if (nq == 1) then
          c0 = 2.0_wp/3.0_wp
@@ -535,38 +544,34 @@ contains
       end if
       ! masks as reals (1 or 0), so that the loop vectorizes
       do k = 1, NBLOCK
-         a0 = 0.5_wp*((xr(k, 3) - xr(k, 1))*(yr(k, 4) - yr(k, 2)) - (yr(k, 3) - yr(k, 1))*(xr(k, 4) - xr(k, 2)))
+         a02 = (xr(k, 3) - xr(k, 1))*(yr(k, 4) - yr(k, 2)) - (yr(k, 3) - yr(k, 1))*(xr(k, 4) - xr(k, 2))
          d1x = xc(k, 3) - xc(k, 1)
          d1y = yc(k, 3) - yc(k, 1)
          d2x = xc(k, 4) - xc(k, 2)
          d2y = yc(k, 4) - yc(k, 2)
-         area = 0.5_wp*(d1x*d2y - d1y*d2x)
-         ! corner triangles (a-1, a, a+1)
-         tmin = min(min(tri(xc(k, 4), yc(k, 4), xc(k, 1), yc(k, 1), xc(k, 2), yc(k, 2)), &
-                        tri(xc(k, 1), yc(k, 1), xc(k, 2), yc(k, 2), xc(k, 3), yc(k, 3))), &
-                    min(tri(xc(k, 2), yc(k, 2), xc(k, 3), yc(k, 3), xc(k, 4), yc(k, 4)), &
-                        tri(xc(k, 3), yc(k, 3), xc(k, 4), yc(k, 4), xc(k, 1), yc(k, 1))))
-         pa = merge(1.0_wp, 0.0_wp, area > 0.0_wp)
-         good(k) = pa*merge(1.0_wp, 0.0_wp, tmin > 0.0_wp)
-         ph = c0*area + c1*tmin
+         a2 = d1x*d2y - d1y*d2x
+         ! edges a -> a+1; the corner triangle (a-1, a, a+1) is e_(a-1) x e_a / 2
+         do a = 1, 4
+            ex(a) = xc(k, modulo(a, 4) + 1) - xc(k, a)
+            ey(a) = yc(k, modulo(a, 4) + 1) - yc(k, a)
+         end do
+         t2 = min(min(ex(4)*ey(1) - ey(4)*ex(1), ex(1)*ey(2) - ey(1)*ex(2)), &
+                  min(ex(2)*ey(3) - ey(2)*ex(3), ex(3)*ey(4) - ey(3)*ex(4)))
+         pa = merge(1.0_wp, 0.0_wp, a2 > 0.0_wp)
+         good(k) = pa*merge(1.0_wp, 0.0_wp, t2 > 0.0_wp)
+         ph = c0*a2 + c1*t2
          ok(k) = pa*merge(1.0_wp, 0.0_wp, ph > 0.0_wp)
-         num(k) = ph*area
-         den(k) = max(d1x*d1x + d1y*d1y, d2x*d2x + d2y*d2y)
+         num(k) = ph*a2
+         den(k) = 4.0_wp*max(d1x*d1x + d1y*d1y, d2x*d2x + d2y*d2y)
          ! J = A/A0, or 1 where the estimate is 0 (a0/a0: a division under a condition would
          ! stop the vectorizer)
-         jr(k) = merge(area, a0, ok(k) > 0.0_wp)/a0
+         jr(k) = merge(a2, a02, ok(k) > 0.0_wp)/a02
       end do
       call nh_wave_speed2_block(NBLOCK, lambda, mu, rho0, jr, c2)
       do k = 1, NBLOCK
          dt2(k) = merge(num(k)/merge(den(k)*c2(k), 1.0_wp, ok(k) > 0.0_wp), 0.0_wp, ok(k) > 0.0_wp)
       end do
    end subroutine stable_block
-
-   !> Area of the triangle (a, b, c) at corner b (positive counter-clockwise).
-   pure real(wp) function tri(xa, ya, xb, yb, xc, yc)
-      real(wp), intent(in) :: xa, ya, xb, yb, xc, yc
-      tri = 0.5_wp*((xc - xb)*(ya - yb) - (yc - yb)*(xa - xb))
-   end function tri
 
    !> dt2min/emin: the smallest dt2 of the block's nb elements (first element off + k on ties)
    !> if below dt2min; efold (when 0): the first folded element (good = 0, stable_block).

@@ -242,7 +242,7 @@ contains
       !$omp parallel if (s%nel >= PAR_MIN_ELEMENTS) default(none) private(c, i, r, e1, n) &
       !$omp shared(s, nnode, x0, u, f, pw, phg, pj, pd, pe, pm, pf)
       do c = 1, s%ncolour
-         !$omp do schedule(static)
+         !$omp do schedule(dynamic)
          do i = s%cfirst(c), s%cfirst(c + 1) - 1
             r = s%cranges(i)
             e1 = s%rfirst(r)

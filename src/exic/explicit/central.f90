@@ -40,7 +40,7 @@ contains
       real(wp), intent(out) :: du(2, n), a_old(2, n)
       integer :: c, i0, m
       !$omp parallel do if (n >= PAR_MIN_NODES) default(none) shared(n, dt, v, a, u, du, a_old) &
-      !$omp private(c, i0, m) schedule(static)
+      !$omp private(c, i0, m) schedule(dynamic)
       do c = 1, (n + CHUNK - 1)/CHUNK
          i0 = (c - 1)*CHUNK + 1
          m = min(CHUNK, n - i0 + 1)
@@ -77,7 +77,7 @@ contains
       real(wp), intent(inout) :: vt(2, n)
       integer :: c, i0, m
       !$omp parallel do if (n >= PAR_MIN_NODES) default(none) &
-      !$omp shared(n, dt, minv, fext, fint, v, a_old, a, with_vt, vt) private(c, i0, m) schedule(static)
+      !$omp shared(n, dt, minv, fext, fint, v, a_old, a, with_vt, vt) private(c, i0, m) schedule(dynamic)
       do c = 1, (n + CHUNK - 1)/CHUNK
          i0 = (c - 1)*CHUNK + 1
          m = min(CHUNK, n - i0 + 1)
@@ -131,7 +131,7 @@ contains
       integer :: c, i0, m
       !$omp parallel do if (n >= PAR_MIN_NODES) default(none) &
       !$omp shared(n, dt, a_old, a, fext, du, with_contact, fcon_old, fcon, v, pe, pc) &
-      !$omp private(c, i0, m) schedule(static)
+      !$omp private(c, i0, m) schedule(dynamic)
       do c = 1, (n + CHUNK - 1)/CHUNK
          i0 = (c - 1)*CHUNK + 1
          m = min(CHUNK, n - i0 + 1)
@@ -189,7 +189,7 @@ contains
       real(wp) :: k, p1, p2
       integer :: c, i0, m
       !$omp parallel do if (n >= PAR_MIN_NODES) default(none) shared(n, mass, v, pk, px, py) &
-      !$omp private(c, i0, m) schedule(static)
+      !$omp private(c, i0, m) schedule(dynamic)
       do c = 1, (n + CHUNK - 1)/CHUNK
          i0 = (c - 1)*CHUNK + 1
          m = min(CHUNK, n - i0 + 1)
@@ -232,7 +232,7 @@ contains
       real(wp), intent(out) :: x(2, nnode)
       integer :: c, i0, m
       !$omp parallel do if (nnode >= PAR_MIN_NODES) default(none) shared(nnode, x0, u, x) &
-      !$omp private(c, i0, m) schedule(static)
+      !$omp private(c, i0, m) schedule(dynamic)
       do c = 1, (nnode + CHUNK - 1)/CHUNK
          i0 = (c - 1)*CHUNK + 1
          m = min(CHUNK, nnode - i0 + 1)
@@ -258,7 +258,7 @@ contains
       real(wp), intent(out) :: a(n)
       integer :: c, i0, m
       !$omp parallel do if (n >= 2*PAR_MIN_NODES) default(none) shared(n, a) private(c, i0, m) &
-      !$omp schedule(static)
+      !$omp schedule(dynamic)
       do c = 1, (n + 2*CHUNK - 1)/(2*CHUNK)
          i0 = (c - 1)*2*CHUNK + 1
          m = min(2*CHUNK, n - i0 + 1)
