@@ -4,11 +4,15 @@
 !> (each step zeroes the force array first, as the explicit driver does) in 5 repetitions and
 !> prints the median and range, in wall time and in processor time (the latter is what counts on
 !> a shared, loaded machine).
+!> `exic-bench-element bandwidth` measures the memory bandwidth instead (triad a = b + s c and
+!> copy over 3 x 128 MB, best of 10, on OMP_NUM_THREADS threads): the roofline of
+!> doc/performance.md.
 !> Build: fpm build --profile release --flag "-O3 -march=native -funroll-loops -ffp-contract=off"
-!> Run:   fpm run exic-bench-element --profile release --flag "..." [-- nsteps]
+!> Run:   fpm run exic-bench-element --profile release --flag "..." [-- nsteps | bandwidth]
 program element_rate
    use exic_base_kinds, only: wp, i8
    use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_stable_dt
+   !$ use omp_lib, only: omp_get_max_threads
    implicit none
    integer, parameter :: nx = 120, ny = 24, nrep = 5
    integer :: nel, nnode, nsteps, i, j, e, rep, ebad, emin, efold, step, nargs
@@ -22,6 +26,10 @@ program element_rate
    nargs = command_argument_count()
    if (nargs >= 1) then
       call get_command_argument(1, arg)
+      if (arg == 'bandwidth') then
+         call bandwidth()
+         stop
+      end if
       read (arg, *) nsteps
    end if
    lambda = 33333.0_wp
@@ -96,6 +104,50 @@ program element_rate
    print '(a,es12.5)', 'checksum ', chk
 
 contains
+
+   !> Best of 10 rates of a triad and a copy over arrays of 16 M reals (128 MB each), shared
+   !> among the OpenMP threads (first touch by the same threads).
+   subroutine bandwidth()
+      integer, parameter :: m = 16*1024*1024
+      real(wp), allocatable :: a(:), b(:), c(:)
+      real(wp) :: best(2), w0, w1
+      integer(i8) :: r0, r1, rt
+      integer :: i, it, nth
+      allocate (a(m), b(m), c(m))
+      !$omp parallel do schedule(static)
+      do i = 1, m
+         a(i) = 0.0_wp
+         b(i) = 1.0_wp
+         c(i) = 2.0_wp
+      end do
+      !$omp end parallel do
+      best = huge(1.0_wp)
+      call system_clock(count_rate=rt)
+      do it = 1, 10
+         call system_clock(r0)
+         !$omp parallel do schedule(static)
+         do i = 1, m
+            a(i) = b(i) + 3.0_wp*c(i)
+         end do
+         !$omp end parallel do
+         call system_clock(r1)
+         w0 = real(r1 - r0, wp)/real(rt, wp)
+         call system_clock(r0)
+         !$omp parallel do schedule(static)
+         do i = 1, m
+            b(i) = a(i)
+         end do
+         !$omp end parallel do
+         call system_clock(r1)
+         w1 = real(r1 - r0, wp)/real(rt, wp)
+         best = min(best, [w0, w1])
+      end do
+      nth = 1
+      !$ nth = omp_get_max_threads()
+      print '(a,i0,a,f7.2,a,f7.2,a)', 'bandwidth threads ', nth, ': triad ', 24.0_wp*m/best(1)/1e9_wp, &
+         ' GB/s, copy ', 16.0_wp*m/best(2)/1e9_wp, ' GB/s'
+      print '(a,es12.5)', 'checksum ', a(7) + b(9)
+   end subroutine bandwidth
 
    subroutine report(name, times)
       character(len=*), intent(in) :: name
