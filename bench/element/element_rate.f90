@@ -1,4 +1,5 @@
-!> Throughput of the quadrilateral force kernels: element-steps per second on a 120 x 24 mesh.
+!> Throughput of the quadrilateral force kernels: element-steps per second on a 120 x 24 mesh
+!> (or nx x ny: `exic-bench-element nsteps nx ny`).
 !>
 !> Times q4_force_2x2, q4_force_1pt (each with the stable step fused in) and q4_stable_dt alone
 !> (each step zeroes the force array first, as the explicit driver does) in 5 repetitions and
@@ -14,8 +15,8 @@ program element_rate
    use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_stable_dt
    !$ use omp_lib, only: omp_get_max_threads
    implicit none
-   integer, parameter :: nx = 120, ny = 24, nrep = 5
-   integer :: nel, nnode, nsteps, i, j, e, rep, ebad, emin, efold, step, nargs
+   integer, parameter :: nrep = 5
+   integer :: nx, ny, nel, nnode, nsteps, i, j, e, rep, ebad, emin, efold, step, nargs
    integer, allocatable :: conn(:, :)
    real(wp), allocatable :: x0(:, :), u(:, :), f(:, :), x(:, :)
    real(wp) :: lambda, mu, wint, whg, jmin, dtmin, chk, t(nrep, 3), tc(nrep, 3), xx, yy, p0, p1
@@ -32,6 +33,14 @@ program element_rate
       end if
       read (arg, *) nsteps
    end if
+   nx = 120
+   ny = 24
+   if (nargs >= 3) then
+      call get_command_argument(2, arg)
+      read (arg, *) nx
+      call get_command_argument(3, arg)
+      read (arg, *) ny
+   end if
    lambda = 33333.0_wp
    mu = 5000.0_wp
    nel = nx*ny
@@ -43,7 +52,7 @@ program element_rate
          xx = 0.25_wp*i + 0.03_wp*sin(1.7_wp*i + 2.3_wp*j)
          yy = 0.25_wp*j + 0.03_wp*cos(2.9_wp*i - 1.1_wp*j)
          x0(:, 1 + i + (nx + 1)*j) = [xx, yy]
-         u(:, 1 + i + (nx + 1)*j) = [0.01_wp*xx + 0.02_wp*yy*sin(0.1_wp*xx), 0.002_wp*xx*xx]
+         u(:, 1 + i + (nx + 1)*j) = [0.01_wp*xx + 0.02_wp*yy*sin(0.1_wp*xx), 0.002_wp*xx*xx*(30.0_wp/(0.25_wp*nx))]
       end do
    end do
    do j = 0, ny - 1
