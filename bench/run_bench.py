@@ -847,6 +847,12 @@ def summary():
               f"- OpenBLAS {m['openblas']} (OPENBLAS_NUM_THREADS={m.get('openblas_num_threads')}), "
               f"SuiteSparse LDL {m['suitesparse']}, HDF5 {m['hdf5']}; "
               f"commit {m['commit']}; {m['date']}"]
+        if m.get("bandwidth_1_thread"):
+            L.append(f"- memory bandwidth (exic-bench-element bandwidth, triad / copy): one thread "
+                     f"{m['bandwidth_1_thread']['triad_GBs']:.1f} / {m['bandwidth_1_thread']['copy_GBs']:.1f} GB/s, two threads "
+                     f"{m.get('bandwidth_2_thread', {}).get('triad_GBs', float('nan')):.1f} / "
+                     f"{m.get('bandwidth_2_thread', {}).get('copy_GBs', float('nan')):.1f} GB/s; clock under load "
+                     f"{m.get('clock_GHz')} GHz")
         ld = load("loads")
         if ld:
             L.append("- load average (1 min) at the start of each section: "
