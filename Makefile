@@ -11,7 +11,7 @@ RELEASE := --profile release --flag "-O3 -march=native -funroll-loops -ffp-contr
 EXAMPLE ?= inputs/examples/impact.inp
 OUTDIR  ?= out
 
-.PHONY: all setup deps venv build run test test-viewers verify stress bench plots install legacy-host clean help
+.PHONY: all setup deps venv build run test test-viewers verify stress bench baseline plots install legacy-host clean help
 
 all: build
 
@@ -21,7 +21,8 @@ help:
 	@echo "make stress   random scenes, fuzzed decks, CFL sweeps, long runs -> doc/stability.md"
 	@echo "              (about 30 minutes; STRESS_ARGS=--long for 10^6-step runs)"
 	@echo "make verify   run the decks of inputs/ and regenerate doc/verification.md"
-	@echo "make bench    run the benchmarks and regenerate doc/performance figures"
+	@echo "make bench    run the benchmarks (against the baseline commit BASELINE, built once) and"
+	@echo "              regenerate doc/performance figures"
 	@echo "make plots DECK=path.inp [OUTDIR=out]   run a deck, draw its histories and contours"
 	@echo "              into OUTDIR/plots"
 	@echo "make test-viewers  install ParaView (Debian packages) and check it reads the field output"
@@ -110,10 +111,27 @@ plots: build
 # Benchmarks (doc/performance.md): release build, then every section of bench/run_bench.py
 # (about 6 minutes after the build; BENCH_ONLY=rate,output runs a subset, BENCH_ARGS=--quick
 # a 2-minute smoke test). Results: bench/results/, figures: doc/perf_*.png.
-BENCH_ONLY ?= machine,rate,profile,output,contact,workprec,stability
-bench: setup
+# Section compare runs the release build of BASELINE (a commit, built once in a detached git
+# worktree under build/baseline, with its own flags = RELEASE) side by side with this one.
+BENCH_ONLY ?= machine,compare,rate,profile,output,contact,workprec,stability
+BASELINE   ?= 5744a35
+BASE_DIR   := build/baseline-$(BASELINE)
+bench: setup baseline
 	$(FPM) build $(RELEASE)
-	$(PYTHON) bench/run_bench.py --fpm $(FPM) --release '$(RELEASE)' --only $(BENCH_ONLY) $(BENCH_ARGS)
+	$(PYTHON) bench/run_bench.py --fpm $(FPM) --release '$(RELEASE)' --only $(BENCH_ONLY) \
+	  --baseline-bindir "$$(cat $(BASE_DIR)/bindir)" $(BENCH_ARGS)
+
+# the release binaries of BASELINE; $(BASE_DIR)/bindir names their folder
+baseline: setup
+	@if [ ! -f $(BASE_DIR)/bindir ]; then \
+	  rm -rf $(BASE_DIR); git worktree prune; \
+	  git worktree add --detach $(BASE_DIR) $(BASELINE) >/dev/null && \
+	  ln -sfn $(abspath $(VENV)) $(BASE_DIR)/.venv && \
+	  (cd $(BASE_DIR) && $(abspath $(FPM)) build $(RELEASE) >/dev/null) && \
+	  (cd $(BASE_DIR) && $(abspath $(FPM)) run $(RELEASE) --runner echo exic 2>/dev/null | tail -n 1 | \
+	   xargs dirname | sed "s|^|$(abspath $(BASE_DIR))/|" > bindir) || { rm -rf $(BASE_DIR); exit 1; }; \
+	fi
+	@echo "baseline $(BASELINE): $$(cat $(BASE_DIR)/bindir)"
 
 # The exic program, libexic.a, the module files and the C header, nothing else (no benchmark
 # program): tools/install.sh installs with fpm into build/install-stage and copies those.

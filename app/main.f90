@@ -1,4 +1,7 @@
 !> The `exic` command: read a deck, run it, write <stem>.his/.ene/.out next to it or under -o DIR.
+!>
+!> Threads are asked for with OMP_NUM_THREADS (the results do not depend on their number); when it
+!> is not set the command runs on one thread (doc/decisions.md, "Threads").
 program exic_main
    use exic_base_error, only: error_t, fatal_error
    use exic_io_model, only: model_t
@@ -6,14 +9,19 @@ program exic_main
    use exic_driver, only: run_options_t, run_model
    use exic_io_posix, only: make_directories
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+   !$ use omp_lib, only: omp_set_num_threads
    implicit none
 
    type(model_t) :: model
    type(run_options_t) :: opts
    type(error_t), allocatable :: err
    character(len=:), allocatable :: deck, outdir, arg
-   integer :: i, n
+   integer :: i, n, nlen
 
+   ! one thread unless OMP_NUM_THREADS asks for more: on a shared machine a thread waiting at a
+   ! barrier for a preempted partner loses its time slice (doc/performance.md)
+   call get_environment_variable('OMP_NUM_THREADS', length=nlen)
+   !$ if (nlen == 0) call omp_set_num_threads(1)
    n = command_argument_count()
    outdir = ''
    deck = ''

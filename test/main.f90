@@ -26,6 +26,8 @@ program exic_tests
    use test_rigid, only: run_rigid_tests
    use test_plasticity, only: run_plasticity_tests
    use test_hostile, only: run_hostile_tests
+   use test_math, only: run_math_tests
+   use test_threads, only: run_threads_tests
    implicit none
    type(runner_t) :: r
 
@@ -33,6 +35,7 @@ program exic_tests
    ! each suite adds one line here
    call r%run('layers', run_layers_tests)
    call r%run('linalg', run_linalg_tests)
+   call r%run('math', run_math_tests)
    call r%run('corrector', run_corrector_tests)
    call r%run('contact_geom', run_contact_geom_tests)
    call r%run('element', run_element_tests)
@@ -41,6 +44,7 @@ program exic_tests
    call r%run('xdmf', run_xdmf_tests)
    call r%run('viewers', run_viewers_tests)
    call r%run('physics', run_physics_tests)
+   call r%run('threads', run_threads_tests)
    call r%run('contact', run_contact_tests)
    call r%run('run_output', run_run_output_tests)
    call r%run('console', run_console_tests)

@@ -6,6 +6,7 @@
 !> describes every reference.
 module test_plasticity
    use exic_base_kinds, only: wp
+   use exic_base_logarithm, only: ln
    use exic_material_material, only: lame_from_young
    use exic_material_neohookean, only: nh_piola, nh_cauchy
    use exic_material_j2_hardening, only: j2_param_t, j2_check_parameters, j2_static_yield, &
@@ -255,7 +256,7 @@ contains
                     ep, tp, p11, p12, p21, p22, p33, we, dwp, ys)
       same = .true.
       do i = 1, n
-         lj = log(jac(i)*f33(i))
+         lj = ln(jac(i)*f33(i))      ! the kernels' logarithm (base/logarithm)
          wref = (lam*lj - mu)/(jac(i)*f33(i))
          same = same .and. p11(i) == wq(i)*(mu*f11(i) + wref*(f22(i)*f33(i))) &
                 .and. p12(i) == wq(i)*(mu*f12(i) - wref*(f21(i)*f33(i))) &

@@ -11,6 +11,7 @@ module exic_io_report
    use exic_explicit_rigid, only: RB_FREE, RB_DRIVEN
    use exic_explicit_loads, only: FN_UNDEFINED
    use exic_explicit_state, only: state_t
+   !$ use omp_lib, only: omp_get_max_threads
    implicit none
    private
 
@@ -39,18 +40,22 @@ contains
       type(history_files_t), intent(inout) :: files
       type(model_t), intent(in) :: model
       type(stepper_t), intent(inout) :: stp
-      integer :: k, e
+      integer :: k, e, nth
       real(wp) :: dts, total
       call files%say('')
       call files%say('nodes (highest number) '//itoa(stp%st%nnode)//', active '// &
                      itoa(count(stp%st%active))//', elements '//itoa(stp%st%nelem))
+      nth = 1
+      !$ nth = omp_get_max_threads()
+      call files%say('threads '//itoa(nth)//' (OMP_NUM_THREADS; the results do not depend on it)')
       do k = 1, size(stp%sets)
          associate (s => stp%sets(k), m => model%materials(stp%sets(k)%mat))
             if (s%kind == MAT_SOLID) then
                call files%say('material '//itoa(s%mat)//': solid neo-Hookean, E = '// &
                               rtoa(m%young)//', nu = '//rtoa(m%poisson)//', lambda = '// &
                               rtoa(m%lambda)//', mu = '//rtoa(m%mu)//', rho = '//rtoa(m%rho)// &
-                              ', quadrature '//itoa(s%nq)//', elements '//itoa(s%nel))
+                              ', quadrature '//itoa(s%nq)//', elements '//itoa(s%nel)// &
+                              ' (in '//itoa(s%nrange)//' ranges of '//itoa(s%ncolour)//' colours)')
             else
                call files%say('material '//itoa(s%mat)//': rigid, rho = '//rtoa(m%rho)// &
                               ', elements '//itoa(s%nel))

@@ -21,6 +21,7 @@
 !> gets stress, energy and dissipation times the weight.
 module exic_material_j2
    use exic_base_kinds, only: wp
+   use exic_base_logarithm, only: ln
    use exic_material_j2_hardening, only: j2_param_t, j2_strain_part, j2_rate_factor, &
                                          j2_thermal_factor, j2_static_yield, j2_has_temperature, &
                                          j2_is_linear, J2_JOHNSON_COOK
@@ -104,10 +105,9 @@ contains
       do q0 = 1, n, CHUNK
          m = min(CHUNK, n - q0 + 1)
          ! (A) ln J, Y(n) (J19) and its slope H(n)
-         !GCC$ novector
          do i = 1, m
             q = q0 + i - 1
-            lnj(i) = log(jac(q)*f33(q))
+            lnj(i) = ln(jac(q)*f33(q))       ! exic's logarithm, the neo-Hookean kernels' (base/logarithm)
          end do
          if (linear) then
             do i = 1, m
@@ -320,11 +320,10 @@ contains
       integer :: q
 
       jc = prm%law == J2_JOHNSON_COOK
-      ! scalar log, as in nh_piola: the vector log differs from it in the last bits
-      !GCC$ novector
+      ! exic's logarithm, as in nh_cauchy (base/logarithm: the same bits scalar and vector)
       do q = 1, n
          jac = (f11(q)*f22(q) - f12(q)*f21(q))*f33(q)
-         lnj = log(jac)
+         lnj = ln(jac)
          rj = 1.0_wp/jac
          g11 = f11(q)*a11(q) + f12(q)*a12(q)
          g12 = f11(q)*a12(q) + f12(q)*a22(q)
