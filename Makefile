@@ -11,23 +11,27 @@ RELEASE := --profile release --flag "-O3 -march=native -funroll-loops -ffp-contr
 EXAMPLE ?= inputs/examples/impact.inp
 OUTDIR  ?= out
 
-.PHONY: all setup deps venv build run test verify bench plots install legacy-host clean help
+.PHONY: all setup deps venv build run test test-viewers verify stress bench baseline plots install legacy-host clean help
 
 all: build
 
 help:
 	@echo "make run      set up, build (release) and run the main example ($(EXAMPLE))"
 	@echo "make test     set up and run the whole test suite (fpm test, bounds checked)"
+	@echo "make stress   random scenes, fuzzed decks, CFL sweeps, long runs -> doc/stability.md"
+	@echo "              (about 30 minutes; STRESS_ARGS=--long for 10^6-step runs)"
 	@echo "make verify   run the decks of inputs/ and regenerate doc/verification.md"
-	@echo "make bench    run the benchmarks and regenerate doc/performance figures"
+	@echo "make bench    run the benchmarks (against the baseline commit BASELINE, built once) and"
+	@echo "              regenerate doc/performance figures"
 	@echo "make plots DECK=path.inp [OUTDIR=out]   run a deck, draw its histories and contours"
 	@echo "              into OUTDIR/plots"
-	@echo "make install PREFIX=dir    install libexic.a, module files and include/exic_contact.h"
+	@echo "make test-viewers  install ParaView (Debian packages) and check it reads the field output"
+	@echo "make install PREFIX=dir    install the exic program, libexic.a, module files and the C header"
 	@echo "make legacy-host PREFIX=dir   build examples/legacy_host against that installation"
 
 # --- set-up -----------------------------------------------------------------
-deps:
-	@missing=""; for p in $(APT_PACKAGES); do \
+# $(call apt_install,PACKAGES): install the Debian packages of the list that are missing
+apt_install = missing=""; for p in $(1); do \
 	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "ok installed" || missing="$$missing $$p"; \
 	done; \
 	if [ -n "$$missing" ]; then \
@@ -35,6 +39,9 @@ deps:
 	  SUDO=""; [ "$$(id -u)" -ne 0 ] && SUDO=sudo; \
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq $$missing; \
 	fi
+
+deps:
+	@$(call apt_install,$(APT_PACKAGES))
 
 $(FPM): tools/requirements.txt | deps
 	@if [ ! -x $(PYTHON) ]; then python3 -m venv $(VENV) 2>/dev/null || /usr/bin/python3 -m venv $(VENV); fi
@@ -72,11 +79,30 @@ test: setup
 	@$(call fpm_build,--tests)
 	EXIC_FPM=$(abspath $(FPM)) $(FPM) test
 
+# Optional: the `viewers` suite (ParaView reads the field output headless), which `make test`
+# skips when pvpython is missing. ParaView is several hundred MB of Debian packages, so only
+# this target installs it.
+VIEWER_PACKAGES := paraview python3-paraview xvfb xauth
+test-viewers: setup
+	@$(call apt_install,$(VIEWER_PACKAGES))
+	@find build -path '*/test/exic-test' -type f -delete 2>/dev/null || true
+	@$(STALE)
+	@$(call fpm_build,--tests)
+	$(FPM) test exic-test -- viewers
+
 # the release binary that `build` made
 EXIC = $$($(FPM) run $(RELEASE) --runner echo exic 2>/dev/null | tail -n 1)
 
 verify: build
 	$(PYTHON) tools/verify.py --exic "$(EXIC)"
+
+# Stress suite (doc/stability.md, doc/stability/): 500 random scenes, 2,000 fuzzed decks, CFL
+# sweeps of the seed's 7.2 and 7.3, long runs of 5e4-1e5 steps; two processes at a time, each
+# run under a timeout. STRESS_ARGS passes options: --long (10^6-step runs), --seed N,
+# --only scenes,fuzz,cfl,long, --scenes N, --fuzz N (tools/stress/stress.py --help).
+STRESS_ARGS ?=
+stress: build
+	$(PYTHON) tools/stress/stress.py --exic "$(EXIC)" $(STRESS_ARGS)
 
 plots: build
 	@if [ -z "$(DECK)" ]; then echo "usage: make plots DECK=path/to/deck.inp [OUTDIR=out]"; exit 2; fi
@@ -85,14 +111,32 @@ plots: build
 # Benchmarks (doc/performance.md): release build, then every section of bench/run_bench.py
 # (about 6 minutes after the build; BENCH_ONLY=rate,output runs a subset, BENCH_ARGS=--quick
 # a 2-minute smoke test). Results: bench/results/, figures: doc/perf_*.png.
-BENCH_ONLY ?= machine,rate,profile,output,contact,workprec,stability
-bench: setup
+# Section compare runs the release build of BASELINE (a commit, built once in a detached git
+# worktree under build/baseline, with its own flags = RELEASE) side by side with this one.
+BENCH_ONLY ?= machine,compare,rate,profile,output,contact,workprec,stability
+BASELINE   ?= 5744a35
+BASE_DIR   := build/baseline-$(BASELINE)
+bench: setup baseline
 	$(FPM) build $(RELEASE)
-	$(PYTHON) bench/run_bench.py --fpm $(FPM) --release '$(RELEASE)' --only $(BENCH_ONLY) $(BENCH_ARGS)
+	$(PYTHON) bench/run_bench.py --fpm $(FPM) --release '$(RELEASE)' --only $(BENCH_ONLY) \
+	  --baseline-bindir "$$(cat $(BASE_DIR)/bindir)" $(BENCH_ARGS)
 
+# the release binaries of BASELINE; $(BASE_DIR)/bindir names their folder
+baseline: setup
+	@if [ ! -f $(BASE_DIR)/bindir ]; then \
+	  rm -rf $(BASE_DIR); git worktree prune; \
+	  git worktree add --detach $(BASE_DIR) $(BASELINE) >/dev/null && \
+	  ln -sfn $(abspath $(VENV)) $(BASE_DIR)/.venv && \
+	  (cd $(BASE_DIR) && $(abspath $(FPM)) build $(RELEASE) >/dev/null) && \
+	  (cd $(BASE_DIR) && $(abspath $(FPM)) run $(RELEASE) --runner echo exic 2>/dev/null | tail -n 1 | \
+	   xargs dirname | sed "s|^|$(abspath $(BASE_DIR))/|" > bindir) || { rm -rf $(BASE_DIR); exit 1; }; \
+	fi
+	@echo "baseline $(BASELINE): $$(cat $(BASE_DIR)/bindir)"
+
+# The exic program, libexic.a, the module files and the C header, nothing else (no benchmark
+# program): tools/install.sh installs with fpm into build/install-stage and copies those.
 install: setup
-	$(FPM) install $(RELEASE) --prefix $(or $(PREFIX),$(CURDIR)/dist)
-	install -m 644 include/exic_contact.h $(or $(PREFIX),$(CURDIR)/dist)/include/
+	EXIC_FPM=$(abspath $(FPM)) tools/install.sh $(or $(PREFIX),$(CURDIR)/dist) $(RELEASE)
 
 legacy-host: install
 	$(MAKE) -C examples/legacy_host PREFIX=$(abspath $(or $(PREFIX),$(CURDIR)/dist)) \

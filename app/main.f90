@@ -1,18 +1,27 @@
 !> The `exic` command: read a deck, run it, write <stem>.his/.ene/.out next to it or under -o DIR.
+!>
+!> Threads are asked for with OMP_NUM_THREADS (the results do not depend on their number); when it
+!> is not set the command runs on one thread (doc/decisions.md, "Threads").
 program exic_main
    use exic_base_error, only: error_t, fatal_error
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
+   use exic_io_posix, only: make_directories
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
+   !$ use omp_lib, only: omp_set_num_threads
    implicit none
 
    type(model_t) :: model
    type(run_options_t) :: opts
    type(error_t), allocatable :: err
    character(len=:), allocatable :: deck, outdir, arg
-   integer :: i, n
+   integer :: i, n, nlen
 
+   ! one thread unless OMP_NUM_THREADS asks for more: on a shared machine a thread waiting at a
+   ! barrier for a preempted partner loses its time slice (doc/performance.md)
+   call get_environment_variable('OMP_NUM_THREADS', length=nlen)
+   !$ if (nlen == 0) call omp_set_num_threads(1)
    n = command_argument_count()
    outdir = ''
    deck = ''
@@ -67,10 +76,12 @@ contains
       call get_command_argument(k, s)
    end function argument
 
-   !> dir/stem of the outputs: the deck's stem, next to the deck or under `dir`.
+   !> dir/stem of the outputs: the deck's stem, next to the deck or under `dir` (created with
+   !> its parents by mkdir(2); no shell is involved).
    function output_base(path, dir) result(base)
       character(len=*), intent(in) :: path, dir
       character(len=:), allocatable :: base, stem, parent
+      type(error_t), allocatable :: err
       integer :: slash, dot
       slash = index(path, '/', back=.true.)
       stem = path(slash + 1:)
@@ -78,7 +89,8 @@ contains
       dot = index(stem, '.', back=.true.)
       if (dot > 1) stem = stem(:dot - 1)
       if (len(dir) > 0) then
-         call execute_command_line('mkdir -p "'//dir//'"')
+         call make_directories(dir, err)
+         if (allocated(err)) call die('-o '//dir//': '//err%message)
          base = dir//'/'//stem
       else
          base = parent//stem
@@ -102,12 +114,15 @@ contains
          '  <stem>.his  time histories requested by TPLOt (a # header names the columns)', &
          '  <stem>.ene  energy balance and momentum', &
          '  <stem>.out  deck echo, mesh and material summary, stable step, energy balance, wall time', &
-         '  <stem>.h5 and <stem>.xdmf  fields, when the deck asks for OUTPut,HDF5', &
-         'next to the deck, or under DIR with -o DIR.', &
+         '  <stem>.h5, <stem>.xdmf (last output time) and <stem>_series.xdmf (every one):', &
+         '              fields, when the deck asks for OUTPut,HDF5 (doc/fields.md)', &
+         'next to the deck, or under DIR with -o DIR. A progress line (percentage, time, step,', &
+         'steps per second, wall time, ETA, energy drift) is shown as the run goes and a summary', &
+         'at the end.', &
          '', &
          'options:', &
          '  -o DIR      write the outputs under DIR (created if missing)', &
-         '  -q          no progress lines on the console', &
+         '  -q          no progress line and no final summary on the console', &
          '  --version   print the version', &
          '  -h, --help  this text', &
          '', &

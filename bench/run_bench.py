@@ -13,7 +13,9 @@ Sections (doc/performance.md explains each):
               dense/sparse crossover (exic-bench-corrector)
   workprec    work-precision of the 1-D bar on a rigid wall, Lagrange against penalty
   stability   CFL sweep, fixed DT around the limit, distorted meshes, contact
-  compare     (only when asked, with --baseline-bindir) two builds side by side
+  compare     (only when asked, with --baseline-bindir) two builds side by side: whole-step rates
+              of a block in which every element deforms, 10^3 .. 10^6 elements, both
+              quadratures, the current build on one and on two threads; memory per element
 
 Usage:
   run_bench.py --fpm .venv/bin/fpm --release '--profile release --flag "-O3 -march=native"'
@@ -50,12 +52,13 @@ SECTIONS = ["machine", "rate", "profile", "output", "contact", "workprec", "stab
 # ---------------------------------------------------------------------------------------------
 # running exic
 # ---------------------------------------------------------------------------------------------
-# exic is single-threaded and calls LAPACK only for small dense systems; an OpenBLAS thread
-# pool costs about 0.1 s of processor time per process at start-up (spinning threads), which
-# would blur processor-time measurements. The benchmarks run with one BLAS thread unless the
-# caller chose otherwise.
+# exic calls LAPACK only for small dense systems; an OpenBLAS thread pool costs about 0.1 s of
+# processor time per process at start-up (spinning threads), which would blur processor-time
+# measurements. The benchmarks run with one BLAS thread, and with one OpenMP thread unless a
+# section asks for more (compare: one and two), so that "per core" means one core.
 ENV = dict(os.environ)
 ENV.setdefault("OPENBLAS_NUM_THREADS", "1")
+ENV.setdefault("OMP_NUM_THREADS", "1")
 
 
 class Runner:
@@ -65,22 +68,33 @@ class Runner:
         self.quick = quick
         os.makedirs(WORK, exist_ok=True)
 
-    def run(self, name, text, timeout=900, wrapper=()):
-        """Write deck `name`.inp, run it; return the parsed <stem>.out with rc and stderr."""
+    def run(self, name, text, timeout=900, wrapper=(), threads=None):
+        """Write deck `name`.inp, run it (on `threads` OpenMP threads when given); return the
+        parsed <stem>.out with rc, stderr, the process's wall time, processor time (user +
+        system, all its threads) and peak resident set in bytes."""
         deck = os.path.join(WORK, name + ".inp")
         with open(deck, "w") as f:
             f.write(text)
         for ext in (".his", ".ene", ".out", ".h5", ".xdmf"):
             if os.path.exists(os.path.join(WORK, name + ext)):
                 os.remove(os.path.join(WORK, name + ext))
-        c0 = child_cpu()
+        env = ENV if threads is None else dict(ENV, OMP_NUM_THREADS=str(threads))
         t0 = time.perf_counter()
-        p = subprocess.run(list(wrapper) + [self.exe, "-q", deck, "-o", WORK], capture_output=True,
-                           text=True, timeout=timeout, env=ENV)
-        wall = time.perf_counter() - t0
+        with open(os.path.join(WORK, name + ".stderr"), "w+") as err:
+            p = subprocess.Popen(list(wrapper) + [self.exe, "-q", deck, "-o", WORK], stdout=subprocess.DEVNULL,
+                                 stderr=err, env=env)
+            try:
+                _, status, ru = os.wait4(p.pid, 0)
+            except BaseException:
+                p.kill()
+                raise
+            wall = time.perf_counter() - t0
+            err.seek(0)
+            stderr = err.read().strip()
+        p.returncode = os.waitstatus_to_exitcode(status)
         res = parse_out(os.path.join(WORK, name + ".out"))
-        res.update(rc=p.returncode, stderr=p.stderr.strip(), process_wall=wall, cpu=child_cpu() - c0,
-                   stem=os.path.join(WORK, name))
+        res.update(rc=p.returncode, stderr=stderr, process_wall=wall, cpu=ru.ru_utime + ru.ru_stime,
+                   maxrss=ru.ru_maxrss*1024, stem=os.path.join(WORK, name))
         return res
 
     def tool(self, name, args=(), timeout=900):
@@ -92,12 +106,6 @@ class Runner:
 
 
 NUM = r"([-+]?\d+\.?\d*(?:[eE][-+]?\d+)?)"
-
-
-def child_cpu():
-    """Processor time (user + system) of the finished child processes so far."""
-    ru = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return ru.ru_utime + ru.ru_stime
 
 
 def parse_out(path):
@@ -206,9 +214,42 @@ def machine(args, run):
         "load_average": os.getloadavg() if hasattr(os, "getloadavg") else None,
         "bindir": run.bindir,
     }
+    # memory bandwidth for the roofline (doc/performance.md): triad and copy, 1 and 2 threads
+    for th in (1, 2):
+        try:
+            out = subprocess.run([os.path.join(run.bindir, "exic-bench-element"), "bandwidth"], capture_output=True,
+                                 text=True, timeout=300, env=dict(ENV, OMP_NUM_THREADS=str(th))).stdout
+            m = re.search(r"triad\s+" + NUM + r" GB/s, copy\s+" + NUM, out)
+            if m:
+                info[f"bandwidth_{th}_thread"] = {"triad_GBs": float(m.group(1)), "copy_GBs": float(m.group(2))}
+        except (OSError, subprocess.SubprocessError):
+            pass
+    info["clock_GHz"] = clock_ghz()
     save("machine", info)
-    log(f"machine: {info['cpu']}, {info['cores']} cores, {info['compiler']}")
+    log(f"machine: {info['cpu']}, {info['cores']} cores, {info['compiler']}, bandwidth "
+        f"{info.get('bandwidth_1_thread')} / {info.get('bandwidth_2_thread')} (1 / 2 threads)")
     return info
+
+
+def clock_ghz():
+    """The core clock under load, from a chain of dependent integer additions (one per cycle)
+    timed in Python's process time: a rough figure for cycles per element."""
+    src = os.path.join(WORK, "clock.c")
+    exe = os.path.join(WORK, "clock")
+    with open(src, "w") as f:
+        f.write("#include <stdio.h>\n#include <time.h>\nint main(void){struct timespec a,b;long x=0;"
+                "clock_gettime(CLOCK_PROCESS_CPUTIME_ID,&a);for(long i=0;i<1000000000L;i++)"
+                "__asm__ volatile(\"add $1, %0\":\"+r\"(x));clock_gettime(CLOCK_PROCESS_CPUTIME_ID,&b);"
+                "printf(\"%.3f\\n\",1e9/((b.tv_sec-a.tv_sec)*1e9+(b.tv_nsec-a.tv_nsec)));return 0;}\n")
+    if subprocess.run(["cc", "-O1", src, "-o", exe], capture_output=True).returncode != 0:
+        return None
+    vals = []
+    for _ in range(3):
+        try:
+            vals.append(float(subprocess.run([exe], capture_output=True, text=True, timeout=60).stdout))
+        except (ValueError, subprocess.SubprocessError):
+            pass
+    return max(vals) if vals else None
 
 
 def rate(args, run):
@@ -262,37 +303,98 @@ def rate(args, run):
     return res
 
 
+def ene_difference(a, b):
+    """Largest difference of the kinetic and strain columns of two .ene files, relative to the
+    column's largest value (the files of two builds that differ at round-off level)."""
+    ta, tb = read_table(a), read_table(b)
+    worst = 0.0
+    for col in ("kinetic", "strain"):
+        x, y = ta.get(col, []), tb.get(col, [])
+        n = min(len(x), len(y))
+        ref = max((abs(v) for v in y[:n]), default=0.0)
+        if n and ref > 0.0:
+            worst = max(worst, max(abs(x[i] - y[i]) for i in range(n))/ref)
+    return worst
+
+
 def compare(args, run):
-    """Two builds side by side (--baseline-bindir against --bindir), alternated, same decks:
-    whole-step rate per processor-second as in `rate`, and whether the energies agree."""
+    """Two builds side by side (--baseline-bindir against --bindir), alternated in every
+    repetition: the whole-step rate of a free block in which every element deforms
+    (decks.deforming_block) at 10^3, 10^4, 10^5 and 10^6 elements, both quadratures.
+
+    Per core: processor time of the exic process from two run lengths (set-up cancels), one
+    OpenMP thread. Threads: the current build on two threads, wall-clock time from the same two
+    run lengths; speed-up = wall rate (2 threads) / wall rate (1 thread) of the same repetition.
+    Memory: the peak resident set of the longer run; bytes per element = peak / elements at
+    10^6, and the slope between 10^5 and 10^6 elements (the fixed part of the process cancels).
+    The energies of the two builds are compared (largest relative difference; they differ at
+    round-off level since the element kernels changed)."""
     base = Runner(os.path.abspath(args.baseline_bindir))
-    nrep = 3 if args.quick else 7
-    n1, n2 = (150, 600) if args.quick else (300, 1500)
-    res = {"baseline": base.bindir, "current": run.bindir, "steps": [n1, n2], "repetitions": nrep}
+    sizes = [32, 100, 316] if args.quick else [32, 100, 316, 1000]
+    nrep = 2 if args.quick else 5
+    work = 4e6 if args.quick else 2e7           # element-steps between the two run lengths
+    res = {"baseline": base.bindir, "current": run.bindir, "repetitions": nrep, "sizes": {},
+           "deck": "free block n x n of unit elements, every element deforming (bench/decks.py: deforming_block)"}
     for q, key in ((2, "2x2"), (1, "1pt")):
-        rates = {"baseline": [], "current": []}
-        same = True
-        for rep in range(nrep):
-            ene = {}
-            for who, rr in (("baseline", base), ("current", run)):
-                r1 = rr.run(f"cmp_{who}_short", decks.cantilever(120, 24, quad=q, steps=n1))
-                r2 = rr.run(f"cmp_{who}", decks.cantilever(120, 24, quad=q, steps=n2))
-                rates[who].append(r2["elements"]*(r2["steps"] - r1["steps"])/(r2["cpu"] - r1["cpu"]))
-                ene[who] = open(r2["stem"] + ".ene").read()
-            same = same and ene["baseline"] == ene["current"]
-        res[key] = {"baseline": spread(rates["baseline"]), "current": spread(rates["current"]),
-                    "speedup": spread([c/b for c, b in zip(rates["current"], rates["baseline"])]),
-                    "identical_energy_files": same}
-        log(f"compare {key}: baseline {res[key]['baseline']['median']/1e6:.2f} M, current "
-            f"{res[key]['current']['median']/1e6:.2f} M, speed-up x{res[key]['speedup']['median']:.3f}, "
-            f"identical .ene: {same}")
+        for n in sizes:
+            nel = n*n
+            d = max(5, int(work/nel))
+            n1 = max(2, d//4)
+            n2 = n1 + d
+            reps = max(2, nrep//2) if nel >= 10**6 else nrep
+            runs = {"baseline": [], "current": [], "current_2": []}
+            for rep in range(reps):
+                for who, rr, th in (("baseline", base, 1), ("current", run, 1), ("current_2", run, 2)):
+                    r1 = rr.run(f"cmp_{who}_short", decks.deforming_block(n, quad=q, steps=n1), threads=th)
+                    r2 = rr.run(f"cmp_{who}", decks.deforming_block(n, quad=q, steps=n2), threads=th)
+                    for r in (r1, r2):
+                        if r["rc"] != 0:
+                            raise RuntimeError(f"compare run failed ({who}): {r['stderr'][-300:]}")
+                    runs[who].append({"cpu_rate": nel*(n2 - n1)/(r2["cpu"] - r1["cpu"]),
+                                      "wall_rate": nel*(n2 - n1)/(r2["process_wall"] - r1["process_wall"]),
+                                      "maxrss": r2["maxrss"]})
+                    if who == "baseline":
+                        base_ene = r2["stem"] + ".ene"
+                    elif who == "current":
+                        diff = ene_difference(r2["stem"] + ".ene", base_ene)
+                    elif who == "current_2":
+                        same_threads = open(r2["stem"] + ".ene").read() == open(
+                            os.path.join(WORK, "cmp_current.ene")).read()
+            cur, bas, two = runs["current"], runs["baseline"], runs["current_2"]
+            entry = {
+                "elements": nel, "steps": [n1, n2],
+                "baseline_cpu": spread([x["cpu_rate"] for x in bas]),
+                "current_cpu": spread([x["cpu_rate"] for x in cur]),
+                "ratio_cpu": spread([c["cpu_rate"]/b["cpu_rate"] for c, b in zip(cur, bas)]),
+                "current_wall": spread([x["wall_rate"] for x in cur]),
+                "current_2_wall": spread([x["wall_rate"] for x in two]),
+                "current_2_cpu": spread([x["cpu_rate"] for x in two]),
+                "speedup_2": spread([t["wall_rate"]/c["wall_rate"] for t, c in zip(two, cur)]),
+                "maxrss_baseline": bas[-1]["maxrss"], "maxrss_current": cur[-1]["maxrss"],
+                "energy_difference": diff, "threads_identical": same_threads,
+            }
+            res["sizes"].setdefault(key, {})[str(nel)] = entry
+            log(f"compare {key} {nel:8d}: baseline {entry['baseline_cpu']['median']/1e6:6.2f} M/s, current "
+                f"{entry['current_cpu']['median']/1e6:6.2f} M/s (x{entry['ratio_cpu']['median']:.2f}), two threads "
+                f"x{entry['speedup_2']['median']:.2f} (wall), identical: {same_threads}, "
+                f"peak memory {cur[-1]['maxrss']/1e6:.0f} MB (baseline {bas[-1]['maxrss']/1e6:.0f} MB)")
+        big = [int(k) for k in res["sizes"][key]]
+        if len(big) >= 2:
+            n_hi, n_lo = max(big), sorted(big)[-2]
+            hi, lo = res["sizes"][key][str(n_hi)], res["sizes"][key][str(n_lo)]
+            res.setdefault("bytes_per_element", {})[key] = {
+                who: {"peak_over_elements": hi["maxrss_" + who]/n_hi,
+                      "slope": (hi["maxrss_" + who] - lo["maxrss_" + who])/(n_hi - n_lo)}
+                for who in ("baseline", "current")}
+            log(f"compare {key}: bytes per element at {n_hi}: current {hi['maxrss_current']/n_hi:.0f} "
+                f"(slope {res['bytes_per_element'][key]['current']['slope']:.0f}), baseline "
+                f"{hi['maxrss_baseline']/n_hi:.0f} (slope {res['bytes_per_element'][key]['baseline']['slope']:.0f})")
     save("compare", res)
     return res
 
 
 PARTS = {
-    "element loop (forces)": [r"exic_explicit_assembly_MOD_internal_forces"],
-    "stable step": [r"exic_explicit_assembly_MOD_stable_step"],
+    "element loop (forces and stable step)": [r"exic_explicit_assembly_MOD_internal_forces"],
     "update (displacement, predictor, velocity)": [r"MOD_cd_displacement", r"MOD_cd_predictor",
                                                    r"MOD_cd_velocity"],
     "energies": [r"exic_explicit_assembly_MOD_kinetic_energy"],
@@ -745,6 +847,12 @@ def summary():
               f"- OpenBLAS {m['openblas']} (OPENBLAS_NUM_THREADS={m.get('openblas_num_threads')}), "
               f"SuiteSparse LDL {m['suitesparse']}, HDF5 {m['hdf5']}; "
               f"commit {m['commit']}; {m['date']}"]
+        if m.get("bandwidth_1_thread"):
+            L.append(f"- memory bandwidth (exic-bench-element bandwidth, triad / copy): one thread "
+                     f"{m['bandwidth_1_thread']['triad_GBs']:.1f} / {m['bandwidth_1_thread']['copy_GBs']:.1f} GB/s, two threads "
+                     f"{m.get('bandwidth_2_thread', {}).get('triad_GBs', float('nan')):.1f} / "
+                     f"{m.get('bandwidth_2_thread', {}).get('copy_GBs', float('nan')):.1f} GB/s; clock under load "
+                     f"{m.get('clock_GHz')} GHz")
         ld = load("loads")
         if ld:
             L.append("- load average (1 min) at the start of each section: "
@@ -766,15 +874,26 @@ def summary():
                      f"{k[f + '_cpu']/1e6:.2f} / {k[f + '_wall']/1e6:.2f} | {k[q + '_with_stable_dt_cpu']/1e6:.2f} |")
         L += ["", f"q4_stable_dt alone: {k['q4_stable_dt_cpu']/1e6:.1f} M element-steps per processor-second", ""]
     cm = load("compare")
-    if cm:
-        L += ["## Two builds side by side (section compare)", "", f"baseline {cm['baseline']}, current {cm['current']}",
-              "", "| quadrature | baseline | current | speed-up (median of pairs, range) | identical .ene |",
-              "|---|---|---|---|---|"]
-        for q in ("2x2", "1pt"):
-            v = cm[q]
-            L.append(f"| {q} | {v['baseline']['median']/1e6:.2f} | {v['current']['median']/1e6:.2f} | "
-                     f"{v['speedup']['median']:.3f} ({v['speedup']['min']:.3f} - {v['speedup']['max']:.3f}) | "
-                     f"{v['identical_energy_files']} |")
+    if cm and "sizes" in cm:
+        L += ["## Two builds side by side (section compare)", "", f"baseline {cm['baseline']}, current {cm['current']}; "
+              f"{cm['deck']}; {cm['repetitions']} alternated repetitions (2 at 10^6 elements)", "",
+              "Per core: M element-steps per processor-second, one thread, from two run lengths. Two threads: "
+              "speed-up of the wall-clock rate over one thread (same repetition). Memory: peak resident set.", "",
+              "| quadrature | elements | baseline | current | ratio (median, range) | two threads, wall | speed-up "
+              "(median, range) | same bits on 2 threads | energy difference | peak MB (baseline / current) |",
+              "|---|---|---|---|---|---|---|---|---|---|"]
+        for q, rows in cm["sizes"].items():
+            for nel, v in rows.items():
+                L.append(f"| {q} | {int(nel):,} | {v['baseline_cpu']['median']/1e6:.2f} | {v['current_cpu']['median']/1e6:.2f} | "
+                         f"{v['ratio_cpu']['median']:.2f} ({v['ratio_cpu']['min']:.2f} - {v['ratio_cpu']['max']:.2f}) | "
+                         f"{v['current_2_wall']['median']/1e6:.2f} | {v['speedup_2']['median']:.2f} "
+                         f"({v['speedup_2']['min']:.2f} - {v['speedup_2']['max']:.2f}) | {v['threads_identical']} | "
+                         f"{v['energy_difference']:.1e} | {v['maxrss_baseline']/1e6:.0f} / {v['maxrss_current']/1e6:.0f} |")
+        for q, b in cm.get("bytes_per_element", {}).items():
+            L.append("")
+            L.append(f"Bytes per element ({q}): current {b['current']['peak_over_elements']:.0f} (peak / elements at "
+                     f"the largest mesh; slope between the two largest meshes {b['current']['slope']:.0f}), baseline "
+                     f"{b['baseline']['peak_over_elements']:.0f} (slope {b['baseline']['slope']:.0f})")
         L.append("")
     p = load("profile")
     if p:

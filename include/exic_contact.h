@@ -8,8 +8,8 @@
  * x[2*(i-1)] and x[2*(i-1)+1] are the x and y of node i, ipair[6*(k-1)+j-1] is entry j of
  * pair k. Node, body, surface and pair numbers are 1-based, as in Fortran.
  *
- * Link: cc host.c -I$PREFIX/include -L$PREFIX/lib -lexic $(pkg-config --libs hdf5)
- *       -lhdf5_fortran -lldl -lamd -llapack -lblas -lgfortran -lm
+ * Link (the line of doc/api.md, "Install and link"; no HDF5, no Gmsh):
+ * cc -O2 -I$PREFIX/include host.c -L$PREFIX/lib -lexic -lldl -lamd -llapack -lblas -lgfortran -lm
  */
 #ifndef EXIC_CONTACT_H
 #define EXIC_CONTACT_H

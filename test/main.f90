@@ -11,9 +11,12 @@ program exic_tests
    use test_contact_geom, only: run_contact_geom_tests
    use test_element, only: run_element_tests
    use test_fields, only: run_fields_tests
+   use test_xdmf, only: run_xdmf_tests
+   use test_viewers, only: run_viewers_tests
    use test_physics, only: run_physics_tests
    use test_contact, only: run_contact_tests
    use test_run_output, only: run_run_output_tests
+   use test_console, only: run_console_tests
    use test_deck, only: run_deck_tests
    use test_inputs, only: run_inputs_tests
    use test_legacy, only: run_legacy_tests
@@ -22,6 +25,9 @@ program exic_tests
    use test_loads, only: run_loads_tests
    use test_rigid, only: run_rigid_tests
    use test_plasticity, only: run_plasticity_tests
+   use test_hostile, only: run_hostile_tests
+   use test_math, only: run_math_tests
+   use test_threads, only: run_threads_tests
    implicit none
    type(runner_t) :: r
 
@@ -29,19 +35,25 @@ program exic_tests
    ! each suite adds one line here
    call r%run('layers', run_layers_tests)
    call r%run('linalg', run_linalg_tests)
+   call r%run('math', run_math_tests)
    call r%run('corrector', run_corrector_tests)
    call r%run('contact_geom', run_contact_geom_tests)
    call r%run('element', run_element_tests)
    call r%run('plasticity', run_plasticity_tests)
    call r%run('fields', run_fields_tests)
+   call r%run('xdmf', run_xdmf_tests)
+   call r%run('viewers', run_viewers_tests)
    call r%run('physics', run_physics_tests)
+   call r%run('threads', run_threads_tests)
    call r%run('contact', run_contact_tests)
    call r%run('run_output', run_run_output_tests)
+   call r%run('console', run_console_tests)
    call r%run('deck', run_deck_tests)
    call r%run('inputs', run_inputs_tests)
    call r%run('gmsh', run_gmsh_tests)
    call r%run('loads', run_loads_tests)
    call r%run('rigid', run_rigid_tests)
+   call r%run('hostile', run_hostile_tests)
    call r%run('legacy', run_legacy_tests)
    call r%finish()
 end program exic_tests

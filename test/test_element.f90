@@ -5,8 +5,8 @@ module test_element
    use exic_base_kinds, only: wp
    use exic_material_material, only: lame_from_young
    use exic_material_neohookean, only: nh_cauchy, nh_piola, nh_wave_speed2
-   use exic_element_quad4, only: q4_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
-                                 q4_stable_dt, q4_stress
+   use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
+                                 q4_stable_dt, q4_stress, q4_deformation, NBLOCK
    use testing, only: suite_t, check, check_close, section
    use, intrinsic :: iso_fortran_env, only: output_unit, int64
    implicit none
@@ -30,11 +30,11 @@ module test_element
    real(wp), parameter :: hg0 = 0.1_wp
    real(wp), parameter :: pi = 3.14159265358979323846_wp
 
-   !> Reference data of one element set for one quadrature.
+   !> One element set for one quadrature (the kernels recompute the reference data from x0).
    type :: setup_t
       integer :: nq = 2, nel = 0, nnode = 0
       integer, allocatable :: conn(:, :)
-      real(wp), allocatable :: x0(:, :), gdn(:, :, :), wdj(:, :), gam(:, :)
+      real(wp), allocatable :: x0(:, :)
    end type setup_t
 
 contains
@@ -48,6 +48,7 @@ contains
       call test_consistency(s)
       call test_mass(s)
       call test_stable_dt(s)
+      call test_fused(s)
       call test_inversion(s)
    end subroutine run_element_tests
 
@@ -93,25 +94,32 @@ contains
       st%nel = size(conn, 2)
       st%x0 = x0
       st%conn = conn
-      allocate (st%gdn(8, nq*nq, st%nel), st%wdj(nq*nq, st%nel), st%gam(4, st%nel))
-      call q4_reference(nq, st%nel, st%nnode, st%conn, st%x0, st%gdn, st%wdj, st%gam, ebad)
+      call q4_check_reference(st%nel, st%nnode, st%conn, st%x0, ebad)
    end subroutine make_setup
 
-   !> Internal force f (zeroed first), strain energy w and hourglass energy whg of the set.
-   subroutine eval_force(st, u, lambda, mu, hg, f, w, whg, jmin, ebad)
+   !> Internal force f (zeroed first), strain energy w and hourglass energy whg of the set; the
+   !> fused stable step (squared, density 1), its element and the first folded element when asked.
+   subroutine eval_force(st, u, lambda, mu, hg, f, w, whg, jmin, ebad, dt2, emin, efold)
       type(setup_t), intent(in) :: st
       real(wp), intent(in) :: u(:, :), lambda, mu, hg
       real(wp), intent(out) :: f(:, :), w, whg, jmin
       integer, intent(out) :: ebad
+      real(wp), intent(out), optional :: dt2
+      integer, intent(out), optional :: emin, efold
+      real(wp) :: d
+      integer :: em, ef
       f = 0.0_wp
       whg = 0.0_wp
       if (st%nq == 2) then
-         call q4_force_2x2(st%nel, st%nnode, st%conn, u, st%gdn, st%wdj, lambda, mu, f, w, &
-                           jmin, ebad)
+         call q4_force_2x2(st%nel, st%nnode, st%conn, st%x0, u, lambda, mu, 1.0_wp, f, w, &
+                           jmin, ebad, d, em, ef)
       else
-         call q4_force_1pt(st%nel, st%nnode, st%conn, u, st%gdn, st%wdj, st%gam, lambda, mu, &
-                           hg, f, w, whg, jmin, ebad)
+         call q4_force_1pt(st%nel, st%nnode, st%conn, st%x0, u, lambda, mu, 1.0_wp, hg, f, w, whg, &
+                           jmin, ebad, d, em, ef)
       end if
+      if (present(dt2)) dt2 = d
+      if (present(emin)) emin = em
+      if (present(efold)) efold = ef
    end subroutine eval_force
 
    !> Cauchy stress of eq. 7.2 computed directly from F: (sxx, syy, szz, sxy).
@@ -207,7 +215,7 @@ contains
       type(suite_t), intent(inout) :: s
       real(wp), allocatable :: x0(:, :), u(:, :), f(:, :), fb(:, :), f0(:, :)
       integer, allocatable :: conn(:, :)
-      real(wp) :: fm(2, 2), pm(2, 2), sref(4), sig(7, 4), hm(2, 2), w, whg, jmin, fscale, jac
+      real(wp) :: fm(2, 2), pm(2, 2), sref(4), sig(7, 4), w, whg, jmin, fscale, jac, fg(5, 4, 4)
       real(wp) :: nl(2), err, errf, area, wexact
       integer :: nq, ebad, e, g, k
       integer, parameter :: ring(9) = [1, 2, 3, 6, 9, 8, 7, 4, 1]
@@ -240,19 +248,17 @@ contains
          call section(s, 'patch test, uniform finite deformation, '//trim(qn))
          call make_setup(nq, x0, conn, st, ebad)
          call check(s, ebad == 0, 'reference geometry accepted')
-         ! F at every integration point
+         ! F at every integration point, as the force kernels compute it
+         call q4_deformation(nq, 4, 9, conn, x0, u, fg)
          err = 0.0_wp
          do e = 1, 4
             do g = 1, nq*nq
-               hm(1, 1) = sum(u(1, conn(:, e))*st%gdn(1:4, g, e))
-               hm(1, 2) = sum(u(1, conn(:, e))*st%gdn(5:8, g, e))
-               hm(2, 1) = sum(u(2, conn(:, e))*st%gdn(1:4, g, e))
-               hm(2, 2) = sum(u(2, conn(:, e))*st%gdn(5:8, g, e))
-               err = max(err, maxval(abs(hm + reshape([1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp], [2, 2]) - fm)))
+               err = max(err, abs(fg(1, g, e) - fm(1, 1)), abs(fg(2, g, e) - fm(1, 2)), &
+                         abs(fg(3, g, e) - fm(2, 1)), abs(fg(4, g, e) - fm(2, 2)), abs(fg(5, g, e) - jac))
             end do
          end do
-         call check(s, err <= 1e-13_wp, 'F exact at every integration point')
-         call q4_stress(nq, 4, 9, conn, u, st%gdn, lam0, mu0, sig)
+         call check(s, err <= 1e-13_wp, 'F and J exact at every integration point')
+         call q4_stress(nq, 4, 9, conn, x0, u, lam0, mu0, sig)
          err = 0.0_wp
          do e = 1, 4
             err = max(err, maxval(abs(sig(1:4, e) - sref)))
@@ -499,7 +505,7 @@ contains
                   cycle
                end if
                dtx = 2.0_wp/sqrt(ev(8))
-               call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, st%wdj, lambda, mu, &
+               call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, xq, lambda, mu, &
                                  rho, dte, emin, efold)
                ratio = dte/dtx
                rmin(nq) = min(rmin(nq), ratio)
@@ -547,7 +553,7 @@ contains
       xq = reshape([0.0_wp, 0.0_wp, 2.0_wp, 0.0_wp, 2.0_wp, 2.0_wp, 0.0_wp, 2.0_wp], [2, 4])
       do nq = 2, 1, -1
          call make_setup(nq, xq, reshape([1, 2, 3, 4], [4, 1]), st, ebad)
-         call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, st%wdj, lambda, mu, rho, &
+         call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, xq, lambda, mu, rho, &
                            dte, emin, efold)
          dtx = 2.0_wp/sqrt(2.0_wp)/sqrt((lambda + 2.0_wp*mu)/rho)
          call check_close(s, dte, dtx, 1e-14_wp*dtx, trim(qname(nq))//': square, a/(sqrt(2) c)')
@@ -555,7 +561,7 @@ contains
       xq = reshape([0.0_wp, 0.0_wp, 3.0_wp, 0.5_wp, 3.8_wp, 2.5_wp, 0.8_wp, 2.0_wp], [2, 4])
       do nq = 2, 1, -1
          call make_setup(nq, xq, reshape([1, 2, 3, 4], [4, 1]), st, ebad)
-         call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, st%wdj, lambda, mu, rho, &
+         call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, xq, lambda, mu, rho, &
                            dte, emin, efold)
          ! area 3 x 2 - 0.5 x 0.8 = 5.6, longest diagonal |(3.8, 2.5)|
          dtx = 5.6_wp/norm2([3.8_wp, 2.5_wp])/sqrt((lambda + 2.0_wp*mu)/rho)
@@ -563,7 +569,7 @@ contains
       end do
       ! current geometry: a uniform dilatation J scales L by sqrt(J) and c^2 by the tangent
       xq = xq*1.1_wp
-      call q4_stable_dt(st%nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, st%wdj, lambda, mu, rho, &
+      call q4_stable_dt(st%nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), st%x0, xq, lambda, mu, rho, &
                         dte, emin, efold)
       dtx = 1.1_wp*5.6_wp/norm2([3.8_wp, 2.5_wp]) &
             /sqrt((lambda + 2.0_wp*mu - 2.0_wp*lambda*log(1.21_wp))/rho)
@@ -589,9 +595,69 @@ contains
       kmat = 0.5_wp*(kmat + transpose(kmat))
    end subroutine tangent
 
+   ! ---------------------------------------------------------------- fused stable step
+
+   !> The stable step of the force pass is q4_stable_dt's to the bit (value, element, folded
+   !> element) on a distorted, deformed mesh of several blocks; the forces do not depend on how
+   !> the elements are split into calls (the threads' ranges), and the energy is their sum.
+   subroutine test_fused(s)
+      type(suite_t), intent(inout) :: s
+      integer, parameter :: nx = 13, ny = 7
+      real(wp), allocatable :: x0(:, :), u(:, :), f(:, :), f2(:, :)
+      integer, allocatable :: conn(:, :)
+      real(wp) :: w, whg, jmin, dt2, dtmin, w1, w2, whg1, whg2, d1, d2, j1, j2
+      integer :: nq, ebad, emin, efold, em, ef, i, j, n, e, split, eb1, eb2, em1, em2, ef1, ef2
+      integer(int64) :: seed
+      type(setup_t) :: st
+
+      n = (nx + 1)*(ny + 1)
+      allocate (x0(2, n), u(2, n), f(2, n), f2(2, n), conn(4, nx*ny))
+      seed = 99_int64
+      do j = 0, ny
+         do i = 0, nx
+            x0(:, 1 + i + (nx + 1)*j) = [0.5_wp*i + 0.12_wp*(rnd(seed) - 0.5_wp), &
+                                         0.5_wp*j + 0.12_wp*(rnd(seed) - 0.5_wp)]
+            u(:, 1 + i + (nx + 1)*j) = [0.04_wp*(rnd(seed) - 0.5_wp) + 0.01_wp*j, 0.04_wp*(rnd(seed) - 0.5_wp)]
+         end do
+      end do
+      do j = 0, ny - 1
+         do i = 0, nx - 1
+            e = 1 + i + nx*j
+            conn(:, e) = [1 + i + (nx + 1)*j, 2 + i + (nx + 1)*j, 2 + i + (nx + 1)*(j + 1), 1 + i + (nx + 1)*(j + 1)]
+         end do
+      end do
+      call check(s, nx*ny > 2*NBLOCK, 'test mesh spans several blocks')
+      do nq = 2, 1, -1
+         call section(s, 'stable step of the force pass, '//trim(qname(nq)))
+         call make_setup(nq, x0, conn, st, ebad)
+         call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad, dt2, emin, efold)
+         call q4_stable_dt(nq, nx*ny, n, conn, x0, x0 + u, lam0, mu0, 1.0_wp, dtmin, em, ef)
+         call check(s, sqrt(dt2) == dtmin .and. emin == em .and. efold == ef .and. emin > 0, &
+                    'same estimate and element as q4_stable_dt, to the bit')
+         ! the same elements in two calls, split inside a block
+         split = NBLOCK + 5
+         f2 = 0.0_wp
+         whg1 = 0.0_wp
+         whg2 = 0.0_wp
+         if (nq == 2) then
+            call q4_force_2x2(split, n, conn(:, 1:split), x0, u, lam0, mu0, 1.0_wp, f2, w1, j1, eb1, d1, em1, ef1)
+            call q4_force_2x2(nx*ny - split, n, conn(:, split + 1:), x0, u, lam0, mu0, 1.0_wp, f2, w2, j2, &
+                              eb2, d2, em2, ef2)
+         else
+            call q4_force_1pt(split, n, conn(:, 1:split), x0, u, lam0, mu0, 1.0_wp, hg0, f2, w1, whg1, j1, &
+                              eb1, d1, em1, ef1)
+            call q4_force_1pt(nx*ny - split, n, conn(:, split + 1:), x0, u, lam0, mu0, 1.0_wp, hg0, f2, w2, &
+                              whg2, j2, eb2, d2, em2, ef2)
+         end if
+         call check(s, all(f2 == f), 'forces of two calls equal those of one, to the bit')
+         call check(s, abs(w1 + w2 - w) <= 1e-14_wp*w .and. abs(whg1 + whg2 - whg) <= 1e-14_wp*max(whg, tiny(1.0_wp)) &
+                    .and. min(j1, j2) == jmin .and. min(d1, d2) == dt2, 'energies, jmin and dt of two calls')
+      end do
+   end subroutine test_fused
+
    ! ---------------------------------------------------------------- inversion
 
-   !> Inverted elements are named by the force kernels, the step estimate and q4_reference.
+   !> Inverted elements are named by the force kernels, the step estimate and q4_check_reference.
    subroutine test_inversion(s)
       type(suite_t), intent(inout) :: s
       real(wp), allocatable :: x0(:, :), u(:, :), f(:, :), xb(:, :)
@@ -611,9 +677,12 @@ contains
          call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad)
          call check(s, ebad == 3 .and. jmin <= 0.0_wp, 'node pushed through: ebad names element 3')
          call check(s, all(abs(f) < huge(1.0_wp)) .and. w == w, 'forces stay finite')
-         call q4_stable_dt(nq, 4, 9, conn, x0 + u, st%wdj, lam0, mu0, 1.0_wp, dtmin, emin, efold)
+         call q4_stable_dt(nq, 4, 9, conn, x0, x0 + u, lam0, mu0, 1.0_wp, dtmin, emin, efold)
          call check(s, emin == 3 .and. dtmin == 0.0_wp, 'stable step: zero, element 3')
          call check(s, efold == 3, 'stable step: element 3 is folded at a corner')
+         call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad, dtmin, emin, efold)
+         call check(s, emin == 3 .and. dtmin == 0.0_wp .and. efold == 3, &
+                    'stable step of the force pass: zero, element 3, folded')
       end do
       ! node 9 (only in element 4) moved inside the element: a re-entrant corner whose area stays
       ! positive, so the centroid of the one-point rule does not see the fold
@@ -624,8 +693,10 @@ contains
       call check(s, ebad == 0 .and. jmin > 0.0_wp, 're-entrant corner: the one-point centroid J stays positive')
       do nq = 2, 1, -1
          call make_setup(nq, x0, conn, st, ebad)
-         call q4_stable_dt(nq, 4, 9, conn, x0 + u, st%wdj, lam0, mu0, 1.0_wp, dtmin, emin, efold)
+         call q4_stable_dt(nq, 4, 9, conn, x0, x0 + u, lam0, mu0, 1.0_wp, dtmin, emin, efold)
          call check(s, efold == 4, trim(qname(nq))//': re-entrant corner in the current mesh flags element 4')
+         call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad, dtmin, emin, efold)
+         call check(s, efold == 4, trim(qname(nq))//': the force pass flags the re-entrant corner too')
       end do
       call section(s, 'inversion flags, reference geometry')
       ! a re-entrant (positive area) element 4: corner det J0 < 0

@@ -128,7 +128,7 @@ contains
       call check_h5dump_series(s, stem//'.h5', 3, '', 'closed')
       call check_h5dump_layout(s, stem//'.h5')
 
-      call section(s, 'fields: meshio reads the XDMF time series')
+      call section(s, 'fields: meshio reads the last output, the series holds every one')
       call check_meshio(s, stem//'.xdmf', 3, 'closed')
 
       call section(s, 'fields: plot scripts')
@@ -224,53 +224,83 @@ contains
       call check(s, ok .and. space == '( 3, 12 ) / ( H5S_UNLIMITED, 12 )', &
                  '/fields/contact_active shape (time, node)', space)
 
-      ! the view of output 3 pads the displacement with a zero z component
+      ! the series view of the displacement pads it with a zero z component, at every time
       call synthetic_step(3, t, step, u, v, a, sig, fcont, active, energies)
       want(1:2, :) = u
       want(3, :) = 0.0_wp
-      call h5dump('', '-d /xdmf/000002/displacement '//h5, ok, space, vals)
-      call check(s, ok .and. space == '( 12, 3 ) / ( 12, 3 )' .and. &
-                 same(vals, reshape(want, [3*NNODE_T])), &
-                 'view /xdmf/000002/displacement is u(t3) with z = 0', list_text(vals))
-      call h5dump('', '-d /xdmf/000002/stress '//h5, ok, space, vals)
-      call check(s, ok .and. space == '( 6, 7 ) / ( 6, 7 )' .and. same(vals, reshape(sig, [7*NELEM_T])), &
-                 'view /xdmf/000002/stress is the (element, component) matrix at t3', list_text(vals))
+      call h5dump('', '-d /xdmf/displacement '//h5, ok, space, vals)
+      call check(s, ok .and. space == '( 3, 12, 3 ) / ( H5S_UNLIMITED, 12, 3 )', &
+                 'series view /xdmf/displacement (time, node, 3), unlimited', space)
+      call h5dump('', '-d /xdmf/displacement -s 2,0,0 -c 1,12,3 '//h5, ok, space, vals)
+      call check(s, ok .and. same(vals, reshape(want, [3*NNODE_T])), &
+                 'slab 2 of /xdmf/displacement is u(t3) with z = 0', list_text(vals))
+      ! nodal averages: every element has the same area here, so node 6 (inside; elements 1, 2,
+      ! 4, 5) has the plain mean and node 1 (a corner) the value of element 1
+      call h5dump('', '-d /fields/nodal_stress '//h5, ok, space, vals)
+      call check(s, ok .and. space == '( 3, 12, 7 ) / ( H5S_UNLIMITED, 12, 7 )', &
+                 '/fields/nodal_stress shape (time, node, component)', space)
+      call h5dump('', '-d /fields/nodal_stress -s 2,5,5 -c 1,1,1 '//h5, ok, space, vals)
+      call check(s, ok .and. size(vals) == 1, 'h5dump selects one nodal stress value')
+      if (size(vals) == 1) call check_close(s, vals(1), 0.25_wp*(sig(6, 1) + sig(6, 2) + sig(6, 4) + &
+                                                                 sig(6, 5)), 1.0e-12_wp, &
+                                            'von Mises at node 6, t3: mean of its four elements')
+      call h5dump('', '-d /fields/nodal_stress -s 2,0,6 -c 1,1,1 '//h5, ok, space, vals)
+      if (size(vals) == 1) call check_close(s, vals(1), sig(7, 1), 0.0_wp, 'J at corner node 1, t3: element 1')
+      ! the last output time (index 2) is in buffer a (outputs alternate a, b, a)
+      call h5dump('', '-d /last/a/cell_von_mises '//h5, ok, space, vals)
+      call check(s, ok .and. same(vals, sig(6, :)), '/last/a/cell_von_mises is von Mises at t3', &
+                 list_text(vals))
+      call h5dump('', '-d /last/a/displacement '//h5, ok, space, vals)
+      call check(s, ok .and. same(vals, reshape(want, [3*NNODE_T])), '/last/a/displacement is u(t3), z = 0', &
+                 list_text(vals))
+      call h5dump('', '-d /last/a/output '//h5, ok, space, vals)
+      call check(s, ok .and. same(vals, [2.0_wp]), '/last/a/output names output 2', list_text(vals))
+      call h5dump('', '-d /last/b/output '//h5, ok, space, vals)
+      call check(s, ok .and. same(vals, [1.0_wp]), '/last/b/output names output 1', list_text(vals))
+      call h5dump('', '-d /last/b/cell_von_mises '//h5, ok, space, vals)
+      call synthetic_step(2, t, step, u, v, a, sig, fcont, active, energies)
+      call check(s, ok .and. same(vals, sig(6, :)), '/last/b still holds t2, the output before', &
+                 list_text(vals))
    end subroutine check_h5dump_layout
 
-   !> meshio reads the .xdmf: counts and values; a wrong expected value makes the checker fail.
+   !> meshio.read reads <stem>.xdmf (the last output) and the series file holds every output:
+   !> counts and values through tools/check_xdmf.py; a wrong expected value makes it fail.
    subroutine check_meshio(s, xdmf, n, tag)
       type(suite_t), intent(inout) :: s
       character(len=*), intent(in) :: xdmf, tag
       integer, intent(in) :: n
       real(wp) :: t, u(2, NNODE_T), v(2, NNODE_T), a(2, NNODE_T), fcont(2, NNODE_T)
-      real(wp) :: sig(7, NELEM_T), energies(2), t1
+      real(wp) :: sig(7, NELEM_T), energies(2), t1, sig1(7, NELEM_T)
       integer :: active(NNODE_T), code
       integer(i8) :: step
       character(len=:), allocatable :: args, k
       if (.not. have_python_modules('meshio,h5py')) then
-         call skip(s, tag//': meshio reads the XDMF time series', 'Python with meshio and h5py')
+         call skip(s, tag//': meshio reads the XDMF files', 'Python with meshio and h5py', 2)
          return
       end if
 
-      call synthetic_step(1, t1, step, u, v, a, sig, fcont, active, energies)
+      call synthetic_step(1, t1, step, u, v, a, sig1, fcont, active, energies)
       call synthetic_step(n, t, step, u, v, a, sig, fcont, active, energies)
       k = itoa(n - 1)
       args = ' --steps '//itoa(n)//' --points 12 --cells 6 --time 0,'//rtoa(t1, '(es24.16)')// &
              ' --time '//k//','//rtoa(t, '(es24.16)')// &
-             ' --point-value displacement,'//k//',5,0,'//rtoa(u(1, 6), '(es24.16)')// &
-             ' --point-value displacement,'//k//',5,1,'//rtoa(u(2, 6), '(es24.16)')// &
-             ' --point-value displacement,'//k//',5,2,0'// &
-             ' --point-value contact_force,'//k//',7,1,'//rtoa(fcont(2, 8), '(es24.16)')// &
-             ' --point-value contact_active,'//k//',2,0,'//itoa(active(3))// &
-             ' --cell-value von_mises,'//k//',4,'//rtoa(sig(6, 5), '(es24.16)')// &
-             ' --cell-value J,'//k//',0,'//rtoa(sig(7, 1), '(es24.16)')// &
-             ' --cell-value material,0,4,12'
+             ' --point-value displacement,last,5,0,'//rtoa(u(1, 6), '(es24.16)')// &
+             ' --point-value displacement,last,5,1,'//rtoa(u(2, 6), '(es24.16)')// &
+             ' --point-value displacement,last,5,2,0'// &
+             ' --point-value contact_force,last,7,1,'//rtoa(fcont(2, 8), '(es24.16)')// &
+             ' --point-value contact_active,last,2,0,'//itoa(active(3))// &
+             ' --point-value von_mises,last,0,0,'//rtoa(sig(6, 1), '(es24.16)')// &
+             ' --cell-value von_mises,last,4,'//rtoa(sig(6, 5), '(es24.16)')// &
+             ' --cell-value J,last,0,'//rtoa(sig(7, 1), '(es24.16)')// &
+             ' --cell-value sxy,'//k//',3,'//rtoa(sig(4, 4), '(es24.16)')// &
+             ' --cell-value sxy,0,3,'//rtoa(sig1(4, 4), '(es24.16)')// &
+             ' --cell-value material,last,4,12 --convert '//DIR//'/'//tag//'.vtu'
       code = run_python('tools/check_xdmf.py '//xdmf//args)
-      call check(s, code == 0, tag//': meshio: '//itoa(n)//' times, 12 points, 6 cells, values', &
-                 'check_xdmf.py exit code '//itoa(code))
-      code = run_python('tools/check_xdmf.py '//xdmf//' --cell-value von_mises,'//k//',4,'// &
+      call check(s, code == 0, tag//': meshio.read gets the last time, the series has '//itoa(n)// &
+                 ' times; 12 points, 6 cells, values, meshio convert', 'check_xdmf.py exit code '//itoa(code))
+      code = run_python('tools/check_xdmf.py '//xdmf//' --cell-value von_mises,last,4,'// &
                         rtoa(sig(6, 5) + 1.0_wp, '(es24.16)')//' > /dev/null')
-      call check(s, code == 1, tag//': meshio check fails on a wrong value', &
+      call check(s, code == 1, tag//': the check fails on a wrong value', &
                  'check_xdmf.py exit code '//itoa(code))
    end subroutine check_meshio
 
@@ -304,7 +334,41 @@ contains
                  'exit code '//itoa(code))
       code = run_python('tools/plot_history.py '//DIR//'/no_such_run -o '//plots//' 2> /dev/null')
       call check(s, code == 1, 'plot_history.py fails on a missing run', 'exit code '//itoa(code))
+      ! the run's output times are 0.25, 0.5, 0.75: 2.0 is after the run
+      call execute_command_line('rm -f '//DIR//'/late.png '//DIR//'/anim.gif')
+      code = run_python('tools/plot_fields.py '//h5//' -t 0.5 2.0 -o '//DIR//'/late.png 2> '//DIR//'/late.err')
+      inquire (file=DIR//'/late.png', exist=exists)
+      call check(s, code == 2 .and. .not. exists .and. file_has_text(DIR//'/late.err', 'time 2 outside the run'), &
+                 'plot_fields.py refuses a time after the run, saying so on stderr', 'exit code '//itoa(code))
+      code = run_python('tools/plot_fields.py '//h5//' -t 2.0 --clamp --nodal -o '//DIR//'/late.png 2> '// &
+                        DIR//'/late.err > /dev/null')
+      inquire (file=DIR//'/late.png', exist=exists)
+      call check(s, code == 0 .and. exists .and. file_has_text(DIR//'/late.err', 'warning'), &
+                 'with --clamp it draws the last output time (nodal contours) and warns', 'exit code '//itoa(code))
+      code = run_python('tools/animate_fields.py '//h5//' -c von_mises -o '//DIR//'/anim.gif > /dev/null && '// &
+                        python_command()//' -c "from PIL import Image; import sys; '// &
+                        'sys.exit(0 if Image.open('''//DIR//'/anim.gif'').n_frames == 3 else 1)"')
+      call check(s, code == 0, 'animate_fields.py writes a GIF of the 3 output times', 'exit code '//itoa(code))
+      code = run_python('tools/plot_summary.py test/data/fields/sample -o '//plots//'/summary.png > /dev/null')
+      inquire (file=plots//'/summary.png', exist=exists)
+      call check(s, code == 0 .and. exists, 'plot_summary.py draws the summary page', 'exit code '//itoa(code))
    end subroutine check_plots
+
+   !> The file exists and contains `text`.
+   logical function file_has_text(path, text) result(found)
+      character(len=*), intent(in) :: path, text
+      character(len=1024) :: line
+      integer :: u, ios
+      found = .false.
+      open (newunit=u, file=path, status='old', action='read', iostat=ios)
+      if (ios /= 0) return
+      do
+         read (u, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         if (index(line, text) > 0) found = .true.
+      end do
+      close (u)
+   end function file_has_text
 
    !> write_step errors on an open writer with 3 outputs: nothing is written.
    subroutine check_step_errors(s, w)
@@ -375,7 +439,7 @@ contains
       call check(s, exists, 'child program found next to the test driver', child)
       if (.not. exists) return
 
-      script = 'rm -f '//marker//' '//status_file//' '//stem//'.h5 '//stem//'.xdmf; '// &
+      script = 'rm -f '//marker//' '//status_file//' '//stem//'.h5 '//stem//'.xdmf '//stem//'_series.xdmf; '// &
                child//' --child '//stem//' 4 '//marker//' > '//DIR//'/killed.log 2>&1 & pid=$!; i=0; '// &
                'while [ ! -e '//marker//' ] && [ $i -lt 1200 ]; do sleep 0.05; i=$((i+1)); done; '// &
                'kill -TERM $pid; wait $pid 2> /dev/null; echo $? > '//status_file

@@ -48,8 +48,8 @@ contains
       type(error_t), allocatable :: err
       character(len=:), allocatable :: deck
       character(len=1) :: q
-      integer :: k, ebad
-      real(wp) :: th, c, sn, worst_w, worst_f, fscale
+      integer :: k, ebad, emin, efold
+      real(wp) :: th, c, sn, worst_w, worst_f, fscale, dtmin
       integer, parameter :: nstep = 2000
 
       write (q, '(i1)') nq
@@ -73,7 +73,7 @@ contains
          sn = sin(th)
          st%u(1, :) = (c - 1.0_wp)*st%x0(1, :) - sn*st%x0(2, :)
          st%u(2, :) = sn*st%x0(1, :) + (c - 1.0_wp)*st%x0(2, :)
-         call internal_forces(st, sets, ebad)
+         call internal_forces(st, sets, ebad, dtmin, emin, efold)
          worst_w = max(worst_w, abs(st%strain) + abs(st%hourglass))
          worst_f = max(worst_f, maxval(abs(st%fint)))
       end do

@@ -6,6 +6,7 @@
 !> describes every reference.
 module test_plasticity
    use exic_base_kinds, only: wp
+   use exic_base_logarithm, only: ln
    use exic_material_material, only: lame_from_young
    use exic_material_neohookean, only: nh_piola, nh_cauchy
    use exic_material_j2_hardening, only: j2_param_t, j2_check_parameters, j2_static_yield, &
@@ -118,8 +119,9 @@ contains
       real(wp), intent(in) :: dt, f(5)
       type(point_t), intent(inout) :: pt
       real(wp) :: p11(1), p12(1), p21(1), p22(1), p33(1), we(1), dwp(1), ys(1)
-      call j2_piola(1, lam, mu, prm, dt, f(1:1), f(2:2), f(3:3), f(4:4), f(5:5), pt%a11, pt%a12, &
-                    pt%a22, pt%a33, pt%ep, pt%temp, p11, p12, p21, p22, p33, we, dwp, ys)
+      call j2_piola(1, lam, mu, prm, dt, f(1:1), f(2:2), f(3:3), f(4:4), f(5:5), &
+                    [f(1)*f(4) - f(2)*f(3)], [1.0_wp], pt%a11, pt%a12, pt%a22, pt%a33, pt%ep, &
+                    pt%temp, p11, p12, p21, p22, p33, we, dwp, ys)
       pt%p = [p11(1), p12(1), p21(1), p22(1), p33(1)]
       pt%we = we(1)
       pt%dwp = dwp(1)
@@ -173,11 +175,12 @@ contains
 
    ! ---------------------------------------------------------------- elastic limit
 
-   !> A point that never yields gives the neo-Hookean kernel's stress and energy bit for bit.
+   !> A point that never yields gives the neo-Hookean kernel's stress and energy bit for bit,
+   !> with the same weights.
    subroutine test_elastic_limit(s)
       type(suite_t), intent(inout) :: s
       integer, parameter :: n = 300
-      real(wp), dimension(n) :: f11, f12, f21, f22, f33, one, jac, a11, a12, a22, a33, ep, tp, &
+      real(wp), dimension(n) :: f11, f12, f21, f22, f33, one, wq, jac, a11, a12, a22, a33, ep, tp, &
                                 p11, p12, p21, p22, p33, we, dwp, ys, q11, q12, q21, q22, w
       real(wp), dimension(n) :: sx, sy, sz, sxy, tx, ty, tz, txy
       real(wp) :: lj, fm(3, 3), fit(3, 3), pref(3, 3), wref, err, lm(2), mm(2)
@@ -199,17 +202,18 @@ contains
             f12(i) = 0.6_wp*(rnd(seed) - 0.5_wp)
             f21(i) = 0.6_wp*(rnd(seed) - 0.5_wp)
             f22(i) = 1.0_wp + 0.6_wp*(rnd(seed) - 0.5_wp)
+            wq(i) = 0.5_wp + rnd(seed)
          end do
          f33 = 1.0_wp
          jac = f11*f22 - f12*f21
          call j2_init_history(n, prm, a11, a12, a22, a33, ep, tp)
-         call j2_piola(n, lm(c), mm(c), prm, 0.0_wp, f11, f12, f21, f22, f33, a11, a12, a22, a33, ep, &
-                       tp, p11, p12, p21, p22, p33, we, dwp, ys)
-         call nh_piola(n, lm(c), mm(c), f11, f12, f21, f22, jac, one, q11, q12, q21, q22, w)
+         call j2_piola(n, lm(c), mm(c), prm, 0.0_wp, f11, f12, f21, f22, f33, jac, wq, a11, a12, a22, &
+                       a33, ep, tp, p11, p12, p21, p22, p33, we, dwp, ys)
+         call nh_piola(n, lm(c), mm(c), f11, f12, f21, f22, jac, wq, q11, q12, q21, q22, w)
          same = all(p11 == q11) .and. all(p12 == q12) .and. all(p21 == q21) .and. all(p22 == q22)
-         call check(s, same, 'plane strain, 300 points in 5 chunks: P11, P12, P21, P22 == nh_piola '// &
-                    merge('(seed lambda, mu) ', '(copper)          ', c == 1))
-         call check(s, all(we == w), 'energy == nh_piola')
+         call check(s, same, 'plane strain, 300 weighted points in 5 chunks: wt P11, P12, P21, P22 '// &
+                    '== nh_piola '//merge('(seed lambda, mu) ', '(copper)          ', c == 1))
+         call check(s, all(we == w), 'wt x energy == nh_piola')
          call check(s, all(a11 == 1.0_wp) .and. all(a12 == 0.0_wp) .and. all(a22 == 1.0_wp) .and. &
                     all(a33 == 1.0_wp) .and. all(ep == 0.0_wp) .and. all(dwp == 0.0_wp), &
                     'history untouched, no dissipation')
@@ -228,8 +232,9 @@ contains
          f33(i) = 1.0_wp + 0.6_wp*(rnd(seed) - 0.5_wp)
       end do
       call j2_init_history(n, prm, a11, a12, a22, a33, ep, tp)
-      call j2_piola(n, lam, mu, prm, 0.0_wp, f11, f12, f21, f22, f33, a11, a12, a22, a33, ep, tp, &
-                    p11, p12, p21, p22, p33, we, dwp, ys)
+      jac = f11*f22 - f12*f21
+      call j2_piola(n, lam, mu, prm, 0.0_wp, f11, f12, f21, f22, f33, jac, one, a11, a12, a22, a33, &
+                    ep, tp, p11, p12, p21, p22, p33, we, dwp, ys)
       err = 0.0_wp
       do i = 1, n
          fm = reshape([f11(i), f21(i), 0.0_wp, f12(i), f22(i), 0.0_wp, 0.0_wp, 0.0_wp, f33(i)], [3, 3])
@@ -244,6 +249,25 @@ contains
       end do
       call check(s, err <= 1.0e-14_wp, 'F33 /= 1: 3-D neo-Hookean P and W to 1e-14 (max rel '// &
                  fmt_e(err)//')')
+      ! and bit for bit against the axisymmetric neo-Hookean kernel formula (J9a), weighted
+      jac = f11*f22 - f12*f21
+      call j2_init_history(n, prm, a11, a12, a22, a33, ep, tp)
+      call j2_piola(n, lam, mu, prm, 0.0_wp, f11, f12, f21, f22, f33, jac, wq, a11, a12, a22, a33, &
+                    ep, tp, p11, p12, p21, p22, p33, we, dwp, ys)
+      same = .true.
+      do i = 1, n
+         lj = ln(jac(i)*f33(i))      ! the kernels' logarithm (base/logarithm)
+         wref = (lam*lj - mu)/(jac(i)*f33(i))
+         same = same .and. p11(i) == wq(i)*(mu*f11(i) + wref*(f22(i)*f33(i))) &
+                .and. p12(i) == wq(i)*(mu*f12(i) - wref*(f21(i)*f33(i))) &
+                .and. p21(i) == wq(i)*(mu*f21(i) - wref*(f12(i)*f33(i))) &
+                .and. p22(i) == wq(i)*(mu*f22(i) + wref*(f11(i)*f33(i))) &
+                .and. p33(i) == wq(i)*(mu*f33(i) + wref*jac(i)) &
+                .and. we(i) == wq(i)*(lj*(0.5_wp*lam*lj - mu) + 0.5_wp*mu*((f11(i)*f11(i) &
+                                      + f12(i)*f12(i) + f21(i)*f21(i) + f22(i)*f22(i) - 2.0_wp) &
+                                      + (f33(i)*f33(i) - 1.0_wp)))
+      end do
+      call check(s, same, 'F33 /= 1, weighted: P and W == the axisymmetric neo-Hookean formula (J9a)')
 
    end subroutine test_elastic_limit
 
@@ -274,8 +298,8 @@ contains
       end do
       jac = f11*f22 - f12*f21
       call j2_init_history(n, prm, a11, a12, a22, a33, ep, tp)
-      call j2_piola(n, lam, mu, prm, 0.0_wp, f11, f12, f21, f22, f33, a11, a12, a22, a33, ep, tp, &
-                    p11, p12, p21, p22, p33, we, dwp, ys)
+      call j2_piola(n, lam, mu, prm, 0.0_wp, f11, f12, f21, f22, f33, jac, one, a11, a12, a22, a33, &
+                    ep, tp, p11, p12, p21, p22, p33, we, dwp, ys)
       call nh_piola(n, lam, mu, f11, f12, f21, f22, jac, one, q11, q12, q21, q22, w)
       nel = 0
       npl = 0
@@ -677,6 +701,9 @@ contains
       call check_close(s, j2_static_yield(prm, 0.3_wp, 0.0_wp), ex, 1.0e-15_wp*ex, &
                        'MISEs: Y(0.3) = Y0 + (Yinf - Y0)(1 - exp(-beta ep)) + Hiso ep')
       call slope_check(s, prm, 0.2_wp, 0.1_wp, 'MISEs')
+      prm%hiso = 0.0_wp
+      call check_close(s, j2_static_yield(prm, 5.0_wp, 0.0_wp), 600.0e6_wp, 1.0e-15_wp*600.0e6_wp, &
+                       'MISEs saturates: Y(ep = 5) = Yinf when Hiso = 0')
       ! power law, n < 1
       prm = material(M_POW)
       call check(s, j2_static_yield(prm, 0.0_wp, 0.0_wp) == 90.0e6_wp, &

@@ -23,6 +23,8 @@ contains
       call killed_run_test(s)
       call section(s, 'run output: an output interval far below the time step')
       call tiny_interval_test(s)
+      call section(s, 'run output: a failed run keeps the fields of the state it stopped in')
+      call failed_run_test(s)
    end subroutine run_run_output_tests
 
    !> A 12 x 2 bar hitting a rigid wall at a fixed step 1e-3: fields every `every` steps,
@@ -99,7 +101,13 @@ contains
       status = run_python('tools/check_xdmf.py '//run_dir//'/fields_run.xdmf --steps '//itoa(nt)// &
                           ' --points 45 --cells 26 --point-value displacement,'//itoa(k - 1)//',12,0,'// &
                           rtoa(his(2, row), '(es23.16)')//' --tol 1e-15')
-      call check(s, status == 0, 'meshio reads the run''s .xdmf: times, points, cells and the same value')
+      call check(s, status == 0, 'the run''s series XDMF: times, points, cells and the same value')
+      ! meshio.read of <stem>.xdmf: the last output time, against the history row of that time
+      row = minloc(abs(his(1, :) - times(nt)), dim=1)
+      status = run_python('tools/check_xdmf.py '//run_dir//'/fields_run.xdmf --point-value displacement,last,12,0,'// &
+                          rtoa(his(2, row), '(es23.16)')//' --tol 1e-15 --convert '//run_dir//'/fields_run.vtu')
+      call check(s, status == 0, 'meshio.read of the run''s .xdmf gives the last time''s displacement, '// &
+                 'as in the .his; meshio convert writes it')
    end subroutine readback_test
 
    !> A run killed by SIGTERM after it has written 20 output times leaves a readable .h5 with
@@ -189,6 +197,40 @@ contains
       call check(s, size(times) == 61, 'one output time per step (61 for 60 steps)', &
                  'output times '//itoa(size(times)))
    end subroutine tiny_interval_test
+
+   !> The bar at 100 instead of 0.5 folds an element at step 8 (t = 8e-3): the fields of that
+   !> state follow those of t = 0 and 5e-3, the .h5 says why, the XDMF files show it.
+   subroutine failed_run_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, deck, base
+      real(wp), allocatable :: times(:)
+      integer :: stage, status
+      deck = bar_deck(200, 5)
+      deck = deck(:index(deck, '  REGIon,1,0.5,0') - 1)//'  REGIon,1,100,0'//deck(index(deck, '  REGIon,1,0.5,0') + 16:)
+      call run_deck('failed_run', deck, stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'inverted') > 0, 'the run stops on a folded element', msg)
+      if (stage /= 2) return
+      base = run_dir//'/failed_run'
+      call check(s, file_has(base//'.out', 'fields of the state at the failure written (t = 8.0000000E-03)'), &
+                 '<stem>.out says the failing state was written')
+      if (.not. have_command('h5dump')) then
+         call skip(s, 'the failed run''s .h5 read back', 'h5dump', 2)
+         return
+      end if
+      call read_h5_vector(base//'.h5', '/time', times)
+      call check(s, size(times) == 3, 'output times 0, 5e-3 and the failure at 8e-3', 'times '//itoa(size(times)))
+      if (size(times) == 3) call check(s, abs(times(3) - 8.0e-3_wp) < 1.0e-15_wp, 'the last output time is the failure''s', &
+                                       rtoa(times(3)))
+      call execute_command_line('h5dump -a /failed '//base//'.h5 > '//base//'.failed 2>&1', exitstat=status)
+      call check(s, status == 0 .and. file_has(base//'.failed', 'element') .and. file_has(base//'.failed', 'inverted'), &
+                 'the .h5 attribute failed holds the error')
+      if (.not. have_python_modules('meshio,h5py')) then
+         call skip(s, 'meshio reads the failed run', 'Python with meshio and h5py')
+         return
+      end if
+      status = run_python('tools/check_xdmf.py '//base//'.xdmf --steps 3 --points 45 --cells 26 --time 2,8e-3')
+      call check(s, status == 0, 'meshio.read shows the failing state, the series has the 3 times')
+   end subroutine failed_run_test
 
    !> The last number on the lines of a file (0 if none).
    real(wp) function last_number(path) result(x)

@@ -5,6 +5,11 @@ One panel per chosen time (the nearest output time is used), all on one colour s
 element edges and the contact edges drawn on top. Reads the HDF5 file with h5py; the file may
 belong to a run that is still going (only complete output times are used).
 
+A time outside the run's output times (before the first or after the last, by more than half
+the spacing of the output times there) is an error: the script says which times the file has
+and exits with code 2, drawing nothing. --clamp draws the nearest output time instead, with a
+warning on stderr.
+
 Examples:
   plot_fields.py run.h5                              # von Mises at the last output time
   plot_fields.py run.h5 -c sxx -t 0 0.1 0.2 -o sxx.png
@@ -56,7 +61,23 @@ def parse_args(argv):
                    help="colour scale limits (default: the range over the drawn times)")
     p.add_argument("--no-contact-edges", action="store_true", help="do not mark the contact edges")
     p.add_argument("--dpi", type=int, default=150, help="resolution (default 150)")
+    p.add_argument("--clamp", action="store_true",
+                   help="draw the nearest output time for times outside the run (warning on stderr)")
+    p.add_argument("--nodal", action="store_true",
+                   help="filled contours of the nodal (area-averaged) values instead of element colours")
     return p.parse_args(argv)
+
+
+def outside(times, wanted):
+    """The wanted times that lie outside the output times (by more than half their spacing at
+    that end; any distance when there is only one output time)."""
+    if len(times) > 1:
+        lo = times[0] - 0.5 * (times[1] - times[0])
+        hi = times[-1] + 0.5 * (times[-1] - times[-2])
+    else:
+        lo = hi = times[0]
+    tol = 1e-12 * max(1.0, abs(times[-1]))
+    return [t for t in wanted if t < lo - tol or t > hi + tol]
 
 
 def load(path):
@@ -72,6 +93,7 @@ def load(path):
             "step": f["step"][()][:n],
             "u": f["fields/displacement"][:n],
             "stress": f["fields/stress"][:n],
+            "nodal": f["fields/nodal_stress"][:n] if "fields/nodal_stress" in f else None,
         }
     return data
 
@@ -92,9 +114,21 @@ def main(argv=None):
         print(f"plot_fields: {args.h5} has no output time yet", file=sys.stderr)
         return 1
     wanted = args.time if args.time else [d["time"][-1]]
+    far = outside(d["time"], wanted)
+    if far:
+        span = f"the run's {len(d['time'])} output times go from {d['time'][0]:.6g} to {d['time'][-1]:.6g}"
+        if not args.clamp:
+            print(f"plot_fields: time {', '.join(f'{t:.6g}' for t in far)} outside the run: {span} "
+                  "(--clamp draws the nearest output time)", file=sys.stderr)
+            return 2
+        print(f"plot_fields: warning: time {', '.join(f'{t:.6g}' for t in far)} outside the run ({span}); "
+              "drawing the nearest output time", file=sys.stderr)
     ks = [int(np.argmin(np.abs(d["time"] - t))) for t in wanted]
     c = args.component
-    values = [d["stress"][k, :, c] for k in ks]
+    if args.nodal and d["nodal"] is None:
+        print(f"plot_fields: {args.h5} has no nodal values (written before they existed)", file=sys.stderr)
+        return 1
+    values = [(d["nodal"] if args.nodal else d["stress"])[k, :, c] for k in ks]
     if args.range:
         vmin, vmax = args.range
     else:
@@ -120,10 +154,18 @@ def main(argv=None):
     coll = None
     for i, (k, v, x) in enumerate(zip(ks, values, shapes)):
         ax = axes[i // ncol][i % ncol]
-        coll = PolyCollection(x[d["conn"]], array=v, cmap=args.cmap, edgecolors="k",
-                              linewidths=0.3)
-        coll.set_clim(vmin, vmax)
-        ax.add_collection(coll)
+        if args.nodal:
+            tri = np.concatenate([d["conn"][:, [0, 1, 2]], d["conn"][:, [0, 2, 3]]])
+            levels = np.linspace(vmin, vmax, 21)
+            coll = ax.tricontourf(x[:, 0], x[:, 1], tri, np.clip(v, vmin, vmax), levels=levels,
+                                  cmap=args.cmap)
+            ax.add_collection(PolyCollection(x[d["conn"]], facecolors="none", edgecolors="k",
+                                             linewidths=0.2))
+        else:
+            coll = PolyCollection(x[d["conn"]], array=v, cmap=args.cmap, edgecolors="k",
+                                  linewidths=0.3)
+            coll.set_clim(vmin, vmax)
+            ax.add_collection(coll)
         if not args.no_contact_edges and len(d["edges"]) > 0:
             ax.add_collection(LineCollection(x[d["edges"]], colors="r", linewidths=1.2))
         ax.set_xlim(lo[0], hi[0])

@@ -4,13 +4,17 @@
     plots.py DECK [-o OUTDIR] [--exic PATH] [--no-run] [-c COMP ...]
 
 Runs `exic DECK -o OUTDIR` (unless --no-run), then writes into OUTDIR/plots/:
+  - a summary page <stem>_summary.png (tools/plot_summary.py): energies, energy drift, contact
+    force and the node histories;
   - the history plots of tools/plot_history.py (<stem>_displacement.png, _velocity.png, ...,
     _energies.png);
   - when the deck writes fields (OUTPut,HDF5): the deformed shape coloured by each stress
     component asked for (default von_mises and sxx) at the peak compression (the output time of
     the largest strain energy while contact is active, or over the whole run without contact)
     and at the last output time (<stem>_<comp>_peak.png, <stem>_<comp>_end.png), drawn by
-    tools/plot_fields.py.
+    tools/plot_fields.py; and an animation of the deformed mesh with contours of the first
+    component over every output time (<stem>_<comp>.gif, or .mp4 with --movie mp4, which needs
+    ffmpeg), made by tools/animate_fields.py.
 `make plots DECK=path.inp [OUTDIR=out]` builds exic and runs this script.
 """
 import argparse
@@ -48,6 +52,8 @@ def main(argv=None):
     ap.add_argument("--no-run", action="store_true", help="only draw the files of an earlier run")
     ap.add_argument("-c", "--component", nargs="+", default=["von_mises", "sxx"],
                     help="stress components of the contour pictures (default von_mises sxx)")
+    ap.add_argument("--movie", choices=["gif", "mp4", "none"], default="gif",
+                    help="the animation's format (default gif; mp4 needs ffmpeg; none: no animation)")
     args = ap.parse_args(argv)
 
     stem = os.path.join(args.outdir, os.path.splitext(os.path.basename(args.deck))[0])
@@ -65,6 +71,9 @@ def main(argv=None):
         sys.exit(f"plots: no {stem}.his or {stem}.ene to draw")
     plots = os.path.join(args.outdir, "plots")
     os.makedirs(plots, exist_ok=True)
+    name = os.path.basename(stem)
+    subprocess.run([sys.executable, os.path.join(HERE, "plot_summary.py"), stem, "-o",
+                    os.path.join(plots, f"{name}_summary.png")], check=True)
     subprocess.run([sys.executable, os.path.join(HERE, "plot_history.py"), stem, "-o", plots],
                    check=True)
     run = xr.Run(stem)
@@ -72,12 +81,16 @@ def main(argv=None):
         ft = xr.field_times(run.h5)
         if len(ft):
             times = {"peak": peak_time(run), "end": float(ft[-1])}
-            name = os.path.basename(stem)
             for comp in args.component:
                 for label, t in times.items():
                     out = os.path.join(plots, f"{name}_{comp}_{label}.png")
                     subprocess.run([sys.executable, os.path.join(HERE, "plot_fields.py"), run.h5,
                                     "-c", comp, "-t", repr(t), "-o", out], check=True)
+            if args.movie != "none":
+                comp = args.component[0]
+                out = os.path.join(plots, f"{name}_{comp}.{args.movie}")
+                subprocess.run([sys.executable, os.path.join(HERE, "animate_fields.py"), run.h5,
+                                "-c", comp, "-o", out], check=True)
     else:
         print("plots: the deck writes no fields (OUTPut,HDF5): no contour pictures")
     print(f"plots: pictures in {plots}/")

@@ -1,19 +1,24 @@
-!> Throughput of the quadrilateral force kernels: element-steps per second on a 120 x 24 mesh.
+!> Throughput of the quadrilateral force kernels: element-steps per second on a 120 x 24 mesh
+!> (or nx x ny: `exic-bench-element nsteps nx ny`).
 !>
-!> Times q4_force_2x2, q4_force_1pt and q4_stable_dt (each step zeroes the force array first,
-!> as the explicit driver does) in 5 repetitions and prints the median and range, in wall time
-!> and in processor time (the latter is what counts on a shared, loaded machine).
+!> Times q4_force_2x2, q4_force_1pt (each with the stable step fused in) and q4_stable_dt alone
+!> (each step zeroes the force array first, as the explicit driver does) in 5 repetitions and
+!> prints the median and range, in wall time and in processor time (the latter is what counts on
+!> a shared, loaded machine).
+!> `exic-bench-element bandwidth` measures the memory bandwidth instead (triad a = b + s c and
+!> copy over 3 x 128 MB, best of 10, on OMP_NUM_THREADS threads): the roofline of
+!> doc/performance.md.
 !> Build: fpm build --profile release --flag "-O3 -march=native -funroll-loops -ffp-contract=off"
-!> Run:   fpm run exic-bench-element --profile release --flag "..." [-- nsteps]
+!> Run:   fpm run exic-bench-element --profile release --flag "..." [-- nsteps | bandwidth]
 program element_rate
    use exic_base_kinds, only: wp, i8
-   use exic_element_quad4, only: q4_reference, q4_force_2x2, q4_force_1pt, q4_stable_dt
+   use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_stable_dt
+   !$ use omp_lib, only: omp_get_max_threads
    implicit none
-   integer, parameter :: nx = 120, ny = 24, nrep = 5
-   integer :: nel, nnode, nsteps, i, j, e, rep, ebad, emin, efold, step, nargs
+   integer, parameter :: nrep = 5
+   integer :: nx, ny, nel, nnode, nsteps, i, j, e, rep, ebad, emin, efold, step, nargs
    integer, allocatable :: conn(:, :)
-   real(wp), allocatable :: x0(:, :), u(:, :), f(:, :)
-   real(wp), allocatable :: gdn2(:, :, :), wdj2(:, :), gdn1(:, :, :), wdj1(:, :), gam(:, :)
+   real(wp), allocatable :: x0(:, :), u(:, :), f(:, :), x(:, :)
    real(wp) :: lambda, mu, wint, whg, jmin, dtmin, chk, t(nrep, 3), tc(nrep, 3), xx, yy, p0, p1
    character(len=32) :: arg
    integer(i8) :: c0, c1, rate
@@ -22,21 +27,32 @@ program element_rate
    nargs = command_argument_count()
    if (nargs >= 1) then
       call get_command_argument(1, arg)
+      if (arg == 'bandwidth') then
+         call bandwidth()
+         stop
+      end if
       read (arg, *) nsteps
+   end if
+   nx = 120
+   ny = 24
+   if (nargs >= 3) then
+      call get_command_argument(2, arg)
+      read (arg, *) nx
+      call get_command_argument(3, arg)
+      read (arg, *) ny
    end if
    lambda = 33333.0_wp
    mu = 5000.0_wp
    nel = nx*ny
    nnode = (nx + 1)*(ny + 1)
    allocate (conn(4, nel), x0(2, nnode), u(2, nnode), f(2, nnode))
-   allocate (gdn2(8, 4, nel), wdj2(4, nel), gdn1(8, 1, nel), wdj1(1, nel), gam(4, nel))
    ! a 30 x 6 bar of slightly distorted squares, bent and stretched
    do j = 0, ny
       do i = 0, nx
          xx = 0.25_wp*i + 0.03_wp*sin(1.7_wp*i + 2.3_wp*j)
          yy = 0.25_wp*j + 0.03_wp*cos(2.9_wp*i - 1.1_wp*j)
          x0(:, 1 + i + (nx + 1)*j) = [xx, yy]
-         u(:, 1 + i + (nx + 1)*j) = [0.01_wp*xx + 0.02_wp*yy*sin(0.1_wp*xx), 0.002_wp*xx*xx]
+         u(:, 1 + i + (nx + 1)*j) = [0.01_wp*xx + 0.02_wp*yy*sin(0.1_wp*xx), 0.002_wp*xx*xx*(30.0_wp/(0.25_wp*nx))]
       end do
    end do
    do j = 0, ny - 1
@@ -46,8 +62,8 @@ program element_rate
                        1 + i + (nx + 1)*(j + 1)]
       end do
    end do
-   call q4_reference(2, nel, nnode, conn, x0, gdn2, wdj2, gam, ebad)
-   call q4_reference(1, nel, nnode, conn, x0, gdn1, wdj1, gam, ebad)
+   call q4_check_reference(nel, nnode, conn, x0, ebad)
+   x = x0 + u
 
    call system_clock(count_rate=rate)
    chk = 0.0_wp
@@ -56,7 +72,7 @@ program element_rate
       call cpu_time(p0)
       do step = 1, nsteps
          f = 0.0_wp
-         call q4_force_2x2(nel, nnode, conn, u, gdn2, wdj2, lambda, mu, f, wint, jmin, ebad)
+         call q4_force_2x2(nel, nnode, conn, x0, u, lambda, mu, 0.1_wp, f, wint, jmin, ebad, dtmin, emin, efold)
       end do
       call system_clock(c1)
       call cpu_time(p1)
@@ -67,8 +83,8 @@ program element_rate
       call cpu_time(p0)
       do step = 1, nsteps
          f = 0.0_wp
-         call q4_force_1pt(nel, nnode, conn, u, gdn1, wdj1, gam, lambda, mu, 0.1_wp, f, wint, whg, &
-                           jmin, ebad)
+         call q4_force_1pt(nel, nnode, conn, x0, u, lambda, mu, 0.1_wp, 0.1_wp, f, wint, whg, &
+                           jmin, ebad, dtmin, emin, efold)
       end do
       call system_clock(c1)
       call cpu_time(p1)
@@ -78,7 +94,7 @@ program element_rate
       call system_clock(c0)
       call cpu_time(p0)
       do step = 1, nsteps
-         call q4_stable_dt(2, nel, nnode, conn, x0 + u, wdj2, lambda, mu, 0.1_wp, dtmin, emin, efold)
+         call q4_stable_dt(2, nel, nnode, conn, x0, x, lambda, mu, 0.1_wp, dtmin, emin, efold)
          chk = chk + dtmin
       end do
       call system_clock(c1)
@@ -97,6 +113,50 @@ program element_rate
    print '(a,es12.5)', 'checksum ', chk
 
 contains
+
+   !> Best of 10 rates of a triad and a copy over arrays of 16 M reals (128 MB each), shared
+   !> among the OpenMP threads (first touch by the same threads).
+   subroutine bandwidth()
+      integer, parameter :: m = 16*1024*1024
+      real(wp), allocatable :: a(:), b(:), c(:)
+      real(wp) :: best(2), w0, w1
+      integer(i8) :: r0, r1, rt
+      integer :: i, it, nth
+      allocate (a(m), b(m), c(m))
+      !$omp parallel do schedule(static)
+      do i = 1, m
+         a(i) = 0.0_wp
+         b(i) = 1.0_wp
+         c(i) = 2.0_wp
+      end do
+      !$omp end parallel do
+      best = huge(1.0_wp)
+      call system_clock(count_rate=rt)
+      do it = 1, 10
+         call system_clock(r0)
+         !$omp parallel do schedule(static)
+         do i = 1, m
+            a(i) = b(i) + 3.0_wp*c(i)
+         end do
+         !$omp end parallel do
+         call system_clock(r1)
+         w0 = real(r1 - r0, wp)/real(rt, wp)
+         call system_clock(r0)
+         !$omp parallel do schedule(static)
+         do i = 1, m
+            b(i) = a(i)
+         end do
+         !$omp end parallel do
+         call system_clock(r1)
+         w1 = real(r1 - r0, wp)/real(rt, wp)
+         best = min(best, [w0, w1])
+      end do
+      nth = 1
+      !$ nth = omp_get_max_threads()
+      print '(a,i0,a,f7.2,a,f7.2,a)', 'bandwidth threads ', nth, ': triad ', 24.0_wp*m/best(1)/1e9_wp, &
+         ' GB/s, copy ', 16.0_wp*m/best(2)/1e9_wp, ' GB/s'
+      print '(a,es12.5)', 'checksum ', a(7) + b(9)
+   end subroutine bandwidth
 
    subroutine report(name, times)
       character(len=*), intent(in) :: name

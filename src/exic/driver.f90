@@ -3,7 +3,7 @@
 !> The step itself is src/exic/explicit/step.f90 (`stepper_t`), the files src/exic/io/output.f90
 !> and src/exic/io/report.f90; this module only decides, command by command, what to call.
 module exic_driver
-   use, intrinsic :: iso_fortran_env, only: error_unit
+   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    use exic_base_kinds, only: wp, i8
    use exic_base_constants, only: TIME_TOL
    use exic_base_error, only: error_t, make_error
@@ -12,7 +12,8 @@ module exic_driver
    use exic_io_model, only: model_t
    use exic_io_program, only: MAX_LOOP_DEPTH
    use exic_io_output, only: output_t
-   use exic_io_report, only: report_preamble, report_summary, report_final
+   use exic_io_report, only: report_preamble, report_summary, report_final, console_summary, &
+                             energy_balance
    use exic_explicit_step, only: stepper_t
    implicit none
    private
@@ -31,7 +32,7 @@ module exic_driver
    !> How a run is made.
    type :: run_options_t
       character(len=:), allocatable :: base   !< output path without extension: dir/stem
-      logical :: quiet = .false.              !< no console progress lines
+      logical :: quiet = .false.              !< no progress line and no summary on the console
       !> called after every field output time, when associated (a library user following the run)
       procedure(fields_observer), pointer, nopass :: on_fields => null()
    end type run_options_t
@@ -54,7 +55,7 @@ contains
       type(error_t), allocatable, intent(out) :: err
       type(run_t) :: r
       type(error_t), allocatable :: ferr
-      real(wp) :: wall_start
+      real(wp) :: wall_start, wall
       character(len=:), allocatable :: field_files
 
       wall_start = wall_time()
@@ -67,16 +68,23 @@ contains
          call r%progress%begin(opts%quiet)
          call execute(r, model, err)
       end if
-      ! the final state is always written
+      ! the final state is always written; after a failure, its fields are (doc/fields.md)
       if (r%stp%started .and. .not. allocated(err)) then
          call r%out%final(model, r%stp, ferr)
          if (allocated(ferr)) call r%out%files%say('error: '//ferr%message)
+      else if (r%stp%started) then
+         call r%out%failed(r%stp, err%message, ferr)
+         if (allocated(ferr)) call r%out%files%say('error: '//ferr%message)
       end if
       call pass_messages(r)
+      if (r%stp%started) call finish_progress(r)
       field_files = ''
-      if (r%out%field_dt > 0.0_wp) field_files = ' '//opts%base//'.h5 '//opts%base//'.xdmf'
-      call report_final(r%out%files, r%stp, err, wall_time() - wall_start, field_files)
+      if (r%out%field_dt > 0.0_wp) field_files = ' '//opts%base//'.h5 '//opts%base//'.xdmf '// &
+                                                 opts%base//'_series.xdmf'
+      wall = wall_time() - wall_start
+      call report_final(r%out%files, r%stp, err, wall, field_files)
       call r%out%close()
+      if (.not. opts%quiet .and. r%stp%started) write (output_unit, '(a)') console_summary(r%stp, wall)
    end subroutine run_model
 
    !> Interpret the BATCh program.
@@ -182,18 +190,32 @@ contains
    subroutine step(r, err)
       type(run_t), intent(inout) :: r
       type(error_t), allocatable, intent(out) :: err
+      real(wp) :: total, drift
       call r%stp%advance(err)
       call pass_messages(r)
       if (allocated(err)) return
       associate (st => r%stp%st)
          if (r%print_inc > 0) then
-            if (mod(st%step, int(r%print_inc, i8)) == 0) &
+            if (mod(st%step, int(r%print_inc, i8)) == 0) then
+               call r%progress%clear()
                print '(a,es12.5,a,i0,a,es12.5,a,es12.5,a,es12.5,a,es12.5)', ' t=', st%t, ' step ', st%step, &
-               ' K=', st%kinetic, ' U=', st%strain + st%hourglass, ' Wext=', st%wext, ' Wc=', st%wcon
+                  ' K=', st%kinetic, ' U=', st%strain + st%hourglass, ' Wext=', st%wext, ' Wc=', st%wcon
+            end if
          end if
-         call r%progress%update(st%t, r%stp%tmax, st%step)
+         if (r%progress%due()) then
+            call energy_balance(st, total, drift)
+            call r%progress%show(st%t, r%stp%tmax, st%dt, st%step, drift)
+         end if
       end associate
    end subroutine step
+
+   !> The progress line of the state the run ended in.
+   subroutine finish_progress(r)
+      type(run_t), intent(inout) :: r
+      real(wp) :: total, drift
+      call energy_balance(r%stp%st, total, drift)
+      call r%progress%finish(r%stp%st%t, r%stp%tmax, r%stp%st%dt, r%stp%st%step, drift)
+   end subroutine finish_progress
 
    !> Move what the stepper has to report into <stem>.out, and its warnings to the console.
    subroutine pass_messages(r)
@@ -201,6 +223,7 @@ contains
       character(len=:), allocatable :: text
       if (r%stp%messages%count == 0) return
       text = r%stp%messages%take()
+      call r%progress%clear()
       call r%out%files%say(text)
       write (error_unit, '(a)') 'exic: '//text
       flush (error_unit)

@@ -17,7 +17,8 @@ contains
       s = trim(buf)
    end function itoa
 
-   !> A real as text, without blanks, in format `fmt` (default es14.7).
+   !> A real as text, without blanks, in format `fmt` (default es14.7, and es15.7e3 when the
+   !> exponent needs three digits: es14.7 would drop the letter E, `1.2345678-302`).
    pure function rtoa(x, fmt) result(s)
       real(wp), intent(in) :: x
       character(len=*), intent(in), optional :: fmt
@@ -25,6 +26,8 @@ contains
       character(len=40) :: buf
       if (present(fmt)) then
          write (buf, fmt) x
+      else if (abs(x) < 1.0e-98_wp .and. x /= 0.0_wp .or. abs(x) >= 1.0e99_wp) then
+         write (buf, '(es15.7e3)') x
       else
          write (buf, '(es14.7)') x
       end if

@@ -1,97 +1,80 @@
-!> The 4-node plane-strain quadrilateral in the total Lagrangian form: reference gradients,
-!> internal force (2x2 Gauss, or one point with Flanagan-Belytschko stiffness hourglass
-!> control), row-sum lumped mass, the stable time step and element stress for output.
+!> The 4-node plane-strain quadrilateral in the total Lagrangian form: internal force (2x2
+!> Gauss, or one point with Flanagan-Belytschko stiffness hourglass control) fused with the
+!> stable time step, row-sum lumped mass, the reference-mesh check, the deformation gradient and
+!> element stress for output.
 !>
-!> Plain kernels on explicit-shape arrays; every call works on one element set of `nel`
-!> elements sharing one material. `conn(4, nel)` holds global node numbers counter-clockwise,
-!> `x0(2, nnode)` the reference coordinates, `u(2, nnode)` the displacements, `x(2, nnode)` the
-!> current coordinates. Local node a has natural coordinates (xi_a, eta_a) = (-1,-1), (1,-1),
-!> (1,1), (-1,1). Gauss points of the 2x2 rule are numbered in the same order, at +-1/sqrt(3).
+!> Plain kernels on explicit-shape arrays; every call works on `nel` elements sharing one
+!> material. `conn(4, nel)` holds global node numbers counter-clockwise, `x0(2, nnode)` the
+!> reference coordinates, `u(2, nnode)` the displacements, `x(2, nnode)` the current coordinates.
+!> Local node a has natural coordinates (xi_a, eta_a) = (-1,-1), (1,-1), (1,1), (-1,1). Gauss
+!> points of the 2x2 rule are numbered in the same order, at +-1/sqrt(3).
 !>
-!> Reference data (from `q4_reference`), with nq = 2 (2x2 Gauss) or nq = 1 (one point):
-!>   gdn(8, nq*nq, nel)  dN_a/dX in 1:4 and dN_a/dY in 5:8 at each integration point;
-!>                        for nq = 1 the mean (Flanagan-Belytschko) gradients b_a/A0
-!>   wdj(nq*nq, nel)     weight x det J0 (for nq = 1: the reference area A0);
-!>                        sum(wdj(:, e)) is the reference area for either rule
-!>   gam(4, nel)         hourglass shape vector, orthogonal to every affine nodal field
+!> Nothing is stored per element but its nodes: the reference gradients are recomputed from
+!> x0 in every pass (cheaper than loading 36 stored values per element, doc/performance.md).
+!> With X = sum_a N_a X_a, the derivatives in the natural frame at (xi, eta) are
+!>     dX/dxi = c1(X) + c3(X) eta,   dX/deta = c2(X) + c3(X) xi,
+!>     c1 = (-X1 + X2 + X3 - X4)/4,  c2 = (-X1 - X2 + X3 + X4)/4,  c3 = (X1 - X2 + X3 - X4)/4,
+!> the same for u; J0 = dX/dxi, grad0 u = (du/dxi) J0^-1, and the nodal forces
+!> f_a = sum_g det J0 P J0^-T grad_xi N_a (grad_xi N_a = (xi_a (1 + eta_a eta), eta_a (1 + xi_a xi))/4).
 !>
-!> Integer flags: `ebad` is the first (local) element found inverted, 0 if none.
-!>
-!> The force kernels work on blocks of NBLOCK elements, as DYNA codes do: first the
-!> deformation gradients of every quadrature point of the block, then one call of the
-!> material's kernel (src/exic/material) on all of them, then the nodal forces. A material
-!> law is therefore one pure kernel on plain arrays of points, shared by both quadratures.
+!> The force kernels work on blocks of NBLOCK elements laid out as structure of arrays, so that
+!> every loop runs across the block's elements (vectorized; checked with -fopt-info-vec): the
+!> block's node coordinates and displacements, the deformation gradient F at every point, one
+!> call of the material's kernel on all points (src/exic/material: plain arrays of points in,
+!> weighted first Piola stress and energy out), then the nodal forces and the stable step. A law
+!> with history (per-point arrays) gets its arrays for the block's points in that one call
+!> (doc/architecture.md). Block arrays have the fixed shape (NBLOCK, 4) (element, local node or
+!> Gauss point): point (k, g) is k + (g - 1) NBLOCK, the constant stride that lets the compiler
+!> vectorize loops writing several columns. A last block of nb < NBLOCK elements is padded with
+!> copies of its last element (every lane stays a valid element); only lanes 1..nb are used.
 module exic_element_quad4
    use exic_base_kinds, only: wp
-   use exic_material_neohookean, only: nh_piola, nh_cauchy, nh_wave_speed2
+   use exic_base_sums, only: lane_sum
+   use exic_material_neohookean, only: nh_piola, nh_cauchy, nh_wave_speed2_block
    implicit none
    private
 
-   public :: q4_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, q4_stable_dt, q4_stress
+   public :: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, q4_stable_dt, &
+             q4_deformation, q4_stress
 
    real(wp), parameter :: xin(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]   !< xi_a
    real(wp), parameter :: etn(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]   !< eta_a
-   real(wp), parameter :: hgv(4) = [1.0_wp, -1.0_wp, 1.0_wp, -1.0_wp]   !< hourglass base vector h
    real(wp), parameter :: gq = 0.57735026918962576451_wp                 !< 1/sqrt(3)
-   !> Elements per block of the force kernels: the block's points go to the material kernel in
-   !> one call (its work arrays, 4 x NBLOCK points x 11 values, stay in the L1 cache).
-   integer, parameter :: NBLOCK = 32
+   !> Elements per block of the force kernels: the block's work arrays (about 90 values per
+   !> element) stay in the L1 cache, and its loops run over 32 elements (4 AVX-512 vectors).
+   integer, parameter, public :: NBLOCK = 32
 
 contains
 
-   !> Reference shape-function gradients, integration weights and hourglass vectors.
-   !>
-   !> nq = 2: gradients at the 4 Gauss points and wdj = det J0 (unit weights).
-   !> nq = 1: b_a / A0 with the mean-strain vectors b_xa = 1/2 (Y_{a+1} - Y_{a-1}),
-   !> b_ya = 1/2 (X_{a-1} - X_{a+1}) (exact mean of grad N_a over the element), wdj = A0.
-   !> gam_a = 1/4 (h_a - (h.X) b_xa/A0 - (h.Y) b_ya/A0), h = (1,-1,1,-1), for either rule.
-   !> ebad: first element with det J0 <= 0 at a corner (det J0 is bilinear's linear function of
-   !> xi, eta, so corners bound it everywhere, Gauss points included); 0 if none.
-   pure subroutine q4_reference(nq, nel, nnode, conn, x0, gdn, wdj, gam, ebad)
-      integer, intent(in) :: nq                    !< 1 or 2
+   !> First element with det J0 <= 0 at a corner of the reference mesh (det J0 is a linear
+   !> function of xi and eta on each edge, so its corner values bound it everywhere, Gauss
+   !> points included) or a non-positive area; 0 if none.
+   pure subroutine q4_check_reference(nel, nnode, conn, x0, ebad)
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
       real(wp), intent(in) :: x0(2, nnode)
-      real(wp), intent(out) :: gdn(8, nq*nq, nel)
-      real(wp), intent(out) :: wdj(nq*nq, nel)
-      real(wp), intent(out) :: gam(4, nel)
       integer, intent(out) :: ebad
-      real(wp) :: xe(4), ye(4), bx(4), by(4), a0, hx, hy, dj, dnx(4), dny(4)
-      integer :: e, g, a
+      real(wp) :: xe(4), ye(4), dnx(4), dny(4), dj, a0
+      integer :: e, a
 
       ebad = 0
       do e = 1, nel
          xe = x0(1, conn(:, e))
          ye = x0(2, conn(:, e))
+         a0 = 0.5_wp*((xe(3) - xe(1))*(ye(4) - ye(2)) - (ye(3) - ye(1))*(xe(4) - xe(2)))
+         if (.not. a0 > 0.0_wp) then
+            ebad = e
+            return
+         end if
          do a = 1, 4
             call grad_at(xe, ye, xin(a), etn(a), dnx, dny, dj)
-            if (dj <= 0.0_wp .and. ebad == 0) ebad = e
+            if (dj <= 0.0_wp) then
+               ebad = e
+               return
+            end if
          end do
-         bx = 0.5_wp*[ye(2) - ye(4), ye(3) - ye(1), ye(4) - ye(2), ye(1) - ye(3)]
-         by = 0.5_wp*[xe(4) - xe(2), xe(1) - xe(3), xe(2) - xe(4), xe(3) - xe(1)]
-         a0 = sum(bx*xe)
-         if (a0 <= 0.0_wp) then
-            if (ebad == 0) ebad = e
-            a0 = 1.0_wp
-         end if
-         hx = sum(hgv*xe)
-         hy = sum(hgv*ye)
-         gam(:, e) = 0.25_wp*(hgv - (hx*bx + hy*by)/a0)
-         if (nq == 1) then
-            gdn(1:4, 1, e) = bx/a0
-            gdn(5:8, 1, e) = by/a0
-            wdj(1, e) = a0
-         else
-            do g = 1, 4
-               call grad_at(xe, ye, gq*xin(g), gq*etn(g), dnx, dny, dj)
-               if (dj <= 0.0_wp) dj = 1.0_wp
-               gdn(1:4, g, e) = dnx
-               gdn(5:8, g, e) = dny
-               wdj(g, e) = dj
-            end do
-         end if
       end do
-   end subroutine q4_reference
+   end subroutine q4_check_reference
 
    !> dN_a/dX, dN_a/dY and det J0 of the element (xe, ye) at natural point (xi, eta).
    pure subroutine grad_at(xe, ye, xi, eta, dnx, dny, dj)
@@ -110,168 +93,508 @@ contains
       dny = (j11*deta - j21*dxi)*r
    end subroutine grad_at
 
-   !> Internal force with 2x2 Gauss quadrature: f_ia += sum_g wdj_g P_iJ(F_g) dN_a/dX_J.
+   !> Internal force with 2x2 Gauss quadrature, f_ia += sum_g det J0 P_iJ(F_g) dN_a/dX_J, and the
+   !> stable step of every element from the same gathered nodes (q4_stable_dt's estimate).
    !>
-   !> F = 1 + sum_a u_a (x) grad0 N_a, P = lambda ln(J) F^-T + mu (F - F^-T) (eq. 7.2, nh_piola).
-   !> f is accumulated (scatter-add); wint is the strain energy of the set, jmin the smallest J
-   !> at a Gauss point and ebad the first element with J <= 0 (its forces are meaningless).
-   !> Elements go in blocks of NBLOCK: the deformation gradients of the block's points, one call
-   !> of the material kernel on all of them, then the nodal forces (module header).
-   subroutine q4_force_2x2(nel, nnode, conn, u, gdn, wdj, lambda, mu, f, wint, jmin, ebad)
+   !> F = 1 + grad0 u, P = lambda ln(J) F^-T + mu (F - F^-T) (eq. 7.2, nh_piola). f is
+   !> accumulated (scatter-add, element by element in order); wint is the strain energy (summed
+   !> per block with lane_sum, the blocks in order), jmin the smallest J at a Gauss point, ebad the first element with
+   !> J <= 0 (its forces are meaningless); dt2min the smallest squared stable step at the
+   !> geometry x0 + u, emin its first element, efold the first element folded at a corner.
+   pure subroutine q4_force_2x2(nel, nnode, conn, x0, u, lambda, mu, rho0, f, wint, jmin, ebad, &
+                                dt2min, emin, efold)
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
-      real(wp), intent(in) :: u(2, nnode)
-      real(wp), intent(in) :: gdn(8, 4, nel)
-      real(wp), intent(in) :: wdj(4, nel)
-      real(wp), intent(in) :: lambda, mu
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      real(wp), intent(in) :: lambda, mu, rho0
       real(wp), intent(inout) :: f(2, nnode)
-      real(wp), intent(out) :: wint, jmin
-      integer, intent(out) :: ebad
-      real(wp) :: ux(4), uy(4), fx(4), fy(4), gx(4), gy(4), we
-      real(wp), dimension(4*NBLOCK) :: f11, f12, f21, f22, js, wt, p11, p12, p21, p22, wq
-      integer :: e, e0, k, nb, g, q, a
+      real(wp), intent(out) :: wint, jmin, dt2min
+      integer, intent(out) :: ebad, emin, efold
+      integer :: e0, nb
 
       wint = 0.0_wp
       jmin = huge(1.0_wp)
+      dt2min = huge(1.0_wp)
       ebad = 0
+      emin = 0
+      efold = 0
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
-         ! kinematics of the block's points q = 4 (k - 1) + g
-         do k = 1, nb
-            e = e0 + k - 1
-            call gather(nnode, u, conn(:, e), ux, uy)
-            do g = 1, 4
-               q = 4*(k - 1) + g
-               call point_kinematics(ux, uy, gdn(1:4, g, e), gdn(5:8, g, e), e, f11(q), f12(q), f21(q), &
-                                     f22(q), js(q), jmin, ebad)
-               wt(q) = wdj(g, e)
-            end do
-         end do
-         ! the law at every point of the block
-         call nh_piola(4*nb, lambda, mu, f11, f12, f21, f22, js, wt, p11, p12, p21, p22, wq)
-         ! nodal forces
-         do k = 1, nb
-            e = e0 + k - 1
-            fx = 0.0_wp
-            fy = 0.0_wp
-            we = 0.0_wp
-            do g = 1, 4
-               q = 4*(k - 1) + g
-               gx = gdn(1:4, g, e)
-               gy = gdn(5:8, g, e)
-               we = we + wq(q)
-               fx = fx + p11(q)*gx + p12(q)*gy
-               fy = fy + p21(q)*gx + p22(q)*gy
-            end do
-            wint = wint + we
-            do a = 1, 4
-               f(1, conn(a, e)) = f(1, conn(a, e)) + fx(a)
-               f(2, conn(a, e)) = f(2, conn(a, e)) + fy(a)
-            end do
-         end do
+         call block_2x2(nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, lambda, mu, rho0, f, wint, &
+                        jmin, ebad, dt2min, emin, efold)
       end do
    end subroutine q4_force_2x2
 
+   !> One block of q4_force_2x2: elements off + 1 .. off + nb.
+   pure subroutine block_2x2(nb, off, nnode, conn, x0, u, lambda, mu, rho0, f, wint, jmin, ebad, &
+                             dt2min, emin, efold)
+      integer, intent(in) :: nb, off, nnode
+      integer, intent(in) :: conn(4, nb)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      real(wp), intent(in) :: lambda, mu, rho0
+      real(wp), intent(inout) :: f(2, nnode), wint, jmin, dt2min
+      integer, intent(inout) :: ebad, emin, efold
+      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, js, wt, i11, i12, &
+                                        i21, i22, p11, p12, p21, p22, wq, fx, fy
+      real(wp) :: dt2(NBLOCK), good(NBLOCK), we(NBLOCK)
+      integer :: k
+
+      call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
+      call kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+      call positive(4*NBLOCK, jac, js)
+      ! the law at every point of the block
+      call nh_piola(4*NBLOCK, lambda, mu, f11, f12, f21, f22, js, wt, p11, p12, p21, p22, wq)
+      call forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
+      do k = 1, NBLOCK
+         we(k) = ((wq(k, 1) + wq(k, 2)) + wq(k, 3)) + wq(k, 4)
+      end do
+      wint = wint + lane_sum(nb, we)
+      call check_points(nb, 4, off, jac, jmin, ebad)
+      ! the stable step at the current geometry
+      call current(xe, ye, uxe, uye)
+      call stable_block(2, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
+      call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
+      call scatter(nb, nnode, conn, fx, fy, f)
+   end subroutine block_2x2
+
+   !> js = J where J > 0, else 1 (so that the law stays finite on an element the caller rejects).
+   pure subroutine positive(n, jac, js)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: jac(n)
+      real(wp), intent(out) :: js(n)
+      integer :: q
+      do q = 1, n
+         js(q) = merge(jac(q), 1.0_wp, jac(q) > 0.0_wp)
+      end do
+   end subroutine positive
+
+   !> Gradients and Jacobians at the four Gauss points of a block (point (k, g): element k,
+   !> Gauss point g): F = 1 + grad0 u, J = det F, the weight det J0 and J0^-1 (i11 .. i22).
+   !> The four reciprocals 1/det J0 of an element come from one division (of their product).
+   pure subroutine kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
+      real(wp), intent(out), dimension(NBLOCK, 4) :: f11, f12, f21, f22, jac, wt, i11, i12, i21, i22
+      real(wp) :: c1x, c2x, c3x, c1y, c2y, c3y, c1u, c2u, c3u, c1v, c2v, c3v, t
+      real(wp) :: x1m, x1p, x2m, x2p, y1m, y1p, y2m, y2p, u1m, u1p, u2m, u2p, v1m, v1p, v2m, v2p
+      real(wp) :: d1, d2, d3, d4, d12, d34, rr
+      integer :: k
+
+      do k = 1, NBLOCK
+         ! dv/dxi = c1 + c3 eta, dv/deta = c2 + c3 xi (module header)
+         c1x = 0.25_wp*((xe(k, 2) - xe(k, 1)) + (xe(k, 3) - xe(k, 4)))
+         c2x = 0.25_wp*((xe(k, 4) - xe(k, 1)) + (xe(k, 3) - xe(k, 2)))
+         c3x = 0.25_wp*((xe(k, 1) - xe(k, 2)) + (xe(k, 3) - xe(k, 4)))
+         c1y = 0.25_wp*((ye(k, 2) - ye(k, 1)) + (ye(k, 3) - ye(k, 4)))
+         c2y = 0.25_wp*((ye(k, 4) - ye(k, 1)) + (ye(k, 3) - ye(k, 2)))
+         c3y = 0.25_wp*((ye(k, 1) - ye(k, 2)) + (ye(k, 3) - ye(k, 4)))
+         c1u = 0.25_wp*((uxe(k, 2) - uxe(k, 1)) + (uxe(k, 3) - uxe(k, 4)))
+         c2u = 0.25_wp*((uxe(k, 4) - uxe(k, 1)) + (uxe(k, 3) - uxe(k, 2)))
+         c3u = 0.25_wp*((uxe(k, 1) - uxe(k, 2)) + (uxe(k, 3) - uxe(k, 4)))
+         c1v = 0.25_wp*((uye(k, 2) - uye(k, 1)) + (uye(k, 3) - uye(k, 4)))
+         c2v = 0.25_wp*((uye(k, 4) - uye(k, 1)) + (uye(k, 3) - uye(k, 2)))
+         c3v = 0.25_wp*((uye(k, 1) - uye(k, 2)) + (uye(k, 3) - uye(k, 4)))
+         ! derivatives on the lines xi = -+1/sqrt(3) (m, p) and eta = -+1/sqrt(3)
+         t = c3x*gq
+         x1m = c1x - t
+         x1p = c1x + t
+         x2m = c2x - t
+         x2p = c2x + t
+         t = c3y*gq
+         y1m = c1y - t
+         y1p = c1y + t
+         y2m = c2y - t
+         y2p = c2y + t
+         t = c3u*gq
+         u1m = c1u - t
+         u1p = c1u + t
+         u2m = c2u - t
+         u2p = c2u + t
+         t = c3v*gq
+         v1m = c1v - t
+         v1p = c1v + t
+         v2m = c2v - t
+         v2p = c2v + t
+         ! det J0 at the points (positive: q4_check_reference), 1/det J0 from one division
+         d1 = x1m*y2m - x2m*y1m
+         d2 = x1m*y2p - x2p*y1m
+         d3 = x1p*y2p - x2p*y1p
+         d4 = x1p*y2m - x2m*y1p
+         d12 = d1*d2
+         d34 = d3*d4
+         rr = 1.0_wp/(d12*d34)
+         ! point g at (xi, eta): dX/dxi = x1(eta), dX/deta = x2(xi), the same for Y, u, v
+         call point_2x2(x1m, x2m, y1m, y2m, u1m, u2m, v1m, v2m, (d2*d34)*rr, i11(k, 1), i12(k, 1), &
+                        i21(k, 1), i22(k, 1), f11(k, 1), f12(k, 1), f21(k, 1), f22(k, 1), jac(k, 1))
+         call point_2x2(x1m, x2p, y1m, y2p, u1m, u2p, v1m, v2p, (d1*d34)*rr, i11(k, 2), i12(k, 2), &
+                        i21(k, 2), i22(k, 2), f11(k, 2), f12(k, 2), f21(k, 2), f22(k, 2), jac(k, 2))
+         call point_2x2(x1p, x2p, y1p, y2p, u1p, u2p, v1p, v2p, (d4*d12)*rr, i11(k, 3), i12(k, 3), &
+                        i21(k, 3), i22(k, 3), f11(k, 3), f12(k, 3), f21(k, 3), f22(k, 3), jac(k, 3))
+         call point_2x2(x1p, x2m, y1p, y2m, u1p, u2m, v1p, v2m, (d3*d12)*rr, i11(k, 4), i12(k, 4), &
+                        i21(k, 4), i22(k, 4), f11(k, 4), f12(k, 4), f21(k, 4), f22(k, 4), jac(k, 4))
+         wt(k, 1) = d1
+         wt(k, 2) = d2
+         wt(k, 3) = d3
+         wt(k, 4) = d4
+      end do
+   end subroutine kinematics_2x2
+
+   !> J0^-1 (i11 .. i22), F = 1 + (du/dxi) J0^-1 and J = det F at a point where
+   !> J0 = [x1 x2; y1 y2] (dX/dxi, dX/deta; dY/dxi, dY/deta), du/dxi = [u1 u2; v1 v2] and
+   !> r = 1/det J0.
+   pure subroutine point_2x2(x1, x2, y1, y2, u1, u2, v1, v2, r, i11, i12, i21, i22, f11, f12, f21, f22, jac)
+      real(wp), intent(in) :: x1, x2, y1, y2, u1, u2, v1, v2, r
+      real(wp), intent(out) :: i11, i12, i21, i22, f11, f12, f21, f22, jac
+      i11 = y2*r
+      i12 = -(x2*r)
+      i21 = -(y1*r)
+      i22 = x1*r
+      f11 = 1.0_wp + (u1*i11 + u2*i21)
+      f12 = u1*i12 + u2*i22
+      f21 = v1*i11 + v2*i21
+      f22 = 1.0_wp + (v1*i12 + v2*i22)
+      jac = f11*f22 - f12*f21
+   end subroutine point_2x2
+
+   !> Nodal forces of a block of 2x2 elements from the weighted stresses p (det J0 P) and J0^-1
+   !> at their Gauss points: Q = p J0^-T at each point, then with S_K = sum_g Q_iK and
+   !> T = sum_g (eta_g Q_i1 + xi_g Q_i2), f_ia = (xi_a S_1 + eta_a S_2 + xi_a eta_a T)/4.
+   pure subroutine forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: p11, p12, p21, p22, i11, i12, i21, i22
+      real(wp), intent(out), dimension(NBLOCK, 4) :: fx, fy
+      real(wp) :: a(4), b(4), c(4), d(4)
+      integer :: k, g
+
+      do k = 1, NBLOCK
+         do g = 1, 4
+            a(g) = p11(k, g)*i11(k, g) + p12(k, g)*i12(k, g)
+            b(g) = p11(k, g)*i21(k, g) + p12(k, g)*i22(k, g)
+            c(g) = p21(k, g)*i11(k, g) + p22(k, g)*i12(k, g)
+            d(g) = p21(k, g)*i21(k, g) + p22(k, g)*i22(k, g)
+         end do
+         call natural_forces(a(1), a(2), a(3), a(4), b(1), b(2), b(3), b(4), fx(k, 1), fx(k, 2), &
+                             fx(k, 3), fx(k, 4))
+         call natural_forces(c(1), c(2), c(3), c(4), d(1), d(2), d(3), d(4), fy(k, 1), fy(k, 2), &
+                             fy(k, 3), fy(k, 4))
+      end do
+   end subroutine forces_2x2
+
+   !> One force component at the four nodes from Q_i1 = a_g and Q_i2 = b_g at the Gauss points.
+   pure subroutine natural_forces(a1, a2, a3, a4, b1, b2, b3, b4, f1, f2, f3, f4)
+      real(wp), intent(in) :: a1, a2, a3, a4, b1, b2, b3, b4
+      real(wp), intent(out) :: f1, f2, f3, f4
+      real(wp) :: s1, s2, t
+      s1 = (a1 + a2) + (a3 + a4)
+      s2 = (b1 + b2) + (b3 + b4)
+      ! eta_g = gq (-1, -1, 1, 1), xi_g = gq (-1, 1, 1, -1)
+      t = gq*(((a3 + a4) - (a1 + a2)) + ((b2 + b3) - (b1 + b4)))
+      f1 = 0.25_wp*(t - (s1 + s2))
+      f2 = 0.25_wp*((s1 - s2) - t)
+      f3 = 0.25_wp*((s1 + s2) + t)
+      f4 = 0.25_wp*((s2 - s1) - t)
+   end subroutine natural_forces
+
    !> Internal force with one-point (mean-strain) quadrature plus Flanagan-Belytschko
-   !> hourglass control of stiffness type.
+   !> hourglass control of stiffness type, fused with the stable step as in q4_force_2x2.
    !>
-   !> Mean part: f_ia += A0 P_iJ(F) b_Ja/A0 with F = 1 + sum_a u_a (x) b_a/A0.
-   !> Hourglass part: q_i = sum_a gam_a u_ia, f_ia += k gam_a q_i, energy k/2 |q|^2, with
+   !> Mean part: f_ia += P_iJ(F) b_Ja with F = 1 + sum_a u_a (x) b_a/A0 and the mean-strain
+   !> vectors b_xa = 1/2 (Y_{a+1} - Y_{a-1}), b_ya = 1/2 (X_{a-1} - X_{a+1}) (the exact mean of
+   !> A0 grad N_a), A0 = sum_a b_xa X_a. Hourglass part: gam_a = 1/4 (h_a - (h.X b_xa + h.Y b_ya)/A0),
+   !> h = (1,-1,1,-1), q_i = sum_a gam_a u_ia, f_ia += k gam_a q_i, energy k/2 |q|^2, with
    !> k = hg (lambda + 2 mu) (b:b)/A0. For a square (b:b/A0 = 2, gam = h/4) the hourglass mode
    !> u_x = c xi eta (nodal values c h_a, q = c) stores hg (lambda + 2 mu) c^2, against
    !> 2/3 (lambda + 3 mu) c^2 in the fully integrated element, so hg is roughly the fraction of
    !> the fully integrated hourglass stiffness (0.05-0.15 usual). The force is linear in the
    !> total displacement: elastic, conservative, and zero for affine fields.
-   !> wint: strain energy of the mean part; whg: hourglass energy; jmin, ebad as for 2x2.
-   !> Elements go in blocks of NBLOCK, as in q4_force_2x2.
-   subroutine q4_force_1pt(nel, nnode, conn, u, gdn, wdj, gam, lambda, mu, hg, f, wint, whg, &
-                           jmin, ebad)
+   !> wint: strain energy of the mean part; whg: hourglass energy; the rest as for q4_force_2x2.
+   pure subroutine q4_force_1pt(nel, nnode, conn, x0, u, lambda, mu, rho0, hg, f, wint, whg, jmin, &
+                                ebad, dt2min, emin, efold)
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
-      real(wp), intent(in) :: u(2, nnode)
-      real(wp), intent(in) :: gdn(8, 1, nel)
-      real(wp), intent(in) :: wdj(1, nel)
-      real(wp), intent(in) :: gam(4, nel)
-      real(wp), intent(in) :: lambda, mu, hg
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      real(wp), intent(in) :: lambda, mu, rho0, hg
       real(wp), intent(inout) :: f(2, nnode)
-      real(wp), intent(out) :: wint, whg, jmin
-      integer, intent(out) :: ebad
-      real(wp) :: ux(4), uy(4), gx(4), gy(4), ga(4), a0, qx, qy, k, kh
-      real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, js, p11, p12, p21, p22, wq
-      integer :: e, e0, i, nb, a
+      real(wp), intent(out) :: wint, whg, jmin, dt2min
+      integer, intent(out) :: ebad, emin, efold
+      integer :: e0, nb
 
       wint = 0.0_wp
       whg = 0.0_wp
       jmin = huge(1.0_wp)
+      dt2min = huge(1.0_wp)
       ebad = 0
-      kh = hg*(lambda + 2.0_wp*mu)
+      emin = 0
+      efold = 0
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
-         ! kinematics of the block's centroids
-         do i = 1, nb
-            e = e0 + i - 1
-            call gather(nnode, u, conn(:, e), ux, uy)
-            call point_kinematics(ux, uy, gdn(1:4, 1, e), gdn(5:8, 1, e), e, f11(i), f12(i), f21(i), &
-                                  f22(i), js(i), jmin, ebad)
-         end do
-         ! the law at every centroid of the block, weighted by the reference areas
-         call nh_piola(nb, lambda, mu, f11, f12, f21, f22, js, wdj(1, e0:e0 + nb - 1), p11, p12, p21, p22, wq)
-         ! mean and hourglass forces
-         do i = 1, nb
-            e = e0 + i - 1
-            call gather(nnode, u, conn(:, e), ux, uy)
-            gx = gdn(1:4, 1, e)
-            gy = gdn(5:8, 1, e)
-            ga = gam(:, e)
-            a0 = wdj(1, e)
-            wint = wint + wq(i)
-            ! hourglass: k = hg (lambda + 2 mu) b:b/A0 = hg (lambda + 2 mu) A0 sum(gdn**2)
-            k = kh*a0*(gx(1)*gx(1) + gx(2)*gx(2) + gx(3)*gx(3) + gx(4)*gx(4) &
-                       + gy(1)*gy(1) + gy(2)*gy(2) + gy(3)*gy(3) + gy(4)*gy(4))
-            qx = ga(1)*ux(1) + ga(2)*ux(2) + ga(3)*ux(3) + ga(4)*ux(4)
-            qy = ga(1)*uy(1) + ga(2)*uy(2) + ga(3)*uy(3) + ga(4)*uy(4)
-            whg = whg + 0.5_wp*k*(qx*qx + qy*qy)
-            qx = k*qx
-            qy = k*qy
-            do a = 1, 4
-               f(1, conn(a, e)) = f(1, conn(a, e)) + (p11(i)*gx(a) + p12(i)*gy(a) + qx*ga(a))
-               f(2, conn(a, e)) = f(2, conn(a, e)) + (p21(i)*gx(a) + p22(i)*gy(a) + qy*ga(a))
-            end do
-         end do
+         call block_1pt(nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, lambda, mu, rho0, hg, f, &
+                        wint, whg, jmin, ebad, dt2min, emin, efold)
       end do
    end subroutine q4_force_1pt
 
-   !> The displacements ux(4), uy(4) of the element with nodes en(4).
-   pure subroutine gather(nnode, u, en, ux, uy)
-      integer, intent(in) :: nnode, en(4)
-      real(wp), intent(in) :: u(2, nnode)
-      real(wp), intent(out) :: ux(4), uy(4)
-      integer :: a
+   !> One block of q4_force_1pt: elements off + 1 .. off + nb.
+   pure subroutine block_1pt(nb, off, nnode, conn, x0, u, lambda, mu, rho0, hg, f, wint, whg, jmin, &
+                             ebad, dt2min, emin, efold)
+      integer, intent(in) :: nb, off, nnode
+      integer, intent(in) :: conn(4, nb)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      real(wp), intent(in) :: lambda, mu, rho0, hg
+      real(wp), intent(inout) :: f(2, nnode), wint, whg, jmin, dt2min
+      integer, intent(inout) :: ebad, emin, efold
+      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy
+      real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, jac, js, a0, r0, p11, p12, p21, p22, wq, eh, &
+                                     dt2, good
+
+      call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
+      call kinematics_1pt(xe, ye, uxe, uye, f11, f12, f21, f22, jac, a0, r0)
+      call positive(NBLOCK, jac, js)
+      ! the law at every centroid of the block, weighted by the reference areas
+      call nh_piola(NBLOCK, lambda, mu, f11, f12, f21, f22, js, a0, p11, p12, p21, p22, wq)
+      call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, hg*(lambda + 2.0_wp*mu), fx, fy, eh)
+      wint = wint + lane_sum(nb, wq)
+      whg = whg + lane_sum(nb, eh)
+      call check_points(nb, 1, off, jac, jmin, ebad)
+      call current(xe, ye, uxe, uye)
+      call stable_block(1, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
+      call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
+      call scatter(nb, nnode, conn, fx, fy, f)
+   end subroutine block_1pt
+
+   !> Mean deformation gradient of a block of one-point elements: F = 1 + sum_a u_a (x) b_a/A0,
+   !> J = det F, the reference area A0 and r0 = 1/A0 (q4_force_1pt; b_3 = -b_1, b_4 = -b_2).
+   pure subroutine kinematics_1pt(xe, ye, uxe, uye, f11, f12, f21, f22, jac, a0, r0)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
+      real(wp), intent(out), dimension(NBLOCK) :: f11, f12, f21, f22, jac, a0, r0
+      real(wp) :: bx1, bx2, by1, by2, du1, du2, dv1, dv2
+      integer :: k
+
+      do k = 1, NBLOCK
+         bx1 = 0.5_wp*(ye(k, 2) - ye(k, 4))
+         bx2 = 0.5_wp*(ye(k, 3) - ye(k, 1))
+         by1 = 0.5_wp*(xe(k, 4) - xe(k, 2))
+         by2 = 0.5_wp*(xe(k, 1) - xe(k, 3))
+         a0(k) = bx1*(xe(k, 1) - xe(k, 3)) + bx2*(xe(k, 2) - xe(k, 4))
+         r0(k) = 1.0_wp/merge(a0(k), 1.0_wp, a0(k) > 0.0_wp)
+         du1 = uxe(k, 1) - uxe(k, 3)
+         du2 = uxe(k, 2) - uxe(k, 4)
+         dv1 = uye(k, 1) - uye(k, 3)
+         dv2 = uye(k, 2) - uye(k, 4)
+         f11(k) = 1.0_wp + (bx1*du1 + bx2*du2)*r0(k)
+         f12(k) = (by1*du1 + by2*du2)*r0(k)
+         f21(k) = (bx1*dv1 + bx2*dv2)*r0(k)
+         f22(k) = 1.0_wp + (by1*dv1 + by2*dv2)*r0(k)
+         jac(k) = f11(k)*f22(k) - f12(k)*f21(k)
+      end do
+   end subroutine kinematics_1pt
+
+   !> Mean and hourglass forces fx, fy and hourglass energies eh of a block of one-point
+   !> elements from their weighted stresses p = A0 P, r0 = 1/A0 and the hourglass stiffness
+   !> factor kh = hg (lambda + 2 mu) (q4_force_1pt; b_3 = -b_1, b_4 = -b_2).
+   pure subroutine forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
+      real(wp), intent(in), dimension(NBLOCK) :: r0, p11, p12, p21, p22
+      real(wp), intent(in) :: kh
+      real(wp), intent(out), dimension(NBLOCK, 4) :: fx, fy
+      real(wp), intent(out) :: eh(NBLOCK)
+      real(wp) :: bx1, bx2, by1, by2, hx, hy, t1, t2, g1, g2, g3, g4, kk, qx, qy, m1, m2
+      integer :: k
+
+      do k = 1, NBLOCK
+         bx1 = 0.5_wp*(ye(k, 2) - ye(k, 4))
+         bx2 = 0.5_wp*(ye(k, 3) - ye(k, 1))
+         by1 = 0.5_wp*(xe(k, 4) - xe(k, 2))
+         by2 = 0.5_wp*(xe(k, 1) - xe(k, 3))
+         hx = (xe(k, 1) - xe(k, 2)) + (xe(k, 3) - xe(k, 4))
+         hy = (ye(k, 1) - ye(k, 2)) + (ye(k, 3) - ye(k, 4))
+         t1 = (hx*bx1 + hy*by1)*r0(k)
+         t2 = (hx*bx2 + hy*by2)*r0(k)
+         g1 = 0.25_wp*(1.0_wp - t1)
+         g2 = 0.25_wp*(-1.0_wp - t2)
+         g3 = 0.25_wp*(1.0_wp + t1)
+         g4 = 0.25_wp*(t2 - 1.0_wp)
+         ! k = hg (lambda + 2 mu) b:b/A0 with b:b = 2 (bx1^2 + bx2^2 + by1^2 + by2^2)
+         kk = kh*(2.0_wp*((bx1*bx1 + bx2*bx2) + (by1*by1 + by2*by2)))*r0(k)
+         qx = (g1*uxe(k, 1) + g2*uxe(k, 2)) + (g3*uxe(k, 3) + g4*uxe(k, 4))
+         qy = (g1*uye(k, 1) + g2*uye(k, 2)) + (g3*uye(k, 3) + g4*uye(k, 4))
+         eh(k) = 0.5_wp*kk*(qx*qx + qy*qy)
+         qx = kk*qx
+         qy = kk*qy
+         ! mean part: (p b)/A0 with p = A0 P
+         m1 = (p11(k)*bx1 + p12(k)*by1)*r0(k)
+         m2 = (p11(k)*bx2 + p12(k)*by2)*r0(k)
+         fx(k, 1) = m1 + qx*g1
+         fx(k, 2) = m2 + qx*g2
+         fx(k, 3) = qx*g3 - m1
+         fx(k, 4) = qx*g4 - m2
+         m1 = (p21(k)*bx1 + p22(k)*by1)*r0(k)
+         m2 = (p21(k)*bx2 + p22(k)*by2)*r0(k)
+         fy(k, 1) = m1 + qy*g1
+         fy(k, 2) = m2 + qy*g2
+         fy(k, 3) = qy*g3 - m1
+         fy(k, 4) = qy*g4 - m2
+      end do
+   end subroutine forces_1pt
+
+   !> The reference coordinates and displacements of nb elements, (element, local node); lanes
+   !> nb + 1 .. NBLOCK repeat element nb.
+   pure subroutine gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
+      integer, intent(in) :: nb, nnode
+      integer, intent(in) :: conn(4, nb)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      real(wp), intent(out), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
+      integer :: k, a, n
+      ! scalar loads: faster here than the vector gather instructions (measured)
+      !GCC$ novector
+      do k = 1, nb
+         do a = 1, 4
+            n = conn(a, k)
+            xe(k, a) = x0(1, n)
+            ye(k, a) = x0(2, n)
+            uxe(k, a) = u(1, n)
+            uye(k, a) = u(2, n)
+         end do
+      end do
       do a = 1, 4
-         ux(a) = u(1, en(a))
-         uy(a) = u(2, en(a))
+         do k = nb + 1, NBLOCK
+            xe(k, a) = xe(nb, a)
+            ye(k, a) = ye(nb, a)
+            uxe(k, a) = uxe(nb, a)
+            uye(k, a) = uye(nb, a)
+         end do
       end do
    end subroutine gather
 
-   !> F = 1 + sum_a u_a (x) grad0 N_a at a point with reference gradients gx = dN/dX, gy = dN/dY;
-   !> J = det F updates jmin, and ebad (when 0) becomes `e` where J <= 0; js is J, or 1 where
-   !> J <= 0 (so that the law stays finite on an element the caller will reject).
-   pure subroutine point_kinematics(ux, uy, gx, gy, e, f11, f12, f21, f22, js, jmin, ebad)
-      real(wp), intent(in) :: ux(4), uy(4), gx(4), gy(4)
-      integer, intent(in) :: e
-      real(wp), intent(out) :: f11, f12, f21, f22, js
+   !> Current coordinates in place of the displacements: ux <- x0 + u, uy <- y0 + v (the same
+   !> sums as the stepper's positions, hence the same bits).
+   pure subroutine current(xe, ye, uxe, uye)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye
+      real(wp), intent(inout), dimension(NBLOCK, 4) :: uxe, uye
+      integer :: k, a
+      do a = 1, 4
+         do k = 1, NBLOCK
+            uxe(k, a) = xe(k, a) + uxe(k, a)
+            uye(k, a) = ye(k, a) + uye(k, a)
+         end do
+      end do
+   end subroutine current
+
+   !> f(:, conn(a, k)) += (fx(k, a), fy(k, a)) for the block's nb elements, in order.
+   pure subroutine scatter(nb, nnode, conn, fx, fy, f)
+      integer, intent(in) :: nb, nnode
+      integer, intent(in) :: conn(4, nb)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: fx, fy
+      real(wp), intent(inout) :: f(2, nnode)
+      integer :: k, a, n
+      do k = 1, nb
+         do a = 1, 4
+            n = conn(a, k)
+            f(1, n) = f(1, n) + fx(k, a)
+            f(2, n) = f(2, n) + fy(k, a)
+         end do
+      end do
+   end subroutine scatter
+
+   !> jmin over the points jac(NBLOCK, np) of the block's nb elements; ebad (when 0) becomes the
+   !> first element off + k with J <= 0 at a point.
+   pure subroutine check_points(nb, np, off, jac, jmin, ebad)
+      integer, intent(in) :: nb, np, off
+      real(wp), intent(in) :: jac(NBLOCK, np)
       real(wp), intent(inout) :: jmin
       integer, intent(inout) :: ebad
-      real(wp) :: jg
-      f11 = 1.0_wp + (ux(1)*gx(1) + ux(2)*gx(2) + ux(3)*gx(3) + ux(4)*gx(4))
-      f12 = ux(1)*gy(1) + ux(2)*gy(2) + ux(3)*gy(3) + ux(4)*gy(4)
-      f21 = uy(1)*gx(1) + uy(2)*gx(2) + uy(3)*gx(3) + uy(4)*gx(4)
-      f22 = 1.0_wp + (uy(1)*gy(1) + uy(2)*gy(2) + uy(3)*gy(3) + uy(4)*gy(4))
-      jg = f11*f22 - f12*f21
-      jmin = min(jmin, jg)
-      if (jg <= 0.0_wp .and. ebad == 0) ebad = e
-      js = merge(jg, 1.0_wp, jg > 0.0_wp)
-   end subroutine point_kinematics
+      real(wp) :: m
+      integer :: k, g
+      m = huge(1.0_wp)
+      do g = 1, np
+         do k = 1, nb
+            m = min(m, jac(k, g))
+         end do
+      end do
+      jmin = min(jmin, m)
+      if (ebad /= 0 .or. m > 0.0_wp) return
+      do k = 1, nb
+         if (any(jac(k, :) <= 0.0_wp)) then
+            ebad = off + k
+            return
+         end if
+      end do
+   end subroutine check_points
+
+   !> Squared stable steps dt2(k) of a block with reference corners (xr, yr) and current corners
+   !> (xc, yc) (q4_stable_dt), and good(k) = 1 where the element is not folded at a corner (every
+   !> corner triangle and the area positive), 0 where it is. With A the area, T the smallest
+   !> corner triangle and D the longest diagonal squared, phi^2 A^2 = (c0 A + c1 T) A, so
+   !>     dt^2 = phi^2 A^2/(D c^2) = (c0 A + c1 T) A/(D c^2)
+   !> takes one division, and phi^2 > 0 is c0 A + c1 T > 0 (A > 0). Areas are formed doubled
+   !> (2 A, 2 T, 2 A0; the halving is exact and cancels: D is multiplied by 4 instead).
+   pure subroutine stable_block(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2, good)
+      integer, intent(in) :: nq
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, xc, yc
+      real(wp), intent(in) :: lambda, mu, rho0
+      real(wp), intent(out), dimension(NBLOCK) :: dt2, good
+      real(wp), parameter :: s3 = 0.57735026918962576451_wp
+      real(wp), dimension(NBLOCK) :: num, den, jr, c2, ok
+      real(wp) :: c0, c1, d1x, d1y, d2x, d2y, a2, a02, t2, pa, ph, ex(4), ey(4)
+      integer :: k, a
+
+      if (nq == 1) then
+         c0 = 2.0_wp/3.0_wp
+         c1 = 2.0_wp/3.0_wp
+      else
+         c0 = 1.0_wp - s3
+         c1 = 2.0_wp*s3
+      end if
+      ! masks as reals (1 or 0), so that the loop vectorizes
+      do k = 1, NBLOCK
+         a02 = (xr(k, 3) - xr(k, 1))*(yr(k, 4) - yr(k, 2)) - (yr(k, 3) - yr(k, 1))*(xr(k, 4) - xr(k, 2))
+         d1x = xc(k, 3) - xc(k, 1)
+         d1y = yc(k, 3) - yc(k, 1)
+         d2x = xc(k, 4) - xc(k, 2)
+         d2y = yc(k, 4) - yc(k, 2)
+         a2 = d1x*d2y - d1y*d2x
+         ! edges a -> a+1; the corner triangle (a-1, a, a+1) is e_(a-1) x e_a / 2
+         do a = 1, 4
+            ex(a) = xc(k, modulo(a, 4) + 1) - xc(k, a)
+            ey(a) = yc(k, modulo(a, 4) + 1) - yc(k, a)
+         end do
+         t2 = min(min(ex(4)*ey(1) - ey(4)*ex(1), ex(1)*ey(2) - ey(1)*ex(2)), &
+                  min(ex(2)*ey(3) - ey(2)*ex(3), ex(3)*ey(4) - ey(3)*ex(4)))
+         pa = merge(1.0_wp, 0.0_wp, a2 > 0.0_wp)
+         good(k) = pa*merge(1.0_wp, 0.0_wp, t2 > 0.0_wp)
+         ph = c0*a2 + c1*t2
+         ok(k) = pa*merge(1.0_wp, 0.0_wp, ph > 0.0_wp)
+         num(k) = ph*a2
+         den(k) = 4.0_wp*max(d1x*d1x + d1y*d1y, d2x*d2x + d2y*d2y)
+         ! J = A/A0, or 1 where the estimate is 0 (a0/a0: a division under a condition would
+         ! stop the vectorizer)
+         jr(k) = merge(a2, a02, ok(k) > 0.0_wp)/a02
+      end do
+      call nh_wave_speed2_block(NBLOCK, lambda, mu, rho0, jr, c2)
+      do k = 1, NBLOCK
+         dt2(k) = merge(num(k)/merge(den(k)*c2(k), 1.0_wp, ok(k) > 0.0_wp), 0.0_wp, ok(k) > 0.0_wp)
+      end do
+   end subroutine stable_block
+
+   !> dt2min/emin: the smallest dt2 of the block's nb elements (first element off + k on ties)
+   !> if below dt2min; efold (when 0): the first folded element (good = 0, stable_block).
+   pure subroutine block_minimum(nb, off, dt2, good, dt2min, emin, efold)
+      integer, intent(in) :: nb, off
+      real(wp), intent(in) :: dt2(NBLOCK), good(NBLOCK)
+      real(wp), intent(inout) :: dt2min
+      integer, intent(inout) :: emin, efold
+      integer :: k
+      do k = 1, nb
+         if (dt2(k) < dt2min) then
+            dt2min = dt2(k)
+            emin = off + k
+         end if
+      end do
+      if (efold /= 0 .or. all(good(1:nb) > 0.0_wp)) return
+      do k = 1, nb
+         if (.not. good(k) > 0.0_wp) then
+            efold = off + k
+            return
+         end if
+      end do
+   end subroutine block_minimum
 
    !> Row-sum lumped mass m_a = rho integral N_a dA0 (2x2 Gauss, exact for the bilinear
    !> element), accumulated into mass(nnode). The element masses sum to rho A0 exactly.
@@ -298,14 +621,15 @@ contains
       end do
    end subroutine q4_lumped_mass
 
-   !> Smallest critical time step of the set from the current geometry x(2, nnode).
+   !> Smallest critical time step of the elements from the current geometry x(2, nnode) (the same
+   !> estimate, to the bit, as the force kernels compute at x = x0 + u):
    !>
    !>     dt_e = phi L_e / c_e,   L_e = A/(longest diagonal) of the current quad,
-   !>     c_e^2 = (lambda + 2 mu - 2 lambda ln J)/rho0 at J = A/A0, A0 = sum(wdj(:, e))
+   !>     c_e^2 = (lambda + 2 mu - 2 lambda ln J)/rho0 at J = A/A0
    !>
-   !> (c_e: the tangent dilatational wave speed of eq. 7.2, floored at sqrt(mu/rho0)).
-   !> phi corrects for taper; with t = T_min/A, T_min the smallest of the four corner triangles
-   !> (a-1, a, a+1), i.e. twice the smallest corner Jacobian:
+   !> (A0 the reference area; c_e: the tangent dilatational wave speed of eq. 7.2, floored at
+   !> sqrt(mu/rho0)). phi corrects for taper; with t = T_min/A, T_min the smallest of the four
+   !> corner triangles (a-1, a, a+1), i.e. twice the smallest corner Jacobian:
    !>   nq = 2: phi^2 = 4 min_g det J_g / A = (1 - 1/sqrt 3) + (2/sqrt 3) t  (smallest Gauss point)
    !>   nq = 1: phi^2 = 4 m_min/(rho A)     = 2/3 (1 + t)                   (lightest node)
    !> Both give phi = 1 (L/c) for every parallelogram. Against the exact limit 2/omega_max of the
@@ -313,99 +637,95 @@ contains
    !> tapers beyond 10:1, nu in [0, 0.499], hourglass coefficient up to 0.25), phi L/c stayed below
    !> 0.995 of the limit; L/c alone exceeds it by up to 2% for tapers of 1.6:1 and by 45% for
    !> wedge-like quads. An element with A <= 0 or phi^2 <= 0 gives dt_e = 0.
-   !> dtmin: the smallest dt_e; emin: the (local) element that gives it; efold: the first (local)
-   !> element folded at a corner (a corner triangle of non-positive area, i.e. det J <= 0 at that
-   !> node, which the Gauss points of either rule need not see), 0 if none.
-   pure subroutine q4_stable_dt(nq, nel, nnode, conn, x, wdj, lambda, mu, rho0, dtmin, emin, efold)
+   !> dtmin: the smallest dt_e; emin: the first element that gives it; efold: the first element
+   !> folded at a corner (a corner triangle of non-positive area, i.e. det J <= 0 at that node,
+   !> which the Gauss points of either rule need not see), 0 if none.
+   pure subroutine q4_stable_dt(nq, nel, nnode, conn, x0, x, lambda, mu, rho0, dtmin, emin, efold)
       integer, intent(in) :: nq                    !< 1 or 2
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
-      real(wp), intent(in) :: x(2, nnode)
-      real(wp), intent(in) :: wdj(nq*nq, nel)
+      real(wp), intent(in) :: x0(2, nnode), x(2, nnode)
       real(wp), intent(in) :: lambda, mu, rho0
       real(wp), intent(out) :: dtmin
       integer, intent(out) :: emin, efold
-      real(wp), parameter :: s3 = 0.57735026918962576451_wp
-      real(wp) :: xe(4), ye(4), d1x, d1y, d2x, d2y, area, dmax2, dt2, dtmin2, tmin, phi2, c0, c1
-      integer :: e
+      real(wp), dimension(NBLOCK, 4) :: xr, yr, xc, yc
+      real(wp) :: dt2(NBLOCK), good(NBLOCK), dt2min
+      integer :: e0, nb
 
-      if (nq == 1) then
-         c0 = 2.0_wp/3.0_wp
-         c1 = 2.0_wp/3.0_wp
-      else
-         c0 = 1.0_wp - s3
-         c1 = 2.0_wp*s3
-      end if
-      dtmin2 = huge(1.0_wp)
+      dt2min = huge(1.0_wp)
       emin = 0
       efold = 0
-      do e = 1, nel
-         xe = x(1, conn(:, e))
-         ye = x(2, conn(:, e))
-         d1x = xe(3) - xe(1)
-         d1y = ye(3) - ye(1)
-         d2x = xe(4) - xe(2)
-         d2y = ye(4) - ye(2)
-         area = 0.5_wp*(d1x*d2y - d1y*d2x)
-         ! corner triangles (a-1, a, a+1)
-         tmin = min(tri(4, 1, 2), tri(1, 2, 3), tri(2, 3, 4), tri(3, 4, 1))
-         if (.not. (tmin > 0.0_wp .and. area > 0.0_wp) .and. efold == 0) efold = e
-         phi2 = c0 + c1*tmin/merge(area, 1.0_wp, area > 0.0_wp)
-         if (area > 0.0_wp .and. phi2 > 0.0_wp) then
-            dmax2 = max(d1x*d1x + d1y*d1y, d2x*d2x + d2y*d2y)
-            dt2 = phi2*area*area/(dmax2*nh_wave_speed2(lambda, mu, rho0, area/sum(wdj(:, e))))
-         else
-            dt2 = 0.0_wp
-         end if
-         if (dt2 < dtmin2) then
-            dtmin2 = dt2
-            emin = e
-         end if
+      do e0 = 1, nel, NBLOCK
+         nb = min(NBLOCK, nel - e0 + 1)
+         call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, x, xr, yr, xc, yc)
+         call stable_block(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2, good)
+         call block_minimum(nb, e0 - 1, dt2, good, dt2min, emin, efold)
       end do
-      dtmin = sqrt(dtmin2)
-   contains
-      pure real(wp) function tri(a, b, c)
-         integer, intent(in) :: a, b, c
-         tri = 0.5_wp*((xe(c) - xe(b))*(ye(a) - ye(b)) - (ye(c) - ye(b))*(xe(a) - xe(b)))
-      end function tri
+      dtmin = sqrt(dt2min)
    end subroutine q4_stable_dt
+
+   !> Deformation gradient fg(1:4, g, e) = (F11, F12, F21, F22) and J = fg(5, g, e) at the
+   !> nq x nq points of every element, as the force kernels compute them.
+   pure subroutine q4_deformation(nq, nel, nnode, conn, x0, u, fg)
+      integer, intent(in) :: nq                    !< 1 or 2
+      integer, intent(in) :: nel, nnode
+      integer, intent(in) :: conn(4, nel)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      real(wp), intent(out) :: fg(5, nq*nq, nel)
+      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22
+      real(wp) :: r0(NBLOCK)
+      integer :: e0, nb, k, g
+
+      do e0 = 1, nel, NBLOCK
+         nb = min(NBLOCK, nel - e0 + 1)
+         call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, xe, ye, uxe, uye)
+         if (nq == 2) then
+            call kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+         else
+            call kinematics_1pt(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, r0)
+         end if
+         do k = 1, nb
+            do g = 1, nq*nq
+               fg(:, g, e0 + k - 1) = [f11(k, g), f12(k, g), f21(k, g), f22(k, g), jac(k, g)]
+            end do
+         end do
+      end do
+   end subroutine q4_deformation
 
    !> Element stress for output: sig(:, e) = sxx, syy, szz, sxy, pressure (-tr sigma/3),
    !> von Mises, J; the mean over the Gauss points for nq = 2, the centroid value for nq = 1.
    !> A point with J <= 0 contributes zero stress (its J is still averaged).
-   pure subroutine q4_stress(nq, nel, nnode, conn, u, gdn, lambda, mu, sig)
+   pure subroutine q4_stress(nq, nel, nnode, conn, x0, u, lambda, mu, sig)
       integer, intent(in) :: nq                    !< 1 or 2
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
-      real(wp), intent(in) :: u(2, nnode)
-      real(wp), intent(in) :: gdn(8, nq*nq, nel)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
       real(wp), intent(in) :: lambda, mu
       real(wp), intent(out) :: sig(7, nel)
-      real(wp) :: ux(4), uy(4), f11, f12, f21, f22, s(4), jac, w, r
-      integer :: e, g, ng
+      real(wp) :: fg(5, nq*nq, NBLOCK), s(4), jac, w, r
+      integer :: e, e0, nb, k, g, ng
 
       ng = nq*nq
       r = 1.0_wp/real(ng, wp)
-      do e = 1, nel
-         ux = u(1, conn(:, e))
-         uy = u(2, conn(:, e))
-         sig(:, e) = 0.0_wp
-         do g = 1, ng
-            f11 = 1.0_wp + sum(ux*gdn(1:4, g, e))
-            f12 = sum(ux*gdn(5:8, g, e))
-            f21 = sum(uy*gdn(1:4, g, e))
-            f22 = 1.0_wp + sum(uy*gdn(5:8, g, e))
-            jac = f11*f22 - f12*f21
-            if (jac > 0.0_wp) then
-               call nh_cauchy(lambda, mu, f11, f12, f21, f22, s(1), s(2), s(3), s(4), jac, w)
-               sig(1:4, e) = sig(1:4, e) + r*s
-            end if
-            sig(7, e) = sig(7, e) + r*jac
+      do e0 = 1, nel, NBLOCK
+         nb = min(NBLOCK, nel - e0 + 1)
+         call q4_deformation(nq, nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, fg)
+         do k = 1, nb
+            e = e0 + k - 1
+            sig(:, e) = 0.0_wp
+            do g = 1, ng
+               if (fg(5, g, k) > 0.0_wp) then
+                  call nh_cauchy(lambda, mu, fg(1, g, k), fg(2, g, k), fg(3, g, k), fg(4, g, k), &
+                                 s(1), s(2), s(3), s(4), jac, w)
+                  sig(1:4, e) = sig(1:4, e) + r*s
+               end if
+               sig(7, e) = sig(7, e) + r*fg(5, g, k)
+            end do
+            s = sig(1:4, e)
+            sig(5, e) = -(s(1) + s(2) + s(3))/3.0_wp
+            sig(6, e) = sqrt(0.5_wp*((s(1) - s(2))**2 + (s(2) - s(3))**2 + (s(3) - s(1))**2) &
+                             + 3.0_wp*s(4)**2)
          end do
-         s = sig(1:4, e)
-         sig(5, e) = -(s(1) + s(2) + s(3))/3.0_wp
-         sig(6, e) = sqrt(0.5_wp*((s(1) - s(2))**2 + (s(2) - s(3))**2 + (s(3) - s(1))**2) &
-                          + 3.0_wp*s(4)**2)
       end do
    end subroutine q4_stress
 

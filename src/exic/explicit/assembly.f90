@@ -4,18 +4,35 @@
 !> `assembly_init` builds the state (reference coordinates, lumped masses, inverse masses per
 !> dof, initial conditions) and one element set per material in use; the loops below call the
 !> element kernels of src/exic/element set by set.
+!>
+!> Threads (OpenMP, `OMP_NUM_THREADS`): the force pass runs the ranges of each colour of a set
+!> concurrently (element_set_t); every reduction (strain and hourglass energy, jmin, the stable
+!> step and its element, the first inverted and folded elements, the kinetic energy and
+!> momentum) is formed per range or per fixed chunk of nodes and the partial results are
+!> combined serially in index order, so that every result is the same to the bit for every
+!> number of threads. Without OpenMP the same code runs serially.
 module exic_explicit_assembly
    use exic_base_kinds, only: wp
+   use, intrinsic :: iso_fortran_env, only: int64
    use exic_base_error, only: error_t, make_error
    use exic_mesh_mesh, only: mesh_t
    use exic_material_material, only: material_t, MAT_SOLID, MAT_RIGID
    use exic_explicit_state, only: state_t, element_set_t
-   use exic_element_quad4, only: q4_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
-                                 q4_stable_dt, q4_stress
+   use exic_explicit_central, only: cd_kinetic, cd_zero
+   use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
+                                 q4_stable_dt, q4_stress, NBLOCK
    implicit none
    private
 
    public :: assembly_init, internal_forces, stable_step, kinetic_energy, element_stress, all_stresses
+   public :: set_ranges
+
+   !> Smallest set whose force pass runs on several threads (a parallel region costs a few
+   !> microseconds; below this the pass runs on the calling thread, with the same results).
+   integer, parameter, public :: PAR_MIN_ELEMENTS = 2048
+   !> Range length: nel/64 rounded up to whole blocks, between 256 and 2048 elements (fixed by
+   !> the mesh, never by the number of threads).
+   integer, parameter :: RANGE_MIN = 256, RANGE_MAX = 2048, RANGES_WANTED = 64
 
 contains
 
@@ -67,14 +84,14 @@ contains
             allocate (s%elems(s%nel), s%conn(4, s%nel))
             s%elems = pack([(i, i=1, ne)], mesh%mat == im)
             s%conn = mesh%conn(:, s%elems)
-            allocate (s%gdn(8, s%nq**2, s%nel), s%wdj(s%nq**2, s%nel), s%gamma(4, s%nel))
-            call q4_reference(s%nq, s%nel, nn, s%conn, st%x0, s%gdn, s%wdj, s%gamma, ebad)
+            call q4_check_reference(s%nel, nn, s%conn, st%x0, ebad)
             if (ebad /= 0) then
                write (buf, '(a,i0)') 'element ', s%elems(ebad)
                call make_error(err, trim(buf)//' has a non-positive Jacobian in the reference mesh')
                return
             end if
             call q4_lumped_mass(s%nel, nn, s%conn, st%x0, s%rho, st%mass)
+            call set_ranges(s, nn)
             st%active(reshape(s%conn, [4*s%nel])) = .true.
             st%eset(s%elems) = k
             st%eloc(s%elems) = [(i, i=1, s%nel)]
@@ -105,41 +122,169 @@ contains
       count_nonzero = count(a /= 0)
    end function count_nonzero
 
-   !> Internal forces, strain and hourglass energy at the current displacement (seed eq. 4.3 needs P(u)).
-   !> `ebad` is the first (global) element with J <= 0, or 0.
-   subroutine internal_forces(st, sets, ebad)
+   !> Ranges and colours of set `s` (element_set_t): ranges of consecutive elements of a length
+   !> fixed by the set's size; colours by a greedy pass over the ranges in order, each range
+   !> taking the lowest colour that no earlier range sharing one of its nodes has. With a banded
+   !> numbering (BLOCk meshes) that is two colours, alternating. Past 62 colours (a numbering
+   !> without locality) every range is a colour of its own: serial, in order.
+   subroutine set_ranges(s, nnode)
+      type(element_set_t), intent(inout) :: s
+      integer, intent(in) :: nnode
+      integer(int64), allocatable :: mask(:)
+      integer(int64) :: forb
+      integer, allocatable :: colour(:)
+      integer :: len, r, e, a, c, i
+
+      len = (s%nel + RANGES_WANTED - 1)/RANGES_WANTED
+      len = NBLOCK*((len + NBLOCK - 1)/NBLOCK)
+      len = max(RANGE_MIN, min(RANGE_MAX, len))
+      s%nrange = max(1, (s%nel + len - 1)/len)
+      allocate (s%rfirst(s%nrange + 1), colour(s%nrange))
+      s%rfirst = [(min(1 + (r - 1)*len, s%nel + 1), r=1, s%nrange + 1)]
+      allocate (mask(nnode), source=0_int64)
+      s%ncolour = 0
+      do r = 1, s%nrange
+         forb = 0_int64
+         do e = s%rfirst(r), s%rfirst(r + 1) - 1
+            do a = 1, 4
+               forb = ior(forb, mask(s%conn(a, e)))
+            end do
+         end do
+         c = trailz(not(forb))
+         if (c >= 62) then
+            s%ncolour = 0
+            exit
+         end if
+         colour(r) = c + 1
+         s%ncolour = max(s%ncolour, c + 1)
+         do e = s%rfirst(r), s%rfirst(r + 1) - 1
+            do a = 1, 4
+               mask(s%conn(a, e)) = ibset(mask(s%conn(a, e)), c)
+            end do
+         end do
+      end do
+      if (s%ncolour == 0) then
+         s%ncolour = s%nrange
+         colour = [(r, r=1, s%nrange)]
+      end if
+      ! the ranges by colour, ascending within each colour
+      allocate (s%cfirst(s%ncolour + 1), s%cranges(s%nrange))
+      s%cfirst = 0
+      do r = 1, s%nrange
+         s%cfirst(colour(r) + 1) = s%cfirst(colour(r) + 1) + 1
+      end do
+      s%cfirst(1) = 1
+      do c = 1, s%ncolour
+         s%cfirst(c + 1) = s%cfirst(c) + s%cfirst(c + 1)
+      end do
+      i = 0
+      do c = 1, s%ncolour
+         do r = 1, s%nrange
+            if (colour(r) /= c) cycle
+            i = i + 1
+            s%cranges(i) = r
+         end do
+      end do
+   end subroutine set_ranges
+
+   !> Internal forces, strain and hourglass energy at the current displacement (seed eq. 4.3
+   !> needs P(u)), and from the same pass the stable step at x = x0 + u: dtmin, its (global)
+   !> element emin (0 when there is no deformable element) and the first (global) element
+   !> folded at a corner efold (q4_stable_dt). `ebad` is the first (global) element with
+   !> J <= 0, or 0.
+   subroutine internal_forces(st, sets, ebad, dtmin, emin, efold)
       type(state_t), intent(inout) :: st
       type(element_set_t), intent(in) :: sets(:)
-      integer, intent(out) :: ebad
-      integer :: k, eb
-      real(wp) :: w, whg, jm
+      integer, intent(out) :: ebad, emin, efold
+      real(wp), intent(out) :: dtmin
+      integer :: k, eb, em, ef
+      real(wp) :: w, whg, jm, d
 
-      st%fint = 0.0_wp
+      call cd_zero(2*st%nnode, st%fint)
       st%strain = 0.0_wp
       st%hourglass = 0.0_wp
       st%jmin = huge(1.0_wp)
       ebad = 0
+      dtmin = huge(1.0_wp)
+      emin = 0
+      efold = 0
       do k = 1, size(sets)
          associate (s => sets(k))
             if (s%kind /= MAT_SOLID) cycle
-            if (s%nq == 2) then
-               call q4_force_2x2(s%nel, st%nnode, s%conn, st%u, s%gdn, s%wdj, s%lambda, s%mu, st%fint, w, jm, eb)
-               whg = 0.0_wp
-            else
-               call q4_force_1pt(s%nel, st%nnode, s%conn, st%u, s%gdn, s%wdj, s%gamma, s%lambda, s%mu, &
-                                 s%hourglass, st%fint, w, whg, jm, eb)
-            end if
+            call set_forces(s, st%nnode, st%x0, st%u, st%fint, w, whg, jm, eb, d, em, ef)
             st%strain = st%strain + w
             st%hourglass = st%hourglass + whg
             st%jmin = min(st%jmin, jm)
             if (eb /= 0 .and. ebad == 0) ebad = s%elems(eb)
+            if (ef /= 0 .and. efold == 0) efold = s%elems(ef)
+            if (d < dtmin) then
+               dtmin = d
+               emin = s%elems(em)
+            end if
          end associate
       end do
    end subroutine internal_forces
 
+   !> The force pass over one set (internal_forces): the ranges of each colour on the threads,
+   !> one colour after the other; per-range results combined in range order. eb, em, ef are
+   !> local element numbers of the set.
+   subroutine set_forces(s, nnode, x0, u, f, w, whg, jm, eb, d, em, ef)
+      type(element_set_t), intent(in) :: s
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      real(wp), intent(inout) :: f(2, nnode)
+      real(wp), intent(out) :: w, whg, jm, d
+      integer, intent(out) :: eb, em, ef
+      real(wp), dimension(s%nrange) :: pw, phg, pj, pd
+      integer, dimension(s%nrange) :: pe, pm, pf
+      integer :: c, i, r, e1, n
+
+      !$omp parallel if (s%nel >= PAR_MIN_ELEMENTS) default(none) private(c, i, r, e1, n) &
+      !$omp shared(s, nnode, x0, u, f, pw, phg, pj, pd, pe, pm, pf)
+      do c = 1, s%ncolour
+         !$omp do schedule(dynamic)
+         do i = s%cfirst(c), s%cfirst(c + 1) - 1
+            r = s%cranges(i)
+            e1 = s%rfirst(r)
+            n = s%rfirst(r + 1) - e1
+            if (s%nq == 2) then
+               call q4_force_2x2(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%lambda, s%mu, s%rho, f, &
+                                 pw(r), pj(r), pe(r), pd(r), pm(r), pf(r))
+               phg(r) = 0.0_wp
+            else
+               call q4_force_1pt(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%lambda, s%mu, s%rho, &
+                                 s%hourglass, f, pw(r), phg(r), pj(r), pe(r), pd(r), pm(r), pf(r))
+            end if
+         end do
+         !$omp end do
+      end do
+      !$omp end parallel
+      w = 0.0_wp
+      whg = 0.0_wp
+      jm = huge(1.0_wp)
+      d = huge(1.0_wp)
+      eb = 0
+      em = 0
+      ef = 0
+      do r = 1, s%nrange
+         e1 = s%rfirst(r) - 1
+         w = w + pw(r)
+         whg = whg + phg(r)
+         jm = min(jm, pj(r))
+         if (pe(r) /= 0 .and. eb == 0) eb = e1 + pe(r)
+         if (pf(r) /= 0 .and. ef == 0) ef = e1 + pf(r)
+         if (pd(r) < d) then
+            d = pd(r)
+            em = e1 + pm(r)
+         end if
+      end do
+      d = sqrt(d)
+   end subroutine set_forces
+
    !> Smallest critical step over the deformable elements at the current coordinates
    !> x(2, nnode), and its (global) element (0 when there is no deformable element); efold: the
-   !> first (global) element folded at a corner (q4_stable_dt), 0 if none.
+   !> first (global) element folded at a corner (q4_stable_dt), 0 if none. The same estimate
+   !> as internal_forces computes (to the bit), for a mesh before its first force pass.
    subroutine stable_step(st, sets, x, dtmin, emin, efold)
       type(state_t), intent(in) :: st
       type(element_set_t), intent(in) :: sets(:)
@@ -155,7 +300,7 @@ contains
       do k = 1, size(sets)
          associate (s => sets(k))
             if (s%kind /= MAT_SOLID) cycle
-            call q4_stable_dt(s%nq, s%nel, st%nnode, s%conn, x, s%wdj, s%lambda, s%mu, s%rho, d, e, ef)
+            call q4_stable_dt(s%nq, s%nel, st%nnode, s%conn, st%x0, x, s%lambda, s%mu, s%rho, d, e, ef)
             if (ef /= 0 .and. efold == 0) efold = s%elems(ef)
             if (d < dtmin) then
                dtmin = d
@@ -165,19 +310,11 @@ contains
       end do
    end subroutine stable_step
 
-   !> Kinetic energy and linear momentum of every active node (rigid bodies included).
+   !> Kinetic energy and linear momentum of every active node (rigid bodies included), summed
+   !> per fixed chunk of nodes and the chunks in order (the same bits for every number of threads).
    subroutine kinetic_energy(st)
       type(state_t), intent(inout) :: st
-      integer :: i
-      real(wp) :: k, p(2)
-      k = 0.0_wp
-      p = 0.0_wp
-      do i = 1, st%nnode
-         k = k + st%mass(i)*(st%v(1, i)**2 + st%v(2, i)**2)
-         p = p + st%mass(i)*st%v(:, i)
-      end do
-      st%kinetic = 0.5_wp*k
-      st%momentum = p
+      call cd_kinetic(st%nnode, st%mass, st%v, st%kinetic, st%momentum)
    end subroutine kinetic_energy
 
    !> Stress components (sxx, syy, szz, sxy, pressure, von Mises, J) of global element `e`.
@@ -193,7 +330,7 @@ contains
       j = st%eloc(e)
       associate (s => sets(st%eset(e)))
          if (s%kind /= MAT_SOLID) return
-         call q4_stress(s%nq, 1, st%nnode, s%conn(:, j:j), st%u, s%gdn(:, :, j:j), s%lambda, s%mu, s1)
+         call q4_stress(s%nq, 1, st%nnode, s%conn(:, j:j), st%x0, st%u, s%lambda, s%mu, s1)
          sig = s1(:, 1)
       end associate
    end subroutine element_stress
@@ -211,7 +348,7 @@ contains
          associate (s => sets(k))
             if (s%kind /= MAT_SOLID) cycle
             allocate (s1(7, s%nel))
-            call q4_stress(s%nq, s%nel, st%nnode, s%conn, st%u, s%gdn, s%lambda, s%mu, s1)
+            call q4_stress(s%nq, s%nel, st%nnode, s%conn, st%x0, st%u, s%lambda, s%mu, s1)
             sig(:, s%elems) = s1
             deallocate (s1)
          end associate

@@ -6,108 +6,265 @@
 !>   contact corrector: a(n+1) = a~(n+1) - M^-1 G lambda         (4.5-4.7, src/exic/contact)
 !>   v(n+1) = v(n) + dt(n)/2 (a(n) + a(n+1))                       cd_velocity
 !> Arrays are (component, node); every kernel is one pass without temporaries.
+!>
+!> Threads (OpenMP): the nodes are cut into fixed chunks of CHUNK nodes, shared among the
+!> threads; each chunk is one call of a serial kernel on plain arrays (which the compiler
+!> vectorizes: inside an OpenMP region it could not tell the arrays apart). Sums (works, kinetic
+!> energy, momentum) are formed per chunk, in interleaved partial sums combined in a fixed tree
+!> (src/exic/base/sums.f90: vectorized, in an order fixed by the chunk alone), and the chunks' sums
+!> are added in chunk order by one thread: the results are the same to the bit for every number
+!> of threads (no `reduction` clause on reals, whose order would depend on the threads).
+!> Meshes of fewer than PAR_MIN_NODES nodes run on one thread.
 module exic_explicit_central
    use exic_base_kinds, only: wp
+   use exic_base_sums, only: lane_sum
    implicit none
    private
 
-   public :: cd_displacement, cd_predictor, cd_velocity, positions
+   public :: cd_displacement, cd_predictor, cd_velocity, positions, cd_zero, cd_kinetic
+
+   !> Nodes per chunk (fixed: the order of the additions of a sum must not depend on threads).
+   integer, parameter, public :: CHUNK = 1024
+   !> Smallest mesh whose nodal loops run on several threads.
+   integer, parameter, public :: PAR_MIN_NODES = 4096
 
 contains
 
    !> First part of a central-difference step over `n` nodes (seed eq. 4.3-4.4):
    !> du = dt v + dt^2/2 a, u = u + du, and a_old = a kept for the velocity update.
-   !> One pass instead of four whole-array statements (no temporaries).
-   pure subroutine cd_displacement(n, dt, v, a, u, du, a_old)
+   subroutine cd_displacement(n, dt, v, a, u, du, a_old)
       integer, intent(in) :: n
       real(wp), intent(in) :: dt
       real(wp), intent(in) :: v(2, n), a(2, n)
       real(wp), intent(inout) :: u(2, n)
       real(wp), intent(out) :: du(2, n), a_old(2, n)
-      real(wp) :: h, d
-      integer :: i, k
-      h = 0.5_wp*dt*dt
-      do i = 1, n
-         do k = 1, 2
-            d = dt*v(k, i) + h*a(k, i)
-            du(k, i) = d
-            u(k, i) = u(k, i) + d
-            a_old(k, i) = a(k, i)
-         end do
+      integer :: c, i0, m
+      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) shared(n, dt, v, a, u, du, a_old) &
+      !$omp private(c, i0, m) schedule(dynamic)
+      do c = 1, (n + CHUNK - 1)/CHUNK
+         i0 = (c - 1)*CHUNK + 1
+         m = min(CHUNK, n - i0 + 1)
+         call displacement_range(2*m, dt, v(1, i0), a(1, i0), u(1, i0), du(1, i0), a_old(1, i0))
       end do
+      !$omp end parallel do
    end subroutine cd_displacement
+
+   !> cd_displacement on m values (m/2 nodes).
+   pure subroutine displacement_range(m, dt, v, a, u, du, a_old)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: dt, v(m), a(m)
+      real(wp), intent(inout) :: u(m)
+      real(wp), intent(out) :: du(m), a_old(m)
+      real(wp) :: h, d
+      integer :: j
+      h = 0.5_wp*dt*dt
+      do j = 1, m
+         d = dt*v(j) + h*a(j)
+         du(j) = d
+         u(j) = u(j) + d
+         a_old(j) = a(j)
+      end do
+   end subroutine displacement_range
 
    !> Predictor of eq. 4.3-4.4: a~ = M^-1 (F - P) and, when `with_vt`, v~ = v + dt/2 (a_old + a~)
    !> (only the contact search needs v~).
-   pure subroutine cd_predictor(n, dt, minv, fext, fint, v, a_old, a, with_vt, vt)
+   subroutine cd_predictor(n, dt, minv, fext, fint, v, a_old, a, with_vt, vt)
       integer, intent(in) :: n
       real(wp), intent(in) :: dt
       real(wp), intent(in) :: minv(2, n), fext(2, n), fint(2, n), v(2, n), a_old(2, n)
       real(wp), intent(out) :: a(2, n)
       logical, intent(in) :: with_vt
       real(wp), intent(inout) :: vt(2, n)
-      real(wp) :: h
-      integer :: i, k
-      h = 0.5_wp*dt
-      if (with_vt) then
-         do i = 1, n
-            do k = 1, 2
-               a(k, i) = minv(k, i)*(fext(k, i) - fint(k, i))
-               vt(k, i) = v(k, i) + h*(a_old(k, i) + a(k, i))
-            end do
-         end do
-      else
-         do i = 1, n
-            do k = 1, 2
-               a(k, i) = minv(k, i)*(fext(k, i) - fint(k, i))
-            end do
-         end do
-      end if
+      integer :: c, i0, m
+      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) &
+      !$omp shared(n, dt, minv, fext, fint, v, a_old, a, with_vt, vt) private(c, i0, m) schedule(dynamic)
+      do c = 1, (n + CHUNK - 1)/CHUNK
+         i0 = (c - 1)*CHUNK + 1
+         m = min(CHUNK, n - i0 + 1)
+         if (with_vt) then
+            call predictor_range(2*m, dt, minv(1, i0), fext(1, i0), fint(1, i0), v(1, i0), a_old(1, i0), &
+                                 a(1, i0), vt(1, i0))
+         else
+            call acceleration_range(2*m, minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0))
+         end if
+      end do
+      !$omp end parallel do
    end subroutine cd_predictor
+
+   !> a = M^-1 (F - P) and v~ = v + dt/2 (a_old + a) on m values.
+   pure subroutine predictor_range(m, dt, minv, fext, fint, v, a_old, a, vt)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: dt, minv(m), fext(m), fint(m), v(m), a_old(m)
+      real(wp), intent(out) :: a(m), vt(m)
+      real(wp) :: h
+      integer :: j
+      h = 0.5_wp*dt
+      do j = 1, m
+         a(j) = minv(j)*(fext(j) - fint(j))
+         vt(j) = v(j) + h*(a_old(j) + a(j))
+      end do
+   end subroutine predictor_range
+
+   !> a = M^-1 (F - P) on m values.
+   pure subroutine acceleration_range(m, minv, fext, fint, a)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: minv(m), fext(m), fint(m)
+      real(wp), intent(out) :: a(m)
+      integer :: j
+      do j = 1, m
+         a(j) = minv(j)*(fext(j) - fint(j))
+      end do
+   end subroutine acceleration_range
 
    !> Last part of a step: v = v + dt/2 (a_old + a) with the corrected a, the work of the
    !> external forces (F . du) and, when `with_contact`, of the contact forces by the
-   !> trapezoid rule (1/2 (fcon_old + fcon) . du), each summed in array order.
-   pure subroutine cd_velocity(n, dt, a_old, a, fext, du, with_contact, fcon_old, fcon, v, wext, wcon)
+   !> trapezoid rule (1/2 (fcon_old + fcon) . du), each summed per chunk of CHUNK nodes in
+   !> array order and the chunks in order.
+   subroutine cd_velocity(n, dt, a_old, a, fext, du, with_contact, fcon_old, fcon, v, wext, wcon)
       integer, intent(in) :: n
       real(wp), intent(in) :: dt
       real(wp), intent(in) :: a_old(2, n), a(2, n), fext(2, n), du(2, n)
       logical, intent(in) :: with_contact
       real(wp), intent(in) :: fcon_old(2, n), fcon(2, n)
       real(wp), intent(inout) :: v(2, n), wext, wcon
-      real(wp) :: h, se, sc
-      integer :: i, k
-      h = 0.5_wp*dt
+      real(wp) :: se, sc, pe((n + CHUNK - 1)/CHUNK), pc((n + CHUNK - 1)/CHUNK)
+      integer :: c, i0, m
+      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) &
+      !$omp shared(n, dt, a_old, a, fext, du, with_contact, fcon_old, fcon, v, pe, pc) &
+      !$omp private(c, i0, m) schedule(dynamic)
+      do c = 1, (n + CHUNK - 1)/CHUNK
+         i0 = (c - 1)*CHUNK + 1
+         m = min(CHUNK, n - i0 + 1)
+         call velocity_range(2*m, dt, a_old(1, i0), a(1, i0), fext(1, i0), du(1, i0), v(1, i0), pe(c))
+         pc(c) = 0.0_wp
+         if (with_contact) call work_range(2*m, fcon_old(1, i0), fcon(1, i0), du(1, i0), pc(c))
+      end do
+      !$omp end parallel do
       se = 0.0_wp
       sc = 0.0_wp
-      do i = 1, n
-         do k = 1, 2
-            v(k, i) = v(k, i) + h*(a_old(k, i) + a(k, i))
-            se = se + fext(k, i)*du(k, i)
-         end do
+      do c = 1, (n + CHUNK - 1)/CHUNK
+         se = se + pe(c)
+         sc = sc + pc(c)
       end do
       wext = wext + se
-      if (with_contact) then
-         do i = 1, n
-            do k = 1, 2
-               sc = sc + (fcon_old(k, i) + fcon(k, i))*du(k, i)
-            end do
-         end do
-         wcon = wcon + 0.5_wp*sc
-      end if
+      if (with_contact) wcon = wcon + 0.5_wp*sc
    end subroutine cd_velocity
 
-   !> x = x0 + u as a plain loop (measured several microseconds per step faster than the
-   !> whole-array assignment between the components of two dummies on a 3000-node mesh).
-   pure subroutine positions(nnode, x0, u, x)
+   !> v = v + dt/2 (a_old + a) and se = sum F . du on m values.
+   pure subroutine velocity_range(m, dt, a_old, a, fext, du, v, se)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: dt, a_old(m), a(m), fext(m), du(m)
+      real(wp), intent(inout) :: v(m)
+      real(wp), intent(out) :: se
+      real(wp) :: h, p(2*CHUNK)
+      integer :: j
+      h = 0.5_wp*dt
+      do j = 1, m
+         v(j) = v(j) + h*(a_old(j) + a(j))
+         p(j) = fext(j)*du(j)
+      end do
+      se = lane_sum(m, p)
+   end subroutine velocity_range
+
+   !> sc = sum (fcon_old + fcon) . du on m values.
+   pure subroutine work_range(m, fcon_old, fcon, du, sc)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: fcon_old(m), fcon(m), du(m)
+      real(wp), intent(out) :: sc
+      real(wp) :: p(2*CHUNK)
+      integer :: j
+      do j = 1, m
+         p(j) = (fcon_old(j) + fcon(j))*du(j)
+      end do
+      sc = lane_sum(m, p)
+   end subroutine work_range
+
+   !> Kinetic energy 1/2 sum m |v|^2 and linear momentum sum m v of n nodes, summed per chunk
+   !> of CHUNK nodes and the chunks in order.
+   subroutine cd_kinetic(n, mass, v, kinetic, momentum)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: mass(n), v(2, n)
+      real(wp), intent(out) :: kinetic, momentum(2)
+      real(wp), dimension((n + CHUNK - 1)/CHUNK) :: pk, px, py
+      real(wp) :: k, p1, p2
+      integer :: c, i0, m
+      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) shared(n, mass, v, pk, px, py) &
+      !$omp private(c, i0, m) schedule(dynamic)
+      do c = 1, (n + CHUNK - 1)/CHUNK
+         i0 = (c - 1)*CHUNK + 1
+         m = min(CHUNK, n - i0 + 1)
+         call kinetic_range(m, mass(i0), v(1, i0), pk(c), px(c), py(c))
+      end do
+      !$omp end parallel do
+      k = 0.0_wp
+      p1 = 0.0_wp
+      p2 = 0.0_wp
+      do c = 1, (n + CHUNK - 1)/CHUNK
+         k = k + pk(c)
+         p1 = p1 + px(c)
+         p2 = p2 + py(c)
+      end do
+      kinetic = 0.5_wp*k
+      momentum = [p1, p2]
+   end subroutine cd_kinetic
+
+   !> sum m |v|^2 and sum m v over m nodes (lane_sum).
+   pure subroutine kinetic_range(m, mass, v, k, p1, p2)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: mass(m), v(2, m)
+      real(wp), intent(out) :: k, p1, p2
+      real(wp), dimension(CHUNK) :: pk, px, py
+      integer :: i
+      do i = 1, m
+         pk(i) = mass(i)*(v(1, i)**2 + v(2, i)**2)
+         px(i) = mass(i)*v(1, i)
+         py(i) = mass(i)*v(2, i)
+      end do
+      k = lane_sum(m, pk)
+      p1 = lane_sum(m, px)
+      p2 = lane_sum(m, py)
+   end subroutine kinetic_range
+
+   !> x = x0 + u over nnode nodes.
+   subroutine positions(nnode, x0, u, x)
       integer, intent(in) :: nnode
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
       real(wp), intent(out) :: x(2, nnode)
-      integer :: i
-      do i = 1, nnode
-         x(1, i) = x0(1, i) + u(1, i)
-         x(2, i) = x0(2, i) + u(2, i)
+      integer :: c, i0, m
+      !$omp parallel do if (nnode >= PAR_MIN_NODES) default(none) shared(nnode, x0, u, x) &
+      !$omp private(c, i0, m) schedule(dynamic)
+      do c = 1, (nnode + CHUNK - 1)/CHUNK
+         i0 = (c - 1)*CHUNK + 1
+         m = min(CHUNK, nnode - i0 + 1)
+         call add_range(2*m, x0(1, i0), u(1, i0), x(1, i0))
       end do
+      !$omp end parallel do
    end subroutine positions
+
+   !> c = a + b on m values.
+   pure subroutine add_range(m, a, b, c)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: a(m), b(m)
+      real(wp), intent(out) :: c(m)
+      integer :: j
+      do j = 1, m
+         c(j) = a(j) + b(j)
+      end do
+   end subroutine add_range
+
+   !> a = 0 for an array of n values (shared among the threads as the other loops).
+   subroutine cd_zero(n, a)
+      integer, intent(in) :: n
+      real(wp), intent(out) :: a(n)
+      integer :: c, i0, m
+      !$omp parallel do if (n >= 2*PAR_MIN_NODES) default(none) shared(n, a) private(c, i0, m) &
+      !$omp schedule(dynamic)
+      do c = 1, (n + 2*CHUNK - 1)/(2*CHUNK)
+         i0 = (c - 1)*2*CHUNK + 1
+         m = min(2*CHUNK, n - i0 + 1)
+         a(i0:i0 + m - 1) = 0.0_wp
+      end do
+      !$omp end parallel do
+   end subroutine cd_zero
 
 end module exic_explicit_central

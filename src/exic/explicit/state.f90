@@ -6,7 +6,13 @@ module exic_explicit_state
 
    public :: element_set_t, state_t
 
-   !> The elements of one material set, with their reference (total Lagrangian) data.
+   !> The elements of one material set. Nothing is stored per element but its nodes: the force
+   !> kernels recompute the reference gradients from the reference coordinates.
+   !>
+   !> Threads work on ranges of consecutive elements; the ranges are coloured so that no two
+   !> ranges of one colour share a node (src/exic/explicit/assembly.f90, set_ranges). Ranges of
+   !> one colour add their forces concurrently, colours follow each other in a fixed order:
+   !> every node receives its contributions in the same order for every number of threads.
    type :: element_set_t
       integer :: mat = 0                        !< material set number
       integer :: kind = 0                       !< MAT_SOLID or MAT_RIGID
@@ -14,10 +20,12 @@ module exic_explicit_state
       integer :: nel = 0
       integer, allocatable :: elems(:)          !< (nel) global element numbers
       integer, allocatable :: conn(:, :)        !< (4, nel) global node numbers
-      real(wp), allocatable :: gdn(:, :, :)     !< (8, nq*nq, nel) reference shape derivatives
-      real(wp), allocatable :: wdj(:, :)        !< (nq*nq, nel) weight x det J0
-      real(wp), allocatable :: gamma(:, :)      !< (4, nel) hourglass vectors (nq = 1)
       real(wp) :: lambda = 0.0_wp, mu = 0.0_wp, rho = 0.0_wp, hourglass = 0.0_wp
+      integer :: nrange = 0                     !< ranges of consecutive elements
+      integer, allocatable :: rfirst(:)         !< (nrange + 1) first element of each range
+      integer :: ncolour = 0
+      integer, allocatable :: cfirst(:)         !< (ncolour + 1) first entry of each colour in cranges
+      integer, allocatable :: cranges(:)        !< (nrange) the ranges by colour, ascending in each
    end type element_set_t
 
    !> Nodal state at time t(n+1) with v(n+1), a(n+1) once a step is complete.

@@ -83,6 +83,9 @@ module exic_explicit_step
       real(wp) :: dt_fixed = 0.0_wp
       real(wp) :: dt_stable = 0.0_wp                  !< last stable-step estimate
       integer :: dt_element = 0                       !< element that sets it (0: penalty or none)
+      real(wp) :: dt_elements = 0.0_wp                !< the elements' estimate of the last force pass
+      integer :: dt_elements_at = 0                   !< its element
+      integer :: folded = 0                           !< first element folded at a corner in that pass
       real(wp) :: tmax = -1.0_wp                      !< end time to land on (TIME,,tmax; < 0: none)
       logical :: dt_warned = .false.
       ! energy guard: limits as fractions of the energy put in, and the worst growth seen
@@ -235,15 +238,17 @@ contains
       call check_health(self, err)
    end subroutine stepper_advance
 
-   !> Steps 2-3 (and at t = 0): positions x = x0 + u, internal forces, dt(n+1); an inverted
-   !> element is an error naming it.
+   !> Steps 2-3 (and at t = 0): internal forces and, from the same pass over the elements, their
+   !> stable step at x = x0 + u; dt(n+1); the positions x = x0 + u when contact or loads (edge
+   !> loads follow the geometry) need them. An
+   !> inverted element is an error naming it.
    subroutine forces_and_dt(self, err)
       type(stepper_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
       integer :: ebad
       associate (st => self%st)
-         call positions(st%nnode, st%x0, st%u, self%x)
-         call internal_forces(st, self%sets, ebad)
+         if (self%has_contact() .or. self%ld%active) call positions(st%nnode, st%x0, st%u, self%x)
+         call internal_forces(st, self%sets, ebad, self%dt_elements, self%dt_elements_at, self%folded)
          if (ebad /= 0) then
             call inverted_error(st, ebad, err)
             return
@@ -341,19 +346,20 @@ contains
    end subroutine stepper_initial_stable_step
 
    !> Set dt(n+1): fixed (checked against the stable limit) or CFL x the stable limit, from the
-   !> positions self%x.
+   !> elements' estimate of the last force pass (the current geometry).
    subroutine choose_dt(self, err, where)
       type(stepper_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
       character(len=*), intent(in) :: where
       character(len=200) :: buf
-      integer :: n, efold
+      integer :: n
       real(wp) :: target, dtp
 
       associate (st => self%st)
-         call stable_step(st, self%sets, self%x, self%dt_stable, self%dt_element, efold)
-         if (efold /= 0) then
-            call make_error(err, 'element '//itoa(efold)//' inverted (J <= 0 at a corner: folded) at t = '// &
+         self%dt_stable = self%dt_elements
+         self%dt_element = self%dt_elements_at
+         if (self%folded /= 0) then
+            call make_error(err, 'element '//itoa(self%folded)//' inverted (J <= 0 at a corner: folded) at t = '// &
                             rtoa(st%t)//', step '//itoa(int(st%step)))
             return
          end if

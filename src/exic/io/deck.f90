@@ -52,6 +52,7 @@ contains
       type(error_t), allocatable, intent(out) :: err
       type(reader_t) :: rd
       rd%warnings = ''
+      rd%deck = path
       model%deck_file = path
       model%warnings = ''
       call read_source(path, rd%src, err)

@@ -15,6 +15,7 @@ module exic_io_deck_block
                              real_field, int_field, fail, where, unknown_keyword, itoa, rtoa, &
                              looks_like_data, check_data_record
    use exic_io_deck_mesh, only: builder_t, ensure_node, ensure_elem, MAX_NUMBER
+   use exic_io_memory, only: mesh_memory_message
    implicit none
    private
 
@@ -132,6 +133,12 @@ contains
       if (mat == 0) mat = max(b%block_mat, 1)
       b%block_mat = mat
       if (node1 == 0) node1 = b%m%nnode + 1
+      missing = mesh_memory_message(max(b%m%nnode, node1 + (nr + 1)*(ns + 1) - 1), &
+                                    b%m%nelem + merge(nr*ns, 0, elmt1 >= 0))
+      if (len(missing) > 0) then
+         call fail(rd, i, 'BLOCk: '//missing, err)
+         return
+      end if
       allocate (xb(2, (nr + 1)*(ns + 1)))
       call block_coordinates(kind, nr, ns, master, given, b%origin, xb)
       call check_collapsed(err)

@@ -207,6 +207,12 @@ contains
             call fail(rd, i, what//': expected surface ids >= 1', err)
             return
          end if
+         if (p%kind /= PAIR_SELF .and. p%slave == p%master) then
+            call fail(rd, i, 'PAIR '//itoa(p%id)//' names surface '//itoa(p%slave)//' as both '// &
+                      'slave and master: expected PAIR,'//itoa(p%id)//',SELF,'//itoa(p%slave)// &
+                      ' for self contact', err)
+            return
+         end if
          p%where = where(rd, i)
          if (npair == size(pair)) then
             allocate (tmp(2*npair))
@@ -357,6 +363,8 @@ contains
             end if
          end do
          do k = 1, npair
+            call same_body(pair(k), err)
+            if (allocated(err)) return
             if (.not. any(surf(1:nsurf)%id == pair(k)%slave)) then
                call make_error(err, pair(k)%where//': PAIR '//itoa(pair(k)%id)//' names surface '// &
                                itoa(pair(k)%slave)//': expected a defined SURFace')
@@ -372,6 +380,33 @@ contains
             call fail(rd, icmd, 'CONTact block without PAIR or AUTOmatic: expected at least one', err)
          end if
       end subroutine close_block
+
+      !> A NTOS or SYMMetric pair whose two surfaces describe the same region or material is
+      !> self contact in disguise: an error pointing to SELF.
+      subroutine same_body(p, err)
+         type(pair_spec_t), intent(in) :: p
+         type(error_t), allocatable, intent(out) :: err
+         integer :: a, b
+         if (p%kind == PAIR_SELF) return
+         a = surface_index(p%slave)
+         b = surface_index(p%master)
+         if (a == 0 .or. b == 0) return
+         if (surf(a)%by == SURF_FACETS .or. surf(a)%by /= surf(b)%by) return
+         if (surf(a)%ref /= surf(b)%ref) return
+         call make_error(err, p%where//': PAIR '//itoa(p%id)//': surfaces '//itoa(p%slave)// &
+                         ' and '//itoa(p%master)//' describe the same body: expected two '// &
+                         'bodies, or PAIR,'//itoa(p%id)//',SELF,'//itoa(p%slave)//' for self contact')
+      end subroutine same_body
+
+      !> Index in surf(1:nsurf) of the surface with this id (0: none).
+      pure integer function surface_index(id)
+         integer, intent(in) :: id
+         integer :: k
+         surface_index = 0
+         do k = 1, nsurf
+            if (surf(k)%id == id) surface_index = k
+         end do
+      end function surface_index
    end subroutine cmd_contact
 
    !> FACEts records `f, ng, n1, n2` up to a blank record, with ELEMents-style generation.

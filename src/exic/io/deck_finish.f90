@@ -145,6 +145,8 @@ contains
       end do
       call check_orientation(rd, b, model%mesh, err)
       if (allocated(err)) return
+      call check_nodal_records(rd, b, model%mesh, err)
+      if (allocated(err)) return
       call check_counts(rd, ictl, counts, nn, ne, size(model%materials), err)
       if (allocated(err)) return
       call apply_ebound(rd, b, model%mesh)
@@ -172,6 +174,33 @@ contains
                    ', which has no MATErial set: expected MATErial,'//itoa(m), err)
       end if
    end subroutine missing_material
+
+   !> Every node named by a BOUNdary, FORCe or DISPlacement record exists: a node without
+   !> coordinates is an error naming the record; a node used by no element (whose record has no
+   !> effect) gives a warning. Checked before the EBOUndary and CBOUndary sets are applied.
+   subroutine check_nodal_records(rd, b, mesh, err)
+      type(reader_t), intent(inout) :: rd
+      type(builder_t), intent(in) :: b
+      type(mesh_t), intent(in) :: mesh
+      type(error_t), allocatable, intent(out) :: err
+      logical :: used(mesh%nnode)
+      integer :: n, last_warned
+      used = used_nodes(mesh)
+      last_warned = 0
+      do n = 1, mesh%nnode
+         if (b%vrec(n) == 0) cycle
+         if (.not. mesh%defined(n)) then
+            call fail(rd, b%vrec(n), 'node '//itoa(n)//' has no coordinates: expected a node '// &
+                      'defined by COORdinates or BLOCk', err)
+            return
+         end if
+         if (.not. used(n) .and. b%vrec(n) /= last_warned) then
+            call warn(rd, b%vrec(n), 'node '//itoa(n)//' is used by no element: the record has '// &
+                      'no effect on it')
+            last_warned = b%vrec(n)
+         end if
+      end do
+   end subroutine check_nodal_records
 
    !> Non-zero counts of the control record are upper bounds.
    subroutine check_counts(rd, ictl, counts, nn, ne, nm, err)

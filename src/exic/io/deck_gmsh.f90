@@ -26,6 +26,7 @@ module exic_io_deck_gmsh
                              warn, where, itoa, rtoa, check_data_record
    use exic_io_gmsh, only: gmsh_mesh_t, gmsh_read
    use exic_io_deck_mesh, only: builder_t, pbou_t, ensure_node, ensure_elem, set_mode, MAX_NUMBER
+   use exic_io_memory, only: mesh_memory_message
    implicit none
    private
 
@@ -146,6 +147,7 @@ contains
       integer :: q, k, j, n, e, c(4)
       integer(i8) :: maxtag
       real(wp) :: h, tol, area, xq(2, 4)
+      character(len=:), allocatable :: msg
 
       allocate (used(gm%nnode))
       used = .false.
@@ -176,6 +178,13 @@ contains
           real(elmt1, wp) + real(gm%nquad, wp) > MAX_NUMBER) then
          call fail(rd, icmd, tag//': node tags up to '//itoa8(maxtag)//' and '//itoa(gm%nquad)// &
                    ' quadrilaterals: expected node and element numbers up to '//itoa(MAX_NUMBER), err)
+         return
+      end if
+      msg = mesh_memory_message(max(b%m%nnode, node1 - 1 + int(maxtag)), &
+                                merge(b%m%nelem + gm%nquad, max(b%m%nelem, elmt1 + gm%nquad - 1), &
+                                      elmt1 == 0))
+      if (len(msg) > 0) then
+         call fail(rd, icmd, tag//': '//msg, err)
          return
       end if
       call ensure_node(b, node1 - 1 + int(maxtag))

@@ -9,6 +9,7 @@ module exic_io_deck_mesh
    use exic_base_kinds, only: wp
    use exic_base_grow, only: grow
    use exic_base_error, only: error_t
+   use exic_io_memory, only: mesh_memory_message, MEMORY_CHECK_FROM
    use exic_mesh_mesh, only: mesh_t
    use exic_material_material, only: material_t
    use exic_io_records, only: keyword_is
@@ -76,6 +77,8 @@ module exic_io_deck_mesh
       logical, allocatable :: edef(:)           !< element was defined
       integer, allocatable :: erec(:)           !< record that defined each element
       integer, allocatable :: nrec(:)           !< record that last defined each node
+      integer, allocatable :: vrec(:)           !< last BOUNdary/FORCe/DISPlacement record naming
+                                                !< each node (0: none), checked at END
       integer :: region = 0                     !< REGIon of the elements that follow
       integer :: block_mat = 0                  !< material of the previous BLOCk (0: none yet)
       real(wp) :: origin(2) = 0.0_wp            !< SHIFt: centre of POLAr blocks
@@ -98,7 +101,7 @@ contains
       type(builder_t), intent(out) :: b
       integer, parameter :: cap = 64
       allocate (b%m%x(2, cap), b%m%defined(cap), b%m%bc(2, cap), b%m%force(2, cap), &
-                b%m%disp(2, cap), b%m%v0(2, cap), b%nrec(cap))
+                b%m%disp(2, cap), b%m%v0(2, cap), b%nrec(cap), b%vrec(cap))
       b%m%x = 0.0_wp
       b%m%defined = .false.
       b%m%bc = 0
@@ -106,6 +109,7 @@ contains
       b%m%disp = 0.0_wp
       b%m%v0 = 0.0_wp
       b%nrec = 0
+      b%vrec = 0
       allocate (b%m%conn(4, cap), b%m%mat(cap), b%m%region(cap), b%edef(cap), b%erec(cap))
       b%m%conn = 0
       b%m%mat = 0
@@ -131,6 +135,7 @@ contains
          call grow(b%m%bc, cap, 2)
          call grow(b%m%defined, cap)
          call grow(b%nrec, cap)
+         call grow(b%vrec, cap)
       end if
       b%m%nnode = max(b%m%nnode, n)
    end subroutine ensure_node
@@ -250,8 +255,22 @@ contains
                    'a different node', err)
          return
       end if
+      if (n > MEMORY_CHECK_FROM) call memory_check(rd, i, what, n, 0, err)
+      if (allocated(err)) return
       call gen_step(g, n, ng, v, codes, nodes, vals, cnt)
    end subroutine node_record
+
+   !> Error naming record `i` when a mesh with node numbers up to `nn` and `ne` elements would
+   !> not fit in memory (exic_io_memory).
+   subroutine memory_check(rd, i, what, nn, ne, err)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i, nn, ne
+      character(len=*), intent(in) :: what
+      type(error_t), allocatable, intent(out) :: err
+      character(len=:), allocatable :: msg
+      msg = mesh_memory_message(nn, ne)
+      if (len(msg) > 0) call fail(rd, i, what//': '//msg, err)
+   end subroutine memory_check
 
    !> Read a node-vector data set (ended by a blank record) into (nodes, vals).
    subroutine node_set(rd, what, codes, nodes, vals, cnt, err, recs)
@@ -314,10 +333,12 @@ contains
       integer, allocatable :: nodes(:)
       real(wp), allocatable :: vals(:, :)
       integer :: cnt, k
-      call node_set(rd, 'BOUNdary record n, ng, c1, c2', .true., nodes, vals, cnt, err)
+      integer, allocatable :: recs(:)
+      call node_set(rd, 'BOUNdary record n, ng, c1, c2', .true., nodes, vals, cnt, err, recs)
       if (allocated(err)) return
       do k = 1, cnt
          call ensure_node(b, nodes(k))
+         b%vrec(nodes(k)) = recs(k)
          b%m%bc(:, nodes(k)) = merge(1, 0, vals(:, k) /= 0.0_wp)
       end do
    end subroutine cmd_boundary
@@ -331,14 +352,16 @@ contains
       integer, allocatable :: nodes(:)
       real(wp), allocatable :: vals(:, :)
       integer :: cnt, k
+      integer, allocatable :: recs(:)
       if (is_force) then
-         call node_set(rd, 'FORCe record n, ng, f1, f2', .false., nodes, vals, cnt, err)
+         call node_set(rd, 'FORCe record n, ng, f1, f2', .false., nodes, vals, cnt, err, recs)
       else
-         call node_set(rd, 'DISPlacement record n, ng, d1, d2', .false., nodes, vals, cnt, err)
+         call node_set(rd, 'DISPlacement record n, ng, d1, d2', .false., nodes, vals, cnt, err, recs)
       end if
       if (allocated(err)) return
       do k = 1, cnt
          call ensure_node(b, nodes(k))
+         b%vrec(nodes(k)) = recs(k)
          if (is_force) then
             b%m%force(:, nodes(k)) = vals(:, k)
          else
@@ -379,6 +402,8 @@ contains
                       itoa(MAX_NUMBER), err)
             return
          end if
+         if (n > MEMORY_CHECK_FROM) call memory_check(rd, i, what, maxval(nd), n, err)
+         if (allocated(err)) return
          if (n < 1 .or. n <= m) then
             call fail(rd, i, what//': element '//itoa(n)//': expected an element number above '// &
                       itoa(m)//' (elements in increasing order)', err)

@@ -1,31 +1,38 @@
-!> Full-field output: `<stem>.h5` (HDF5) described by `<stem>.xdmf` (XDMF 3) for ParaView and meshio.
+!> Full-field output: `<stem>.h5` (HDF5) described by two XDMF 3 files, `<stem>.xdmf` (the last
+!> output time alone: meshio.read, meshio convert, ParaView) and `<stem>_series.xdmf` (every
+!> output time: ParaView's Xdmf3 reader). The layout is documented in doc/fields.md.
 !>
 !> The mesh is written once; each output time appends one slab to the extendible datasets under
-!> `/fields` (Fortran shape (component, entity, time); h5py shape (time, entity, component)),
-!> to `/energies/<name>`, then to `/time` and `/step`, and adds a group `/xdmf/NNNNNN` of virtual
-!> datasets that show that slab as plain (entity, component) arrays (nodal vectors padded to 3
-!> components, one cell scalar per stress component). The XDMF file points at those views, so
-!> every XDMF reader, including those that cannot address hyperslabs, reads them directly.
+!> `/fields` (Fortran shape (component, entity, time); h5py shape (time, entity, component)):
+!> the nodal vectors, the contact flag, the element values (stress components and whatever a
+!> material adds, named at `open`) and their area-weighted averages at the nodes; then to
+!> `/energies/<name>`, and last to `/time` and `/step`. The series XDMF file addresses slab k
+!> of these datasets directly (Xdmf3's "file:/dataset|start:stride:count:dims" form); the 2-D
+!> vectors are seen through virtual datasets `/xdmf/<vector>` that pad them to 3 components
+!> (made once at `open`, unlimited in time: nothing per output time). The last output time is
+!> also written as plain arrays into one of two buffers `/last/a`, `/last/b` (alternately, so
+!> that the buffer the `<stem>.xdmf` names is never the one being written).
 !>
-!> Kill safety: after every output time the HDF5 file is flushed (H5Fflush: data, metadata and
-!> superblock on disk) and only then is the XDMF file rewritten, to a temporary name renamed over
-!> the old one, so a run killed at any moment leaves an HDF5 file readable up to its last flushed
-!> output time and an XDMF file that is complete and lists only flushed times. The default
-!> (version 0) superblock has no "file open" flag, so no repair step is needed after a kill.
-!> The layout is documented in doc/fields.md.
+!> Kill safety: after every output time the HDF5 file is flushed (H5Fflush) and only then are
+!> the XDMF files updated: the series is appended to in place by writes each of which leaves a
+!> well-formed document (exic_io_xdmf), the last-state file is written to a temporary name and
+!> renamed. A run killed at any moment leaves an HDF5 file readable up to its last flushed
+!> output time and XDMF files that parse and name only flushed times.
 module exic_io_fields
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa
    use exic_base_error, only: error_t, make_error
+   use exic_mesh_smoothing, only: nodal_average
    use exic_io_hdf5_file, only: hdf5_file_t, DTYPE_REAL, DTYPE_INT, DTYPE_INT64
-   use exic_io_posix, only: rename_file
+   use exic_io_xdmf, only: xdmf_series_t, write_whole_file, xml_escape, real_text, data_item, &
+                           attribute
    implicit none
    private
 
-   public :: field_writer_t, STRESS_NAMES, NODE_VECTORS
+   public :: field_writer_t, STRESS_NAMES, NODE_VECTORS, series_path
 
    !> Names of the seven stress components (TPLOt order: 1 sxx, 2 syy, 3 szz, 4 sxy,
-   !> 5 pressure, 6 von Mises, 7 J), as they appear in the XDMF file and in `/fields/stress`.
+   !> 5 pressure, 6 von Mises, 7 J): the default element values, in `/fields/stress`.
    character(len=9), parameter :: STRESS_NAMES(7) = [character(len=9) :: 'sxx', 'syy', 'szz', &
                                                      'sxy', 'pressure', 'von_mises', 'J']
    !> Names of the nodal vector fields, datasets `/fields/<name>`; the last, the nodal friction
@@ -33,49 +40,63 @@ module exic_io_fields
    character(len=14), parameter :: NODE_VECTORS(5) = [character(len=14) :: 'displacement', &
                                                       'velocity', 'acceleration', 'contact_force', &
                                                       'friction_force']
+   !> The two last-state buffers, `/last/a` and `/last/b`.
+   character(len=1), parameter :: BUFFER(0:1) = ['a', 'b']
 
    character(len=*), parameter :: NL = achar(10)
 
-   !> Writer of one field output file pair (`.h5` + `.xdmf`).
+   !> Writer of one field output (`.h5`, `.xdmf`, `_series.xdmf`).
    type :: field_writer_t
       private
       type(hdf5_file_t) :: h5
-      character(len=:), allocatable :: xdmf_path   !< the .xdmf file
-      character(len=:), allocatable :: h5_ref      !< the .h5 file as the .xdmf names it
+      type(xdmf_series_t) :: series                 !< <stem>_series.xdmf
+      character(len=:), allocatable :: last_path    !< <stem>.xdmf
+      character(len=:), allocatable :: h5_ref       !< the .h5 file as the XDMF files name it
       integer :: nnode = 0, nelem = 0
       integer :: nvec = 4                           !< nodal vectors written (5: with friction_force)
+      integer :: ncomp = 0                          !< element value components
+      character(len=16), allocatable :: comp_names(:)
+      real(wp), allocatable :: x0(:, :)             !< reference coordinates (2, nnode)
+      integer, allocatable :: conn(:, :)            !< connectivity (4, nelem), 1-based
+      real(wp), allocatable :: x(:, :), vec3(:, :), nodal(:, :), col_cell(:), col_node(:)
       integer :: ntime = 0                          !< output times written so far
       real(wp) :: t_last = 0.0_wp
       integer :: nenergy = -1                       !< -1 until the first write_step
       character(len=:), allocatable :: energy_names(:)
-      character(len=:), allocatable :: grids        !< XDMF text of every grid written so far
-      integer :: grids_len = 0
-      logical :: broken = .false.                   !< an HDF5 write failed half-way
+      logical :: broken = .false.                   !< a write failed half-way
    contains
       procedure :: open => writer_open
       procedure :: write_step => writer_write_step
       procedure :: close => writer_close
+      procedure :: mark_failed => writer_mark_failed
       procedure :: is_open => writer_is_open
       procedure :: count => writer_count
    end type field_writer_t
 
 contains
 
-   !> Create `path_h5` and `path_xdmf` and write the mesh: reference coordinates x0(2, nnode),
-   !> connectivity conn(4, nelem) (1-based here; stored 0-based), region and material numbers
-   !> per element, and the contact edges surf_edges(2, nedge) (node pairs, 1-based; may be empty).
-   !> Both files must be in one directory unless `path_h5` is absolute. `friction`: the run has
-   !> friction; every output time then also holds the nodal friction force.
+   !> Create `path_h5`, `path_xdmf` and its series file (`series_path(path_xdmf)`) and write the
+   !> mesh: reference coordinates x0(2, nnode), connectivity conn(4, nelem) (1-based here; stored
+   !> 0-based), region and material numbers per element, and the contact edges surf_edges(2, nedge)
+   !> (node pairs, 1-based; may be empty). `cell_names` names the element values of each output
+   !> time (default STRESS_NAMES; letters, digits and '_'). `energy_names`, when given, creates the
+   !> energy series now instead of at the first output time (then every object of the file exists
+   !> after `open`, as HDF5's single-writer/multiple-reader mode requires). The files must share
+   !> one directory unless `path_h5` is absolute. `friction`: the run has friction; every output
+   !> time then also holds the nodal friction force.
    subroutine writer_open(self, path_h5, path_xdmf, nnode, nelem, x0, conn, region, mat, &
-                          surf_edges, err, friction)
+                          surf_edges, err, cell_names, energy_names, friction)
       class(field_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path_h5, path_xdmf
       integer, intent(in) :: nnode, nelem
       real(wp), intent(in), contiguous :: x0(:, :)
       integer, intent(in), contiguous :: conn(:, :), region(:), mat(:), surf_edges(:, :)
       type(error_t), allocatable, intent(out) :: err
+      character(len=*), intent(in), optional :: cell_names(:)
+      character(len=*), intent(in), optional :: energy_names(:)
       logical, intent(in), optional :: friction
       type(error_t), allocatable :: err2
+      character(len=:), allocatable :: ref
 
       if (self%h5%is_open()) then
          call make_error(err, "field output: cannot open '"//path_h5//"': the writer already has '"// &
@@ -84,38 +105,59 @@ contains
       end if
       call check_mesh(nnode, nelem, x0, conn, region, mat, surf_edges, path_h5, err)
       if (allocated(err)) return
-      call xdmf_reference(path_h5, path_xdmf, self%h5_ref, err)
+      if (present(cell_names)) then
+         call check_names(cell_names, 'element value', err)
+         if (allocated(err)) return
+         self%comp_names = cell_names
+      else
+         self%comp_names = STRESS_NAMES
+      end if
+      call xdmf_reference(path_h5, path_xdmf, ref, err)
       if (allocated(err)) return
 
-      self%xdmf_path = path_xdmf
+      self%h5_ref = xml_escape(ref, dash=.true.)
+      self%last_path = path_xdmf
       self%nnode = nnode
       self%nelem = nelem
       self%nvec = 4
       if (present(friction)) then
          if (friction) self%nvec = 5
       end if
+      self%ncomp = size(self%comp_names)
+      self%x0 = x0
+      self%conn = conn
+      if (allocated(self%x)) deallocate (self%x, self%vec3, self%nodal, self%col_cell, self%col_node)
+      allocate (self%x(2, nnode), self%vec3(3, nnode), self%nodal(self%ncomp, nnode), &
+                self%col_cell(nelem), self%col_node(nnode))
       self%ntime = 0
       self%t_last = 0.0_wp
       self%nenergy = -1
-      self%grids_len = 0
       self%broken = .false.
       if (allocated(self%energy_names)) deallocate (self%energy_names)
 
       call self%h5%create(path_h5, err)
       if (allocated(err)) return
       call write_mesh(self%h5, x0, conn, region, mat, surf_edges, err)
-      if (.not. allocated(err)) call create_field_series(self%h5, nnode, nelem, self%nvec, err)
+      if (.not. allocated(err)) call create_field_series(self, err)
+      if (.not. allocated(err)) call create_last_buffers(self, err)
+      if (.not. allocated(err) .and. present(energy_names)) call create_energy_series(self, energy_names, err)
       if (.not. allocated(err)) call self%h5%flush(err)
-      if (.not. allocated(err)) call write_xdmf(self, err)
-      if (allocated(err)) call self%h5%close(err2)
+      if (.not. allocated(err)) call self%series%create(series_path(path_xdmf), series_head(), &
+                                                        series_tail(), err)
+      if (.not. allocated(err)) call write_whole_file(self%last_path, last_document(self, -1, 0.0_wp, &
+                                                                                    0_i8), err)
+      if (allocated(err)) then
+         call self%series%abandon()
+         call self%h5%close(err2)
+      end if
    end subroutine writer_open
 
    !> Append one output time t (solver step `step`): nodal displacement u, velocity v,
    !> acceleration a and contact force fcont, each (2, nnode); the contact flag active(nnode)
-   !> (1 where a node carries an active constraint); the stress sig(7, nelem) (sxx, syy, szz,
-   !> sxy, pressure, von Mises, J); and the energies with their names (the same names, in the
-   !> same order, at every call); ffric(2, nnode), the nodal friction force, when the writer was
-   !> opened with friction. Flushes the .h5 file, then rewrites the .xdmf file.
+   !> (1 where a node carries an active constraint); the element values sig(ncomp, nelem) (by
+   !> default the stress: sxx, syy, szz, sxy, pressure, von Mises, J), averaged to the nodes here;
+   !> and the energies with their names (the same names, in the same order, at every call);
+   !> ffric(2, nnode), the nodal friction force, when the writer was opened with friction. Flushes the .h5 file, then appends to the series XDMF file and rewrites the last-state one.
    subroutine writer_write_step(self, t, step, u, v, a, sig, fcont, active, energies, &
                                 energy_names, err, ffric)
       class(field_writer_t), intent(inout) :: self
@@ -127,7 +169,7 @@ contains
       character(len=*), intent(in) :: energy_names(:)
       type(error_t), allocatable, intent(out) :: err
       real(wp), intent(in), contiguous, optional :: ffric(:, :)
-      integer :: i
+      integer :: i, b
 
       call check_step(self, t, u, v, a, sig, fcont, active, energies, energy_names, err)
       if (allocated(err)) return
@@ -143,6 +185,9 @@ contains
          call create_energy_series(self, energy_names, err)
          if (allocated(err)) return
       end if
+      ! element values averaged to the nodes over the current configuration
+      self%x = self%x0 + u
+      call nodal_average(self%ncomp, self%nnode, self%nelem, self%conn, self%x, sig, self%nodal)
 
       call self%h5%append('/fields/displacement', u, err)
       if (.not. allocated(err)) call self%h5%append('/fields/velocity', v, err)
@@ -151,6 +196,7 @@ contains
       if (.not. allocated(err) .and. self%nvec == 5) call self%h5%append('/fields/friction_force', ffric, err)
       if (.not. allocated(err)) call self%h5%append('/fields/contact_active', active, err)
       if (.not. allocated(err)) call self%h5%append('/fields/stress', sig, err)
+      if (.not. allocated(err)) call self%h5%append('/fields/nodal_stress', self%nodal, err)
       do i = 1, size(energies)
          if (allocated(err)) exit
          call self%h5%append('/energies/'//trim(self%energy_names(i)), energies(i), err)
@@ -158,20 +204,30 @@ contains
       ! /time and /step last: their length is the number of complete output times
       if (.not. allocated(err)) call self%h5%append('/time', t, err)
       if (.not. allocated(err)) call self%h5%append('/step', step, err)
-      if (.not. allocated(err)) call create_views(self%h5, self%ntime, self%nnode, self%nelem, self%nvec, t, step, err)
+      b = mod(self%ntime, 2)
+      if (.not. allocated(err)) call write_last_buffer(self, b, u, v, a, fcont, active, sig, err)
+      if (.not. allocated(err) .and. self%nvec == 5) then
+         self%vec3(1:2, :) = ffric
+         call self%h5%rewrite('/last/'//BUFFER(b)//'/friction_force', self%vec3, err)
+      end if
       if (.not. allocated(err)) call self%h5%flush(err)
+      if (.not. allocated(err)) then
+         self%ntime = self%ntime + 1
+         self%t_last = t
+         ! only now, with the HDF5 file complete on disk, do the XDMF files name this time
+         call self%series%append(series_grid(self, self%ntime - 1, t), err)
+         if (.not. allocated(err)) &
+            call write_whole_file(self%last_path, last_document(self, b, t, step), err)
+      end if
       if (allocated(err)) then
          self%broken = .true.
          err%message = 'field output at t = '//real_text(t)//': '//err%message
-         return
       end if
-      self%ntime = self%ntime + 1
-      self%t_last = t
-      call append_text(self%grids, self%grids_len, grid_xml(self, self%ntime - 1, t))
-      call write_xdmf(self, err)
    end subroutine writer_write_step
 
-   !> Flush and close the .h5 file (the .xdmf file is already complete). No-op when not open.
+   !> Flush and close the .h5 file and write the series file once more without its reserve (the
+   !> last-state file is complete already). Every file is closed even when one step fails; the
+   !> first failure is returned. No-op when not open.
    subroutine writer_close(self, err)
       class(field_writer_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
@@ -180,7 +236,20 @@ contains
       call self%h5%flush(err)
       call self%h5%close(err2)
       if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
+      call self%series%finish(err2)
+      if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
+      call self%series%abandon()
    end subroutine writer_close
+
+   !> Record that the run failed: the root attribute `failed` of the .h5 file holds `message`
+   !> (the last output time is then the state the run stopped in), flushed at once.
+   subroutine writer_mark_failed(self, message, err)
+      class(field_writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: message
+      type(error_t), allocatable, intent(out) :: err
+      call self%h5%write_attr('/', 'failed', message, err)
+      if (.not. allocated(err)) call self%h5%flush(err)
+   end subroutine writer_mark_failed
 
    !> True between a successful `open` and `close`.
    logical function writer_is_open(self)
@@ -193,6 +262,21 @@ contains
       class(field_writer_t), intent(in) :: self
       writer_count = self%ntime
    end function writer_count
+
+   !> The series XDMF file of the last-state file `path_xdmf`: '<stem>_series.xdmf'.
+   function series_path(path_xdmf) result(path)
+      character(len=*), intent(in) :: path_xdmf
+      character(len=:), allocatable :: path
+      integer :: n
+      n = len(path_xdmf)
+      if (n > 5) then
+         if (path_xdmf(n - 4:) == '.xdmf') then
+            path = path_xdmf(:n - 5)//'_series.xdmf'
+            return
+         end if
+      end if
+      path = path_xdmf//'_series.xdmf'
+   end function series_path
 
    ! ---------------------------------------------------------------------------- checks
 
@@ -251,8 +335,8 @@ contains
          call make_error(err, pre//'u, v, a and contact force must have shape (2, nnode)')
       else if (size(active) /= self%nnode) then
          call make_error(err, pre//'the contact flags must have nnode entries')
-      else if (any(shape(sig) /= [7, self%nelem])) then
-         call make_error(err, pre//'stress must have shape (7, nelem)')
+      else if (any(shape(sig) /= [self%ncomp, self%nelem])) then
+         call make_error(err, pre//'element values must have shape ('//itoa(self%ncomp)//', nelem)')
       else if (.not. (abs(t) <= huge(t))) then
          call make_error(err, pre//'the time is not a finite number')
       else if (self%ntime > 0 .and. .not. (t > self%t_last)) then
@@ -276,6 +360,31 @@ contains
       end if
    end subroutine check_step
 
+   !> Names of datasets and XDMF attributes: non-empty, letters, digits and '_' only, distinct.
+   subroutine check_names(names, what, err)
+      character(len=*), intent(in) :: names(:), what
+      type(error_t), allocatable, intent(out) :: err
+      character(len=*), parameter :: allowed = 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_'
+      integer :: i, j
+      if (size(names) == 0) then
+         call make_error(err, 'field output: no '//what//' names given')
+         return
+      end if
+      do i = 1, size(names)
+         if (len_trim(names(i)) == 0 .or. verify(trim(names(i)), allowed) /= 0 .or. len_trim(names(i)) > 16) then
+            call make_error(err, "field output: "//what//" name '"//trim(names(i))// &
+                            "' must be 1 to 16 letters, digits or '_'")
+            return
+         end if
+         do j = 1, i - 1
+            if (trim(names(j)) == trim(names(i))) then
+               call make_error(err, "field output: "//what//" name '"//trim(names(i))//"' given twice")
+               return
+            end if
+         end do
+      end do
+   end subroutine check_names
+
    ! ---------------------------------------------------------------------------- HDF5 content
 
    !> Write the /mesh group and the file's identification attributes.
@@ -287,7 +396,7 @@ contains
       integer, allocatable :: base0(:, :)
 
       call h5%write_attr('/', 'format', 'exic fields', err)
-      if (.not. allocated(err)) call h5%write_attr('/', 'format_version', 1, err)
+      if (.not. allocated(err)) call h5%write_attr('/', 'format_version', 2, err)
       if (.not. allocated(err)) call h5%write_attr('/', 'nnode', size(x0, 2), err)
       if (.not. allocated(err)) call h5%write_attr('/', 'nelem', size(conn, 2), err)
       if (.not. allocated(err)) call h5%write_attr('/', 'units', &
@@ -310,32 +419,108 @@ contains
                                                    'node pairs of the contact surface edges, 0-based', err)
    end subroutine write_mesh
 
-   !> Create the empty series /time, /step and /fields/*, and the groups /energies and /xdmf.
-   subroutine create_field_series(h5, nnode, nelem, nvec, err)
-      type(hdf5_file_t), intent(inout) :: h5
-      integer, intent(in) :: nnode, nelem, nvec
+   !> Create the empty series /time, /step and /fields/*, the groups /energies and /xdmf, and the
+   !> 3-component views /xdmf/<vector> of the nodal vectors (unlimited in time).
+   subroutine create_field_series(self, err)
+      type(field_writer_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
-      integer :: i
+      integer :: i, nn, ne
       integer :: none(0)
+      character(len=:), allocatable :: f
 
-      call h5%create_series('/time', DTYPE_REAL, none, err)
-      if (.not. allocated(err)) call h5%create_series('/step', DTYPE_INT64, none, err)
-      if (.not. allocated(err)) call h5%create_group('/fields', err)
-      do i = 1, nvec
-         if (allocated(err)) return
-         call h5%create_series('/fields/'//trim(NODE_VECTORS(i)), DTYPE_REAL, [2, nnode], err)
-         if (.not. allocated(err)) call h5%write_attr('/fields/'//trim(NODE_VECTORS(i)), 'center', &
-                                                      'node', err)
-      end do
-      if (.not. allocated(err)) call h5%create_series('/fields/contact_active', DTYPE_INT, [nnode], err)
-      if (.not. allocated(err)) call h5%write_attr('/fields/contact_active', 'center', 'node', err)
-      if (.not. allocated(err)) call h5%create_series('/fields/stress', DTYPE_REAL, [7, nelem], err)
-      if (.not. allocated(err)) call h5%write_attr('/fields/stress', 'center', 'cell', err)
-      if (.not. allocated(err)) call h5%write_attr('/fields/stress', 'components', &
-                                                   join(STRESS_NAMES), err)
-      if (.not. allocated(err)) call h5%create_group('/energies', err)
-      if (.not. allocated(err)) call h5%create_group('/xdmf', err)
+      nn = self%nnode
+      ne = self%nelem
+      associate (h5 => self%h5)
+         call h5%create_series('/time', DTYPE_REAL, none, err)
+         if (.not. allocated(err)) call h5%create_series('/step', DTYPE_INT64, none, err)
+         if (.not. allocated(err)) call h5%create_group('/fields', err)
+         if (.not. allocated(err)) call h5%create_group('/xdmf', err)
+         do i = 1, self%nvec
+            if (allocated(err)) return
+            f = trim(NODE_VECTORS(i))
+            call h5%create_series('/fields/'//f, DTYPE_REAL, [2, nn], err)
+            if (.not. allocated(err)) call h5%write_attr('/fields/'//f, 'center', 'node', err)
+            if (.not. allocated(err)) call h5%create_series_view('/xdmf/'//f, '/fields/'//f, DTYPE_REAL, &
+                                                                  [3, nn], [0, 0], [2, nn], [0, 0], [2, nn], err)
+            if (.not. allocated(err)) call h5%write_attr('/xdmf/'//f, 'description', '/fields/'//f// &
+                                                         ' with a third (z) component 0, for XDMF readers', err)
+         end do
+         if (.not. allocated(err)) call h5%create_series('/fields/contact_active', DTYPE_INT, [nn], err)
+         if (.not. allocated(err)) call h5%write_attr('/fields/contact_active', 'center', 'node', err)
+         if (.not. allocated(err)) call h5%create_series('/fields/stress', DTYPE_REAL, [self%ncomp, ne], err)
+         if (.not. allocated(err)) call h5%write_attr('/fields/stress', 'center', 'cell', err)
+         if (.not. allocated(err)) call h5%write_attr('/fields/stress', 'components', join(self%comp_names), err)
+         if (.not. allocated(err)) call h5%create_series('/fields/nodal_stress', DTYPE_REAL, [self%ncomp, nn], err)
+         if (.not. allocated(err)) call h5%write_attr('/fields/nodal_stress', 'center', 'node', err)
+         if (.not. allocated(err)) call h5%write_attr('/fields/nodal_stress', 'components', &
+                                                      join(self%comp_names), err)
+         if (.not. allocated(err)) call h5%write_attr('/fields/nodal_stress', 'description', &
+                                                      'element values averaged at the nodes, weighted by '// &
+                                                      'the current element areas', err)
+         if (.not. allocated(err)) call h5%create_group('/energies', err)
+      end associate
    end subroutine create_field_series
+
+   !> Create the two last-state buffers /last/a and /last/b: plain arrays of one output time.
+   subroutine create_last_buffers(self, err)
+      type(field_writer_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      real(wp), allocatable :: zero3(:, :), zero_node(:), zero_cell(:)
+      integer, allocatable :: izero(:)
+      character(len=:), allocatable :: g
+      integer :: b, i
+
+      allocate (zero3(3, self%nnode), zero_node(self%nnode), zero_cell(self%nelem), source=0.0_wp)
+      allocate (izero(self%nnode), source=0)
+      call self%h5%create_group('/last', err)
+      do b = 0, 1
+         if (allocated(err)) return
+         g = '/last/'//BUFFER(b)
+         call self%h5%create_group(g, err)
+         if (.not. allocated(err)) call self%h5%write(g//'/output', [-1], err)
+         do i = 1, self%nvec
+            if (.not. allocated(err)) call self%h5%write(g//'/'//trim(NODE_VECTORS(i)), zero3, err)
+         end do
+         if (.not. allocated(err)) call self%h5%write(g//'/contact_active', izero, err)
+         do i = 1, self%ncomp
+            if (.not. allocated(err)) call self%h5%write(g//'/cell_'//trim(self%comp_names(i)), zero_cell, err)
+            if (.not. allocated(err)) call self%h5%write(g//'/node_'//trim(self%comp_names(i)), zero_node, err)
+         end do
+      end do
+   end subroutine create_last_buffers
+
+   !> Write the output time (index self%ntime) into buffer b: the vectors padded to 3 components,
+   !> the contact flag, each element value component and its nodal average.
+   subroutine write_last_buffer(self, b, u, v, a, fcont, active, sig, err)
+      type(field_writer_t), intent(inout) :: self
+      integer, intent(in) :: b
+      real(wp), intent(in) :: u(:, :), v(:, :), a(:, :), fcont(:, :), sig(:, :)
+      integer, intent(in), contiguous :: active(:)
+      type(error_t), allocatable, intent(out) :: err
+      character(len=:), allocatable :: g
+      integer :: i
+
+      g = '/last/'//BUFFER(b)
+      self%vec3(3, :) = 0.0_wp
+      self%vec3(1:2, :) = u
+      call self%h5%rewrite(g//'/displacement', self%vec3, err)
+      self%vec3(1:2, :) = v
+      if (.not. allocated(err)) call self%h5%rewrite(g//'/velocity', self%vec3, err)
+      self%vec3(1:2, :) = a
+      if (.not. allocated(err)) call self%h5%rewrite(g//'/acceleration', self%vec3, err)
+      self%vec3(1:2, :) = fcont
+      if (.not. allocated(err)) call self%h5%rewrite(g//'/contact_force', self%vec3, err)
+      if (.not. allocated(err)) call self%h5%rewrite(g//'/contact_active', active, err)
+      do i = 1, self%ncomp
+         if (allocated(err)) return
+         self%col_cell = sig(i, :)
+         call self%h5%rewrite(g//'/cell_'//trim(self%comp_names(i)), self%col_cell, err)
+         self%col_node = self%nodal(i, :)
+         if (.not. allocated(err)) call self%h5%rewrite(g//'/node_'//trim(self%comp_names(i)), &
+                                                        self%col_node, err)
+      end do
+      if (.not. allocated(err)) call self%h5%rewrite(g//'/output', [self%ntime], err)
+   end subroutine write_last_buffer
 
    !> Create one series /energies/<name> per energy (at the first output time).
    subroutine create_energy_series(self, names, err)
@@ -377,48 +562,156 @@ contains
       self%nenergy = size(names)
    end subroutine create_energy_series
 
-   !> Create /xdmf/NNNNNN (k = output index, 0-based) holding views of slab k of every field.
-   subroutine create_views(h5, k, nnode, nelem, nvec, t, step, err)
-      type(hdf5_file_t), intent(inout) :: h5
-      integer, intent(in) :: k, nnode, nelem, nvec
+   ! ---------------------------------------------------------------------------- XDMF text
+
+   !> The series file up to its first grid.
+   function series_head() result(s)
+      character(len=:), allocatable :: s
+      s = '<?xml version="1.0" ?>'//NL// &
+          '<!-- exic field output: every output time, for the Xdmf3 readers of ParaView. The last'//NL// &
+          '     time alone, for every reader (meshio too), is in the .xdmf file without _series.'//NL// &
+          '     Blank space before the closing tags is room for the next output times. -->'//NL// &
+          '<Xdmf Version="3.0">'//NL// &
+          '  <Domain>'//NL// &
+          '    <Grid Name="exic" GridType="Collection" CollectionType="Temporal">'//NL
+   end function series_head
+
+   !> The series file after its last grid.
+   function series_tail() result(s)
+      character(len=:), allocatable :: s
+      s = '    </Grid>'//NL//'  </Domain>'//NL//'</Xdmf>'//NL
+   end function series_tail
+
+   !> Topology and geometry (the reference mesh) of a grid.
+   function mesh_items(self) result(s)
+      type(field_writer_t), intent(in) :: self
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: f
+      f = self%h5_ref//':'
+      s = '        <Topology TopologyType="Quadrilateral" NumberOfElements="'//itoa(self%nelem)//'">'//NL// &
+          data_item(itoa(self%nelem)//' 4', 'Int', '4', f//'/mesh/connectivity')// &
+          '        </Topology>'//NL// &
+          '        <Geometry GeometryType="XY">'//NL// &
+          data_item(itoa(self%nnode)//' 2', 'Float', '8', f//'/mesh/coordinates')// &
+          '        </Geometry>'//NL
+   end function mesh_items
+
+   !> Region and material of every element.
+   function static_attributes(self) result(s)
+      type(field_writer_t), intent(in) :: self
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: f
+      f = self%h5_ref//':'
+      s = attribute('region', 'Scalar', 'Cell', data_item(itoa(self%nelem), 'Int', '4', f//'/mesh/region'))// &
+          attribute('material', 'Scalar', 'Cell', data_item(itoa(self%nelem), 'Int', '4', f//'/mesh/material'))
+   end function static_attributes
+
+   !> The grid of output k (0-based) at time t in the series file: slab k of the datasets, in
+   !> Xdmf3's form "file:/dataset|start:stride:count:dims" (C order, time first). Indented for
+   !> the four blanks exic_io_xdmf puts before it, without a final newline.
+   function series_grid(self, k, t) result(s)
+      type(field_writer_t), intent(in) :: self
+      integer, intent(in) :: k
       real(wp), intent(in) :: t
-      integer(i8), intent(in) :: step
-      type(error_t), allocatable, intent(out) :: err
-      character(len=:), allocatable :: g
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: nn, ne, nc
       integer :: i
 
-      g = '/xdmf/'//view_group(k)
-      call h5%create_group(g, err)
-      if (.not. allocated(err)) call h5%write_attr(g, 'time', t, err)
-      if (.not. allocated(err)) call h5%write_attr(g, 'step', step, err)
-      ! nodal vectors (2, nnode, k) -> (3, nnode), third component zero
-      do i = 1, nvec
-         if (allocated(err)) return
-         call h5%create_view(g//'/'//trim(NODE_VECTORS(i)), '/fields/'//trim(NODE_VECTORS(i)), &
-                             DTYPE_REAL, [3, nnode], [0, 0], [2, nnode], [0, 0, k], [2, nnode, 1], err)
+      nn = itoa(self%nnode)
+      ne = itoa(self%nelem)
+      nc = itoa(self%ncomp)
+      s = '  <Grid Name="t'//six_digits(k)//'" GridType="Uniform">'//NL// &
+          '        <Time Value="'//real_text(t)//'"/>'//NL//mesh_items(self)
+      do i = 1, self%nvec
+         s = s//attribute(trim(NODE_VECTORS(i)), 'Vector', 'Node', data_item(nn//' 3', 'Float', '8', &
+                          slab(self, '/xdmf/'//trim(NODE_VECTORS(i)), k, '0 0', '1 1', nn//' 3', nn//' 3')))
       end do
-      if (.not. allocated(err)) call h5%create_view(g//'/contact_active', '/fields/contact_active', &
-                                                    DTYPE_INT, [nnode], [0], [nnode], [0, k], [nnode, 1], err)
-      ! stress (7, nelem, k) -> one (7, nelem) view, read as an (nelem, 7) matrix: one view
-      ! instead of seven halves the fixed cost of an output time (views are the costly part)
-      if (.not. allocated(err)) call h5%create_view(g//'/stress', '/fields/stress', DTYPE_REAL, [7, nelem], &
-                                                    [0, 0], [7, nelem], [0, 0, k], [7, nelem, 1], err)
-   end subroutine create_views
+      s = s//attribute('contact_active', 'Scalar', 'Node', data_item(nn, 'Int', '4', &
+                       slab(self, '/fields/contact_active', k, '0', '1', nn, nn)))
+      do i = 1, self%ncomp
+         s = s//attribute(trim(self%comp_names(i)), 'Scalar', 'Cell', data_item(ne, 'Float', '8', &
+                          slab(self, '/fields/stress', k, '0 '//itoa(i - 1), '1 1', ne//' 1', ne//' '//nc)))
+      end do
+      do i = 1, self%ncomp
+         s = s//attribute(trim(self%comp_names(i)), 'Scalar', 'Node', data_item(nn, 'Float', '8', &
+                          slab(self, '/fields/nodal_stress', k, '0 '//itoa(i - 1), '1 1', nn//' 1', nn//' '//nc)))
+      end do
+      s = s//static_attributes(self)//'      </Grid>'
+   end function series_grid
 
-   !> Name of the view group of output index k: six digits at least.
-   function view_group(k) result(name)
+   !> "file:dataset|k start:1 stride:1 count:k+1 dims": slab k of a series, C order.
+   function slab(self, dataset, k, start, stride, count, dims) result(s)
+      type(field_writer_t), intent(in) :: self
+      character(len=*), intent(in) :: dataset, start, stride, count, dims
+      integer, intent(in) :: k
+      character(len=:), allocatable :: s
+      s = self%h5_ref//':'//dataset//'|'//itoa(k)//' '//start//':1 '//stride//':1 '//count//':'// &
+          itoa(k + 1)//' '//dims
+   end function slab
+
+   !> The last-state file: output k (0-based; -1 before the first: the mesh alone) at time t,
+   !> solver step `step`, held in buffer b; plain datasets only, one Uniform grid, no Time element
+   !> (meshio.read accepts exactly this).
+   function last_document(self, b, t, step) result(s)
+      type(field_writer_t), intent(in) :: self
+      integer, intent(in) :: b
+      real(wp), intent(in) :: t
+      integer(i8), intent(in) :: step
+      character(len=:), allocatable :: s
+      character(len=:), allocatable :: nn, ne, g, name
+      integer :: i
+
+      nn = itoa(self%nnode)
+      ne = itoa(self%nelem)
+      if (b < 0) then
+         name = 'exic mesh (no output time yet)'
+      else
+         name = 'exic t = '//real_text(t)//', step '//step_text(step)//', output '//itoa(self%ntime - 1)
+      end if
+      s = '<?xml version="1.0" ?>'//NL// &
+          '<!-- exic field output: the last output time (every one: the _series.xdmf file) -->'//NL// &
+          '<Xdmf Version="3.0">'//NL//'  <Domain>'//NL// &
+          '    <Grid Name="'//name//'" GridType="Uniform">'//NL//mesh_items(self)
+      if (b >= 0) then
+         g = self%h5_ref//':/last/'//BUFFER(b)//'/'
+         do i = 1, self%nvec
+            s = s//attribute(trim(NODE_VECTORS(i)), 'Vector', 'Node', &
+                             data_item(nn//' 3', 'Float', '8', g//trim(NODE_VECTORS(i))))
+         end do
+         s = s//attribute('contact_active', 'Scalar', 'Node', data_item(nn, 'Int', '4', g//'contact_active'))
+         do i = 1, self%ncomp
+            s = s//attribute(trim(self%comp_names(i)), 'Scalar', 'Cell', &
+                             data_item(ne, 'Float', '8', g//'cell_'//trim(self%comp_names(i))))
+         end do
+         do i = 1, self%ncomp
+            s = s//attribute(trim(self%comp_names(i)), 'Scalar', 'Node', &
+                             data_item(nn, 'Float', '8', g//'node_'//trim(self%comp_names(i))))
+         end do
+      end if
+      s = s//static_attributes(self)//'    </Grid>'//NL//'  </Domain>'//NL//'</Xdmf>'//NL
+   end function last_document
+
+   !> A 64-bit step number as text.
+   function step_text(step) result(s)
+      integer(i8), intent(in) :: step
+      character(len=:), allocatable :: s
+      character(len=24) :: buf
+      write (buf, '(i0)') step
+      s = trim(buf)
+   end function step_text
+
+   !> k with six digits at least.
+   function six_digits(k) result(name)
       integer, intent(in) :: k
       character(len=:), allocatable :: name
       character(len=16) :: buf
       write (buf, '(i6.6)') k
       if (k >= 1000000) write (buf, '(i0)') k
       name = trim(buf)
-   end function view_group
+   end function six_digits
 
-   ! ---------------------------------------------------------------------------- XDMF
-
-   !> How the .xdmf file names the .h5 file: its base name when both share a directory, else the
-   !> absolute path. XDMF uses ':' to separate file and dataset, so the name may not contain one.
+   !> How the XDMF files name the .h5 file: its base name when both share a directory, else the
+   !> absolute path. XDMF separates file and dataset by ':' and Xdmf3 a selection by '|': the name has neither.
    subroutine xdmf_reference(path_h5, path_xdmf, ref, err)
       character(len=*), intent(in) :: path_h5, path_xdmf
       character(len=:), allocatable, intent(out) :: ref
@@ -436,117 +729,11 @@ contains
                          "' must be in one directory (or give the .h5 path absolute)")
          return
       end if
-      if (index(ref, ':') > 0 .or. len(ref) == 0) then
+      if (scan(ref, ':|') > 0 .or. len(ref) == 0) then
          call make_error(err, "field output: the HDF5 file name '"//ref// &
-                         "' must be non-empty and contain no ':'")
+                         "' must be non-empty and contain no ':' or '|'")
       end if
    end subroutine xdmf_reference
-
-   !> XDMF text of the Uniform grid of output index k at time t.
-   function grid_xml(self, k, t) result(s)
-      class(field_writer_t), intent(in) :: self
-      integer, intent(in) :: k
-      real(wp), intent(in) :: t
-      character(len=:), allocatable :: s
-      character(len=:), allocatable :: nn, ne, f, g
-      integer :: i
-
-      nn = itoa(self%nnode)
-      ne = itoa(self%nelem)
-      f = xml_escape(self%h5_ref)//':'
-      g = f//'/xdmf/'//view_group(k)//'/'
-      s = '      <Grid Name="t'//view_group(k)//'" GridType="Uniform">'//NL// &
-          '        <Time Value="'//real_text(t)//'"/>'//NL// &
-          '        <Topology TopologyType="Quadrilateral" NumberOfElements="'//ne//'">'//NL// &
-          data_item(ne//' 4', 'Int', '4', f//'/mesh/connectivity')// &
-          '        </Topology>'//NL// &
-          '        <Geometry GeometryType="XY">'//NL// &
-          data_item(nn//' 2', 'Float', '8', f//'/mesh/coordinates')// &
-          '        </Geometry>'//NL
-      do i = 1, self%nvec
-         s = s//attribute(trim(NODE_VECTORS(i)), 'Vector', 'Node', &
-                          data_item(nn//' 3', 'Float', '8', g//trim(NODE_VECTORS(i))))
-      end do
-      s = s//attribute('contact_active', 'Scalar', 'Node', &
-                       data_item(nn, 'Int', '4', g//'contact_active'))
-      s = s//attribute('stress', 'Matrix', 'Cell', data_item(ne//' 7', 'Float', '8', g//'stress'))
-      s = s//attribute('region', 'Scalar', 'Cell', data_item(ne, 'Int', '4', f//'/mesh/region'))
-      s = s//attribute('material', 'Scalar', 'Cell', data_item(ne, 'Int', '4', f//'/mesh/material'))
-      s = s//'      </Grid>'//NL
-   end function grid_xml
-
-   !> One HDF DataItem line.
-   function data_item(dims, number_type, precision, where) result(s)
-      character(len=*), intent(in) :: dims, number_type, precision, where
-      character(len=:), allocatable :: s
-      s = '          <DataItem Dimensions="'//dims//'" NumberType="'//number_type// &
-          '" Precision="'//precision//'" Format="HDF">'//where//'</DataItem>'//NL
-   end function data_item
-
-   !> One Attribute element around `item`.
-   function attribute(name, attr_type, center, item) result(s)
-      character(len=*), intent(in) :: name, attr_type, center, item
-      character(len=:), allocatable :: s
-      s = '        <Attribute Name="'//name//'" AttributeType="'//attr_type//'" Center="'// &
-          center//'">'//NL//item//'        </Attribute>'//NL
-   end function attribute
-
-   !> Write the whole .xdmf file to '<path>.tmp', then rename it over '<path>'.
-   subroutine write_xdmf(self, err)
-      class(field_writer_t), intent(in) :: self
-      type(error_t), allocatable, intent(out) :: err
-      character(len=*), parameter :: head = &
-         '<?xml version="1.0" ?>'//NL// &
-         '<Xdmf Version="3.0" xmlns:xi="http://www.w3.org/2001/XInclude">'//NL// &
-         '  <Domain>'//NL// &
-         '    <Grid Name="exic" GridType="Collection" CollectionType="Temporal">'//NL
-      character(len=*), parameter :: tail = '    </Grid>'//NL//'  </Domain>'//NL//'</Xdmf>'//NL
-      character(len=:), allocatable :: tmp
-      character(len=256) :: msg
-      integer :: u, ios
-
-      tmp = self%xdmf_path//'.tmp'
-      open (newunit=u, file=tmp, access='stream', form='unformatted', status='replace', &
-            action='write', iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call make_error(err, "field output: cannot write '"//tmp//"': "//trim(msg))
-         return
-      end if
-      if (self%grids_len > 0) then
-         write (u, iostat=ios, iomsg=msg) head, self%grids(1:self%grids_len), tail
-      else
-         write (u, iostat=ios, iomsg=msg) head, tail
-      end if
-      if (ios /= 0) then
-         close (u, status='delete')
-         call make_error(err, "field output: cannot write '"//tmp//"': "//trim(msg))
-         return
-      end if
-      close (u, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         call make_error(err, "field output: cannot close '"//tmp//"': "//trim(msg))
-         return
-      end if
-      call rename_file(tmp, self%xdmf_path, err)
-   end subroutine write_xdmf
-
-   ! ---------------------------------------------------------------------------- text helpers
-
-   !> Append `text` to buf(1:n), growing buf geometrically.
-   subroutine append_text(buf, n, text)
-      character(len=:), allocatable, intent(inout) :: buf
-      integer, intent(inout) :: n
-      character(len=*), intent(in) :: text
-      character(len=:), allocatable :: tmp
-      if (.not. allocated(buf)) allocate (character(len=max(4096, 2*len(text))) :: buf)
-      if (n + len(text) > len(buf)) then
-         allocate (character(len=max(2*len(buf), n + len(text))) :: tmp)
-         tmp(1:n) = buf(1:n)
-         call move_alloc(tmp, buf)
-      end if
-      buf(n + 1:n + len(text)) = text
-      n = n + len(text)
-   end subroutine append_text
 
    !> Names joined by single blanks.
    function join(names) result(s)
@@ -559,36 +746,5 @@ contains
          s = s//trim(names(i))
       end do
    end function join
-
-   !> `s` with &, <, > and " replaced by XML entities.
-   function xml_escape(s) result(r)
-      character(len=*), intent(in) :: s
-      character(len=:), allocatable :: r
-      integer :: i
-      r = ''
-      do i = 1, len(s)
-         select case (s(i:i))
-         case ('&')
-            r = r//'&amp;'
-         case ('<')
-            r = r//'&lt;'
-         case ('>')
-            r = r//'&gt;'
-         case ('"')
-            r = r//'&quot;'
-         case default
-            r = r//s(i:i)
-         end select
-      end do
-   end function xml_escape
-
-   !> Real as text with 17 significant digits (round-trips exactly).
-   function real_text(x) result(s)
-      real(wp), intent(in) :: x
-      character(len=:), allocatable :: s
-      character(len=32) :: buf
-      write (buf, '(es24.16e3)') x
-      s = trim(adjustl(buf))
-   end function real_text
 
 end module exic_io_fields

@@ -1,9 +1,10 @@
 !> A small wrapper over the HDF5 Fortran API.
 !>
-!> `hdf5_file_t` owns one file handle. It creates groups, fixed datasets, extendible "series"
-!> (chunked, unlimited last dimension, grown one slab at a time), virtual "views" of one slab of
-!> a series, and attributes. Every HDF5 status is checked; a failure becomes an `error_t` naming
-!> the operation, the object and the file, and every handle opened on the way is closed again.
+!> `hdf5_file_t` owns one file handle. It creates groups, fixed datasets (written once, or
+!> rewritten whole), extendible "series" (chunked, unlimited last dimension, grown one slab at a
+!> time), virtual "series views" that show a block of every slab of a series, and attributes.
+!> Every HDF5 status is checked; a failure becomes an `error_t` naming the operation, the object
+!> and the file, and every handle opened on the way is closed again.
 !>
 !> Shapes are given in Fortran order. HDF5 stores them reversed, so a Fortran array x(2, n)
 !> reads as shape (n, 2) in C, Python (h5py) and h5dump.
@@ -50,14 +51,18 @@ module exic_io_hdf5_file
       procedure :: create_group => file_create_group
       procedure :: create_series => file_create_series
       procedure :: series_length => file_series_length
-      procedure :: create_view => file_create_view
+      procedure :: create_series_view => file_create_series_view
       procedure :: flush => file_flush
       procedure :: close => file_close
       procedure, private :: write_real1, write_real2, write_int1, write_int2
+      procedure, private :: rewrite_real1, rewrite_real2, rewrite_int1
       procedure, private :: append_real0, append_real1, append_real2, append_int1, append_int64_0
       procedure, private :: attr_real0, attr_real1, attr_int0, attr_int1, attr_int64_0, attr_string
       !> Write a fixed dataset: `call f%write(name, x, err)`, x real(wp) or integer, rank 1 or 2.
       generic :: write => write_real1, write_real2, write_int1, write_int2
+      !> Overwrite the values of an existing fixed dataset of the same shape:
+      !> `call f%rewrite(name, x, err)`, x real(wp) rank 1 or 2, or integer rank 1.
+      generic :: rewrite => rewrite_real1, rewrite_real2, rewrite_int1
       !> Append one slab to a series: `call f%append(name, x, err)`; x has the series' leading shape.
       generic :: append => append_real0, append_real1, append_real2, append_int1, append_int64_0
       !> Write (or replace) an attribute of the object `obj`: `call f%write_attr(obj, name, v, err)`.
@@ -275,6 +280,73 @@ contains
       call close_handles(err, self, name, dset=did, space=space)
    end subroutine write_raw
 
+   !> Overwrite the real(wp) vector dataset `name` with `x` (same shape).
+   subroutine rewrite_real1(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      real(wp), intent(in), target, contiguous :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call rewrite_raw(self, name, DTYPE_REAL, int(shape(x), hsize_t), p, err)
+   end subroutine rewrite_real1
+
+   !> Overwrite the real(wp) matrix dataset `name` with `x` (same shape).
+   subroutine rewrite_real2(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      real(wp), intent(in), target, contiguous :: x(:, :)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call rewrite_raw(self, name, DTYPE_REAL, int(shape(x), hsize_t), p, err)
+   end subroutine rewrite_real2
+
+   !> Overwrite the integer vector dataset `name` with `x` (same shape).
+   subroutine rewrite_int1(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer, intent(in), target, contiguous :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call rewrite_raw(self, name, DTYPE_INT, int(shape(x), hsize_t), p, err)
+   end subroutine rewrite_int1
+
+   !> Write the data at `p` over the whole existing dataset `name`, whose shape must be `dims`.
+   subroutine rewrite_raw(self, name, dtype, dims, p, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: dtype
+      integer(hsize_t), intent(in) :: dims(:)
+      type(c_ptr), intent(in) :: p
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t), allocatable :: have(:)
+      integer(hid_t) :: did
+      integer :: st
+
+      call series_dims(self, name, did, have, err)
+      if (allocated(err)) return
+      steps: block
+         if (size(have) /= size(dims)) then
+            call fail(self, err, 'rewrite with data of another rank', name)
+            exit steps
+         end if
+         if (any(have /= dims)) then
+            call fail(self, err, 'rewrite with data of another shape', name)
+            exit steps
+         end if
+         if (product(dims) > 0) then
+            call h5dwrite_f(did, mem_type(dtype), p, st)
+            if (st < 0) call fail(self, err, 'rewrite dataset', name)
+         end if
+      end block steps
+      call close_handles(err, self, name, dset=did)
+   end subroutine rewrite_raw
+
    ! ---------------------------------------------------------------------------- series
 
    !> Create the extendible dataset `name` of Fortran shape (lead..., 0), unlimited in its last
@@ -335,7 +407,8 @@ contains
       call close_handles(err, self, name, dset=did)
    end subroutine file_series_length
 
-   !> Open the series `name` and return its handle and current dimensions (Fortran order).
+   !> Open the dataset (or series) `name` and return its handle and current dimensions (Fortran
+   !> order).
    subroutine series_dims(self, name, did, dims, err)
       class(hdf5_file_t), intent(inout) :: self
       character(len=*), intent(in) :: name
@@ -479,41 +552,51 @@ contains
 
    ! ---------------------------------------------------------------------------- views
 
-   !> Create the virtual dataset `name` of Fortran shape `view_dims` that shows one hyperslab of
-   !> the dataset `source` (in this file): the block `view_start`, `view_count` of the view maps,
-   !> element by element in storage order, onto `src_start`, `src_count` of the source (0-based
-   !> starts). Unmapped elements of the view read as zero. Readers see an ordinary dataset.
-   subroutine file_create_view(self, name, source, dtype, view_dims, view_start, view_count, &
-                               src_start, src_count, err)
+   !> Create the virtual dataset `name` that shows the whole series `source` at every time,
+   !> now and as the series grows: a series itself, of Fortran shape (view_lead..., unlimited),
+   !> whose block (view_start, view_count) of every slab is the block (src_start, src_count) of
+   !> the same slab of `source` (both in the leading dimensions, 0-based); the rest reads as 0.
+   !> Created once, it costs nothing per output time (the mapping is unlimited in time).
+   subroutine file_create_series_view(self, name, source, dtype, view_lead, view_start, view_count, &
+                                      src_start, src_count, err)
       class(hdf5_file_t), intent(inout) :: self
       character(len=*), intent(in) :: name, source
       integer, intent(in) :: dtype
-      integer, intent(in) :: view_dims(:), view_start(:), view_count(:)
-      integer, intent(in) :: src_start(:), src_count(:)
+      integer, intent(in) :: view_lead(:), view_start(:), view_count(:), src_start(:), src_count(:)
       type(error_t), allocatable, intent(out) :: err
-      integer(hid_t) :: vspace, sspace, dcpl, did, space
-      integer :: st
+      integer(hsize_t) :: dims(size(view_lead) + 1), maxdims(size(view_lead) + 1)
+      integer(hsize_t) :: start(size(view_lead) + 1), count(size(view_lead) + 1)
+      integer(hid_t) :: vspace, sspace, dcpl, did
+      integer :: st, rank
 
-      if (.not. check_open(self, 'create view '//name, err)) return
+      if (.not. check_open(self, 'create series view '//name, err)) return
+      rank = size(view_lead) + 1
       vspace = -1
       sspace = -1
       dcpl = -1
       did = -1
-      space = -1
       steps: block
-         call h5screate_simple_f(size(view_dims), int(view_dims, hsize_t), vspace, st)
-         if (st >= 0) call h5sselect_hyperslab_f(vspace, H5S_SELECT_SET_F, &
-                                                 int(view_start, hsize_t), int(view_count, hsize_t), st)
+         dims(1:rank - 1) = int(view_lead, hsize_t)
+         dims(rank) = 0
+         maxdims = dims
+         maxdims(rank) = H5S_UNLIMITED_F
+         call h5screate_simple_f(rank, dims, vspace, st, maxdims)
+         start(1:rank - 1) = int(view_start, hsize_t)
+         count(1:rank - 1) = int(view_count, hsize_t)
+         start(rank) = 0
+         count(rank) = H5S_UNLIMITED_F
+         if (st >= 0) call h5sselect_hyperslab_f(vspace, H5S_SELECT_SET_F, start, count, st)
          if (st < 0) then
-            call fail(self, err, 'select the mapped block of view', name)
+            call fail(self, err, 'select the mapped block of series view', name)
             exit steps
          end if
          call h5dopen_f(self%fid, source, did, st)
          if (st >= 0) call h5dget_space_f(did, sspace, st)
-         if (st >= 0) call h5sselect_hyperslab_f(sspace, H5S_SELECT_SET_F, &
-                                                 int(src_start, hsize_t), int(src_count, hsize_t), st)
+         start(1:rank - 1) = int(src_start, hsize_t)
+         count(1:rank - 1) = int(src_count, hsize_t)
+         if (st >= 0) call h5sselect_hyperslab_f(sspace, H5S_SELECT_SET_F, start, count, st)
          if (st < 0) then
-            call fail(self, err, 'select the source block '//source//' of view', name)
+            call fail(self, err, 'select the source block '//source//' of series view', name)
             exit steps
          end if
          call h5dclose_f(did, st)
@@ -522,16 +605,14 @@ contains
          if (st >= 0) call set_zero_fill(dcpl, dtype, st)
          if (st >= 0) call h5pset_virtual_f(dcpl, vspace, '.', source, sspace, st)
          if (st < 0) then
-            call fail(self, err, 'map '//source//' into view', name)
+            call fail(self, err, 'map '//source//' into series view', name)
             exit steps
          end if
-         call h5screate_simple_f(size(view_dims), int(view_dims, hsize_t), space, st)
-         if (st >= 0) call h5dcreate_f(self%fid, name, file_type(dtype), space, did, st, dcpl_id=dcpl)
-         if (st < 0) call fail(self, err, 'create view', name)
+         call h5dcreate_f(self%fid, name, file_type(dtype), vspace, did, st, dcpl_id=dcpl)
+         if (st < 0) call fail(self, err, 'create series view', name)
       end block steps
       call close_handles(err, self, name, dset=did, space=vspace, space2=sspace, plist=dcpl)
-      call close_handles(err, self, name, space=space)
-   end subroutine file_create_view
+   end subroutine file_create_series_view
 
    !> Set the fill value of the dataset creation list `dcpl` to zero of type `dtype`.
    subroutine set_zero_fill(dcpl, dtype, st)

@@ -2,14 +2,29 @@
 !>
 !> Rows are written as the run goes; files are flushed at most every `flush_interval` seconds
 !> of wall time and always when closed, so an aborted run keeps what it wrote.
+!>
+!> Numbers are written `1x,es24.16e3` (NUMBER_FORMAT): 17 significant digits and always an
+!> exponent letter with three exponent digits (`1.2188988004400879E-302`), so every reader
+!> (Fortran list-directed, Python, numpy, awk) parses every value, and at least one blank
+!> separates the columns.
+!>
+!> Non-finite values are never written: a row holding a NaN or an infinity is not written;
+!> instead `nonfinite` is set, `nonfinite_message` names the file, the column and the time, that
+!> message goes once to <stem>.out, and the optional `err` of the row writer returns it, so that
+!> the caller can stop the run.
 module exic_io_history
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use exic_base_kinds, only: wp, i8
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
+   use exic_base_strings, only: itoa, rtoa
    implicit none
    private
 
    public :: history_files_t, ENERGY_COLUMNS
+
+   !> Edit descriptor of one real in <stem>.his and <stem>.ene (with its leading blank).
+   character(len=*), parameter, public :: NUMBER_FORMAT = '1x,es24.16e3'
 
    !> Column names of <stem>.ene, in order (prescribed_work [ext], doc/loads.md section 3, and
    !> friction_dissipation [ext], doc/friction.md section 5, appended after the older columns so
@@ -25,6 +40,9 @@ module exic_io_history
       character(len=:), allocatable :: his_path, ene_path, out_path
       real(wp) :: last_flush = 0.0_wp
       real(wp) :: flush_interval = 0.5_wp
+      character(len=64), allocatable :: labels(:)  !< the .his columns after t
+      logical :: nonfinite = .false.             !< a row with a non-finite value was refused
+      character(len=:), allocatable :: nonfinite_message  !< the first such value: file, column, t
    contains
       procedure :: open => files_open
       procedure :: his_header => files_his_header
@@ -73,6 +91,7 @@ contains
       class(history_files_t), intent(inout) :: self
       character(len=*), intent(in) :: labels(:)
       integer :: k
+      self%labels = labels
       write (self%his, '(a)', advance='no') '# t'
       do k = 1, size(labels)
          write (self%his, '(2a)', advance='no') '  ', trim(labels(k))
@@ -80,28 +99,88 @@ contains
       write (self%his, '(a)') ''
    end subroutine files_his_header
 
-   !> One row of <stem>.his: time, then the requested values at full precision.
-   subroutine files_his_row(self, t, values)
+   !> One row of <stem>.his: time, then the requested values at full precision. A row with a
+   !> non-finite value is not written (see the module header); `err` then says which.
+   subroutine files_his_row(self, t, values, err)
       class(history_files_t), intent(inout) :: self
       real(wp), intent(in) :: t
       real(wp), intent(in) :: values(:)
-      write (self%his, '(*(es24.16))') t, values
+      type(error_t), allocatable, intent(out), optional :: err
+      integer :: k
+      if (.not. ieee_is_finite(t)) then
+         call refuse(self, 'his', 't', t, t, err)
+         return
+      end if
+      do k = 1, size(values)
+         if (.not. ieee_is_finite(values(k))) then
+            call refuse(self, 'his', his_label(self, k), values(k), t, err)
+            return
+         end if
+      end do
+      write (self%his, '(*('//NUMBER_FORMAT//'))') t, values
       call self%maybe_flush()
    end subroutine files_his_row
 
-   !> One row of <stem>.ene.
+   !> One row of <stem>.ene. A row with a non-finite value is not written (see the module
+   !> header); `err` then says which.
    subroutine files_ene_row(self, t, step, dt, kinetic, strain, wext, wcon, total, drift, &
-                            momentum, nactive, hourglass, wpm, dfric)
+                            momentum, nactive, hourglass, wpm, dfric, err)
       class(history_files_t), intent(inout) :: self
       real(wp), intent(in) :: t, dt, kinetic, strain, wext, wcon, total, drift, momentum(2), hourglass
       real(wp), intent(in) :: wpm      !< work of the prescribed motion
       real(wp), intent(in) :: dfric    !< frictional dissipation
       integer(i8), intent(in) :: step
       integer, intent(in) :: nactive
-      write (self%ene, '(es24.16,i12,9es24.16,i10,3es24.16)') t, step, dt, kinetic, strain, wext, &
-         wcon, total, drift, momentum, nactive, hourglass, wpm, dfric
+      type(error_t), allocatable, intent(out), optional :: err
+      character(len=20), parameter :: names(13) = [character(len=20) :: 't', 'dt', 'kinetic', &
+         'strain', 'external_work', 'contact_work', 'total', 'drift', 'momentum_x', 'momentum_y', &
+         'hourglass', 'prescribed_work', 'friction_dissipation']
+      real(wp) :: v(13)
+      integer :: k
+      v = [t, dt, kinetic, strain, wext, wcon, total, drift, momentum, hourglass, wpm, dfric]
+      do k = 1, size(v)
+         if (.not. ieee_is_finite(v(k))) then
+            call refuse(self, 'ene', trim(names(k)), v(k), t, err)
+            return
+         end if
+      end do
+      write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,3('//NUMBER_FORMAT//'))') &
+         t, step, dt, kinetic, strain, wext, wcon, total, drift, momentum, nactive, hourglass, wpm, dfric
       call self%maybe_flush()
    end subroutine files_ene_row
+
+   !> Name of .his column k (after t).
+   function his_label(self, k) result(name)
+      class(history_files_t), intent(in) :: self
+      integer, intent(in) :: k
+      character(len=:), allocatable :: name
+      name = 'column '//itoa(k + 1)
+      if (allocated(self%labels)) then
+         if (k <= size(self%labels)) name = trim(self%labels(k))
+      end if
+   end function his_label
+
+   !> A row of <stem>.<ext> was refused for the non-finite value `v` of `column` at time `t`.
+   subroutine refuse(self, ext, column, v, t, err)
+      class(history_files_t), intent(inout) :: self
+      character(len=*), intent(in) :: ext, column
+      real(wp), intent(in) :: v, t
+      type(error_t), allocatable, intent(out), optional :: err
+      character(len=:), allocatable :: what, msg
+      if (v /= v) then
+         what = 'NaN'
+      else
+         what = 'an infinite value'
+      end if
+      msg = what//' in column '//column//' of <stem>.'//ext//' at t = '//rtoa(t)// &
+            ': the row is not written'
+      if (.not. self%nonfinite) then
+         self%nonfinite = .true.
+         self%nonfinite_message = msg
+         call self%say('error: '//msg)
+      end if
+      if (present(err)) call make_error(err, msg)
+   end subroutine refuse
 
    !> A line of text in <stem>.out.
    subroutine files_say(self, text)

@@ -15,6 +15,7 @@ module exic_io_output
    use exic_mesh_edge_set, only: find_edge_set, edge_set_nodes
    use exic_io_history, only: history_files_t
    use exic_io_fields, only: field_writer_t
+   use exic_io_report, only: energy_balance
    use exic_explicit_step, only: stepper_t
    use exic_explicit_assembly, only: element_stress, all_stresses
    use exic_explicit_loading, only: reaction
@@ -28,6 +29,12 @@ module exic_io_output
    type :: node_list_t
       integer, allocatable :: nodes(:)
    end type node_list_t
+
+   !> The energies of the field output, datasets /energies/<name>; the last only when the run has
+   !> friction (doc/friction.md, section 5).
+   character(len=20), parameter :: ENERGY_NAMES(6) = [character(len=20) :: 'kinetic', 'strain', &
+                                                      'external_work', 'contact_work', 'hourglass', &
+                                                      'friction_dissipation']
 
    !> The run's output files and their schedules.
    type :: output_t
@@ -50,6 +57,7 @@ module exic_io_output
       procedure :: open_fields => output_open_fields
       procedure :: fields_due => output_fields_due
       procedure :: final => output_final
+      procedure :: failed => output_failed
       procedure :: close => output_close
    end type output_t
 
@@ -133,7 +141,7 @@ contains
       type(model_t), intent(in) :: model
       type(stepper_t), intent(in) :: stp
       integer :: k
-      real(wp) :: sig(7), total, drift, denom
+      real(wp) :: sig(7), total, drift
 
       do k = 1, size(self%values)
          associate (q => model%requests(k), st => stp%st)
@@ -163,9 +171,7 @@ contains
       end do
       associate (st => stp%st)
          call self%files%his_row(st%t, self%values)
-         total = st%kinetic + st%strain + st%hourglass - st%wext - st%wcon - st%wpm
-         denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass, tiny(1.0_wp))
-         drift = (total - st%total0)/denom
+         call energy_balance(st, total, drift)
          call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
                                  st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm, &
                                  stp%contact%dissipation)
@@ -281,8 +287,15 @@ contains
       self%field_next = stp%st%t
       call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, model%mesh%nelem, &
                             model%mesh%x, model%mesh%conn, model%mesh%region, model%mesh%mat, &
-                            stp%contact%edges(), err, stp%contact%friction)
+                            stp%contact%edges(), err, energy_names=ENERGY_NAMES(:nenergy(stp)), &
+                            friction=stp%contact%friction)
    end subroutine output_open_fields
+
+   !> Number of field-output energies of the run: the frictional dissipation with friction only.
+   pure integer function nenergy(stp)
+      type(stepper_t), intent(in) :: stp
+      nenergy = merge(6, 5, stp%contact%friction)
+   end function nenergy
 
    !> Write the fields when an output time is due. The next output time is the first multiple
    !> of the interval after t: with an interval below the time step the fields are written once
@@ -319,9 +332,6 @@ contains
       real(wp), allocatable :: sig(:, :)
       integer, allocatable :: flag(:)
       real(wp) :: energies(6)
-      character(len=20), parameter :: names(6) = [character(len=20) :: 'kinetic', 'strain', &
-                                                   'external_work', 'contact_work', 'hourglass', &
-                                                   'friction_dissipation']
       associate (st => stp%st)
          allocate (sig(7, st%nelem), flag(st%nnode))
          call all_stresses(st, stp%sets, sig)
@@ -330,10 +340,10 @@ contains
                      stp%contact%dissipation]
          if (stp%contact%friction) then
             call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                        energies, names, err, stp%contact%ffric)
+                                        energies, ENERGY_NAMES, err, stp%contact%ffric)
          else
             call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                        energies(1:5), names(1:5), err)
+                                        energies(1:5), ENERGY_NAMES(1:5), err)
          end if
          self%field_last = st%t
       end associate
@@ -348,6 +358,23 @@ contains
       if (self%last_row_step /= stp%st%step) call write_rows(self, model, stp)
       if (self%fields%is_open() .and. stp%st%t > self%field_last) call write_fields(self, stp, err)
    end subroutine output_final
+
+   !> After a failed run: the fields of the state the stepper holds (the step it stopped in), if
+   !> fields are written and that time is not in the file yet, and the failure `message` as the
+   !> attribute `failed` of the .h5 file (doc/fields.md). The history files get no row.
+   subroutine output_failed(self, stp, message, err)
+      class(output_t), intent(inout) :: self
+      type(stepper_t), intent(in) :: stp
+      character(len=*), intent(in) :: message
+      type(error_t), allocatable, intent(out) :: err
+      if (.not. self%fields%is_open()) return
+      if (stp%st%t > self%field_last) then
+         call write_fields(self, stp, err)
+         if (allocated(err)) return
+         call self%files%say('fields of the state at the failure written (t = '//rtoa(stp%st%t)//')')
+      end if
+      call self%fields%mark_failed(message, err)
+   end subroutine output_failed
 
    !> Close the field files (reporting a failure in <stem>.out) and the text files.
    subroutine output_close(self)

@@ -42,6 +42,7 @@ module exic_io_reader
       !> highest field read of each record (see `field`); a pointer so that the readers that take
       !> the cursor intent(in) can record what they read; not associated: nothing is recorded
       integer, pointer :: seen(:) => null()
+      character(len=:), allocatable :: deck     !< the deck's path (errors of an empty deck)
    end type reader_t
 
 contains
@@ -147,7 +148,11 @@ contains
       j = i
       if (j < 1 .or. j > rd%src%n) j = rd%src%n
       if (j < 1) then
-         call make_error(err, msg)
+         if (allocated(rd%deck)) then
+            call make_error(err, 'the deck is empty: '//msg, rd%deck, 1)
+         else
+            call make_error(err, msg)
+         end if
       else if (i < 1 .or. i > rd%src%n) then
          call make_error(err, 'end of input: '//msg, rd%src%rec(j)%file, rd%src%rec(j)%line)
       else

@@ -15,6 +15,8 @@
 !> `TIE`) match on their own length.
 module exic_io_records
    use exic_base_error, only: error_t, make_error
+   use exic_base_strings, only: itoa
+   use exic_io_posix, only: file_kind, FILE_REGULAR, FILE_DIRECTORY, FILE_MISSING
    implicit none
    private
 
@@ -58,12 +60,15 @@ contains
       type(error_t), allocatable, intent(out) :: err
       allocate (src%rec(256))
       src%n = 0
+      call check_regular(path, err)
+      if (allocated(err)) return
       call read_file(path, 0, src, err)
       if (allocated(err)) return
       src%rec = src%rec(1:src%n)
    end subroutine read_source
 
-   !> Read one file at include depth `depth`, appending its records to `src`.
+   !> Read one file at include depth `depth`, appending its records to `src`. `path` has been
+   !> checked to be a regular file.
    recursive subroutine read_file(path, depth, src, err)
       character(len=*), intent(in) :: path
       integer, intent(in) :: depth
@@ -73,7 +78,7 @@ contains
       character(len=:), allocatable :: line
       character(len=512) :: msg
       type(record_t) :: rec
-      logical :: eof
+      logical :: eof, too_long
 
       open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=msg)
       if (ios /= 0) then
@@ -82,9 +87,20 @@ contains
       end if
       lineno = 0
       do
-         call get_line(unit, line, eof)
+         msg = ''
+         call get_line(unit, line, eof, too_long, ios, msg)
          if (eof) exit
          lineno = lineno + 1
+         if (ios /= 0) then
+            call make_error(err, 'read error: '//trim(msg)//': expected a text file', path, lineno)
+            exit
+         end if
+         if (too_long) then
+            call make_error(err, 'record longer than '//itoa(MAX_RECORD_LENGTH)//' characters: '// &
+                            'expected at most '//itoa(MAX_RECORD_LENGTH)//' characters per line '// &
+                            '(blanks at the end excluded)', path, lineno)
+            exit
+         end if
          call make_record(line, path, lineno, rec, err)
          if (allocated(err)) exit
          if (rec%nf >= 1) then
@@ -94,10 +110,29 @@ contains
                cycle
             end if
          end if
-         call append(src, rec)
+         call append(src, rec, err)
+         if (allocated(err)) exit
       end do
       close (unit)
    end subroutine read_file
+
+   !> Error unless `path` is a regular file (a directory, device, FIFO or socket is refused
+   !> before it is opened: reading /dev/zero or a FIFO would never end).
+   subroutine check_regular(path, err)
+      character(len=*), intent(in) :: path
+      type(error_t), allocatable, intent(out) :: err
+      select case (file_kind(path))
+      case (FILE_REGULAR)
+         return
+      case (FILE_DIRECTORY)
+         call make_error(err, '"'//path//'" is a directory: expected a regular file')
+      case (FILE_MISSING)
+         call make_error(err, 'cannot find file "'//path//'": expected an existing file')
+      case default
+         call make_error(err, '"'//path//'" is not a regular file (a device, FIFO or socket): '// &
+                         'expected a regular file')
+      end select
+   end subroutine check_regular
 
    !> Handle an `INCLude,file` record (`INCLude,END` sets `stop_here`).
    recursive subroutine include_file(rec, depth, src, stop_here, err)
@@ -108,7 +143,6 @@ contains
       type(error_t), allocatable, intent(out) :: err
       character(len=:), allocatable :: name, full
       type(error_t), allocatable :: inner
-      logical :: exists
 
       stop_here = .false.
       name = ''
@@ -131,10 +165,9 @@ contains
       else
          full = dirname(rec%file)//name
       end if
-      inquire (file=full, exist=exists)
-      if (.not. exists) then
-         call make_error(err, 'INCLude: cannot find file "'//full//'": expected an existing file', &
-                         rec%file, rec%line)
+      call check_regular(full, inner)
+      if (allocated(inner)) then
+         call make_error(err, 'INCLude: '//inner%message, rec%file, rec%line)
          return
       end if
       call read_file(full, depth + 1, src, inner)
@@ -150,13 +183,21 @@ contains
       dir = path(1:k)
    end function dirname
 
-   !> Append `rec` to `src`, growing the array when full.
-   subroutine append(src, rec)
+   !> Append `rec` to `src`, growing the array when full (an allocation failure is an error
+   !> naming the record).
+   subroutine append(src, rec, err)
       type(source_t), intent(inout) :: src
       type(record_t), intent(in) :: rec
+      type(error_t), allocatable, intent(out) :: err
       type(record_t), allocatable :: tmp(:)
+      integer :: stat
       if (src%n == size(src%rec)) then
-         allocate (tmp(2*size(src%rec)))
+         allocate (tmp(2*size(src%rec)), stat=stat)
+         if (stat /= 0) then
+            call make_error(err, 'out of memory after '//itoa(src%n)//' records: expected a '// &
+                            'smaller deck', rec%file, rec%line)
+            return
+         end if
          tmp(1:src%n) = src%rec(1:src%n)
          call move_alloc(tmp, src%rec)
       end if
@@ -164,31 +205,58 @@ contains
       src%rec(src%n) = rec
    end subroutine append
 
-   !> Read one line of any length; `eof` is true when there is none left.
-   subroutine get_line(unit, line, eof)
+   !> Read one line into `line`, in time linear in its length. Blanks, tabs and CR beyond
+   !> MAX_RECORD_LENGTH are dropped; the first other character beyond it stops the reading at
+   !> once with `too_long` (the rest of the line is never read, so /dev/zero or a huge record
+   !> costs no more than 256 characters). `eof` is true when there is no line left; `ios` is a
+   !> read error other than end of file or of record (0: none), with its message in `msg`.
+   subroutine get_line(unit, line, eof, too_long, ios, msg)
       use, intrinsic :: iso_fortran_env, only: iostat_eor, iostat_end
       integer, intent(in) :: unit
       character(len=:), allocatable, intent(out) :: line
-      logical, intent(out) :: eof
+      logical, intent(out) :: eof, too_long
+      integer, intent(out) :: ios
+      character(len=*), intent(inout) :: msg
+      character(len=MAX_RECORD_LENGTH) :: keep
       character(len=512) :: buf
-      integer :: ios, sz
+      integer :: sz, n, k, last
 
-      line = ''
       eof = .false.
+      too_long = .false.
+      n = 0           ! characters read so far
+      last = 0        ! position of the last kept character that is not a blank, tab or CR
       do
-         read (unit, '(a)', advance='no', iostat=ios, size=sz) buf
-         line = line//buf(1:sz)
-         if (ios == iostat_eor) return
+         read (unit, '(a)', advance='no', iostat=ios, size=sz, iomsg=msg) buf
+         do k = 1, sz
+            n = n + 1
+            if (n <= MAX_RECORD_LENGTH) then
+               keep(n:n) = buf(k:k)
+               if (.not. is_blank(buf(k:k))) last = n
+            else if (.not. is_blank(buf(k:k))) then
+               too_long = .true.
+               exit
+            end if
+         end do
+         if (too_long .or. ios == iostat_eor) then
+            ios = 0
+            exit
+         end if
          if (ios == iostat_end) then
-            eof = len(line) == 0
-            return
+            ios = 0
+            eof = n == 0
+            exit
          end if
-         if (ios /= 0) then
-            eof = .true.
-            return
-         end if
+         if (ios /= 0) exit
       end do
+      line = keep(1:min(n, MAX_RECORD_LENGTH))
+      if (.not. too_long .and. n > MAX_RECORD_LENGTH) line = keep(1:last)
    end subroutine get_line
+
+   !> A blank, tab or carriage return.
+   elemental logical function is_blank(c)
+      character, intent(in) :: c
+      is_blank = c == ' ' .or. c == achar(9) .or. c == achar(13)
+   end function is_blank
 
    !> Build a record from one raw line.
    subroutine make_record(line, file, lineno, rec, err)
@@ -198,7 +266,7 @@ contains
       type(error_t), allocatable, intent(out) :: err
       character(len=:), allocatable :: text
       character(len=16) :: buf
-      integer :: k
+      integer :: k, code
       logical :: quoted
 
       rec%raw = line
@@ -207,6 +275,12 @@ contains
       text = line
       do k = 1, len(text)
          if (text(k:k) == achar(9) .or. text(k:k) == achar(13)) text(k:k) = ' '
+         code = iachar(text(k:k))
+         if ((code >= 0 .and. code < 32) .or. code == 127) then
+            call make_error(err, 'control character (code '//itoa(code)// &
+                            ') in column '//itoa(k)//': expected text (a binary file?)', file, lineno)
+            return
+         end if
       end do
       if (len_trim(text) > MAX_RECORD_LENGTH) then
          write (buf, '(i0)') len_trim(text)

@@ -10,10 +10,12 @@ module exic_io_report
    use exic_explicit_step, only: stepper_t
    use exic_explicit_rigid, only: RB_FREE, RB_DRIVEN
    use exic_explicit_loads, only: FN_UNDEFINED
+   use exic_explicit_state, only: state_t
+   !$ use omp_lib, only: omp_get_max_threads
    implicit none
    private
 
-   public :: report_preamble, report_summary, report_final
+   public :: report_preamble, report_summary, report_final, console_summary, energy_balance
 
 contains
 
@@ -38,18 +40,22 @@ contains
       type(history_files_t), intent(inout) :: files
       type(model_t), intent(in) :: model
       type(stepper_t), intent(inout) :: stp
-      integer :: k, e
+      integer :: k, e, nth
       real(wp) :: dts, total
       call files%say('')
       call files%say('nodes (highest number) '//itoa(stp%st%nnode)//', active '// &
                      itoa(count(stp%st%active))//', elements '//itoa(stp%st%nelem))
+      nth = 1
+      !$ nth = omp_get_max_threads()
+      call files%say('threads '//itoa(nth)//' (OMP_NUM_THREADS; the results do not depend on it)')
       do k = 1, size(stp%sets)
          associate (s => stp%sets(k), m => model%materials(stp%sets(k)%mat))
             if (s%kind == MAT_SOLID) then
                call files%say('material '//itoa(s%mat)//': solid neo-Hookean, E = '// &
                               rtoa(m%young)//', nu = '//rtoa(m%poisson)//', lambda = '// &
                               rtoa(m%lambda)//', mu = '//rtoa(m%mu)//', rho = '//rtoa(m%rho)// &
-                              ', quadrature '//itoa(s%nq)//', elements '//itoa(s%nel))
+                              ', quadrature '//itoa(s%nq)//', elements '//itoa(s%nel)// &
+                              ' (in '//itoa(s%nrange)//' ranges of '//itoa(s%ncolour)//' colours)')
             else
                call files%say('material '//itoa(s%mat)//': rigid, rho = '//rtoa(m%rho)// &
                               ', elements '//itoa(s%nel))
@@ -138,5 +144,42 @@ contains
       call files%say('files written: '//files%his_path//' '//files%ene_path//' '//files%out_path// &
                      field_files)
    end subroutine report_final
+
+   !> The energy balance of <stem>.ene: total = kinetic + strain + hourglass - external work -
+   !> contact work - prescribed work, and its drift from the initial total relative to the largest of |initial
+   !> total| and the physical energy now.
+   pure subroutine energy_balance(st, total, drift)
+      type(state_t), intent(in) :: st
+      real(wp), intent(out) :: total, drift
+      real(wp) :: denom
+      total = st%kinetic + st%strain + st%hourglass - st%wext - st%wcon - st%wpm
+      denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass, tiny(1.0_wp))
+      drift = (total - st%total0)/denom
+   end subroutine energy_balance
+
+   !> The lines printed on the console at the end of a run: steps, wall time and rates (the
+   !> figures of <stem>.out), the largest penetration, and the energy balance of the last
+   !> <stem>.ene row.
+   function console_summary(stp, wall) result(text)
+      type(stepper_t), intent(in) :: stp
+      real(wp), intent(in) :: wall                !< wall time of the whole run
+      character(len=:), allocatable :: text
+      character(len=*), parameter :: NL = achar(10)
+      real(wp) :: ts, total, drift
+      associate (st => stp%st, c => stp%contact)
+         text = 'exic: '//itoa(int(st%step))//' steps to t = '//rtoa(st%t)//', wall time '//rtoa(wall)//' s'
+         if (st%step > 0) then
+            ts = max(stp%time_steps, 1.0e-9_wp)
+            text = text//NL//'exic: steps per second '//rtoa(real(st%step, wp)/ts)// &
+                   ', element-steps per second '//rtoa(real(st%step, wp)*st%nelem/ts)
+         end if
+         if (c%active) text = text//NL//'exic: largest penetration over the run '//rtoa(c%max_penetration)
+         call energy_balance(st, total, drift)
+         text = text//NL//'exic: energy: initial total '//rtoa(st%total0)//', kinetic '//rtoa(st%kinetic)// &
+                ', strain '//rtoa(st%strain + st%hourglass)//', external work '//rtoa(st%wext)// &
+                ', contact work '//rtoa(st%wcon)//NL//'exic: energy balance: total '//rtoa(total)// &
+                ', drift '//rtoa(drift)
+      end associate
+   end function console_summary
 
 end module exic_io_report

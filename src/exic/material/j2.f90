@@ -15,10 +15,13 @@
 !> continuous model at the returned state (J27), adiabatic heating (J17).
 !>
 !> Deformation gradients are 3-D with the block form [F11 F12 0; F21 F22 0; 0 0 F33]: F33 = 1 in
-!> plane strain, r/R (hoop) in axisymmetry. Arrays are of length n (points), values per unit
-!> reference volume and not weighted. Callers ensure J > 0 and F33 > 0.
+!> plane strain, r/R (hoop) in axisymmetry. Arrays are of length n (points). As for the
+!> neo-Hookean kernel `nh_piola`, the caller passes the in-plane j = F11 F22 - F12 F21 > 0 it has
+!> computed and checked (J = j F33; F33 > 0 is the caller's too) and the weight of each point, and
+!> gets stress, energy and dissipation times the weight.
 module exic_material_j2
    use exic_base_kinds, only: wp
+   use exic_base_logarithm, only: ln
    use exic_material_j2_hardening, only: j2_param_t, j2_strain_part, j2_rate_factor, &
                                          j2_thermal_factor, j2_static_yield, j2_has_temperature, &
                                          j2_is_linear, J2_JOHNSON_COOK
@@ -56,6 +59,10 @@ contains
    !> First Piola-Kirchhoff stress, elastic energy, dissipation and yield stress at n points for
    !> the deformation gradients F(n+1), updating the history from t(n) to t(n+1).
    !>
+   !> Same shape as `nh_piola`: jac is the in-plane j = F11 F22 - F12 F21 > 0 the caller computed
+   !> and checked, wt the weight of each point (the quadrature weight x reference volume it
+   !> stands for, x 2 pi r in axisymmetry; 1 for values per unit reference volume); stress,
+   !> energy and dissipation come out times wt, the yield stress and the history do not.
    !> A point that has never yielded (Cp^-1 = 1 exactly) and stays elastic gets the neo-Hookean
    !> stress and energy of `nh_piola` to the last bit (doc/plasticity.md, section 2).
    !> temp is read and written only when `j2_has_temperature(prm)`; otherwise any array of
@@ -66,24 +73,26 @@ contains
    !> the last bits); (B) the trial state of every point, without branches; (C) the return at
    !> the points that yield, updating their history; (D) stress and energy of every point from
    !> F and the history of t(n+1), without branches (the one formula of (J7)/(J8)).
-   pure subroutine j2_piola(n, lambda, mu, prm, dt, f11, f12, f21, f22, f33, a11, a12, a22, a33, &
-                            ep, temp, p11, p12, p21, p22, p33, we, dwp, ys)
+   pure subroutine j2_piola(n, lambda, mu, prm, dt, f11, f12, f21, f22, f33, jac, wt, a11, a12, &
+                            a22, a33, ep, temp, p11, p12, p21, p22, p33, we, dwp, ys)
       integer, intent(in) :: n                                    !< number of points
       real(wp), intent(in) :: lambda, mu                          !< Lame constants
       type(j2_param_t), intent(in) :: prm                         !< plastic parameters
       real(wp), intent(in) :: dt                                  !< time step
       real(wp), intent(in) :: f11(n), f12(n), f21(n), f22(n)      !< in-plane F(n+1)
       real(wp), intent(in) :: f33(n)                              !< F33 (1, or hoop r/R)
+      real(wp), intent(in) :: jac(n)                              !< j = F11 F22 - F12 F21 > 0
+      real(wp), intent(in) :: wt(n)                               !< weight of each point
       real(wp), intent(inout) :: a11(n), a12(n), a22(n), a33(n)   !< Cp^-1: in t(n), out t(n+1)
       real(wp), intent(inout) :: ep(n)                            !< equivalent plastic strain
       real(wp), intent(inout) :: temp(n)                          !< temperature (see above)
-      real(wp), intent(out) :: p11(n), p12(n), p21(n), p22(n)     !< in-plane first Piola stress
-      real(wp), intent(out) :: p33(n)                             !< hoop/out-of-plane P33
-      real(wp), intent(out) :: we(n)                              !< elastic energy (J8)
-      real(wp), intent(out) :: dwp(n)                             !< dissipation of the step (J27)
+      real(wp), intent(out) :: p11(n), p12(n), p21(n), p22(n)     !< wt x in-plane first Piola stress
+      real(wp), intent(out) :: p33(n)                             !< wt x hoop/out-of-plane P33
+      real(wp), intent(out) :: we(n)                              !< wt x elastic energy (J8)
+      real(wp), intent(out) :: dwp(n)                             !< wt x dissipation of the step (J27)
       real(wp), intent(out) :: ys(n)                              !< yield stress
       real(wp), dimension(CHUNK) :: lnj, hn, th, x, d11, d22, d33, d12, qtr
-      real(wp) :: g11, g12, g21, g22, g33, b11, b22, b33, j2d, c, chirc
+      real(wp) :: g11, g12, g21, g22, g33, b11, b22, b33, c, chirc
       logical :: jc, heat, linear
       integer :: q0, m, i, q
 
@@ -96,10 +105,9 @@ contains
       do q0 = 1, n, CHUNK
          m = min(CHUNK, n - q0 + 1)
          ! (A) ln J, Y(n) (J19) and its slope H(n)
-         !GCC$ novector
          do i = 1, m
             q = q0 + i - 1
-            lnj(i) = log((f11(q)*f22(q) - f12(q)*f21(q))*f33(q))
+            lnj(i) = ln(jac(q)*f33(q))       ! exic's logarithm, the neo-Hookean kernels' (base/logarithm)
          end do
          if (linear) then
             do i = 1, m
@@ -143,42 +151,45 @@ contains
             if (qtr(i) > ys(q)) then
                call plastic_point(mu, prm, linear, dt, th(i), hn(i), chirc, x(i), d11(i), d22(i), &
                                   d33(i), d12(i), qtr(i), f11(q), f12(q), f21(q), f22(q), f33(q), &
-                                  a11(q), a12(q), a22(q), a33(q), ep(q), temp(q), dwp(q), ys(q))
+                                  jac(q), a11(q), a12(q), a22(q), a33(q), ep(q), temp(q), dwp(q), &
+                                  ys(q))
             end if
          end do
-         ! (D) stress (J7) and energy (J8) from F and Cp^-1(n+1); with Cp^-1 = 1 and F33 = 1 the
-         ! operations of nh_piola in its order (doc/plasticity.md, (J9))
+         ! (D) stress (J7) and energy (J8) from F and Cp^-1(n+1), times the weight; with
+         ! Cp^-1 = 1 and F33 = 1 the operations of nh_piola in its order (doc/plasticity.md, (J9))
          do i = 1, m
             q = q0 + i - 1
-            j2d = f11(q)*f22(q) - f12(q)*f21(q)
-            c = (lambda*lnj(i) - mu)/(j2d*f33(q))
+            c = (lambda*lnj(i) - mu)/(jac(q)*f33(q))
             g11 = f11(q)*a11(q) + f12(q)*a12(q)
             g12 = f11(q)*a12(q) + f12(q)*a22(q)
             g21 = f21(q)*a11(q) + f22(q)*a12(q)
             g22 = f21(q)*a12(q) + f22(q)*a22(q)
             g33 = f33(q)*a33(q)
-            p11(q) = mu*g11 + c*(f22(q)*f33(q))
-            p12(q) = mu*g12 - c*(f21(q)*f33(q))
-            p21(q) = mu*g21 - c*(f12(q)*f33(q))
-            p22(q) = mu*g22 + c*(f11(q)*f33(q))
-            p33(q) = mu*g33 + c*j2d
-            we(q) = lnj(i)*(0.5_wp*lambda*lnj(i) - mu) &
-                    + 0.5_wp*mu*((g11*f11(q) + g12*f12(q) + g21*f21(q) + g22*f22(q) - 2.0_wp) &
-                                 + (g33*f33(q) - 1.0_wp))
+            p11(q) = wt(q)*(mu*g11 + c*(f22(q)*f33(q)))
+            p12(q) = wt(q)*(mu*g12 - c*(f21(q)*f33(q)))
+            p21(q) = wt(q)*(mu*g21 - c*(f12(q)*f33(q)))
+            p22(q) = wt(q)*(mu*g22 + c*(f11(q)*f33(q)))
+            p33(q) = wt(q)*(mu*g33 + c*jac(q))
+            we(q) = wt(q)*(lnj(i)*(0.5_wp*lambda*lnj(i) - mu) &
+                           + 0.5_wp*mu*((g11*f11(q) + g12*f12(q) + g21*f21(q) + g22*f22(q) - 2.0_wp) &
+                                        + (g33*f33(q) - 1.0_wp)))
+            dwp(q) = wt(q)*dwp(q)
          end do
       end do
    end subroutine j2_piola
 
    !> The return at one yielding point: dep (J21-J23), k, the spherical part (J24, J25), the new
    !> Cp^-1 and ep (J26), dissipation (J27), heating (J17). x, d: trial spherical part and
-   !> deviator; qt: q_trial; th: thermal factor; hn: dY/dep at ep(n); chirc = chi/(rho c).
-   !> ys holds Y(n) on entry and the flow stress of the step on exit.
+   !> deviator; qt: q_trial; th: thermal factor; hn: dY/dep at ep(n); chirc = chi/(rho c);
+   !> j = F11 F22 - F12 F21. ys holds Y(n) on entry and the flow stress of the step on exit; dwp
+   !> is the dissipation per unit reference volume (not weighted).
    pure subroutine plastic_point(mu, prm, linear, dt, th, hn, chirc, x, d11, d22, d33, d12, qt, &
-                                 f11, f12, f21, f22, f33, a11, a12, a22, a33, ep, temp, dwp, ys)
+                                 f11, f12, f21, f22, f33, j, a11, a12, a22, a33, ep, temp, dwp, ys)
       real(wp), intent(in) :: mu
       type(j2_param_t), intent(in) :: prm
       logical, intent(in) :: linear
       real(wp), intent(in) :: dt, th, hn, chirc, x, d11, d22, d33, d12, qt, f11, f12, f21, f22, f33
+      real(wp), intent(in) :: j
       real(wp), intent(inout) :: a11, a12, a22, a33, ep, temp
       real(wp), intent(out) :: dwp
       real(wp), intent(inout) :: ys
@@ -208,7 +219,7 @@ contains
       h0 = max(omk*(x*(1.0_wp + k)*sj2 - (1.0_wp + k + k*k)*sj3), 0.0_wp)
       del = 2.0_wp*h0/(s0 + sqrt(max(s0*s0 - 12.0_wp*x*h0, 0.0_wp)))
       del = del - del*del*del*rs0
-      jac = (f11*f22 - f12*f21)*f33
+      jac = j*f33
       dcp = (a11*a22 - a12*a12)*a33 - 1.0_wp
       xn = x - del - jac*jac*dcp*rs0
       do it = 1, 40
@@ -218,7 +229,7 @@ contains
          xn = xn - dxn
          if (abs(dxn) <= 2.0_wp*EPS*xn) exit
       end do
-      call pull_back(f11, f12, f21, f22, f33, k*d11 + xn, k*d12, k*d22 + xn, k*d33 + xn, &
+      call pull_back(f11, f12, f21, f22, f33, j, k*d11 + xn, k*d12, k*d22 + xn, k*d33 + xn, &
                      a11, a12, a22, a33)
       ep = ep + dep
       ! (J27): D = -mu dgamma tr(b_e) tr(b_e^-1 n)/tr(b_e^-1) at the returned b_e = xn 1 + k d
@@ -272,11 +283,11 @@ contains
    end subroutine return_newton
 
    !> Cp^-1 = F^-1 b_e F^-T (J26), in-plane with F^-1 = [F22 -F12; -F21 F11]/j, a33 = b33/F33^2.
-   pure subroutine pull_back(f11, f12, f21, f22, f33, be11, be12, be22, be33, a11, a12, a22, a33)
-      real(wp), intent(in) :: f11, f12, f21, f22, f33, be11, be12, be22, be33
+   pure subroutine pull_back(f11, f12, f21, f22, f33, j2d, be11, be12, be22, be33, a11, a12, a22, &
+                            a33)
+      real(wp), intent(in) :: f11, f12, f21, f22, f33, j2d, be11, be12, be22, be33
       real(wp), intent(out) :: a11, a12, a22, a33
-      real(wp) :: j2d, r, rj, u11, u12, u21, u22
-      j2d = f11*f22 - f12*f21
+      real(wp) :: r, rj, u11, u12, u21, u22
       r = 1.0_wp/(j2d*(f33*f33))
       rj = r*(f33*f33)
       u11 = (f22*be11 - f12*be12)*rj
@@ -309,9 +320,10 @@ contains
       integer :: q
 
       jc = prm%law == J2_JOHNSON_COOK
+      ! exic's logarithm, as in nh_cauchy (base/logarithm: the same bits scalar and vector)
       do q = 1, n
          jac = (f11(q)*f22(q) - f12(q)*f21(q))*f33(q)
-         lnj = log(jac)
+         lnj = ln(jac)
          rj = 1.0_wp/jac
          g11 = f11(q)*a11(q) + f12(q)*a12(q)
          g12 = f11(q)*a12(q) + f12(q)*a22(q)

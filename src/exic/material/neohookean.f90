@@ -18,13 +18,19 @@
 !>     P = J sigma F^-T = lambda ln(J) F^-T + mu (F - F^-T)
 !>
 !> The kernels assume J > 0; callers check J first. nh_piola is the law for the internal forces
-!> (one kernel for every quadrature), nh_cauchy its Cauchy form for stress output.
+!> (one kernel for every quadrature), nh_cauchy its Cauchy form for stress output,
+!> nh_wave_speed2_block the wave speed of the stable step. ln J is exic's own logarithm
+!> (src/exic/base/logarithm.f90), the same bits in vector and scalar code.
 module exic_material_neohookean
    use exic_base_kinds, only: wp
+   use exic_base_logarithm, only: ln, ln_block
    implicit none
    private
 
-   public :: nh_piola, nh_cauchy, nh_wave_speed2
+   public :: nh_piola, nh_cauchy, nh_wave_speed2, nh_wave_speed2_block
+
+   !> Points per pass of the block kernels (their ln J work array stays in the L1 cache).
+   integer, parameter :: CHUNK = 128
 
 contains
 
@@ -39,7 +45,7 @@ contains
       real(wp) :: lnj, rj, b11, b22, b12, p
 
       jac = f11*f22 - f12*f21
-      lnj = log(jac)
+      lnj = ln(jac)
       rj = 1.0_wp/jac
       b11 = f11*f11 + f12*f12
       b22 = f21*f21 + f22*f22
@@ -69,20 +75,22 @@ contains
       real(wp), intent(in) :: wt(n)                        !< weight of each point
       real(wp), intent(out) :: p11(n), p12(n), p21(n), p22(n) !< wt x first Piola-Kirchhoff stress
       real(wp), intent(out) :: w(n)                        !< wt x strain energy per reference volume
-      real(wp) :: lnj, c
-      integer :: q
+      real(wp) :: lnj(CHUNK), c
+      integer :: q0, m, i, q
 
-      ! scalar log: glibc's vector log (libmvec) differs from it in the last bits
-      !GCC$ novector
-      do q = 1, n
-         lnj = log(jac(q))
-         c = (lambda*lnj - mu)/jac(q)
-         p11(q) = wt(q)*(mu*f11(q) + c*f22(q))
-         p12(q) = wt(q)*(mu*f12(q) - c*f21(q))
-         p21(q) = wt(q)*(mu*f21(q) - c*f12(q))
-         p22(q) = wt(q)*(mu*f22(q) + c*f11(q))
-         w(q) = wt(q)*(lnj*(0.5_wp*lambda*lnj - mu) &
-                       + 0.5_wp*mu*(f11(q)*f11(q) + f12(q)*f12(q) + f21(q)*f21(q) + f22(q)*f22(q) - 2.0_wp))
+      do q0 = 1, n, CHUNK
+         m = min(CHUNK, n - q0 + 1)
+         call ln_block(m, jac(q0:q0 + m - 1), lnj)
+         do i = 1, m
+            q = q0 + i - 1
+            c = (lambda*lnj(i) - mu)/jac(q)
+            p11(q) = wt(q)*(mu*f11(q) + c*f22(q))
+            p12(q) = wt(q)*(mu*f12(q) - c*f21(q))
+            p21(q) = wt(q)*(mu*f21(q) - c*f12(q))
+            p22(q) = wt(q)*(mu*f22(q) + c*f11(q))
+            w(q) = wt(q)*(lnj(i)*(0.5_wp*lambda*lnj(i) - mu) &
+                          + 0.5_wp*mu*(f11(q)*f11(q) + f12(q)*f12(q) + f21(q)*f21(q) + f22(q)*f22(q) - 2.0_wp))
+         end do
       end do
    end subroutine nh_piola
 
@@ -95,7 +103,25 @@ contains
       real(wp), intent(in) :: rho0       !< reference density
       real(wp), intent(in) :: jac        !< volume ratio J > 0
       real(wp) :: c2
-      c2 = max(lambda + 2.0_wp*mu - 2.0_wp*lambda*log(jac), mu)/rho0
+      c2 = max(lambda + 2.0_wp*mu - 2.0_wp*lambda*ln(jac), mu)/rho0
    end function nh_wave_speed2
+
+   !> nh_wave_speed2 at n points: c2(q) = c^2 at volume ratio jac(q) > 0 (the same bits).
+   pure subroutine nh_wave_speed2_block(n, lambda, mu, rho0, jac, c2)
+      integer, intent(in) :: n           !< number of points
+      real(wp), intent(in) :: lambda, mu !< Lame constants
+      real(wp), intent(in) :: rho0       !< reference density
+      real(wp), intent(in) :: jac(n)     !< volume ratios J > 0
+      real(wp), intent(out) :: c2(n)
+      real(wp) :: lnj(CHUNK)
+      integer :: q0, m, i
+      do q0 = 1, n, CHUNK
+         m = min(CHUNK, n - q0 + 1)
+         call ln_block(m, jac(q0:q0 + m - 1), lnj)
+         do i = 1, m
+            c2(q0 + i - 1) = max(lambda + 2.0_wp*mu - 2.0_wp*lambda*lnj(i), mu)/rho0
+         end do
+      end do
+   end subroutine nh_wave_speed2_block
 
 end module exic_material_neohookean

@@ -1,0 +1,47 @@
+/* The C side of exic_io_posix (src/exic/io/posix.f90): the POSIX calls whose arguments are
+ * ABI-specific structures or macros (struct stat and S_ISREG, struct rlimit and RLIMIT_AS,
+ * errno and strerror), behind plain int / long long / char* interfaces that Fortran binds
+ * with bind(C). Nothing here allocates or keeps state. */
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+
+/* What `path` is: 1 a regular file, 2 a directory, 3 something else (character or block
+ * device, FIFO, socket), 0 when stat(2) fails (no such file, no permission). Symbolic links
+ * are followed. */
+int exic_c_file_kind(const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) return 0;
+    if (S_ISREG(st.st_mode)) return 1;
+    if (S_ISDIR(st.st_mode)) return 2;
+    return 3;
+}
+
+/* mkdir(path, 0777) (the umask applies). Returns 0 on success, else errno, with the system's
+ * text for it in msg (at most msglen bytes, NUL-terminated). */
+int exic_c_mkdir(const char *path, char *msg, int msglen)
+{
+    int e;
+    if (mkdir(path, 0777) == 0) return 0;
+    e = errno;
+    if (msglen > 0) snprintf(msg, (size_t)msglen, "%s", strerror(e));
+    return e;
+}
+
+/* The soft limit of the address space (RLIMIT_AS) in bytes in *bytes, -1 when unlimited.
+ * Returns 0 on success, -1 when getrlimit(2) fails. */
+int exic_c_address_space_limit(long long *bytes)
+{
+    struct rlimit rl;
+    if (getrlimit(RLIMIT_AS, &rl) != 0) return -1;
+    if (rl.rlim_cur == RLIM_INFINITY || rl.rlim_cur > (rlim_t)9223372036854775807LL) {
+        *bytes = -1;
+    } else {
+        *bytes = (long long)rl.rlim_cur;
+    }
+    return 0;
+}

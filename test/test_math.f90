@@ -1,0 +1,123 @@
+!> Tests of exic's own logarithm (src/exic/base/logarithm.f90): its error against a quad
+!> precision reference over the range of volume ratios J that occur (0.05 .. 20, densely, and
+!> the hard cases next to 1 and to the reduction's boundaries), exact values, and that the block
+!> kernel (vectorized) and the elemental function give the same bits.
+module test_math
+   use exic_base_kinds, only: wp
+   use exic_base_logarithm, only: ln, ln_block
+   use, intrinsic :: iso_fortran_env, only: real128, int64
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
+   use testing, only: suite_t, check, section
+   implicit none
+   private
+
+   public :: run_math_tests
+
+contains
+
+   !> Run every test of the suite.
+   subroutine run_math_tests(s)
+      type(suite_t), intent(inout) :: s
+      call test_accuracy(s)
+      call test_exact(s)
+      call test_block(s)
+   end subroutine run_math_tests
+
+   !> Error of ln(x) in units in the last place of the exact logarithm (quad precision).
+   real(wp) function ulps(x)
+      real(wp), intent(in) :: x
+      real(real128) :: t
+      t = log(real(x, real128))
+      if (t == 0.0_real128) then
+         ulps = merge(0.0_wp, huge(1.0_wp), ln(x) == 0.0_wp)
+      else
+         ulps = real(abs(real(ln(x), real128) - t)/real(spacing(real(t, wp)), real128), wp)
+      end if
+   end function ulps
+
+   !> At most one ulp (0.85 measured) over J in [0.05, 20] and near 1.
+   subroutine test_accuracy(s)
+      type(suite_t), intent(inout) :: s
+      integer, parameter :: n = 200000
+      real(wp) :: x, worst, wnear, wbound, e
+      integer :: i, k
+      character(len=80) :: buf
+
+      call section(s, 'logarithm: error against quad precision')
+      worst = 0.0_wp
+      do i = 0, n
+         ! log-uniform over [0.05, 20], irrational spacing so every mantissa region is hit
+         x = 0.05_wp*400.0_wp**(real(i, wp)/real(n, wp))
+         x = x*(1.0_wp + 1.0e-7_wp*sin(real(i, wp)))
+         worst = max(worst, ulps(x))
+      end do
+      write (buf, '(a,f6.3,a)') 'J in [0.05, 20], 200001 points: at most ', worst, ' ulp'
+      call check(s, worst <= 1.0_wp, trim(buf))
+      ! next to 1: 1 +- k ulp and 1 +- 2^-j (the hard cases of any logarithm)
+      wnear = 0.0_wp
+      do k = 1, 2000
+         wnear = max(wnear, ulps(1.0_wp + real(k, wp)*epsilon(1.0_wp)), &
+                     ulps(1.0_wp - real(k, wp)*0.5_wp*epsilon(1.0_wp)))
+      end do
+      do k = 1, 52
+         wnear = max(wnear, ulps(1.0_wp + 2.0_wp**(-k)), ulps(1.0_wp - 2.0_wp**(-k)), &
+                     ulps(1.0_wp + 3.0_wp*2.0_wp**(-k - 2)), ulps(1.0_wp - 3.0_wp*2.0_wp**(-k - 2)))
+      end do
+      write (buf, '(a,f6.3,a)') 'next to 1 (1 +- k ulp, 1 +- 2^-j): at most ', wnear, ' ulp'
+      call check(s, wnear <= 1.0_wp, trim(buf))
+      ! the reduction's boundaries: mantissas next to sqrt(2) and 1/sqrt(2), over many binades
+      wbound = 0.0_wp
+      do k = -30, 30
+         do i = -50, 50
+            x = sqrt(2.0_wp)*2.0_wp**k*(1.0_wp + real(i, wp)*epsilon(1.0_wp))
+            e = ulps(x)
+            wbound = max(wbound, e)
+         end do
+      end do
+      write (buf, '(a,f6.3,a)') 'at the reduction boundary sqrt(2) 2^k, k = -30..30: at most ', wbound, ' ulp'
+      call check(s, wbound <= 1.0_wp, trim(buf))
+   end subroutine test_accuracy
+
+   !> ln 1 = 0 exactly; powers of two; extreme and subnormal arguments; NaN.
+   subroutine test_exact(s)
+      type(suite_t), intent(inout) :: s
+      real(wp) :: nan, worst
+      integer :: k
+
+      call section(s, 'logarithm: exact values and the ends of the range')
+      call check(s, ln(1.0_wp) == 0.0_wp, 'ln 1 = 0 exactly (a stress-free state stays stress free)')
+      worst = 0.0_wp
+      do k = -1000, 1000, 7
+         worst = max(worst, ulps(2.0_wp**k))
+      end do
+      call check(s, worst <= 1.0_wp, 'powers of two 2^-1000 .. 2^1000 within 1 ulp')
+      call check(s, ulps(huge(1.0_wp)) <= 1.0_wp .and. ulps(tiny(1.0_wp)) <= 1.0_wp, &
+                 'largest and smallest normal numbers within 1 ulp')
+      call check(s, ulps(tiny(1.0_wp)/1024.0_wp) <= 1.0_wp .and. ulps(tiny(1.0_wp)*0.7_wp) <= 1.0_wp, &
+                 'subnormal numbers within 1 ulp')
+      nan = ieee_value(1.0_wp, ieee_quiet_nan)
+      call check(s, ieee_is_nan(ln(nan)), 'ln NaN is NaN')
+   end subroutine test_exact
+
+   !> ln_block (the vectorized loop, with its remainder) gives the bits of ln.
+   subroutine test_block(s)
+      type(suite_t), intent(inout) :: s
+      integer, parameter :: n = 1001
+      real(wp) :: x(n), y(n)
+      integer :: i, ndiff
+
+      call section(s, 'logarithm: block kernel and elemental function')
+      do i = 1, n
+         x(i) = 0.05_wp + 19.95_wp*real(mod(7919*i, n), wp)/real(n, wp) + 1.0e-9_wp*real(i, wp)
+      end do
+      x(17) = 1.0_wp
+      x(18) = tiny(1.0_wp)/8.0_wp
+      call ln_block(n, x, y)
+      ndiff = 0
+      do i = 1, n
+         if (transfer(y(i), 1_int64) /= transfer(ln(x(i)), 1_int64)) ndiff = ndiff + 1
+      end do
+      call check(s, ndiff == 0, 'ln_block(x) = ln(x) to the bit at 1001 points (vector loop and remainder)')
+   end subroutine test_block
+
+end module test_math

@@ -1,0 +1,138 @@
+!> Results do not depend on the number of threads: a deck with two element sets (2x2 and one
+!> point), more elements and nodes than the thresholds of the threaded loops, a contact pair
+!> and field output runs with one thread and with two (and three); its histories and energies
+!> must agree byte for byte, its HDF5 datasets value for value (h5dump). Without OpenMP the
+!> check is skipped.
+module test_threads
+   use deck_runner, only: run_dir, run_deck
+   use testing, only: suite_t, check, section, skip, have_command
+   use exic_explicit_assembly, only: PAR_MIN_ELEMENTS
+   use exic_explicit_central, only: PAR_MIN_NODES
+   !$ use omp_lib, only: omp_get_max_threads, omp_set_num_threads
+   implicit none
+   private
+
+   public :: run_threads_tests
+
+   character(len=*), parameter :: nl = new_line('a')
+   !> Elements per block in x and y (two blocks).
+   integer, parameter :: nx = 60, ny = 40
+
+contains
+
+   !> Run every test of the suite.
+   subroutine run_threads_tests(s)
+      type(suite_t), intent(inout) :: s
+      integer :: nmax, th, stage
+      character(len=:), allocatable :: msg, deck
+      character(len=1) :: c
+      logical :: openmp
+
+      call section(s, 'threads: one, two and three threads give the same results')
+      openmp = .false.
+      !$ openmp = .true.
+      if (.not. openmp) then
+         call skip(s, 'results for 1, 2 and 3 threads', 'OpenMP (built without -fopenmp)')
+         return
+      end if
+      call check(s, nx*ny >= PAR_MIN_ELEMENTS .and. 2*(nx + 1)*(ny + 1) >= PAR_MIN_NODES, &
+                 'the deck is large enough for the threaded element and nodal loops')
+      nmax = 1
+      !$ nmax = omp_get_max_threads()
+      deck = threads_deck()
+      do th = 1, 3
+         !$ call omp_set_num_threads(th)
+         write (c, '(i1)') th
+         call run_deck('threads_'//c, deck, stage, msg)
+         call check(s, stage == 0, 'the deck runs with '//c//' thread(s)', msg)
+      end do
+      !$ call omp_set_num_threads(nmax)
+      do th = 2, 3
+         write (c, '(i1)') th
+         call check(s, same_bytes(run_dir//'/threads_1.his', run_dir//'/threads_'//c//'.his'), &
+                    'histories (.his) with '//c//' threads equal those with one, byte for byte')
+         call check(s, same_bytes(run_dir//'/threads_1.ene', run_dir//'/threads_'//c//'.ene'), &
+                    'energies (.ene) with '//c//' threads equal those with one, byte for byte')
+         if (have_command('h5dump')) then
+            call check(s, same_dump(run_dir//'/threads_1.h5', run_dir//'/threads_'//c//'.h5'), &
+                       'every HDF5 dataset with '//c//' threads equals that with one')
+         else
+            call skip(s, 'HDF5 datasets with '//c//' threads', 'h5dump')
+         end if
+      end do
+   end subroutine run_threads_tests
+
+   !> Two blocks 6 x 4 (nx x ny elements each), 2x2 below and one point above, 0.05 apart: the
+   !> lower one deforming everywhere (initial velocity linear along each row, varying from row
+   !> to row), the upper one falling onto it (NTOS contact); fields every 0.05.
+   function threads_deck() result(deck)
+      character(len=:), allocatable :: deck
+      character(len=80) :: line
+      integer :: j, m
+      deck = 'FEAP * * threads: two blocks, both quadratures, contact, fields'//nl//'0 0 0 2 2 4'//nl
+      do m = 1, 2
+         write (line, '(a,i0)') 'MATErial,', m
+         deck = deck//trim(line)//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'//nl// &
+                '    DENSity 1'//nl
+         write (line, '(a,i0)') '    QUADrature ', 3 - m
+         deck = deck//trim(line)//nl//nl
+      end do
+      write (line, '(a,i0,a,i0,a)') '  CARTesian,', nx, ',', ny, ',0,0,1'
+      deck = deck//'REGIon,1'//nl//'BLOCk'//nl//trim(line)//nl//'    1,0,0'//nl//'    2,6,0'//nl// &
+             '    3,6,4'//nl//'    4,0,4'//nl//nl
+      write (line, '(a,i0,a,i0,a)') '  CARTesian,', nx, ',', ny, ',0,0,2'
+      deck = deck//'REGIon,2'//nl//'BLOCk'//nl//trim(line)//nl//'    1,0,4.05'//nl//'    2,6,4.05'//nl// &
+             '    3,6,8.05'//nl//'    4,0,8.05'//nl//nl
+      deck = deck//'INITial,VELOcity'//nl
+      do j = 0, ny
+         write (line, '(2x,i0,a,f9.6)') 1 + j*(nx + 1), ',1,0.3,', 0.3*sin(6.2831853*(j + 0.5)/16.0)
+         deck = deck//trim(line)//nl
+         write (line, '(2x,i0,a,f9.6)') (j + 1)*(nx + 1), ',0,-0.3,', 0.3*sin(6.2831853*(j + 0.5)/16.0)
+         deck = deck//trim(line)//nl
+      end do
+      deck = deck//'  REGIon,2,0,-0.5'//nl//nl// &
+             'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
+             '  PAIR,1,NTOS,2,1'//nl//'END CONTact'//nl//nl// &
+             'END'//nl//'BATCh'//nl//'  TRANsient,EXPLicit'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,5'//nl// &
+             '  OUTPut,HDF5,0.05'//nl//'  LOOP,,200'//nl//'    TIME'//nl//'    FORM,EXPLicit'//nl// &
+             '  NEXT'//nl//'END'//nl//'  disp,,1,0,0'//nl//'  velo,,2,6,4'//nl//'  cont,1,1'//nl//nl//'STOP'
+   end function threads_deck
+
+   !> The two files exist and have the same bytes.
+   logical function same_bytes(a, b)
+      character(len=*), intent(in) :: a, b
+      character(len=:), allocatable :: ta, tb
+      same_bytes = read_all(a, ta) .and. read_all(b, tb)
+      if (same_bytes) same_bytes = ta == tb .and. len(ta) > 0
+   end function same_bytes
+
+   !> h5dump prints the same datasets and attributes for both files (its first line names the
+   !> file; HDF5 keeps modification times in the object headers, so the bytes differ).
+   logical function same_dump(a, b)
+      character(len=*), intent(in) :: a, b
+      character(len=:), allocatable :: ta, tb
+      call execute_command_line('h5dump '//a//' | tail -n +2 > '//a//'.dump 2>&1; h5dump '//b// &
+                                ' | tail -n +2 > '//b//'.dump 2>&1')
+      same_dump = read_all(a//'.dump', ta) .and. read_all(b//'.dump', tb)
+      if (same_dump) same_dump = ta == tb .and. len(ta) > 1000
+   end function same_dump
+
+   !> The whole file as one string; false if it cannot be read.
+   logical function read_all(path, text)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(out) :: text
+      integer :: u, ios, n
+      read_all = .false.
+      open (newunit=u, file=path, access='stream', form='unformatted', status='old', action='read', iostat=ios)
+      if (ios /= 0) then
+         text = ''
+         return
+      end if
+      inquire (unit=u, size=n)
+      allocate (character(len=n) :: text)
+      if (n > 0) read (u, iostat=ios) text
+      close (u)
+      read_all = ios == 0
+   end function read_all
+
+end module test_threads
