@@ -162,8 +162,11 @@ contains
          cs%slip(i) = self%slide0(i) + c*(slide_change(cs, self%tng, i, nnode, minv, corr%fwork) + &
                                           slide_change(cs, self%tng, i, nnode, minv, self%ft))
          if (present(rb)) cs%slip(i) = cs%slip(i) + c*rb%slide_part(i)
+         ! a candidate at its bound slips when it moves (beyond the gap tolerance); one that the
+         ! bound holds in place sticks (doc/friction.md, section 5: no dissipation)
          if (self%beta(i) > 0.0_wp) then
-            cs%state(i) = merge(1, 2, self%side(i) == 0)
+            cs%state(i) = 1
+            if (self%side(i) /= 0 .and. abs(cs%slip(i)) > corr%gap_tol) cs%state(i) = 2
          end if
       end do
       ffric = self%ft
