@@ -20,6 +20,7 @@ module exic_contact_contact
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
+   use exic_base_grow, only: grow
    use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, SURF_NODES, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
                                 DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t
@@ -70,6 +71,10 @@ module exic_contact_contact
       logical :: friction = .false.            !< Coulomb friction with law(1) = mus > 0
       real(wp) :: law(3) = 0.0_wp              !< mus, mud, decay (doc/friction.md, eq. F12)
       type(penalty_history_t) :: hist          !< tangential state of a penalty pass with friction
+      !> per hit of a penalty pass: penetration, normal force, force on the slave, tangential
+      !> force and state (grown, never shrunk)
+      real(wp), allocatable :: pen(:), fn(:), f(:, :), q(:)
+      integer, allocatable :: state(:)
       type(broad_t) :: broad
       type(contact_set_t) :: hits
    end type pass_t
@@ -121,7 +126,6 @@ module exic_contact_contact
       procedure :: pair_value => contact_pair_value
       procedure :: summary => contact_summary
       procedure :: edges => contact_edges
-      procedure :: set_friction => contact_set_friction
    end type contact_t
 
 contains
@@ -192,21 +196,6 @@ contains
       if (.not. allocated(self%ffric)) allocate (self%ffric(2, nnode), source=0.0_wp)
       if (.not. allocated(self%xold)) allocate (self%xold(2, nnode), source=x)
    end subroutine friction_arrays
-
-   !> Coulomb friction of pair `pair` (index into the results, 1-based): mus, mud, decay
-   !> (doc/friction.md, eq. F12); mus = 0 removes it. x: the positions now.
-   subroutine contact_set_friction(self, pair, mus, mud, decay, nnode, x)
-      class(contact_t), intent(inout) :: self
-      integer, intent(in) :: pair, nnode
-      real(wp), intent(in) :: mus, mud, decay
-      real(wp), intent(in) :: x(2, nnode)
-      integer :: k
-      if (.not. self%active) return
-      do k = 1, size(self%passes)
-         if (self%passes(k)%pair == pair) self%passes(k)%law = [mus, mud, decay]
-      end do
-      call friction_arrays(self, nnode, x)
-   end subroutine contact_set_friction
 
    !> Surfaces of the SURFace records, plus one per region for AUTOmatic.
    subroutine build_surfaces(self, spec, nelem, conn, region, mat, err)
@@ -574,8 +563,6 @@ contains
       real(wp), intent(inout) :: a(2, nnode), fcon(2, nnode)
       integer, intent(inout) :: nactive
       integer :: j, n
-      real(wp), allocatable :: pen(:), fn(:), f(:, :), q(:)
-      integer, allocatable :: state(:)
       real(wp) :: diss
       call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, self%depth)
       if (ps%broad%ncand == 0) return
@@ -583,15 +570,19 @@ contains
                            sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
                            self%depth, FACING)
       n = ps%hits%n
-      allocate (pen(n), fn(n), f(2, n), q(n), state(n))
+      call grow(ps%pen, n)
+      call grow(ps%fn, n)
+      call grow(ps%f, n, 2)
       diss = 0.0_wp
       if (ps%friction) then
-         call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, pen, fn, f, ps%hist, ps%law, &
-                             self%xold, dt_prev, self%ffric, q, state, diss)
+         call grow(ps%q, n)
+         call grow(ps%state, n)
+         call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n), &
+                             ps%hist, ps%law, self%xold, dt_prev, self%ffric, ps%q(1:n), ps%state(1:n), diss)
       else
-         call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, pen, fn, f)
+         call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n))
       end if
-      associate (r => self%results(ps%pair))
+      associate (r => self%results(ps%pair), pen => ps%pen, fn => ps%fn, f => ps%f)
          do j = 1, n
             if (pen(j) <= 0.0_wp) cycle
             r%nactive = r%nactive + 1
@@ -601,9 +592,9 @@ contains
             r%penetration = max(r%penetration, pen(j))
             nactive = nactive + 1
             if (.not. ps%friction) cycle
-            r%ftangent = r%ftangent + abs(q(j))
-            if (state(j) == 1) r%nstick = r%nstick + 1
-            if (state(j) == 2) r%nslip = r%nslip + 1
+            r%ftangent = r%ftangent + abs(ps%q(j))
+            if (ps%state(j) == 1) r%nstick = r%nstick + 1
+            if (ps%state(j) == 2) r%nslip = r%nslip + 1
          end do
          ! the realised slip of [t(n), t(n+1)] is booked at once
          r%dissipation = r%dissipation + diss

@@ -157,7 +157,8 @@ contains
    !> (1 where a node carries an active constraint); the element values sig(ncomp, nelem) (by
    !> default the stress: sxx, syy, szz, sxy, pressure, von Mises, J), averaged to the nodes here;
    !> and the energies with their names (the same names, in the same order, at every call);
-   !> ffric(2, nnode), the nodal friction force, when the writer was opened with friction. Flushes the .h5 file, then appends to the series XDMF file and rewrites the last-state one.
+   !> ffric(2, nnode), the nodal friction force, when the writer was opened with friction.
+   !> Flushes the .h5 file, then appends to the series XDMF file and rewrites the last-state one.
    subroutine writer_write_step(self, t, step, u, v, a, sig, fcont, active, energies, &
                                 energy_names, err, ffric)
       class(field_writer_t), intent(inout) :: self
