@@ -437,6 +437,7 @@ contains
          self%results(k)%pmax = 0.0_wp
       end do
       if (self%friction) call friction_begin(self)
+      self%cs%friction = self%friction
       call self%cs%reserve(64)
       do k = 1, size(self%passes)
          associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &

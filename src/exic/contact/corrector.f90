@@ -50,7 +50,9 @@ module exic_contact_corrector
       integer, allocatable :: pair(:)        !< (n) pair index
       real(wp), allocatable :: p(:)          !< (n) multiplier, >= 0 in compression
       logical, allocatable :: active(:)      !< (n) carries force after the corrector
-      ! friction (doc/friction.md); mu = 0 and q = 0 without it
+      ! friction (doc/friction.md): kept only when `friction` (set before the candidates are
+      ! added), so that frictionless steps do no work for them
+      logical :: friction = .false.
       real(wp), allocatable :: mu(:)         !< (n) friction coefficient of the step (eq. F12)
       real(wp), allocatable :: q(:)          !< (n) tangential multiplier: force on the slave along t = e3 x n
       real(wp), allocatable :: slip(:)       !< (n) relative tangential increment of the step ds (eq. F6)
@@ -103,6 +105,7 @@ contains
       call grow(cs%pair, m)
       call grow(cs%p, m)
       call grow(cs%active, m)
+      if (.not. cs%friction) return
       call grow(cs%mu, m)
       call grow(cs%q, m)
       call grow(cs%slip, m)
@@ -110,7 +113,7 @@ contains
    end subroutine grow_all
 
    !> Append one candidate (the arrays grow, keeping their contents, when full); `mu` its
-   !> friction coefficient for the step (0 without friction).
+   !> friction coefficient for the step (0 when absent; kept only when self%friction).
    subroutine constraints_add(self, s, m1, m2, alpha, nrm, gap, gap_now, pair, mu)
       class(constraints_t), intent(inout) :: self
       integer, intent(in) :: s, m1, m2, pair
@@ -128,6 +131,7 @@ contains
       self%pair(k) = pair
       self%p(k) = 0.0_wp
       self%active(k) = .false.
+      if (.not. self%friction) return
       self%mu(k) = 0.0_wp
       if (present(mu)) self%mu(k) = mu
       self%q(k) = 0.0_wp

@@ -106,6 +106,7 @@ contains
       self%ncalls = self%ncalls + 1
       call corr%prepare(cs, nnode, minv, rb)
       call work_arrays(self, m, nnode)
+      self%ft = 0.0_wp
       do i = 1, m
          self%tng(:, i) = [-cs%nrm(2, i), cs%nrm(1, i)]
          self%slide0(i) = 0.0_wp
@@ -307,13 +308,19 @@ contains
    end subroutine tangential
 
    !> f = G_T q: the nodal forces of the tangential multipliers q(m) (tng(2, m) the tangents).
+   !> Only the candidates' nodes are set: f must be zero at every other node on entry (it is
+   !> zeroed once per step), so that a pivoting pass costs the candidates, not the mesh.
    subroutine apply_tangent(cs, tng, q, nnode, f)
       type(constraints_t), intent(in) :: cs
       real(wp), intent(in) :: tng(:, :), q(:)
       integer, intent(in) :: nnode
-      real(wp), intent(out) :: f(2, nnode)
+      real(wp), intent(inout) :: f(2, nnode)
       integer :: i, k
-      f = 0.0_wp
+      do i = 1, cs%n
+         do k = 1, 3
+            f(:, cs%node(k, i)) = 0.0_wp
+         end do
+      end do
       do i = 1, cs%n
          if (q(i) == 0.0_wp) cycle
          do k = 1, 3

@@ -262,8 +262,9 @@ contains
       type(stepper_t), intent(inout) :: self
       real(wp), intent(in) :: vt(:, :)
       type(error_t), allocatable, intent(out) :: err
-      integer :: hits
+      integer :: hits, fhits
       hits = self%contact%corr%pass_limit_hits
+      fhits = self%contact%fr%sweep_limit_hits + self%contact%fr%pass_limit_hits
       associate (st => self%st)
          st%nactive = 0
          if (associated(self%hook)) then
@@ -285,6 +286,13 @@ contains
             if (self%pass_limit_warnings == MAX_PASS_WARNINGS) &
                call self%messages%add('warning: further pass-limit warnings are only counted (<stem>.out, '// &
                                       'contact statistics)')
+         else if (self%contact%fr%sweep_limit_hits + self%contact%fr%pass_limit_hits > fhits) then
+            ! the frictional corrector did not converge (doc/friction.md, section 4)
+            self%pass_limit_warnings = self%pass_limit_warnings + 1
+            if (self%pass_limit_warnings <= MAX_PASS_WARNINGS) &
+               call self%messages%add('warning: the frictional corrector reached its sweep or pass limit at '// &
+                                      'step '//itoa(int(st%step))//', t = '//rtoa(st%t)//'; the last '// &
+                                      'multipliers within the friction bounds were kept')
          end if
       end associate
    end subroutine correct
