@@ -11,7 +11,8 @@ module test_friction
    use exic_base_error, only: error_t
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
-   use testing, only: suite_t, check, section
+   use testing, only: suite_t, check, section, skip, have_command
+   use test_fields, only: h5dump
    use deck_runner, only: run_dir, run_deck, read_table, column, write_text
    implicit none
    private
@@ -39,6 +40,8 @@ contains
       type(suite_t), intent(inout) :: s
       call section(s, 'friction: a block slides to rest and is held')
       call sliding_block(s, 'LAGRange', 'Lagrange')
+      call section(s, 'friction: the nodal friction force field')
+      call friction_field(s)
       call section(s, 'friction: mu = 0 is the frictionless run to the last digit')
       call zero_mu(s)
       call section(s, 'friction: a block under tilted gravity')
@@ -163,6 +166,50 @@ contains
       call check(s, abs(d(8, n) - dmax) <= 1.0e-12_wp, what//': the pair''s dissipation (cont,1,11) is the '// &
                  '.ene column', rtoa(d(8, n))//' against '//rtoa(dmax))
    end subroutine sliding_block
+
+   !> The sliding block of `sliding_block` with field output every 0.05 up to t = 0.1 (while it
+   !> slides): /fields/friction_force on the block's nodes adds up to (-mu m g, 0) at every output
+   !> time after t = 0, and the run's field file holds /energies/friction_dissipation.
+   subroutine friction_field(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, deck, space
+      real(wp), allocatable :: vals(:)
+      integer :: stage, nt, nn, k, i
+      real(wp) :: fx, fy, worst
+      logical :: ok
+      if (.not. have_command('h5dump')) then
+         call skip(s, 'the nodal friction force field', 'h5dump', 3)
+         return
+      end if
+      deck = head//mats//floor//unit_block//'INITial,VELOcity'//nl//'  REGIon,1,1,0'//nl//nl// &
+             'GRAVity,0,-10'//nl//contact('  FRICtion,COULomb,0.5'//nl)//batch('1e-4', '0.1', requests())
+      deck = replace(deck, '  TPLOt,,1', '  TPLOt,,1'//nl//'  OUTPut,HDF5,0.05')
+      call run_deck('slide_fields', deck, stage, msg)
+      call check(s, stage == 0, 'sliding block with field output runs', msg)
+      if (stage /= 0) return
+      call h5dump('', '-d /time '//run_dir//'/slide_fields.h5', ok, space, vals)
+      nt = size(vals)
+      call h5dump('', '-d /fields/friction_force '//run_dir//'/slide_fields.h5', ok, space, vals)
+      nn = size(vals)/(2*nt)
+      worst = huge(1.0_wp)
+      if (ok .and. nn >= 4 .and. size(vals) == 2*nt*nn) then
+         worst = 0.0_wp
+         do k = 2, nt
+            fx = 0.0_wp
+            fy = 0.0_wp
+            do i = 1, 4
+               fx = fx + vals(((k - 1)*nn + i - 1)*2 + 1)
+               fy = fy + vals(((k - 1)*nn + i - 1)*2 + 2)
+            end do
+            worst = max(worst, abs(fx + 0.5_wp*2.0_wp*g), abs(fy))
+         end do
+      end if
+      call check(s, nt >= 3 .and. worst <= 1.0e-10_wp, '/fields/friction_force on the block adds up to '// &
+                 '(-mu m g, 0) while '// &
+                 'it slides', space//', largest error '//rtoa(worst))
+      call h5dump('', '-d /energies/friction_dissipation '//run_dir//'/slide_fields.h5', ok, space, vals)
+      call check(s, ok .and. size(vals) == nt, 'the field file holds /energies/friction_dissipation', space)
+   end subroutine friction_field
 
    !> FRICtion,COULomb,0 writes the same .his and .ene as no FRICtion record, byte for byte.
    subroutine zero_mu(s)

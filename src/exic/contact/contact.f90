@@ -175,8 +175,8 @@ contains
       call check_overlap(self, nnode, x, err)
    end subroutine contact_init
 
-   !> The friction state of the passes and of the model, (re)made when a pass's law changes:
-   !> allocated only when some pass has friction (x: the positions now).
+   !> The friction state of the passes and of the model (at init): allocated only when some
+   !> pass has friction (x: the positions now).
    subroutine friction_arrays(self, nnode, x)
       type(contact_t), intent(inout) :: self
       integer, intent(in) :: nnode

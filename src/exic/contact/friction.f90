@@ -76,8 +76,9 @@ contains
    !> Solve the frictional problem of the candidates `cs` (cs%mu: their coefficients; eq. F12)
    !> with the normal problem of `corr`: on return cs%p, cs%q, cs%slip (ds, F6) and cs%state
    !> (1 stick, 2 slip, 0 no friction force) are set, a += M^-1 (G_N p + G_T q),
-   !> fcon += G_N p + G_T q and ffric = G_T q. x = x(n+1) and xp = x~(n+2) (eq. 4.4) give the
-   !> predicted slips; minv, c, rb as for corrector_t%solve.
+   !> fcon += G_N p + G_T q and ffric += G_T q (penalty passes may have added theirs).
+   !> x = x(n+1) and xp = x~(n+2) (eq. 4.4) give the predicted slips; minv, c, rb as for
+   !> corrector_t%solve.
    subroutine friction_solve(self, corr, cs, nnode, minv, c, x, xp, a, fcon, ffric, err, rb)
       class(friction_t), intent(inout) :: self
       type(corrector_t), intent(inout) :: corr
@@ -85,7 +86,7 @@ contains
       integer, intent(in) :: nnode
       real(wp), intent(in) :: minv(2, nnode), c, x(2, nnode), xp(2, nnode)
       real(wp), intent(inout) :: a(2, nnode), fcon(2, nnode)
-      real(wp), intent(out) :: ffric(2, nnode)
+      real(wp), intent(inout) :: ffric(2, nnode)
       type(error_t), allocatable, intent(out) :: err
       type(rigid_dofs_t), intent(inout), optional :: rb
       integer :: m, i, k
@@ -95,7 +96,6 @@ contains
       corr%passes = 0
       corr%nredundant = 0
       self%sweeps = 0
-      ffric = 0.0_wp
       if (m == 0) return
       cs%p(1:m) = 0.0_wp
       cs%q(1:m) = 0.0_wp
@@ -170,7 +170,7 @@ contains
             if (self%side(i) /= 0 .and. abs(cs%slip(i)) > corr%gap_tol) cs%state(i) = 2
          end if
       end do
-      ffric = self%ft
+      ffric = ffric + self%ft
       a = a + minv*(corr%fwork + self%ft)
       fcon = fcon + corr%fwork + self%ft
    end subroutine friction_solve
