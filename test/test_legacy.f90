@@ -825,7 +825,8 @@ contains
       integer :: stat, cstat
       call execute_command_line(bindir//'/chost > '//run_dir//'/chost.txt 2>&1', exitstat=stat, cmdstat=cstat)
       call check(s, stat == 0 .and. cstat == 0, 'chost: one step closes the gap, contact force = m a, '// &
-                 'unknown handle reported (output in '//run_dir//'/chost.txt)')
+                 'unknown handle reported; with mu = 0.5 the node slides with friction force mu N '// &
+                 'against its motion, mud > mus refused (output in '//run_dir//'/chost.txt)')
    end subroutine c_host_test
 
 end module test_legacy
