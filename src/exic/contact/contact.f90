@@ -26,6 +26,7 @@ module exic_contact_contact
                                 DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t
    use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, node_normals
    use exic_contact_broad, only: broad_t, broad_search
+   use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: contact_set_t, detect_contacts
    use exic_contact_corrector, only: constraints_t, corrector_t
    use exic_contact_friction, only: friction_t, coulomb_mu
@@ -59,6 +60,7 @@ module exic_contact_contact
       integer, allocatable :: nodes(:)         !< (nnode) sorted
       integer, allocatable :: where(:, :)      !< (2, nseg) positions of seg nodes in `nodes`
       real(wp), allocatable :: nrm(:, :)       !< (2, nnode) node normals at t(n+1)
+      integer :: nrm_stamp = -1                !< search whose positions nrm holds
    end type surface_t
 
    !> One pass: the nodes of surface `slave` against the segments of surface `master`.
@@ -75,6 +77,7 @@ module exic_contact_contact
       !> force and state (grown, never shrunk)
       real(wp), allocatable :: pen(:), fn(:), f(:, :), q(:)
       integer, allocatable :: state(:)
+      logical :: auto = .false.                !< AUTOmatic: candidates from the search over all surfaces
       type(broad_t) :: broad
       type(contact_set_t) :: hits
    end type pass_t
@@ -101,6 +104,18 @@ module exic_contact_contact
       logical :: any_penalty = .false.
       type(surface_t), allocatable :: surfaces(:)
       type(pass_t), allocatable :: passes(:)
+      !> passes in force: 1..nfixed those of the PAIR records (and of a penalty AUTOmatic), then
+      !> one per pair of AUTOmatic surfaces that the search over all surfaces found near
+      integer :: npass = 0, nfixed = 0
+      type(pass_t) :: auto_pass                !< options of the Lagrange AUTOmatic passes
+      type(broad_all_t) :: auto                !< the AUTOmatic surfaces and their search
+      integer :: auto_first = 0                !< surfaces(auto_first + r) is AUTOmatic surface r
+      integer, allocatable :: cnodes(:)        !< every node of every contact surface
+      integer :: stamp = 0                     !< searches made (normals are formed once per search)
+      !> the caller passes the same fcon to every call and leaves it alone in between (the
+      !> stepper): fcon is then zeroed only when the last call left forces in it
+      logical :: keep_fcon = .false.
+      logical :: fcon_clean = .false.          !< the last call left fcon zero everywhere
       type(pair_result_t), allocatable :: results(:)
       type(constraints_t) :: cs
       type(corrector_t) :: corr
@@ -165,7 +180,8 @@ contains
       if (nlen > 0) self%lref = len_sum/nlen
       self%depth = DEPTH_SHARE*self%lref
       self%corr%gap_tol = 1.0e-13_wp*self%lref
-      allocate (self%xp(2, nnode))
+      allocate (self%xp(2, nnode), source=0.0_wp)
+      call contact_nodes(self, nnode)
       np = size(self%passes)
       do k = 1, np
          if (self%passes(k)%method == METHOD_PENALTY) self%any_penalty = .true.
@@ -191,6 +207,9 @@ contains
                call ps%hist%init(nnode)
          end associate
       end do
+      ! the options of the Lagrange AUTOmatic passes (auto_passes copies them)
+      self%auto_pass%friction = self%auto_pass%auto .and. self%auto_pass%law(1) > 0.0_wp
+      if (self%auto_pass%friction) self%friction = .true.
       if (.not. self%friction) return
       if (.not. allocated(self%vslip)) allocate (self%vslip(nnode), source=-1.0_wp)
       if (.not. allocated(self%ffric)) allocate (self%ffric(2, nnode), source=0.0_wp)
@@ -273,13 +292,15 @@ contains
       type(error_t), allocatable, intent(out) :: err
       integer :: npair, np, k, i, j, nauto, ns, maxid, npass
       type(pass_t), allocatable :: p(:)
+      logical :: auto_penalty
 
       npair = 0
       if (allocated(spec%pairs)) npair = size(spec%pairs)
       ns = 0
       if (allocated(spec%surfaces)) ns = size(spec%surfaces)
       nauto = size(self%surfaces) - ns
-      allocate (p(2*npair + nauto*max(nauto - 1, 0)))
+      auto_penalty = spec%auto_options%method == METHOD_PENALTY
+      allocate (p(2*npair + merge(nauto*max(nauto - 1, 0), 1, auto_penalty)))
       maxid = 0
       np = 0
       allocate (self%results(npair + merge(1, 0, nauto > 0)))
@@ -308,15 +329,29 @@ contains
             end select
          end associate
       end do
-      if (nauto > 0) then
+      if (nauto > 0 .and. auto_penalty) then
          self%results(npair + 1)%id = maxid + 1
          do i = ns + 1, ns + nauto
             do j = ns + 1, ns + nauto
                if (i /= j) call add_pass(p, np, npair + 1, i, j, spec%auto_options)
             end do
          end do
+      else if (nauto > 0) then
+         ! Lagrange AUTOmatic: one search over all its surfaces per step makes the passes of
+         ! the pairs of surfaces found near (auto_passes), in the order of i, then j
+         self%results(npair + 1)%id = maxid + 1
+         call add_pass(p, np, npair + 1, 0, 0, spec%auto_options)
+         self%auto_pass = p(np)
+         self%auto_pass%auto = .true.
+         np = np - 1
+         self%auto_first = ns
+         do i = ns + 1, ns + nauto
+            call self%auto%add_surface(self%surfaces(i)%nodes, self%surfaces(i)%seg)
+         end do
       end if
       npass = np
+      self%nfixed = npass
+      self%npass = npass
       allocate (self%passes(npass))
       do k = 1, npass
          self%passes(k)%pair = p(k)%pair
@@ -378,12 +413,13 @@ contains
 
       worst = 0.0_wp
       worst_node = 0
-      do k = 1, size(self%passes)
+      call auto_passes(self, nnode, x, x, 0.5_wp*self%lref)
+      do k = 1, self%npass
          associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
                     ms => self%surfaces(self%passes(k)%master))
-            call node_normals(nnode, x, sl%nseg, sl%seg, sl%nnode, sl%where, sl%nrm)
-            call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, &
-                              0.5_wp*self%lref)
+            call surface_normals(self, sl, nnode, x)
+            if (.not. ps%auto) call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, &
+                                                 0.5_wp*self%lref)
             call detect_contacts(ps%hits, DETECT_STATIC, nnode, x, x, sl%nnode, sl%nodes, &
                                  sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
                                  0.5_wp*self%lref, FACING)
@@ -422,13 +458,15 @@ contains
       type(rigid_dofs_t), intent(inout), optional :: rb
       integer :: k, j, i, node
       real(wp) :: c, gnow, pen, t0, t1, mu
+      logical :: touched
 
       nactive = 0
       if (.not. self%active) return
       t0 = wall_time()
-      fcon = 0.0_wp
-      ! predicted positions at t(n+2), eq. 4.4
-      self%xp = x + dt*vt + (0.5_wp*dt*dt)*a
+      if (.not. (self%keep_fcon .and. self%fcon_clean)) fcon = 0.0_wp
+      self%fcon_clean = .false.
+      touched = .false.
+      call predicted_positions(self, nnode, x, vt, a, dt)
       do k = 1, size(self%results)
          self%results(k)%fnormal = 0.0_wp
          self%results(k)%force = 0.0_wp
@@ -439,15 +477,18 @@ contains
       if (self%friction) call friction_begin(self)
       self%cs%friction = self%friction
       call self%cs%reserve(64)
-      do k = 1, size(self%passes)
+      call auto_passes(self, nnode, x, self%xp, self%depth)
+      do k = 1, self%npass
          associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
                     ms => self%surfaces(self%passes(k)%master))
-            call node_normals(nnode, x, sl%nseg, sl%seg, sl%nnode, sl%where, sl%nrm)
+            call surface_normals(self, sl, nnode, x)
             if (ps%method == METHOD_PENALTY) then
                call penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, dt_prev, fcon, nactive)
+               if (ps%broad%ncand > 0) touched = .true.
                cycle
             end if
-            call broad_search(ps%broad, nnode, x, self%xp, sl%nnode, sl%nodes, ms%nseg, ms%seg, self%depth)
+            if (.not. ps%auto) call broad_search(ps%broad, nnode, x, self%xp, sl%nnode, sl%nodes, ms%nseg, &
+                                                 ms%seg, self%depth)
             if (ps%broad%ncand == 0) cycle
             call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                  sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
@@ -501,7 +542,86 @@ contains
          self%max_penetration = max(self%max_penetration, self%results(k)%penetration)
       end do
       if (self%friction) self%xold = x
+      self%fcon_clean = self%cs%n == 0 .and. .not. touched
    end subroutine contact_correct
+
+   !> The passes of Lagrange AUTOmatic contact for this search: one search over every AUTOmatic
+   !> surface (src/exic/contact/broad_all.f90) over x0 -> x1 with margin, then one pass per pair
+   !> of surfaces with candidates, after the fixed passes, holding those candidates.
+   subroutine auto_passes(self, nnode, x0, x1, margin)
+      type(contact_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+      integer :: g, need
+      type(pass_t), allocatable :: tmp(:)
+
+      self%stamp = self%stamp + 1
+      self%npass = self%nfixed
+      if (.not. self%auto_pass%auto) return
+      call self%auto%search(nnode, x0, x1, margin)
+      need = self%nfixed + self%auto%ngroup
+      if (need > size(self%passes)) then
+         allocate (tmp(max(need, 2*size(self%passes), 8)))
+         tmp(1:size(self%passes)) = self%passes
+         call move_alloc(tmp, self%passes)
+      end if
+      do g = 1, self%auto%ngroup
+         associate (ps => self%passes(self%nfixed + g))
+            ! the options of auto_pass (its work arrays stay those of the slot)
+            ps%pair = self%auto_pass%pair
+            ps%method = self%auto_pass%method
+            ps%detection = self%auto_pass%detection
+            ps%k = self%auto_pass%k
+            ps%law = self%auto_pass%law
+            ps%friction = self%auto_pass%friction
+            ps%auto = .true.
+            ps%slave = self%auto_first + self%auto%gslave(g)
+            ps%master = self%auto_first + self%auto%gmaster(g)
+            call self%auto%take(g, ps%broad)
+         end associate
+      end do
+      self%npass = need
+   end subroutine auto_passes
+
+   !> Node normals of surface sf at positions x, once per search.
+   subroutine surface_normals(self, sf, nnode, x)
+      type(contact_t), intent(in) :: self
+      type(surface_t), intent(inout) :: sf
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x(2, nnode)
+      if (sf%nrm_stamp == self%stamp) return
+      call node_normals(nnode, x, sf%nseg, sf%seg, sf%nnode, sf%where, sf%nrm)
+      sf%nrm_stamp = self%stamp
+   end subroutine surface_normals
+
+   !> Every node of every contact surface, once (cnodes).
+   subroutine contact_nodes(self, nnode)
+      type(contact_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      logical, allocatable :: on(:)
+      integer :: k
+      allocate (on(nnode), source=.false.)
+      do k = 1, size(self%surfaces)
+         on(self%surfaces(k)%nodes) = .true.
+      end do
+      self%cnodes = pack([(k, k=1, nnode)], on)
+   end subroutine contact_nodes
+
+   !> Predicted positions x~(n+2) = x + dt vt + dt^2/2 a (eq. 4.4) of the contact nodes, the
+   !> only ones the search and the corrector read.
+   subroutine predicted_positions(self, nnode, x, vt, a, dt)
+      type(contact_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x(2, nnode), vt(2, nnode), a(2, nnode), dt
+      integer :: k, node
+      real(wp) :: h
+      h = 0.5_wp*dt*dt
+      do k = 1, size(self%cnodes)
+         node = self%cnodes(k)
+         self%xp(:, node) = x(:, node) + dt*vt(:, node) + h*a(:, node)
+      end do
+   end subroutine predicted_positions
+
 
    !> At the start of a step with friction: the Coulomb work of the last step, whose interval
    !> has now been stepped, joins the dissipation (doc/friction.md, eq. F17); the step's
@@ -697,16 +817,27 @@ contains
             end if
          end associate
       end do
-      do k = 1, size(self%passes)
+      do k = 1, self%nfixed
          associate (ps => self%passes(k))
             text = text//'contact pass '//itoa(k)//' of pair '//itoa(self%results(ps%pair)%id)// &
                    ': nodes of surface '//itoa(ps%slave)//' against segments of surface '// &
                    itoa(ps%master)//', '//trim(methods(ps%method))//', '//trim(detections(ps%detection))
             if (ps%friction) text = text//', Coulomb friction mus '//rtoa(ps%law(1))//' mud '// &
                                     rtoa(ps%law(2))//' decay '//rtoa(ps%law(3))
-            if (k < size(self%passes)) text = text//nl
+            if (k < self%nfixed) text = text//nl
          end associate
       end do
+      if (self%auto_pass%auto) then
+         associate (ps => self%auto_pass)
+            if (self%nfixed > 0) text = text//nl
+            text = text//'contact passes of pair '//itoa(self%results(ps%pair)%id)//' (automatic): nodes of '// &
+                   'each of surfaces '//itoa(self%auto_first + 1)//'-'//itoa(self%auto_first + self%auto%nsurf)// &
+                   ' against segments of each other one near it (one search over all of them per step), '// &
+                   trim(methods(ps%method))//', '//trim(detections(ps%detection))
+            if (ps%friction) text = text//', Coulomb friction mus '//rtoa(ps%law(1))//' mud '// &
+                                    rtoa(ps%law(2))//' decay '//rtoa(ps%law(3))
+         end associate
+      end if
    end function contact_summary
 
    !> Every contact segment of every surface, (2, nedge); empty without contact.

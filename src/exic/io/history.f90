@@ -18,6 +18,7 @@ module exic_io_history
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
    use exic_base_strings, only: itoa, rtoa
+   use exic_io_number, only: put_real, put_int, REAL_WIDTH
    implicit none
    private
 
@@ -43,6 +44,7 @@ module exic_io_history
       character(len=64), allocatable :: labels(:)  !< the .his columns after t
       logical :: nonfinite = .false.             !< a row with a non-finite value was refused
       character(len=:), allocatable :: nonfinite_message  !< the first such value: file, column, t
+      character(len=:), allocatable :: row       !< the text of a row, assembled before its write
    contains
       procedure :: open => files_open
       procedure :: his_header => files_his_header
@@ -106,7 +108,7 @@ contains
       real(wp), intent(in) :: t
       real(wp), intent(in) :: values(:)
       type(error_t), allocatable, intent(out), optional :: err
-      integer :: k
+      integer :: k, n
       if (.not. ieee_is_finite(t)) then
          call refuse(self, 'his', 't', t, t, err)
          return
@@ -117,7 +119,14 @@ contains
             return
          end if
       end do
-      write (self%his, '(*('//NUMBER_FORMAT//'))') t, values
+      ! the text of write (self%his, '(*('//NUMBER_FORMAT//'))') t, values
+      call reserve(self, REAL_WIDTH*(1 + size(values)))
+      n = 0
+      call put_real(self%row, n, t)
+      do k = 1, size(values)
+         call put_real(self%row, n, values(k))
+      end do
+      write (self%his, '(a)') self%row(1:n)
       call self%maybe_flush()
    end subroutine files_his_row
 
@@ -136,7 +145,7 @@ contains
          'strain', 'external_work', 'contact_work', 'total', 'drift', 'momentum_x', 'momentum_y', &
          'hourglass', 'prescribed_work', 'friction_dissipation']
       real(wp) :: v(13)
-      integer :: k
+      integer :: k, n
       v = [t, dt, kinetic, strain, wext, wcon, total, drift, momentum, hourglass, wpm, dfric]
       do k = 1, size(v)
          if (.not. ieee_is_finite(v(k))) then
@@ -144,10 +153,34 @@ contains
             return
          end if
       end do
-      write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,3('//NUMBER_FORMAT//'))') &
-         t, step, dt, kinetic, strain, wext, wcon, total, drift, momentum, nactive, hourglass, wpm, dfric
+      ! the text of write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,3('// &
+      ! NUMBER_FORMAT//'))') t, step, dt, kinetic, strain, wext, wcon, total, drift, momentum, &
+      ! nactive, hourglass, wpm, dfric
+      call reserve(self, 13*REAL_WIDTH + 22)
+      n = 0
+      call put_real(self%row, n, t)
+      call put_int(self%row, n, step, 12)
+      do k = 2, 10
+         call put_real(self%row, n, v(k))
+      end do
+      call put_int(self%row, n, int(nactive, i8), 10)
+      call put_real(self%row, n, hourglass)
+      call put_real(self%row, n, wpm)
+      call put_real(self%row, n, dfric)
+      write (self%ene, '(a)') self%row(1:n)
       call self%maybe_flush()
    end subroutine files_ene_row
+
+   !> The row buffer holds at least n characters.
+   subroutine reserve(self, n)
+      class(history_files_t), intent(inout) :: self
+      integer, intent(in) :: n
+      if (allocated(self%row)) then
+         if (len(self%row) >= n) return
+      end if
+      if (allocated(self%row)) deallocate (self%row)
+      allocate (character(len=max(n, 2*REAL_WIDTH*16)) :: self%row)
+   end subroutine reserve
 
    !> Name of .his column k (after t).
    function his_label(self, k) result(name)
