@@ -5,8 +5,10 @@
 !> pair of every two regions. Per step and pass: predicted positions x~(n+2) (eq. 4.4), the
 !> broad phase on swept boxes, swept (or static) node-to-segment detection (eq. 6.1-6.6), and
 !> candidate constraints with the predicted gap of eq. 3.19 at t(n+2) and a frozen normal. All
-!> Lagrange candidates of all passes are solved together by the corrector (eq. 4.5-4.7);
-!> penalty passes add k x penetration forces at t(n+1) instead.
+!> Lagrange candidates of all passes are solved together by the corrector (eq. 4.5-4.7), or,
+!> when a pair has Coulomb friction, by the frictional corrector (doc/friction.md, eq. F6-F15);
+!> penalty passes add k x penetration forces at t(n+1) instead (src/exic/contact/penalty.f90,
+!> with the regularised friction law F18).
 !>
 !> Everything comes in as plain arrays: the CONTact block's spec, the positions, the element
 !> connectivity with region and material numbers (for REGIon/MATErial and AUTOmatic surfaces),
@@ -15,9 +17,10 @@
 !> `init` and `correct`.
 module exic_contact_contact
    use exic_base_kinds, only: wp
-   use exic_base_strings, only: itoa
+   use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
+   use exic_base_grow, only: grow
    use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, SURF_NODES, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
                                 DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t
@@ -26,6 +29,8 @@ module exic_contact_contact
    use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: contact_set_t, detect_contacts
    use exic_contact_corrector, only: constraints_t, corrector_t
+   use exic_contact_friction, only: friction_t, coulomb_mu
+   use exic_contact_penalty, only: penalty_forces, penalty_history_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
    implicit none
    private
@@ -38,8 +43,6 @@ module exic_contact_contact
    !> other body's corner (deformed a little off 90 degrees) gives about 0 and is rejected, so
    !> corners of bodies of equal height do not pair with each other's side faces.
    real(wp), parameter :: FACING = -0.5_wp
-   !> Viscous damping of penalty contact as a fraction of critical (LS-DYNA's customary 10 %).
-   real(wp), parameter :: PENALTY_DAMPING = 0.1_wp
    !> Share of the mean segment length up to which a slave node found behind a master segment at
    !> the start of a step is still caught (and pushed back by the corrector). The corrector closes
    !> each gap along a normal frozen over the step (seed section 4), so a node that slides past
@@ -67,6 +70,13 @@ module exic_contact_contact
       integer :: method = METHOD_LAGRANGE
       integer :: detection = DETECT_SWEPT
       real(wp) :: k = 0.0_wp                   !< penalty stiffness
+      logical :: friction = .false.            !< Coulomb friction with law(1) = mus > 0
+      real(wp) :: law(3) = 0.0_wp              !< mus, mud, decay (doc/friction.md, eq. F12)
+      type(penalty_history_t) :: hist          !< tangential state of a penalty pass with friction
+      !> per hit of a penalty pass: penetration, normal force, force on the slave, tangential
+      !> force and state (grown, never shrunk)
+      real(wp), allocatable :: pen(:), fn(:), f(:, :), q(:)
+      integer, allocatable :: state(:)
       logical :: auto = .false.                !< AUTOmatic: candidates from the search over all surfaces
       type(broad_t) :: broad
       type(contact_set_t) :: hits
@@ -81,6 +91,11 @@ module exic_contact_contact
       !> -p g(n+1), the gap each closes by t(n+2) (positive: the pair pushed bodies apart)
       real(wp) :: work = 0.0_wp
       integer :: nactive = 0
+      ! friction (doc/friction.md, section 7)
+      real(wp) :: ftangent = 0.0_wp            !< friction force: sum of |q| over the pair's constraints
+      integer :: nstick = 0, nslip = 0         !< constraints that stick, that slip
+      real(wp) :: dissipation = 0.0_wp         !< frictional dissipation over the run (eq. F16-F17)
+      real(wp) :: pending = 0.0_wp             !< Coulomb work of the last step, booked at the next
    end type pair_result_t
 
    !> All contact of a model. Inactive (no work at all) when the deck has no CONTact block.
@@ -111,6 +126,14 @@ module exic_contact_contact
       real(wp) :: time_search = 0.0_wp         !< wall time in search (broad + narrow phase)
       real(wp) :: time_corrector = 0.0_wp      !< wall time in the corrector (assembly + solve)
       integer :: nredundant = 0                !< redundant constraints removed over the run
+      ! friction (doc/friction.md); allocated and used only when a pair has it
+      logical :: friction = .false.            !< some pass has Coulomb friction
+      type(friction_t) :: fr                   !< the frictional corrector's tangential problem
+      real(wp), allocatable :: vslip(:)        !< (nnode) slip speed of each slave at the last step (< 0: stuck, none)
+      real(wp), allocatable :: ffric(:, :)     !< (2, nnode) nodal friction forces of the last step
+      real(wp), allocatable :: xold(:, :)      !< (2, nnode) positions of the last step (penalty friction)
+      real(wp) :: dissipation = 0.0_wp         !< frictional dissipation booked up to t(n+1) (eq. F17)
+      real(wp) :: pending = 0.0_wp             !< Coulomb work of the last step, booked at the next
    contains
       procedure :: init => contact_init
       procedure :: correct => contact_correct
@@ -164,8 +187,34 @@ contains
          if (self%passes(k)%method == METHOD_PENALTY) self%any_penalty = .true.
       end do
       call penalty_stiffness(self, modulus)
+      call friction_arrays(self, nnode, x)
       call check_overlap(self, nnode, x, err)
    end subroutine contact_init
+
+   !> The friction state of the passes and of the model (at init): allocated only when some
+   !> pass has friction (x: the positions now).
+   subroutine friction_arrays(self, nnode, x)
+      type(contact_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x(2, nnode)
+      integer :: k
+      self%friction = .false.
+      do k = 1, size(self%passes)
+         associate (ps => self%passes(k))
+            ps%friction = ps%law(1) > 0.0_wp
+            if (ps%friction) self%friction = .true.
+            if (ps%friction .and. ps%method == METHOD_PENALTY .and. .not. allocated(ps%hist%q)) &
+               call ps%hist%init(nnode)
+         end associate
+      end do
+      ! the options of the Lagrange AUTOmatic passes (auto_passes copies them)
+      self%auto_pass%friction = self%auto_pass%auto .and. self%auto_pass%law(1) > 0.0_wp
+      if (self%auto_pass%friction) self%friction = .true.
+      if (.not. self%friction) return
+      if (.not. allocated(self%vslip)) allocate (self%vslip(nnode), source=-1.0_wp)
+      if (.not. allocated(self%ffric)) allocate (self%ffric(2, nnode), source=0.0_wp)
+      if (.not. allocated(self%xold)) allocate (self%xold(2, nnode), source=x)
+   end subroutine friction_arrays
 
    !> Surfaces of the SURFace records, plus one per region for AUTOmatic.
    subroutine build_surfaces(self, spec, nelem, conn, region, mat, err)
@@ -311,6 +360,7 @@ contains
          self%passes(k)%method = p(k)%method
          self%passes(k)%detection = p(k)%detection
          self%passes(k)%k = p(k)%k
+         self%passes(k)%law = p(k)%law
       end do
    end subroutine build_passes
 
@@ -328,6 +378,7 @@ contains
       p(np)%detection = ps%detection
       p(np)%k = ps%penalty
       if (ps%penalty_scaled) p(np)%k = -ps%penalty   ! scale factor, resolved in penalty_stiffness
+      p(np)%law = [ps%mus, ps%mud, ps%decay]
    end subroutine add_pass
 
    !> PENAlty,SCALe,f: k = f x modulus, the largest constrained modulus lambda + 2 mu of the solids.
@@ -394,7 +445,8 @@ contains
    !> minv the inverse mass per dof (0: rigid, prescribed or inactive), dt_prev = dt(n) (0 at
    !> t = 0), dt = dt(n+1); fcon = nodal contact forces, nactive = constraints in force.
    !> `rb`: the free rigid bodies, three-dof bodies in the corrector (doc/loads.md, section 5);
-   !> the caller moves them with the contact forces on their nodes.
+   !> the caller moves them with the contact forces on their nodes. With friction
+   !> (doc/friction.md) fcon carries the friction forces too; they are also in self%ffric.
    subroutine contact_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err, rb)
       class(contact_t), intent(inout) :: self
       integer, intent(in) :: nnode
@@ -405,7 +457,7 @@ contains
       type(error_t), allocatable, intent(out) :: err
       type(rigid_dofs_t), intent(inout), optional :: rb
       integer :: k, j, i, node
-      real(wp) :: c, gnow, pen, t0, t1
+      real(wp) :: c, gnow, pen, t0, t1, mu
       logical :: touched
 
       nactive = 0
@@ -422,6 +474,8 @@ contains
          self%results(k)%penetration = 0.0_wp
          self%results(k)%pmax = 0.0_wp
       end do
+      if (self%friction) call friction_begin(self)
+      self%cs%friction = self%friction
       call self%cs%reserve(64)
       call auto_passes(self, nnode, x, self%xp, self%depth)
       do k = 1, self%npass
@@ -429,7 +483,7 @@ contains
                     ms => self%surfaces(self%passes(k)%master))
             call surface_normals(self, sl, nnode, x)
             if (ps%method == METHOD_PENALTY) then
-               call penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, fcon, nactive)
+               call penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, dt_prev, fcon, nactive)
                if (ps%broad%ncand > 0) touched = .true.
                cycle
             end if
@@ -445,7 +499,13 @@ contains
                           al => ps%hits%alpha(j), nr => ps%hits%normal(:, j))
                   ! gap at t(n+1) along the frozen normal (eq. 3.19)
                   gnow = dot_product(x(:, node) - (1.0_wp - al)*x(:, m1) - al*x(:, m2), nr)
-                  call self%cs%add(node, m1, m2, al, nr, ps%hits%gap(j), gnow, ps%pair)
+                  if (ps%friction) then
+                     ! the step's coefficient from the slave's last state (eq. F12)
+                     mu = coulomb_mu(ps%law(1), ps%law(2), ps%law(3), self%vslip(node))
+                     call self%cs%add(node, m1, m2, al, nr, ps%hits%gap(j), gnow, ps%pair, mu)
+                  else
+                     call self%cs%add(node, m1, m2, al, nr, ps%hits%gap(j), gnow, ps%pair)
+                  end if
                end associate
             end do
          end associate
@@ -455,7 +515,11 @@ contains
       if (self%cs%n > 0) then
          ! c = dt(n+1) (dt(n) + dt(n+1)) / 2, eq. 4.7
          c = 0.5_wp*dt*(dt_prev + dt)
-         call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb)
+         if (self%friction) then
+            call self%fr%solve(self%corr, self%cs, nnode, minv, c, x, self%xp, a, fcon, self%ffric, err, rb)
+         else
+            call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb)
+         end if
          self%time_corrector = self%time_corrector + (wall_time() - t1)
          if (allocated(err)) return
          self%nredundant = self%nredundant + self%corr%nredundant
@@ -473,9 +537,11 @@ contains
          end do
          nactive = nactive + count(self%cs%p(1:self%cs%n) > 0.0_wp)
       end if
+      if (self%friction) call friction_results(self, dt)
       do k = 1, size(self%results)
          self%max_penetration = max(self%max_penetration, self%results(k)%penetration)
       end do
+      if (self%friction) self%xold = x
       self%fcon_clean = self%cs%n == 0 .and. .not. touched
    end subroutine contact_correct
 
@@ -506,6 +572,8 @@ contains
             ps%method = self%auto_pass%method
             ps%detection = self%auto_pass%detection
             ps%k = self%auto_pass%k
+            ps%law = self%auto_pass%law
+            ps%friction = self%auto_pass%friction
             ps%auto = .true.
             ps%slave = self%auto_first + self%auto%gslave(g)
             ps%master = self%auto_first + self%auto%gmaster(g)
@@ -554,55 +622,105 @@ contains
       end do
    end subroutine predicted_positions
 
-   !> Penalty baseline: f = k (-g) n on the slave at t(n+1), opposite on the master nodes, plus
-   !> a viscous part -c v_n with c = 2 PENALTY_DAMPING sqrt(k m) (m the pair's effective mass,
-   !> v_n the relative normal velocity of the predictor), the normal force never tensile. The
-   !> damping is the usual companion of explicit penalty contact: without it, the on/off
-   !> switching of stiff springs within a step feeds energy into the struck nodes.
-   subroutine penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, fcon, nactive)
+
+   !> At the start of a step with friction: the Coulomb work of the last step, whose interval
+   !> has now been stepped, joins the dissipation (doc/friction.md, eq. F17); the step's
+   !> friction results and forces start from zero.
+   subroutine friction_begin(self)
+      type(contact_t), intent(inout) :: self
+      integer :: k
+      self%dissipation = self%dissipation + self%pending
+      self%pending = 0.0_wp
+      do k = 1, size(self%results)
+         associate (r => self%results(k))
+            r%dissipation = r%dissipation + r%pending
+            r%pending = 0.0_wp
+            r%ftangent = 0.0_wp
+            r%nstick = 0
+            r%nslip = 0
+         end associate
+      end do
+      self%ffric = 0.0_wp
+   end subroutine friction_begin
+
+   !> After the frictional corrector: the pairs' friction results, the Coulomb work of the step
+   !> (eq. F16, booked at the next step) and each slave's slip speed for the next step's
+   !> coefficient (eq. F12); dt = dt(n+1).
+   subroutine friction_results(self, dt)
+      type(contact_t), intent(inout) :: self
+      real(wp), intent(in) :: dt
+      integer :: i, node
+      real(wp) :: d, tng(2)
+      self%vslip = -1.0_wp
+      do i = 1, self%cs%n
+         node = self%cs%node(1, i)
+         if (self%cs%state(i) == 0) cycle
+         associate (r => self%results(self%cs%pair(i)))
+            tng = [-self%cs%nrm(2, i), self%cs%nrm(1, i)]
+            r%force = r%force + self%cs%q(i)*tng
+            r%ftangent = r%ftangent + abs(self%cs%q(i))
+            if (self%cs%state(i) == 1) then
+               r%nstick = r%nstick + 1
+            else
+               r%nslip = r%nslip + 1
+               d = self%cs%mu(i)*self%cs%p(i)*abs(self%cs%slip(i))
+               r%pending = r%pending + d
+               self%pending = self%pending + d
+               self%vslip(node) = abs(self%cs%slip(i))/dt
+            end if
+         end associate
+      end do
+   end subroutine friction_results
+
+   !> Penalty baseline of one pass (src/exic/contact/penalty.f90): static detection at t(n+1),
+   !> forces k x penetration (plus damping) on the hits, with the regularised friction law when
+   !> the pass has friction; the pair's results.
+   subroutine penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, dt_prev, fcon, nactive)
       type(contact_t), intent(inout) :: self
       type(pass_t), intent(inout) :: ps
       type(surface_t), intent(in) :: sl, ms
       integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode)
+      real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode), dt_prev
       real(wp), intent(inout) :: a(2, nnode), fcon(2, nnode)
       integer, intent(inout) :: nactive
-      integer :: j, node, m1, m2
-      real(wp) :: f(2), al, pen, nr(2), vn, w, fn
+      integer :: j, n
+      real(wp) :: diss
       call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, self%depth)
       if (ps%broad%ncand == 0) return
       call detect_contacts(ps%hits, DETECT_STATIC, nnode, x, x, sl%nnode, sl%nodes, &
                            sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
                            self%depth, FACING)
-      do j = 1, ps%hits%n
-         pen = -ps%hits%gap(j)
-         if (pen <= 0.0_wp) cycle
-         node = ps%hits%slave(j)
-         m1 = ps%hits%master(1, j)
-         m2 = ps%hits%master(2, j)
-         al = ps%hits%alpha(j)
-         nr = ps%hits%normal(:, j)
-         vn = dot_product(vt(:, node) - (1.0_wp - al)*vt(:, m1) - al*vt(:, m2), nr)
-         w = minv(1, node) + (1.0_wp - al)**2*minv(1, m1) + al**2*minv(1, m2)
-         fn = ps%k*pen
-         if (w > 0.0_wp) fn = fn - 2.0_wp*PENALTY_DAMPING*sqrt(ps%k/w)*vn
-         fn = max(fn, 0.0_wp)
-         f = fn*nr
-         fcon(:, node) = fcon(:, node) + f
-         fcon(:, m1) = fcon(:, m1) - (1.0_wp - al)*f
-         fcon(:, m2) = fcon(:, m2) - al*f
-         a(:, node) = a(:, node) + minv(:, node)*f
-         a(:, m1) = a(:, m1) - minv(:, m1)*(1.0_wp - al)*f
-         a(:, m2) = a(:, m2) - minv(:, m2)*al*f
-         associate (r => self%results(ps%pair))
+      n = ps%hits%n
+      call grow(ps%pen, n)
+      call grow(ps%fn, n)
+      call grow(ps%f, n, 2)
+      diss = 0.0_wp
+      if (ps%friction) then
+         call grow(ps%q, n)
+         call grow(ps%state, n)
+         call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n), &
+                             ps%hist, ps%law, self%xold, dt_prev, self%ffric, ps%q(1:n), ps%state(1:n), diss)
+      else
+         call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n))
+      end if
+      associate (r => self%results(ps%pair), pen => ps%pen, fn => ps%fn, f => ps%f)
+         do j = 1, n
+            if (pen(j) <= 0.0_wp) cycle
             r%nactive = r%nactive + 1
-            r%fnormal = r%fnormal + fn
-            r%pmax = max(r%pmax, fn)
-            r%force = r%force + f
-            r%penetration = max(r%penetration, pen)
-         end associate
-         nactive = nactive + 1
-      end do
+            r%fnormal = r%fnormal + fn(j)
+            r%pmax = max(r%pmax, fn(j))
+            r%force = r%force + f(:, j)
+            r%penetration = max(r%penetration, pen(j))
+            nactive = nactive + 1
+            if (.not. ps%friction) cycle
+            r%ftangent = r%ftangent + abs(ps%q(j))
+            if (ps%state(j) == 1) r%nstick = r%nstick + 1
+            if (ps%state(j) == 2) r%nslip = r%nslip + 1
+         end do
+         ! the realised slip of [t(n), t(n+1)] is booked at once
+         r%dissipation = r%dissipation + diss
+         self%dissipation = self%dissipation + diss
+      end associate
    end subroutine penalty_pass
 
    !> Critical step of the penalty springs: 1 / sqrt(k (1/m_s + 1/m_master)) over the slave
@@ -634,9 +752,11 @@ contains
       end do
    end function contact_stable_dt
 
-   !> A TPLOt `cont,pair,comp` value: 1 normal force, 2-3 force x, y on the slave side,
-   !> 4 active constraints, 5 largest penetration at t(n+1), 6 largest multiplier [ext],
-   !> 7 work of the pair's multipliers over the run (pair_result_t%work) [ext].
+   !> A TPLOt `cont,pair,comp` value: 1 normal force, 2-3 force x, y on the slave side (normal
+   !> and friction), 4 active constraints, 5 largest penetration at t(n+1), 6 largest multiplier
+   !> [ext], 7 work of the pair's multipliers over the run (pair_result_t%work) [ext]; friction
+   !> (doc/friction.md, section 7) [ext]: 8 friction force sum |q|, 9 constraints that stick,
+   !> 10 constraints that slip, 11 frictional dissipation over the run.
    real(wp) function contact_pair_value(self, pair, comp) result(val)
       class(contact_t), intent(in) :: self
       integer, intent(in) :: pair, comp
@@ -660,6 +780,14 @@ contains
             val = self%results(k)%pmax
          case (7)
             val = self%results(k)%work
+         case (8)
+            val = self%results(k)%ftangent
+         case (9)
+            val = real(self%results(k)%nstick, wp)
+         case (10)
+            val = real(self%results(k)%nslip, wp)
+         case (11)
+            val = self%results(k)%dissipation
          end select
          return
       end do
@@ -694,6 +822,8 @@ contains
             text = text//'contact pass '//itoa(k)//' of pair '//itoa(self%results(ps%pair)%id)// &
                    ': nodes of surface '//itoa(ps%slave)//' against segments of surface '// &
                    itoa(ps%master)//', '//trim(methods(ps%method))//', '//trim(detections(ps%detection))
+            if (ps%friction) text = text//', Coulomb friction mus '//rtoa(ps%law(1))//' mud '// &
+                                    rtoa(ps%law(2))//' decay '//rtoa(ps%law(3))
             if (k < self%nfixed) text = text//nl
          end associate
       end do
@@ -704,6 +834,8 @@ contains
                    'each of surfaces '//itoa(self%auto_first + 1)//'-'//itoa(self%auto_first + self%auto%nsurf)// &
                    ' against segments of each other one near it (one search over all of them per step), '// &
                    trim(methods(ps%method))//', '//trim(detections(ps%detection))
+            if (ps%friction) text = text//', Coulomb friction mus '//rtoa(ps%law(1))//' mud '// &
+                                    rtoa(ps%law(2))//' decay '//rtoa(ps%law(3))
          end associate
       end if
    end function contact_summary

@@ -292,8 +292,9 @@ contains
       type(stepper_t), intent(inout) :: self
       real(wp), intent(in) :: vt(:, :)
       type(error_t), allocatable, intent(out) :: err
-      integer :: hits
+      integer :: hits, fhits
       hits = self%contact%corr%pass_limit_hits
+      fhits = self%contact%fr%sweep_limit_hits + self%contact%fr%pass_limit_hits
       associate (st => self%st)
          st%nactive = 0
          if (associated(self%hook)) then
@@ -315,6 +316,13 @@ contains
             if (self%pass_limit_warnings == MAX_PASS_WARNINGS) &
                call self%messages%add('warning: further pass-limit warnings are only counted (<stem>.out, '// &
                                       'contact statistics)')
+         else if (self%contact%fr%sweep_limit_hits + self%contact%fr%pass_limit_hits > fhits) then
+            ! the frictional corrector did not converge (doc/friction.md, section 4)
+            self%pass_limit_warnings = self%pass_limit_warnings + 1
+            if (self%pass_limit_warnings <= MAX_PASS_WARNINGS) &
+               call self%messages%add('warning: the frictional corrector reached its sweep or pass limit at '// &
+                                      'step '//itoa(int(st%step))//', t = '//rtoa(st%t)//'; the last '// &
+                                      'multipliers within the friction bounds were kept')
          end if
       end associate
    end subroutine correct
@@ -447,7 +455,8 @@ contains
 
    !> Stop on a non-finite value, naming where it first appears; the energy guard.
    !>
-   !> E = kinetic + strain + hourglass, E_in = E(0) + W_ext + W_pm (the energy put in, W_pm the
+   !> E = kinetic + strain + hourglass (+ the frictional dissipation, energy that left, with
+   !> friction: doc/friction.md section 5), E_in = E(0) + W_ext + W_pm (the energy put in, W_pm the
    !> work of the prescribed motion, doc/loads.md section 3),
    !> growth = (E - E_in) / (|E(0)| + |W_ext| + |W_pm|): past energy_warn a warning (once), past
    !> energy_stop an error naming the largest contributor (doc/decisions.md, "Energy guard").
@@ -463,6 +472,8 @@ contains
                             itoa(int(st%step))//': '//first_nonfinite(self))
             return
          end if
+         ! frictional dissipation is energy that left the bodies (doc/friction.md, section 5)
+         if (self%contact%friction) e = e + self%contact%dissipation
          if (self%ld%active) then
             ! loads and prescribed motion: the larger of two estimates of their work (loading.f90)
             w_in = self%ld%work_in(st)
@@ -482,7 +493,8 @@ contains
          end if
          if (growth <= self%energy_warn) return
          if (put_in > 0.0_wp) then
-            what = 'the physical energy (kinetic + strain) exceeds the energy put in (initial energy '// &
+            what = 'the physical energy (kinetic + strain'//trim(merge(' + frictional dissipation', &
+                   '                         ', self%contact%friction))//') exceeds the energy put in (initial energy '// &
                    '+ external work + work of prescribed motion) by '//percent(growth)//' of it at t = '// &
                    rtoa(st%t)//', step '//itoa(int(st%step))
          else

@@ -7,7 +7,11 @@
 !> **[ext]** `PHYSical,c` (the edges of edge set c, a Gmsh physical curve, resolved after END);
 !> `PAIR,id,NTOS|SYMMetric,s,m` | `PAIR,id,SELF,s`; `AUTOmatic`; method records after a PAIR
 !> or AUTOmatic: `LAGRange`, `PENAlty,k`, `PENAlty,SCALe,f` (f defaults to 0.1),
-!> `DETEction,SWEPt|STATic`. `END CONTact` (or `END`) closes the block.
+!> `DETEction,SWEPt|STATic`, `FRICtion,COULomb,mu` | `FRICtion,COULomb,mus,mud[,decay]`
+!> (doc/friction.md). `END CONTact` (or `END`) closes the block.
+!>
+!> A field that a PAIR or method record does not use is an error (`PAIR,1,NTOS,1,2,FRIC,0.3`
+!> would otherwise run without friction); `LAGRange,ENERgy` is refused as not implemented yet.
 module exic_io_deck_contact
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
@@ -17,15 +21,16 @@ module exic_io_deck_contact
    use exic_io_records, only: keyword_is
    use exic_io_reader, only: reader_t, next_record, field, word, has_field, real_field, int_field, &
                              fail, where, end_set, unknown_keyword, itoa, rtoa, nfields, &
-                             check_data_record
+                             check_data_record, no_more_fields
    implicit none
    private
 
    public :: cmd_contact
 
-   character(len=12), parameter :: words(10) = [character(len=12) :: 'SURFace', 'REGIon', &
+   character(len=12), parameter :: words(11) = [character(len=12) :: 'SURFace', 'REGIon', &
                                                 'MATErial', 'FACEts', 'PAIR', 'AUTOmatic', &
-                                                'LAGRange', 'PENAlty', 'DETEction', 'PHYSical']
+                                                'LAGRange', 'PENAlty', 'DETEction', 'PHYSical', &
+                                                'FRICtion']
 
 contains
 
@@ -72,7 +77,8 @@ contains
             spec%auto_options%where = where(rd, i)
             target = -1
             if (nfields(rd, i) >= 2) call method(i, 2, err)
-         else if (keyword_is(w, 'lagr') .or. keyword_is(w, 'pena') .or. keyword_is(w, 'dete')) then
+         else if (keyword_is(w, 'lagr') .or. keyword_is(w, 'pena') .or. keyword_is(w, 'dete') .or. &
+                  keyword_is(w, 'fric')) then
             call method(i, 1, err)
          else
             call unknown_keyword(rd, i, 'CONTact record', field(rd, i, 1), words, err)
@@ -188,10 +194,15 @@ contains
          if (allocated(err)) return
          if (p%kind == PAIR_SELF) then
             p%master = p%slave
+            call no_more_fields(rd, i, 4, 'PAIR,id,SELF,s (method records such as FRICtion,COULomb,mu '// &
+                                'follow on their own lines)', err)
          else
             call int_field(rd, i, 5, what, p%master, err)
             if (allocated(err)) return
+            call no_more_fields(rd, i, 5, 'PAIR,id,'//trim(kinds(p%kind))//',slave,master (method records '// &
+                                'such as FRICtion,COULomb,mu follow on their own lines)', err)
          end if
+         if (allocated(err)) return
          if (p%slave < 1 .or. p%master < 1) then
             call fail(rd, i, what//': expected surface ids >= 1', err)
             return
@@ -218,8 +229,8 @@ contains
       subroutine method(i, k0, err)
          integer, intent(in) :: i, k0
          type(error_t), allocatable, intent(out) :: err
-         character(len=12), parameter :: methods(3) = [character(len=12) :: 'LAGRange', &
-                                                       'PENAlty', 'DETEction']
+         character(len=12), parameter :: methods(4) = [character(len=12) :: 'LAGRange', &
+                                                       'PENAlty', 'DETEction', 'FRICtion']
          character(len=12), parameter :: detections(2) = [character(len=12) :: 'SWEPt', 'STATic']
          type(pair_spec_t) :: p
          character(len=:), allocatable :: w
@@ -235,7 +246,18 @@ contains
          end if
          w = word(rd, i, k0)
          if (keyword_is(w, 'lagr')) then
+            if (keyword_is(word(rd, i, k0 + 1), 'ener')) then
+               call fail(rd, i, 'LAGRange,ENERgy (the energy-consistent impact) is not yet implemented: '// &
+                         'expected LAGRange alone (the seed''s corrector)', err)
+               return
+            end if
+            call no_more_fields(rd, i, k0, 'LAGRange (friction is a record of its own, '// &
+                                'FRICtion,COULomb,mu)', err)
+            if (allocated(err)) return
             p%method = METHOD_LAGRANGE
+         else if (keyword_is(w, 'fric')) then
+            call friction(i, k0, p, err)
+            if (allocated(err)) return
          else if (keyword_is(w, 'pena')) then
             p%method = METHOD_PENALTY
             if (keyword_is(word(rd, i, k0 + 1), 'scal')) then
@@ -243,9 +265,11 @@ contains
                p%penalty = 0.1_wp
                if (has_field(rd, i, k0 + 2)) call real_field(rd, i, k0 + 2, 'PENAlty,SCALe,f', &
                                                              p%penalty, err)
+               if (.not. allocated(err)) call no_more_fields(rd, i, k0 + 2, 'PENAlty,SCALe,f', err)
             else
                p%penalty_scaled = .false.
                call real_field(rd, i, k0 + 1, 'PENAlty,k', p%penalty, err)
+               if (.not. allocated(err)) call no_more_fields(rd, i, k0 + 1, 'PENAlty,k', err)
             end if
             if (allocated(err)) return
             if (.not. (p%penalty > 0.0_wp)) then
@@ -262,6 +286,8 @@ contains
                call unknown_keyword(rd, i, 'DETEction option', field(rd, i, k0 + 1), detections, err)
                return
             end if
+            call no_more_fields(rd, i, k0 + 1, 'DETEction,SWEPt|STATic', err)
+            if (allocated(err)) return
          else
             call unknown_keyword(rd, i, 'method record', field(rd, i, k0), methods, err)
             return
@@ -272,6 +298,52 @@ contains
             spec%auto_options = p
          end if
       end subroutine method
+
+      !> FRICtion,COULomb,mu or FRICtion,COULomb,mus,mud[,decay] whose keyword is field k0 of
+      !> record i, into p (doc/friction.md, eq. F12).
+      subroutine friction(i, k0, p, err)
+         integer, intent(in) :: i, k0
+         type(pair_spec_t), intent(inout) :: p
+         type(error_t), allocatable, intent(out) :: err
+         character(len=*), parameter :: what = 'FRICtion,COULomb,mu or FRICtion,COULomb,mus,mud[,decay]'
+         character(len=12), parameter :: laws(1) = [character(len=12) :: 'COULomb']
+         if (.not. has_field(rd, i, k0 + 1)) then
+            call fail(rd, i, 'FRICtion without a law: expected '//what, err)
+            return
+         end if
+         if (.not. keyword_is(word(rd, i, k0 + 1), 'coul')) then
+            call unknown_keyword(rd, i, 'friction law', field(rd, i, k0 + 1), laws, err)
+            return
+         end if
+         if (.not. has_field(rd, i, k0 + 2)) then
+            call fail(rd, i, 'FRICtion,COULomb without a coefficient: expected '//what, err)
+            return
+         end if
+         call real_field(rd, i, k0 + 2, what, p%mus, err)
+         if (allocated(err)) return
+         p%mud = p%mus
+         p%decay = 0.0_wp
+         if (has_field(rd, i, k0 + 3)) call real_field(rd, i, k0 + 3, what, p%mud, err)
+         if (allocated(err)) return
+         if (has_field(rd, i, k0 + 4)) then
+            call real_field(rd, i, k0 + 4, what, p%decay, err)
+            if (allocated(err)) return
+            if (.not. p%decay > 0.0_wp) then
+               call fail(rd, i, 'FRICtion,COULomb decay '//rtoa(p%decay)//': expected decay > 0 (or '// &
+                         'no decay field: mus at rest, mud when sliding)', err)
+               return
+            end if
+         end if
+         if (.not. (p%mus >= 0.0_wp .and. p%mud >= 0.0_wp)) then
+            call fail(rd, i, 'FRICtion,COULomb '//rtoa(p%mus)//', '//rtoa(p%mud)//': expected '// &
+                      'coefficients >= 0', err)
+         else if (p%mud > p%mus) then
+            call fail(rd, i, 'FRICtion,COULomb,mus,mud with mud = '//rtoa(p%mud)//' above mus = '// &
+                      rtoa(p%mus)//': expected mud <= mus (the dynamic coefficient at most the static one)', err)
+         else
+            call no_more_fields(rd, i, k0 + 4, what, err)
+         end if
+      end subroutine friction
 
       subroutine close_block(i, err)
          integer, intent(in) :: i
