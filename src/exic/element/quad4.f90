@@ -36,6 +36,9 @@ module exic_element_quad4
 
    public :: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, q4_stable_dt, &
              q4_deformation, q4_stress
+   ! the block steps, shared with the general solid path (q4_general.f90)
+   public :: gather, kinematics_2x2, kinematics_1pt, positive, forces_2x2, forces_1pt, &
+             check_points, current, stable_block, block_minimum, scatter
 
    real(wp), parameter :: xin(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]   !< xi_a
    real(wp), parameter :: etn(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]   !< eta_a
@@ -598,15 +601,21 @@ contains
 
    !> Row-sum lumped mass m_a = rho integral N_a dA0 (2x2 Gauss, exact for the bilinear
    !> element), accumulated into mass(nnode). The element masses sum to rho A0 exactly.
-   pure subroutine q4_lumped_mass(nel, nnode, conn, x0, rho, mass)
+   !> axi (GLOBal AXISymmetric): m_a = rho integral N_a R dA0, the ring mass per radian
+   !> (doc/axisymmetry.md, (A5); 2x2 Gauss is exact for it too).
+   pure subroutine q4_lumped_mass(nel, nnode, conn, x0, rho, mass, axi)
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
       real(wp), intent(in) :: x0(2, nnode)
       real(wp), intent(in) :: rho
       real(wp), intent(inout) :: mass(nnode)
-      real(wp) :: xe(4), ye(4), dnx(4), dny(4), dj, xi, eta, me(4)
+      logical, intent(in), optional :: axi
+      real(wp) :: xe(4), ye(4), dnx(4), dny(4), dj, xi, eta, me(4), rg
       integer :: e, g
+      logical :: ax
 
+      ax = .false.
+      if (present(axi)) ax = axi
       do e = 1, nel
          xe = x0(1, conn(:, e))
          ye = x0(2, conn(:, e))
@@ -615,7 +624,12 @@ contains
             xi = gq*xin(g)
             eta = gq*etn(g)
             call grad_at(xe, ye, xi, eta, dnx, dny, dj)
-            me = me + (rho*dj*0.25_wp)*(1.0_wp + xin*xi)*(1.0_wp + etn*eta)
+            if (ax) then
+               rg = 0.25_wp*sum((1.0_wp + xin*xi)*(1.0_wp + etn*eta)*xe)
+               me = me + (rho*dj*0.25_wp*rg)*(1.0_wp + xin*xi)*(1.0_wp + etn*eta)
+            else
+               me = me + (rho*dj*0.25_wp)*(1.0_wp + xin*xi)*(1.0_wp + etn*eta)
+            end if
          end do
          mass(conn(:, e)) = mass(conn(:, e)) + me
       end do

@@ -26,11 +26,12 @@ module exic_io_history
    !> Edit descriptor of one real in <stem>.his and <stem>.ene (with its leading blank).
    character(len=*), parameter, public :: NUMBER_FORMAT = '1x,es24.16e3'
 
-   !> Column names of <stem>.ene, in order (prescribed_work [ext], doc/loads.md section 3,
-   !> appended after the older columns so that they keep their positions).
+   !> Column names of <stem>.ene, in order (prescribed_work [ext], doc/loads.md section 3, and
+   !> plastic_work [ext], doc/axisymmetry.md section 8, appended after the older columns so that
+   !> they keep their positions).
    character(len=*), parameter :: ENERGY_COLUMNS = &
       't step dt kinetic strain external_work contact_work total drift momentum_x momentum_y '// &
-      'active hourglass prescribed_work'
+      'active hourglass prescribed_work plastic_work'
 
    !> The three text files of one run.
    type :: history_files_t
@@ -123,27 +124,28 @@ contains
    !> One row of <stem>.ene. A row with a non-finite value is not written (see the module
    !> header); `err` then says which.
    subroutine files_ene_row(self, t, step, dt, kinetic, strain, wext, wcon, total, drift, &
-                            momentum, nactive, hourglass, wpm, err)
+                            momentum, nactive, hourglass, wpm, wpl, err)
       class(history_files_t), intent(inout) :: self
       real(wp), intent(in) :: t, dt, kinetic, strain, wext, wcon, total, drift, momentum(2), hourglass
       real(wp), intent(in) :: wpm      !< work of the prescribed motion
+      real(wp), intent(in) :: wpl      !< plastic work dissipated
       integer(i8), intent(in) :: step
       integer, intent(in) :: nactive
       type(error_t), allocatable, intent(out), optional :: err
-      character(len=16), parameter :: names(12) = [character(len=16) :: 't', 'dt', 'kinetic', &
+      character(len=16), parameter :: names(13) = [character(len=16) :: 't', 'dt', 'kinetic', &
          'strain', 'external_work', 'contact_work', 'total', 'drift', 'momentum_x', 'momentum_y', &
-         'hourglass', 'prescribed_work']
-      real(wp) :: v(12)
+         'hourglass', 'prescribed_work', 'plastic_work']
+      real(wp) :: v(13)
       integer :: k
-      v = [t, dt, kinetic, strain, wext, wcon, total, drift, momentum, hourglass, wpm]
+      v = [t, dt, kinetic, strain, wext, wcon, total, drift, momentum, hourglass, wpm, wpl]
       do k = 1, size(v)
          if (.not. ieee_is_finite(v(k))) then
             call refuse(self, 'ene', trim(names(k)), v(k), t, err)
             return
          end if
       end do
-      write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,2('//NUMBER_FORMAT//'))') &
-         t, step, dt, kinetic, strain, wext, wcon, total, drift, momentum, nactive, hourglass, wpm
+      write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,3('//NUMBER_FORMAT//'))') &
+         t, step, dt, kinetic, strain, wext, wcon, total, drift, momentum, nactive, hourglass, wpm, wpl
       call self%maybe_flush()
    end subroutine files_ene_row
 

@@ -17,7 +17,7 @@ module exic_io_output
    use exic_io_fields, only: field_writer_t
    use exic_io_report, only: energy_balance
    use exic_explicit_step, only: stepper_t
-   use exic_explicit_assembly, only: element_stress, all_stresses
+   use exic_explicit_assembly, only: element_stress, all_stresses, NSIG
    use exic_explicit_loading, only: reaction
    use exic_explicit_rigid, only: RB_PLAIN, RB_FREE
    implicit none
@@ -30,9 +30,15 @@ module exic_io_output
       integer, allocatable :: nodes(:)
    end type node_list_t
 
-   !> The energies of the field output, datasets /energies/<name>.
-   character(len=16), parameter :: ENERGY_NAMES(5) = [character(len=16) :: 'kinetic', 'strain', &
-                                                      'external_work', 'contact_work', 'hourglass']
+   !> The energies of the field output, datasets /energies/<name> (plastic_work: decks with a
+   !> plastic set only).
+   character(len=16), parameter :: ENERGY_NAMES(6) = [character(len=16) :: 'kinetic', 'strain', &
+                                                      'external_work', 'contact_work', 'hourglass', &
+                                                      'plastic_work']
+   !> The element values of the field output of a deck with a plastic set (others: the first 7,
+   !> fields.f90's default).
+   character(len=20), parameter :: PLASTIC_CELL_NAMES(10) = [character(len=20) :: 'sxx', 'syy', &
+      'szz', 'sxy', 'pressure', 'von_mises', 'J', 'plastic_strain', 'temperature', 'yield_stress']
 
    !> The run's output files and their schedules.
    type :: output_t
@@ -139,7 +145,7 @@ contains
       type(model_t), intent(in) :: model
       type(stepper_t), intent(in) :: stp
       integer :: k
-      real(wp) :: sig(7), total, drift
+      real(wp) :: sig(NSIG), total, drift
 
       do k = 1, size(self%values)
          associate (q => model%requests(k), st => stp%st)
@@ -171,7 +177,8 @@ contains
          call self%files%his_row(st%t, self%values)
          call energy_balance(st, total, drift)
          call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
-                                 st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm)
+                                 st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm, &
+                                 st%plastic)
       end associate
       self%last_row_step = stp%st%step
    end subroutine write_rows
@@ -282,9 +289,16 @@ contains
       if (self%fields%is_open()) return
       self%field_dt = dt_out
       self%field_next = stp%st%t
-      call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, model%mesh%nelem, &
-                            model%mesh%x, model%mesh%conn, model%mesh%region, model%mesh%mat, &
-                            stp%contact%edges(), err, energy_names=ENERGY_NAMES)
+      if (stp%st%has_plastic) then
+         call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
+                               model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
+                               model%mesh%mat, stp%contact%edges(), err, &
+                               cell_names=PLASTIC_CELL_NAMES, energy_names=ENERGY_NAMES)
+      else
+         call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
+                               model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
+                               model%mesh%mat, stp%contact%edges(), err, energy_names=ENERGY_NAMES(1:5))
+      end if
    end subroutine output_open_fields
 
    !> Write the fields when an output time is due. The next output time is the first multiple
@@ -320,14 +334,17 @@ contains
       type(error_t), allocatable, intent(out) :: err
       real(wp), allocatable :: sig(:, :)
       integer, allocatable :: flag(:)
-      real(wp) :: energies(5)
+      real(wp) :: energies(6)
+      integer :: nc, ne
       associate (st => stp%st)
-         allocate (sig(7, st%nelem), flag(st%nnode))
+         nc = merge(NSIG, 7, st%has_plastic)
+         ne = merge(6, 5, st%has_plastic)
+         allocate (sig(nc, st%nelem), flag(st%nnode))
          call all_stresses(st, stp%sets, sig)
          flag = merge(1, 0, st%fcon(1, :) /= 0.0_wp .or. st%fcon(2, :) /= 0.0_wp)
-         energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass]
+         energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass, st%plastic]
          call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                     energies, ENERGY_NAMES, err)
+                                     energies(1:ne), ENERGY_NAMES(1:ne), err)
          self%field_last = st%t
       end associate
    end subroutine write_fields
