@@ -45,8 +45,8 @@ def section_cylinder(ctx):
            "c^2/(2 mu r)) at the pressure that makes the plastic zone reach c = 1.5. The three "
            "plastic runs differ only in the element: the plain 2x2 element locks under the "
            "isochoric plastic flow, mean dilatation (MIXEd) and the one-point element do not. "
-           "The test suite (`axisymmetric`) runs the two first decks with the same 1 % "
-           "tolerance, the ring of the last row, and the patch test of the element (uniform "
+           "The test suite (`axisymmetric`) runs the elastic deck with the same 1 % "
+           "tolerance, the ring of the last row (and the same ring with one-point elements), and the patch test of the element (uniform "
            "stress on a distorted mesh: no force on the interior nodes, the exact resultant on "
            "the boundary, 2x2 with and without MIXEd, elastic and plastic).\n"]
     rows = []
@@ -82,7 +82,7 @@ def section_cylinder(ctx):
                 2 * math.pi * 10 / math.sqrt(1000.0), period, 0.005)
     out.append(table(["deck", "quantity", "exact", "exic", "error", "tolerance", "holds"], rows))
     ctx.claim(20, "Axisymmetric thick cylinder within 1 % (Lame, Hill), ring period within 0.5 %",
-              "issue 12", f"{len(rows)} checks", ok_all)
+              "issue 12", f"{len(rows)} checks", bool(ok_all))
     return "\n".join(out) + "\n"
 
 
@@ -123,7 +123,8 @@ def taylor_figure(ctx, run, name):
     mirror[:, :, 0] *= -1
     fig, ax = plt.subplots(figsize=(4.5, 5.5))
     pc = PolyCollection(np.concatenate([polys, mirror]), array=np.concatenate([ep, ep]),
-                        cmap="viridis", edgecolors="k", linewidths=0.1)
+                        cmap="viridis", edgecolors="face", linewidths=0.2)
+    pc.set_clim(0.0, 2.0)          # the peak at the axis (up to 4) would hide the rest
     ax.add_collection(pc)
     ax.set_xlim(-8, 8)
     ax.set_ylim(-0.5, 23)
@@ -131,7 +132,7 @@ def taylor_figure(ctx, run, name):
     ax.set_xlabel("r (mm)")
     ax.set_ylabel("z (mm)")
     ax.set_title(f"Taylor bar at 80 us ({name})")
-    fig.colorbar(pc, ax=ax, label="equivalent plastic strain")
+    fig.colorbar(pc, ax=ax, label="equivalent plastic strain (clipped at 2)", extend="max")
     path = ctx.fig(f"taylor_{name}.png")
     fig.savefig(path, dpi=110, bbox_inches="tight")
     plt.close(fig)
@@ -146,7 +147,16 @@ def section_taylor(ctx):
            "(MIXEd), DT,CFL,0.9. Published values for this benchmark (Simo & Hughes 1998, "
            "section 9.6 with the references there; Camacho & Ortiz 1997; Zhu & Cescotto 1995): "
            "final length 21.42-21.47 mm, mushroom radius 7.0-7.1 mm, largest equivalent plastic "
-           "strain about 2.5-3.0 (it depends on the mesh, being a peak at the foot's axis). "
+           "strain about 2.5-3.0 (a peak at the foot's axis that grows as the mesh is refined, "
+           "as here: the element on the axis at the wall is compressed to a few percent of its "
+           "height, which is also what shrinks the stable step a hundredfold). "
+           "exic's final length lies in the published range at every mesh; its foot radius is "
+           "3-5 % above the published 7.0-7.1 mm and grows slightly as the mesh is refined (the "
+           "one-point element gives 7.16 mm on the 10 x 100 mesh; the cause of the difference, "
+           "e.g. the frictionless wall or the radius taken at the foot's outer corner node, is "
+           "not settled). The energy lost, 1/(2 nz) of the initial kinetic energy, is the "
+           "corrector's capture of the struck nodes (doc/contact-verification.md): 1 % at 5 x 50, "
+           "halving with each refinement. "
            "Energy balance: the largest |kinetic + strain + plastic work - contact work - K0| / "
            "K0 over the run (per radian, like every extensive value). The contact corrector "
            "never cuts the step (it does only for penalty pairs, step.f90 `choose_dt`): the "
@@ -179,7 +189,7 @@ def section_taylor(ctx):
             all(m[4] <= 0.01 for m in meas[1:])
         ctx.claim(21, "Taylor bar: final length ~21.4-21.5 mm, radius ~7.0 mm, energy within 1 %",
                   "issue 12", f"{g(fine[1] * 1e3, 4)} mm, {g(fine[2] * 1e3, 3)} mm, "
-                  f"{pct(max(m[4] for m in meas))}", ok)
+                  f"{pct(max(m[4] for m in meas))}", bool(ok))
     rows = []
     for deck, what in (("taylor_10x100", "2x2 MIXEd"), ("taylor_10x100_plain", "plain 2x2"),
                        ("taylor_10x100_1pt", "one point + hourglass 0.1")):
@@ -188,8 +198,9 @@ def section_taylor(ctx):
             continue
         L, R, ep, drift, _ = taylor_measures(run)
         rows.append((f"`{deck}`", what, g(L * 1e3, 5), g(R * 1e3, 4), g(ep, 3), pct(drift)))
-    out.append("\nElement technology on the 10 x 100 mesh: the plain 2x2 element locks (the rod "
-               "stays too long and too thin).\n")
+    out.append("\nElement technology on the 10 x 100 mesh: the plain 2x2 element locks (the foot "
+               "spreads 0.8 mm less and the rod ends 0.24 mm shorter); mean dilatation and the "
+               "one-point element agree within 0.01 mm in length and 0.16 mm in radius.\n")
     out.append(table(["deck", "element", "final length (mm)", "foot radius (mm)", "largest ep",
                       "energy balance"], rows))
     for deck, n in TAYLOR[1:]:
