@@ -16,9 +16,12 @@ module exic_element_q4_general
    use exic_material_j2_hardening, only: j2_param_t, j2_has_temperature, j2_static_yield, J2_MISES
    use exic_material_j2, only: j2_piola, j2_cauchy, j2_init_history
    use exic_material_neohookean, only: nh_wave_speed2_block
-   use exic_element_quad4, only: NBLOCK, gather, kinematics_2x2, kinematics_1pt, positive, &
-                                 forces_2x2, forces_1pt, check_points, current, stable_block, &
-                                 block_minimum, scatter
+   use exic_element_quad4, only: NBLOCK, gather => q4b_gather, kinematics_2x2 => q4b_kinematics_2x2, &
+                                 kinematics_1pt => q4b_kinematics_1pt, positive => q4b_positive, &
+                                 forces_2x2 => q4b_forces_2x2, forces_1pt => q4b_forces_1pt, &
+                                 check_points => q4b_check_points, current => q4b_current, &
+                                 stable_block => q4b_stable_block, &
+                                 block_minimum => q4b_block_minimum, scatter => q4b_scatter
    implicit none
    private
 
