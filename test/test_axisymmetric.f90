@@ -15,6 +15,8 @@ module test_axisymmetric
    use exic_material_material, only: lame_from_young
    use testing, only: suite_t, check, check_close, section
    use deck_runner, only: run_dir, run_deck, read_table, column
+   use exic_explicit_step, only: stepper_t
+   use test_loads, only: setup_stepper
    implicit none
    private
 
@@ -35,6 +37,8 @@ contains
       call patch(s, 2, .true., .true., .false., '2x2 MIXEd plastic, plane strain')
       call section(s, 'axisymmetric: deck records and errors')
       call reader_errors(s)
+      call section(s, 'axisymmetric: loads per radian')
+      call ring_loads(s)
       call section(s, 'axisymmetric: ring breathing mode')
       call ring(s, 2)
       call ring(s, 1)
@@ -185,6 +189,33 @@ contains
                     name//' refused with file:line', msg)
       end subroutine bad
    end subroutine reader_errors
+
+   !> Gravity and an edge pressure on an axisymmetric block r in [1, 3], z in [0, 1] (rho = 2,
+   !> g = 10 downward; on the top edge p = r, linear from 1 to 3): the external forces per
+   !> radian sum to -rho g int r dA = -80 (A5) and -int p r dr = -26/3 (A6, exact for a
+   !> linear p), to round-off.
+   subroutine ring_loads(s)
+      type(suite_t), intent(inout) :: s
+      type(model_t) :: model
+      type(stepper_t) :: stp
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: text
+      real(wp) :: fy, fx
+      text = 'FEAP * * loads'//nl//'  0 0 0 2 2 4'//nl//'MATErial,1'//nl//'  SOLId'//nl// &
+             '    ELAStic NEOHookean 1000 0.3'//nl//'    DENSity 2'//nl//nl//'GLOBal'//nl// &
+             '  AXISymmetric'//nl//nl//'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,4,1,1,1,1'//nl// &
+             '    1,1,0'//nl//'    2,3,0'//nl//'    3,3,1'//nl//'    4,1,1'//nl//nl//'GRAVity,0,-10'// &
+             nl//'CSURface'//nl//'  NORMal'//nl//'  LINEar'//nl//'    1,1,1,1'//nl//'    2,3,1,3'//nl// &
+             nl//'END'//nl//'BATCh'//nl//'END'//nl//'STOP'
+      call setup_stepper('axi_loads', text, model, stp, err)
+      if (.not. allocated(err)) call stp%start(err)
+      call check(s, .not. allocated(err), 'axisymmetric loads set up')
+      if (allocated(err)) return
+      fy = sum(stp%st%fext(2, :))
+      fx = sum(stp%st%fext(1, :))
+      call check_close(s, fy, -80.0_wp - 26.0_wp/3.0_wp, 1.0e-12_wp, 'gravity and pressure per radian')
+      call check_close(s, fx, 0.0_wp, 1.0e-12_wp, 'no radial resultant from a pressure on a z = const edge')
+   end subroutine ring_loads
 
    !> A thin ring (radius 10, square section 0.1 x 0.1, one element, free) given a uniform
    !> radial velocity breathes at omega = sqrt(E/rho)/R (nu = 0: the hoop stress alone; the
