@@ -162,6 +162,8 @@ contains
                     '0'), 'axi_bad3.inp:7:', 'kinematic hardening', 'Hkin /= 0')
       call bad(deck('    PLAStic POWEr 400 100 0.3'//nl, '  AXISymmetric', '-0.5'), 'axi_bad4.inp:', &
                'r = x = -0.5', 'a node at r < 0')
+      call bad(deck('    SPECific heat 385'//nl, '  PLANe STRAin', '0'), 'axi_bad6.inp:7:', &
+               'SPECific heat without a PLAStic law', 'specific heat without plasticity')
       call bad(deck('    PLAStic JOHNson-cook 400 100 0.3 0.01 1 1300 300 1'//nl, '  PLANe STRAin', &
                     '0', rigid=.true.), 'axi_bad5.inp:6:', 'PLAStic on a RIGId body', &
                'plasticity on a rigid body')

@@ -233,7 +233,16 @@ contains
                          ': expected DENSity rho > 0', err)
             else
                call lame_from_young(mat%young, mat%poisson, mat%lambda, mat%mu)
-               if (mat%plastic) call check_plastic(err)
+               if (mat%plastic) then
+                  call check_plastic(err)
+               else if (iplas > 0) then
+                  call fail(rd, iplas, 'MATErial '//itoa(ma)//': SPECific heat without a PLAStic '// &
+                            'law: expected PLAStic MISEs, POWEr or JOHNson-cook (the heat comes '// &
+                            'from the plastic work)', err)
+               end if
+               if (mat%mixed .and. mat%quadrature == 1 .and. .not. allocated(err)) &
+                  call warn(rd, icmd, 'MATErial '//itoa(ma)//': MIXEd ignored with QUADrature 1 '// &
+                            '(the one-point element has a single volume change already)')
             end if
          case (MAT_RIGID)
             if (mat%plastic) then
