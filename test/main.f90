@@ -25,6 +25,7 @@ program exic_tests
    use test_loads, only: run_loads_tests
    use test_rigid, only: run_rigid_tests
    use test_plasticity, only: run_plasticity_tests
+   use test_axisymmetric, only: run_axisymmetric_tests
    use test_hostile, only: run_hostile_tests
    use test_math, only: run_math_tests
    use test_threads, only: run_threads_tests
@@ -41,6 +42,7 @@ program exic_tests
    call r%run('contact_geom', run_contact_geom_tests)
    call r%run('element', run_element_tests)
    call r%run('plasticity', run_plasticity_tests)
+   call r%run('axisymmetric', run_axisymmetric_tests)
    call r%run('fields', run_fields_tests)
    call r%run('xdmf', run_xdmf_tests)
    call r%run('viewers', run_viewers_tests)

@@ -694,8 +694,8 @@ contains
                        ' ELAStic NEOHookean 100 0.7', ' DENSity 1', ''])
       call bad('b38', [character(len=L) :: h, 'INCLude b38_part.inp', bl, en], 3, &
                'expected -1 < nu < 0.5', 'b38_part.inp')
-      call bad('b39', [character(len=L) :: bt, ' TPLOt', 'END', ' stre,1,9', '', 'STOP'], 19, &
-               'expected 1..7')
+      call bad('b39', [character(len=L) :: bt, ' TPLOt', 'END', ' stre,1,11', '', 'STOP'], 19, &
+               'expected 1..10')
       call bad('b40', [character(len=L) :: bt, ' TPLOt', 'END', ' cont,1,1', '', 'STOP'], 19, &
                'no CONTact block')
       call bad('b41', [character(len=L) :: h, 'INCLude "abc.inp', mt, bl, en], 3, 'expected a closing "')

@@ -8,11 +8,17 @@
 !> `exic-bench-element bandwidth` measures the memory bandwidth instead (triad a = b + s c and
 !> copy over 3 x 128 MB, best of 10, on OMP_NUM_THREADS threads): the roofline of
 !> doc/performance.md.
+!> `exic-bench-element plastic [nsteps]` times the general solid path instead (q4_general.f90:
+!> the elastic law through it, J2 plasticity where no point yields, J2 where every point yields
+!> at every step; 2x2, 2x2 MIXEd and one point) against the elastic kernels, in processor time:
+!> the figures of doc/performance.md, "Plasticity".
 !> Build: fpm build --profile release --flag "-O3 -march=native -funroll-loops -ffp-contract=off"
 !> Run:   fpm run exic-bench-element --profile release --flag "..." [-- nsteps | bandwidth]
 program element_rate
    use exic_base_kinds, only: wp, i8
    use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_stable_dt
+   use exic_element_q4_general, only: q4_solid_t, q4g_init, q4g_force, q4g_hist_init
+   use exic_material_j2_hardening, only: j2_param_t, J2_MISES
    !$ use omp_lib, only: omp_get_max_threads
    implicit none
    integer, parameter :: nrep = 5
@@ -22,8 +28,10 @@ program element_rate
    real(wp) :: lambda, mu, wint, whg, jmin, dtmin, chk, t(nrep, 3), tc(nrep, 3), xx, yy, p0, p1
    character(len=32) :: arg
    integer(i8) :: c0, c1, rate
+   logical :: plastic_mode
 
    nsteps = 3000
+   plastic_mode = .false.
    nargs = command_argument_count()
    if (nargs >= 1) then
       call get_command_argument(1, arg)
@@ -31,7 +39,17 @@ program element_rate
          call bandwidth()
          stop
       end if
-      read (arg, *) nsteps
+      if (arg == 'plastic') then
+         plastic_mode = .true.
+         nsteps = 300
+         if (nargs >= 2) then
+            call get_command_argument(2, arg)
+            read (arg, *) nsteps
+         end if
+         nargs = 0
+      else
+         read (arg, *) nsteps
+      end if
    end if
    nx = 120
    ny = 24
@@ -64,6 +82,10 @@ program element_rate
    end do
    call q4_check_reference(nel, nnode, conn, x0, ebad)
    x = x0 + u
+   if (plastic_mode) then
+      call plastic_rates()
+      stop
+   end if
 
    call system_clock(count_rate=rate)
    chk = 0.0_wp
@@ -113,6 +135,105 @@ program element_rate
    print '(a,es12.5)', 'checksum ', chk
 
 contains
+
+   !> Processor time per element-step of the general path against the elastic kernels (median
+   !> of nrep runs of nsteps steps each). "every point yields": Y0 = 1e-3 mu and the history
+   !> restored before each step (the restore is timed alone and subtracted).
+   subroutine plastic_rates()
+      type(j2_param_t) :: prm
+      type(q4_solid_t) :: o
+      real(wp), allocatable :: h(:, :, :), h0(:, :, :), one(:, :, :)
+      real(wp) :: ww, wh, wd, jm, d2, tr(nrep), tk(nrep, 12)
+      integer :: eb, em, ef, c, nq, k
+      character(len=40) :: names(12)
+      prm%law = J2_MISES
+      allocate (one(1, 1, 1), source=0.0_wp)
+      k = 0
+      do nq = 2, 1, -1
+         do c = 1, 5
+            if (nq == 1 .and. c == 5) cycle
+            k = k + 1
+            select case (c)
+            case (1)
+               o = q4g_init(nq, .false., .false., .false., lambda, mu, 0.1_wp, 0.1_wp, prm)
+               names(k) = 'elastic kernel (quad4)'
+            case (2)
+               o = q4g_init(nq, .false., .false., .false., lambda, mu, 0.1_wp, 0.1_wp, prm)
+               names(k) = 'general path, elastic'
+            case (3)
+               prm%y0 = 1.0e3_wp*mu
+               prm%yinf = prm%y0
+               o = q4g_init(nq, .false., .false., .true., lambda, mu, 0.1_wp, 0.1_wp, prm)
+               names(k) = 'J2, no point yields'
+            case (4, 5)
+               prm%y0 = 1.0e-3_wp*mu
+               prm%yinf = prm%y0
+               prm%hiso = 0.1_wp*mu
+               o = q4g_init(nq, .false., c == 5, .true., lambda, mu, 0.1_wp, 0.1_wp, prm)
+               names(k) = 'J2, every point yields'
+               if (c == 5) names(k) = 'J2 MIXEd, every point yields'
+            end select
+            if (nq == 1) names(k) = trim(names(k))//' (1 pt)'
+            if (nq == 2) names(k) = trim(names(k))//' (2x2)'
+            if (o%plastic) then
+               if (allocated(h)) deallocate (h, h0)
+               allocate (h(o%nvar, nq*nq, nel), h0(o%nvar, nq*nq, nel))
+               call q4g_hist_init(o, nel, h0)
+               h = h0
+            end if
+            do rep = 1, nrep
+               call cpu_time(p0)
+               do step = 1, nsteps
+                  f = 0.0_wp
+                  if (c == 1 .and. nq == 2) then
+                     call q4_force_2x2(nel, nnode, conn, x0, u, lambda, mu, 0.1_wp, f, wint, jmin, &
+                                       ebad, dtmin, emin, efold)
+                  else if (c == 1) then
+                     call q4_force_1pt(nel, nnode, conn, x0, u, lambda, mu, 0.1_wp, 0.1_wp, f, wint, &
+                                       whg, jmin, ebad, dtmin, emin, efold)
+                  else if (c == 2) then
+                     call q4g_force(o, nel, nnode, conn, x0, u, 1.0e-3_wp, one, f, ww, wh, wd, jm, &
+                                    eb, d2, em, ef)
+                  else
+                     if (c >= 4) h = h0
+                     call q4g_force(o, nel, nnode, conn, x0, u, 1.0e-3_wp, h, f, ww, wh, wd, jm, eb, &
+                                    d2, em, ef)
+                  end if
+               end do
+               call cpu_time(p1)
+               tk(rep, k) = p1 - p0
+               chk = chk + f(1, nnode)
+               if (c >= 4) then
+                  call cpu_time(p0)
+                  do step = 1, nsteps
+                     h = h0
+                     chk = chk + h(1, 1, step - nsteps*(step/nsteps) + 1)
+                  end do
+                  call cpu_time(p1)
+                  tr(rep) = p1 - p0
+               end if
+            end do
+            if (c >= 4) tk(:, k) = tk(:, k) - sort_median(tr)
+         end do
+      end do
+      print '(a,i0,a,i0,a,i0,a,i0,a)', 'mesh ', nx, ' x ', ny, ' (', nel, ' elements), ', nsteps, &
+         ' steps, processor time, median of 5 runs'
+      do c = 1, k
+         call report(trim(names(c)), tk(:, c))
+      end do
+      print '(a,es12.5)', 'checksum ', chk
+   end subroutine plastic_rates
+
+   real(wp) function sort_median(v) result(m)
+      real(wp), intent(in) :: v(:)
+      real(wp) :: s(size(v))
+      integer :: a
+      s = v
+      do a = 1, size(s)
+         s(a:) = cshift(s(a:), minloc(s(a:), 1) - 1)
+      end do
+      m = s((size(s) + 1)/2)
+   end function sort_median
 
    !> Best of 10 rates of a triad and a copy over arrays of 16 M reals (128 MB each), shared
    !> among the OpenMP threads (first touch by the same threads).

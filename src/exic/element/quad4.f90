@@ -36,6 +36,11 @@ module exic_element_quad4
 
    public :: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, q4_stable_dt, &
              q4_deformation, q4_stress
+   ! the block steps for the general solid path (q4_general.f90), as wrappers: the steps stay
+   ! private, so that the compiler inlines them into the block routines as before
+   public :: q4b_gather, q4b_kinematics_2x2, q4b_kinematics_1pt, q4b_positive, q4b_forces_2x2, &
+             q4b_forces_1pt, q4b_check_points, q4b_current, q4b_stable_block, q4b_block_minimum, &
+             q4b_scatter
 
    real(wp), parameter :: xin(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]   !< xi_a
    real(wp), parameter :: etn(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]   !< eta_a
@@ -598,15 +603,21 @@ contains
 
    !> Row-sum lumped mass m_a = rho integral N_a dA0 (2x2 Gauss, exact for the bilinear
    !> element), accumulated into mass(nnode). The element masses sum to rho A0 exactly.
-   pure subroutine q4_lumped_mass(nel, nnode, conn, x0, rho, mass)
+   !> axi (GLOBal AXISymmetric): m_a = rho integral N_a R dA0, the ring mass per radian
+   !> (doc/axisymmetry.md, (A5); 2x2 Gauss is exact for it too).
+   pure subroutine q4_lumped_mass(nel, nnode, conn, x0, rho, mass, axi)
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
       real(wp), intent(in) :: x0(2, nnode)
       real(wp), intent(in) :: rho
       real(wp), intent(inout) :: mass(nnode)
-      real(wp) :: xe(4), ye(4), dnx(4), dny(4), dj, xi, eta, me(4)
+      logical, intent(in), optional :: axi
+      real(wp) :: xe(4), ye(4), dnx(4), dny(4), dj, xi, eta, me(4), rg
       integer :: e, g
+      logical :: ax
 
+      ax = .false.
+      if (present(axi)) ax = axi
       do e = 1, nel
          xe = x0(1, conn(:, e))
          ye = x0(2, conn(:, e))
@@ -615,7 +626,12 @@ contains
             xi = gq*xin(g)
             eta = gq*etn(g)
             call grad_at(xe, ye, xi, eta, dnx, dny, dj)
-            me = me + (rho*dj*0.25_wp)*(1.0_wp + xin*xi)*(1.0_wp + etn*eta)
+            if (ax) then
+               rg = 0.25_wp*sum((1.0_wp + xin*xi)*(1.0_wp + etn*eta)*xe)
+               me = me + (rho*dj*0.25_wp*rg)*(1.0_wp + xin*xi)*(1.0_wp + etn*eta)
+            else
+               me = me + (rho*dj*0.25_wp)*(1.0_wp + xin*xi)*(1.0_wp + etn*eta)
+            end if
          end do
          mass(conn(:, e)) = mass(conn(:, e)) + me
       end do
@@ -728,5 +744,96 @@ contains
          end do
       end do
    end subroutine q4_stress
+
+   !> gather for q4_general.f90.
+   pure subroutine q4b_gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
+      integer, intent(in) :: nb, nnode
+      integer, intent(in) :: conn(4, nb)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      real(wp), intent(out), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
+      call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
+   end subroutine q4b_gather
+
+   !> kinematics_2x2 for q4_general.f90.
+   pure subroutine q4b_kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
+      real(wp), intent(out), dimension(NBLOCK, 4) :: f11, f12, f21, f22, jac, wt, i11, i12, i21, i22
+      call kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+   end subroutine q4b_kinematics_2x2
+
+   !> kinematics_1pt for q4_general.f90.
+   pure subroutine q4b_kinematics_1pt(xe, ye, uxe, uye, f11, f12, f21, f22, jac, a0, r0)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
+      real(wp), intent(out), dimension(NBLOCK) :: f11, f12, f21, f22, jac, a0, r0
+      call kinematics_1pt(xe, ye, uxe, uye, f11, f12, f21, f22, jac, a0, r0)
+   end subroutine q4b_kinematics_1pt
+
+   !> positive for q4_general.f90.
+   pure subroutine q4b_positive(n, jac, js)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: jac(n)
+      real(wp), intent(out) :: js(n)
+      call positive(n, jac, js)
+   end subroutine q4b_positive
+
+   !> forces_2x2 for q4_general.f90.
+   pure subroutine q4b_forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: p11, p12, p21, p22, i11, i12, i21, i22
+      real(wp), intent(out), dimension(NBLOCK, 4) :: fx, fy
+      call forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
+   end subroutine q4b_forces_2x2
+
+   !> forces_1pt for q4_general.f90.
+   pure subroutine q4b_forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
+      real(wp), intent(in), dimension(NBLOCK) :: r0, p11, p12, p21, p22
+      real(wp), intent(in) :: kh
+      real(wp), intent(out), dimension(NBLOCK, 4) :: fx, fy
+      real(wp), intent(out) :: eh(NBLOCK)
+      call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
+   end subroutine q4b_forces_1pt
+
+   !> check_points for q4_general.f90.
+   pure subroutine q4b_check_points(nb, np, off, jac, jmin, ebad)
+      integer, intent(in) :: nb, np, off
+      real(wp), intent(in) :: jac(NBLOCK, np)
+      real(wp), intent(inout) :: jmin
+      integer, intent(inout) :: ebad
+      call check_points(nb, np, off, jac, jmin, ebad)
+   end subroutine q4b_check_points
+
+   !> current for q4_general.f90.
+   pure subroutine q4b_current(xe, ye, uxe, uye)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye
+      real(wp), intent(inout), dimension(NBLOCK, 4) :: uxe, uye
+      call current(xe, ye, uxe, uye)
+   end subroutine q4b_current
+
+   !> stable_block for q4_general.f90.
+   pure subroutine q4b_stable_block(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2, good)
+      integer, intent(in) :: nq
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, xc, yc
+      real(wp), intent(in) :: lambda, mu, rho0
+      real(wp), intent(out), dimension(NBLOCK) :: dt2, good
+      call stable_block(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2, good)
+   end subroutine q4b_stable_block
+
+   !> block_minimum for q4_general.f90.
+   pure subroutine q4b_block_minimum(nb, off, dt2, good, dt2min, emin, efold)
+      integer, intent(in) :: nb, off
+      real(wp), intent(in) :: dt2(NBLOCK), good(NBLOCK)
+      real(wp), intent(inout) :: dt2min
+      integer, intent(inout) :: emin, efold
+      call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
+   end subroutine q4b_block_minimum
+
+   !> scatter for q4_general.f90.
+   pure subroutine q4b_scatter(nb, nnode, conn, fx, fy, f)
+      integer, intent(in) :: nb, nnode
+      integer, intent(in) :: conn(4, nb)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: fx, fy
+      real(wp), intent(inout) :: f(2, nnode)
+      call scatter(nb, nnode, conn, fx, fy, f)
+   end subroutine q4b_scatter
 
 end module exic_element_quad4

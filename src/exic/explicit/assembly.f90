@@ -21,11 +21,13 @@ module exic_explicit_assembly
    use exic_explicit_central, only: cd_kinetic, cd_zero
    use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
                                  q4_stable_dt, q4_stress, NBLOCK
+   use exic_element_q4_general, only: q4g_init, q4g_force, q4g_stable_dt, q4g_stress, q4g_hist_init, &
+                                      NSIG
    implicit none
    private
 
    public :: assembly_init, internal_forces, stable_step, kinetic_energy, element_stress, all_stresses
-   public :: set_ranges
+   public :: set_ranges, NSIG
 
    !> Smallest set whose force pass runs on several threads (a parallel region costs a few
    !> microseconds; below this the pass runs on the calling thread, with the same results).
@@ -58,6 +60,7 @@ contains
       allocate (st%mass(nn), source=0.0_wp)
       allocate (st%active(nn), st%rigid(nn), source=.false.)
       st%fext = mesh%force
+      st%axisymmetric = mesh%axisymmetric
 
       ! element sets, one per material in use
       nmat = size(materials)
@@ -90,7 +93,9 @@ contains
                call make_error(err, trim(buf)//' has a non-positive Jacobian in the reference mesh')
                return
             end if
-            call q4_lumped_mass(s%nel, nn, s%conn, st%x0, s%rho, st%mass)
+            call q4_lumped_mass(s%nel, nn, s%conn, st%x0, s%rho, st%mass, mesh%axisymmetric)
+            call general_path(s, m, mesh%axisymmetric)
+            if (m%plastic .and. m%kind == MAT_SOLID) st%has_plastic = .true.
             call set_ranges(s, nn)
             st%active(reshape(s%conn, [4*s%nel])) = .true.
             st%eset(s%elems) = k
@@ -115,6 +120,23 @@ contains
          if (.not. st%active(i)) st%v(:, i) = 0.0_wp
       end do
    end subroutine assembly_init
+
+   !> The general solid path of set s (doc/axisymmetry.md) when it is axisymmetric, plastic or
+   !> MIXEd, with the history of a plastic set; else the plane-strain elastic kernels.
+   subroutine general_path(s, m, axi)
+      type(element_set_t), intent(inout) :: s
+      type(material_t), intent(in) :: m
+      logical, intent(in) :: axi
+      s%general = m%kind == MAT_SOLID .and. (axi .or. m%plastic .or. (m%mixed .and. m%quadrature == 2))
+      s%solid = q4g_init(m%quadrature, axi, m%mixed, m%plastic .and. s%general, m%lambda, m%mu, &
+                         m%rho, m%hourglass, m%j2)
+      if (s%solid%plastic) then
+         allocate (s%hist(s%solid%nvar, s%nq*s%nq, s%nel))
+         call q4g_hist_init(s%solid, s%nel, s%hist)
+      else
+         allocate (s%hist(1, 1, 1), source=0.0_wp)
+      end if
+   end subroutine general_path
 
    !> Number of non-zero entries.
    pure integer function count_nonzero(a)
@@ -192,13 +214,15 @@ contains
    !> element emin (0 when there is no deformable element) and the first (global) element
    !> folded at a corner efold (q4_stable_dt). `ebad` is the first (global) element with
    !> J <= 0, or 0.
+   !> Plastic sets update their history (once per call: the stepper calls this once per step)
+   !> and add the step's dissipation to st%plastic.
    subroutine internal_forces(st, sets, ebad, dtmin, emin, efold)
       type(state_t), intent(inout) :: st
-      type(element_set_t), intent(in) :: sets(:)
+      type(element_set_t), intent(inout) :: sets(:)
       integer, intent(out) :: ebad, emin, efold
       real(wp), intent(out) :: dtmin
       integer :: k, eb, em, ef
-      real(wp) :: w, whg, jm, d
+      real(wp) :: w, whg, jm, d, wd
 
       call cd_zero(2*st%nnode, st%fint)
       st%strain = 0.0_wp
@@ -211,8 +235,9 @@ contains
       do k = 1, size(sets)
          associate (s => sets(k))
             if (s%kind /= MAT_SOLID) cycle
-            call set_forces(s, st%nnode, st%x0, st%u, st%fint, w, whg, jm, eb, d, em, ef)
+            call set_forces(s, st%nnode, st%x0, st%u, st%dt_prev, st%fint, w, whg, wd, jm, eb, d, em, ef)
             st%strain = st%strain + w
+            st%plastic = st%plastic + wd
             st%hourglass = st%hourglass + whg
             st%jmin = min(st%jmin, jm)
             if (eb /= 0 .and. ebad == 0) ebad = s%elems(eb)
@@ -228,26 +253,36 @@ contains
    !> The force pass over one set (internal_forces): the ranges of each colour on the threads,
    !> one colour after the other; per-range results combined in range order. eb, em, ef are
    !> local element numbers of the set.
-   subroutine set_forces(s, nnode, x0, u, f, w, whg, jm, eb, d, em, ef)
-      type(element_set_t), intent(in) :: s
+   subroutine set_forces(s, nnode, x0, u, dt, f, w, whg, wd, jm, eb, d, em, ef)
+      type(element_set_t), intent(inout) :: s
       integer, intent(in) :: nnode
-      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode), dt
       real(wp), intent(inout) :: f(2, nnode)
-      real(wp), intent(out) :: w, whg, jm, d
+      real(wp), intent(out) :: w, whg, wd, jm, d
       integer, intent(out) :: eb, em, ef
-      real(wp), dimension(s%nrange) :: pw, phg, pj, pd
+      real(wp), dimension(s%nrange) :: pw, phg, pj, pd, pdw
       integer, dimension(s%nrange) :: pe, pm, pf
       integer :: c, i, r, e1, n
 
+      pdw = 0.0_wp
       !$omp parallel if (s%nel >= PAR_MIN_ELEMENTS) default(none) private(c, i, r, e1, n) &
-      !$omp shared(s, nnode, x0, u, f, pw, phg, pj, pd, pe, pm, pf)
+      !$omp shared(s, nnode, x0, u, dt, f, pw, phg, pj, pd, pe, pm, pf, pdw)
       do c = 1, s%ncolour
          !$omp do schedule(dynamic)
          do i = s%cfirst(c), s%cfirst(c + 1) - 1
             r = s%cranges(i)
             e1 = s%rfirst(r)
             n = s%rfirst(r + 1) - e1
-            if (s%nq == 2) then
+            if (s%general) then
+               if (s%solid%plastic) then
+                  call q4g_force(s%solid, n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, dt, &
+                                 s%hist(:, :, e1:e1 + n - 1), f, pw(r), phg(r), pdw(r), pj(r), pe(r), &
+                                 pd(r), pm(r), pf(r))
+               else
+                  call q4g_force(s%solid, n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, dt, s%hist, f, &
+                                 pw(r), phg(r), pdw(r), pj(r), pe(r), pd(r), pm(r), pf(r))
+               end if
+            else if (s%nq == 2) then
                call q4_force_2x2(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%lambda, s%mu, s%rho, f, &
                                  pw(r), pj(r), pe(r), pd(r), pm(r), pf(r))
                phg(r) = 0.0_wp
@@ -261,6 +296,7 @@ contains
       !$omp end parallel
       w = 0.0_wp
       whg = 0.0_wp
+      wd = 0.0_wp
       jm = huge(1.0_wp)
       d = huge(1.0_wp)
       eb = 0
@@ -269,6 +305,7 @@ contains
       do r = 1, s%nrange
          e1 = s%rfirst(r) - 1
          w = w + pw(r)
+         wd = wd + pdw(r)
          whg = whg + phg(r)
          jm = min(jm, pj(r))
          if (pe(r) /= 0 .and. eb == 0) eb = e1 + pe(r)
@@ -300,7 +337,11 @@ contains
       do k = 1, size(sets)
          associate (s => sets(k))
             if (s%kind /= MAT_SOLID) cycle
-            call q4_stable_dt(s%nq, s%nel, st%nnode, s%conn, st%x0, x, s%lambda, s%mu, s%rho, d, e, ef)
+            if (s%general) then
+               call q4g_stable_dt(s%solid, s%nel, st%nnode, s%conn, st%x0, x, d, e, ef)
+            else
+               call q4_stable_dt(s%nq, s%nel, st%nnode, s%conn, st%x0, x, s%lambda, s%mu, s%rho, d, e, ef)
+            end if
             if (ef /= 0 .and. efold == 0) efold = s%elems(ef)
             if (d < dtmin) then
                dtmin = d
@@ -317,39 +358,56 @@ contains
       call cd_kinetic(st%nnode, st%mass, st%v, st%kinetic, st%momentum)
    end subroutine kinetic_energy
 
-   !> Stress components (sxx, syy, szz, sxy, pressure, von Mises, J) of global element `e`.
+   !> Stress components (sxx, syy, szz, sxy, pressure, von Mises, J; ep, temperature, yield
+   !> stress: zero for an elastic set) of global element `e`.
    subroutine element_stress(st, sets, e, sig)
       type(state_t), intent(in) :: st
       type(element_set_t), intent(in) :: sets(:)
       integer, intent(in) :: e
-      real(wp), intent(out) :: sig(7)
+      real(wp), intent(out) :: sig(NSIG)
       integer :: j
-      real(wp) :: s1(7, 1)
+      real(wp) :: s1(7, 1), sg(NSIG, 1)
       sig = 0.0_wp
       sig(7) = 1.0_wp
       j = st%eloc(e)
       associate (s => sets(st%eset(e)))
          if (s%kind /= MAT_SOLID) return
-         call q4_stress(s%nq, 1, st%nnode, s%conn(:, j:j), st%x0, st%u, s%lambda, s%mu, s1)
-         sig = s1(:, 1)
+         if (s%general) then
+            if (s%solid%plastic) then
+               call q4g_stress(s%solid, 1, st%nnode, s%conn(:, j:j), st%x0, st%u, s%hist(:, :, j:j), sg)
+            else
+               call q4g_stress(s%solid, 1, st%nnode, s%conn(:, j:j), st%x0, st%u, s%hist, sg)
+            end if
+            sig = sg(:, 1)
+         else
+            call q4_stress(s%nq, 1, st%nnode, s%conn(:, j:j), st%x0, st%u, s%lambda, s%mu, s1)
+            sig(1:7) = s1(:, 1)
+         end if
       end associate
    end subroutine element_stress
 
-   !> Stress components of every element, sig(7, nelem); rigid elements get zeros and J = 1.
+   !> Stress components of every element, sig(nc, nelem) with nc = 7 or NSIG (element_stress);
+   !> rigid elements get zeros and J = 1.
    subroutine all_stresses(st, sets, sig)
       type(state_t), intent(in) :: st
       type(element_set_t), intent(in) :: sets(:)
       real(wp), intent(out) :: sig(:, :)
-      integer :: k
+      integer :: k, nc
       real(wp), allocatable :: s1(:, :)
+      nc = size(sig, 1)
       sig = 0.0_wp
       sig(7, :) = 1.0_wp
       do k = 1, size(sets)
          associate (s => sets(k))
             if (s%kind /= MAT_SOLID) cycle
-            allocate (s1(7, s%nel))
-            call q4_stress(s%nq, s%nel, st%nnode, s%conn, st%x0, st%u, s%lambda, s%mu, s1)
-            sig(:, s%elems) = s1
+            if (s%general) then
+               allocate (s1(NSIG, s%nel))
+               call q4g_stress(s%solid, s%nel, st%nnode, s%conn, st%x0, st%u, s%hist, s1)
+            else
+               allocate (s1(7, s%nel))
+               call q4_stress(s%nq, s%nel, st%nnode, s%conn, st%x0, st%u, s%lambda, s%mu, s1)
+            end if
+            sig(1:min(nc, size(s1, 1)), s%elems) = s1(1:min(nc, size(s1, 1)), :)
             deallocate (s1)
          end associate
       end do

@@ -167,7 +167,8 @@ contains
    end subroutine loading_init
 
    !> Nodal BODY and gravity forces of every solid and free rigid element set: b int N_a dV0 and
-   !> rho g int N_a dV0 (the row-sum lumped mass with rho = 1, doc/loads.md section 2).
+   !> rho g int N_a dV0 (the row-sum lumped mass with rho = 1, doc/loads.md section 2; per
+   !> radian in axisymmetry, doc/axisymmetry.md (A5)).
    subroutine body_and_gravity(self, materials, st, sets)
       type(loading_t), intent(inout) :: self
       type(material_t), intent(in) :: materials(:)
@@ -184,7 +185,7 @@ contains
             if (.not. loaded) cycle
             if (all(m%body == 0.0_wp) .and. .not. self%spec%has_gravity) cycle
             vol = 0.0_wp
-            call q4_lumped_mass(s%nel, st%nnode, s%conn, st%x0, 1.0_wp, vol)
+            call q4_lumped_mass(s%nel, st%nnode, s%conn, st%x0, 1.0_wp, vol, st%axisymmetric)
             if (any(m%body /= 0.0_wp)) then
                self%any_body = .true.
                self%fbody(1, :) = self%fbody(1, :) + m%body(1)*vol
@@ -535,7 +536,7 @@ contains
       if (self%spec%nedge > 0) then
          self%fedge = 0.0_wp
          call edge_forces(self%spec%nedge, st%nnode, self%spec%edge, self%spec%edge_kind, &
-                          self%spec%edge_value, x, self%fedge)
+                          self%spec%edge_value, x, self%fedge, st%axisymmetric)
       end if
       g = self%spec%gravity_prop
       do i = 1, st%nnode

@@ -144,19 +144,34 @@ contains
    !> and values (v_a, v_b),
    !>   NORMal (pressure into the body):  f_a -= (2 v_a + v_b)/6 N,  f_b -= (v_a + 2 v_b)/6 N;
    !>   TANGential (traction along t):    f_a += (2 v_a + v_b)/6 t,  f_b += (v_a + 2 v_b)/6 t.
-   pure subroutine edge_forces(nedge, nnode, edge, kind, val, x, f)
+   !> axi (GLOBal AXISymmetric): the forces per radian, int N_a v r ds with the current radii
+   !> r = x (doc/axisymmetry.md, (A6)).
+   pure subroutine edge_forces(nedge, nnode, edge, kind, val, x, f, axi)
       integer, intent(in) :: nedge, nnode
       integer, intent(in) :: edge(2, nedge), kind(nedge)
       real(wp), intent(in) :: val(2, nedge), x(2, nnode)
       real(wp), intent(inout) :: f(2, nnode)
-      real(wp) :: t(2), d(2), ca, cb
+      logical, intent(in), optional :: axi
+      real(wp) :: t(2), d(2), ca, cb, ra, rb, va, vb
       integer :: e, a, b
+      logical :: ax
+      ax = .false.
+      if (present(axi)) ax = axi
       do e = 1, nedge
          a = edge(1, e)
          b = edge(2, e)
          t = x(:, b) - x(:, a)
-         ca = (2.0_wp*val(1, e) + val(2, e))/6.0_wp
-         cb = (val(1, e) + 2.0_wp*val(2, e))/6.0_wp
+         if (ax) then
+            ra = x(1, a)
+            rb = x(1, b)
+            va = val(1, e)
+            vb = val(2, e)
+            ca = (3.0_wp*va*ra + va*rb + vb*ra + vb*rb)/12.0_wp
+            cb = (3.0_wp*vb*rb + vb*ra + va*rb + va*ra)/12.0_wp
+         else
+            ca = (2.0_wp*val(1, e) + val(2, e))/6.0_wp
+            cb = (val(1, e) + 2.0_wp*val(2, e))/6.0_wp
+         end if
          if (kind(e) == EDGE_NORMAL) then
             d = [-t(2), t(1)]             ! -N: into the body
          else

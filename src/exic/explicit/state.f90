@@ -1,6 +1,7 @@
 !> The explicit state of a problem and its element sets.
 module exic_explicit_state
    use exic_base_kinds, only: wp, i8
+   use exic_element_q4_general, only: q4_solid_t
    implicit none
    private
 
@@ -26,6 +27,13 @@ module exic_explicit_state
       integer :: ncolour = 0
       integer, allocatable :: cfirst(:)         !< (ncolour + 1) first entry of each colour in cranges
       integer, allocatable :: cranges(:)        !< (nrange) the ranges by colour, ascending in each
+      !> The general solid path (doc/axisymmetry.md): axisymmetric, plastic or MIXEd sets run
+      !> q4_general.f90 with `solid`; the plane-strain elastic sets quad4.f90's kernels.
+      logical :: general = .false.
+      type(q4_solid_t) :: solid
+      !> (nvar, nq*nq, nel) history of a plastic set (Cp^-1, ep[, T]; material/j2.f90), changed
+      !> only by the force pass; (1, 1, 1) otherwise
+      real(wp), allocatable :: hist(:, :, :)
    end type element_set_t
 
    !> Nodal state at time t(n+1) with v(n+1), a(n+1) once a step is complete.
@@ -51,6 +59,9 @@ module exic_explicit_state
       real(wp) :: kinetic = 0.0_wp, strain = 0.0_wp, hourglass = 0.0_wp
       real(wp) :: wext = 0.0_wp, wcon = 0.0_wp, total0 = 0.0_wp
       real(wp) :: wpm = 0.0_wp                  !< work of the prescribed motion (doc/loads.md, section 3)
+      real(wp) :: plastic = 0.0_wp              !< plastic work dissipated so far (doc/axisymmetry.md, (A13))
+      logical :: axisymmetric = .false.         !< GLOBal AXISymmetric: quantities per radian
+      logical :: has_plastic = .false.          !< a set is plastic (outputs name ep, T, Y)
       real(wp) :: momentum(2) = 0.0_wp
       real(wp) :: jmin = 1.0_wp
       integer :: nactive = 0                    !< active contact constraints

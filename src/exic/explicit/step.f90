@@ -455,8 +455,9 @@ contains
 
    !> Stop on a non-finite value, naming where it first appears; the energy guard.
    !>
-   !> E = kinetic + strain + hourglass (+ the frictional dissipation, energy that left, with
-   !> friction: doc/friction.md section 5), E_in = E(0) + W_ext + W_pm (the energy put in, W_pm the
+   !> E = kinetic + strain + hourglass + plastic work (doc/axisymmetry.md, (A13)) (+ the frictional
+   !> dissipation, energy that left, with friction: doc/friction.md section 5), E_in = E(0) + W_ext +
+   !> W_pm (the energy put in, W_pm the
    !> work of the prescribed motion, doc/loads.md section 3),
    !> growth = (E - E_in) / (|E(0)| + |W_ext| + |W_pm|): past energy_warn a warning (once), past
    !> energy_stop an error naming the largest contributor (doc/decisions.md, "Energy guard").
@@ -466,7 +467,7 @@ contains
       real(wp) :: e, put_in, growth, w_in
       character(len=:), allocatable :: what
       associate (st => self%st)
-         e = st%kinetic + st%strain + st%hourglass
+         e = st%kinetic + st%strain + st%hourglass + st%plastic
          if (.not. (ieee_is_finite(e) .and. ieee_is_finite(st%wext) .and. ieee_is_finite(st%wcon))) then
             call make_error(err, 'a value is not finite at t = '//rtoa(st%t)//', step '// &
                             itoa(int(st%step))//': '//first_nonfinite(self))
@@ -493,7 +494,7 @@ contains
          end if
          if (growth <= self%energy_warn) return
          if (put_in > 0.0_wp) then
-            what = 'the physical energy (kinetic + strain'//trim(merge(' + frictional dissipation', &
+            what = 'the physical energy (kinetic + strain + plastic work'//trim(merge(' + frictional dissipation', &
                    '                         ', self%contact%friction))//') exceeds the energy put in (initial energy '// &
                    '+ external work + work of prescribed motion) by '//percent(growth)//' of it at t = '// &
                    rtoa(st%t)//', step '//itoa(int(st%step))

@@ -253,7 +253,7 @@ contains
          else if (keyword_is(w, 'disp')) then
             call cmd_nodal_values(rd, b, .false., err)
          else if (keyword_is(w, 'glob')) then
-            call cmd_global(rd, err)
+            call cmd_global(rd, b, err)
          else if (keyword_is(w, 'mate')) then
             call material(i, err)
          else if (keyword_is(w, 'init')) then

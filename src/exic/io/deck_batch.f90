@@ -496,9 +496,9 @@ contains
             return
          end if
       case (REQ_STRE)
-         if (r%comp < 1 .or. r%comp > 7) then
-            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1..7 (sxx syy szz '// &
-                      'sxy p mises J)', err)
+         if (r%comp < 1 .or. r%comp > 10) then
+            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1..10 (sxx syy szz '// &
+                      'sxy p mises J, and ep T Y of a PLAStic material)', err)
             return
          end if
       case (REQ_CONT)

@@ -17,7 +17,7 @@ module exic_io_deck_finish
    use exic_base_error, only: error_t, make_error
    use exic_mesh_mesh, only: mesh_t
    use exic_mesh_tie, only: tie_map, apply_tie
-   use exic_material_material, only: MAT_UNDEFINED
+   use exic_material_material, only: MAT_UNDEFINED, MAT_RIGID
    use exic_contact_spec, only: contact_spec_t, SURF_REGION, SURF_MATERIAL, SURF_FACETS
    use exic_mesh_edge_set, only: find_edge_set, edge_set_nodes, edge_set_ids
    use exic_io_model, only: model_t
@@ -145,6 +145,8 @@ contains
       end do
       call check_orientation(rd, b, model%mesh, err)
       if (allocated(err)) return
+      call check_axisymmetric(rd, b, model, err)
+      if (allocated(err)) return
       call check_nodal_records(rd, b, model%mesh, err)
       if (allocated(err)) return
       call check_counts(rd, ictl, counts, nn, ne, size(model%materials), err)
@@ -155,6 +157,48 @@ contains
       call apply_cbound(rd, b, model%mesh)
       call apply_initial(rd, b, model%mesh, err)
    end subroutine finish_mesh
+
+   !> GLOBal AXISymmetric: every node of an element at r = x >= 0 (error at the record that
+   !> defined the first node with r < 0), and no free rigid body (its three dofs are planar).
+   !> A node of a deformable element at r = 0 stays on the axis: its radial dof is prescribed
+   !> (u_r = 0; doc/axisymmetry.md, section 4).
+   subroutine check_axisymmetric(rd, b, model, err)
+      type(reader_t), intent(inout) :: rd
+      type(builder_t), intent(in) :: b
+      type(model_t), intent(inout) :: model
+      type(error_t), allocatable, intent(out) :: err
+      integer :: e, k, n, m
+      model%mesh%axisymmetric = b%axis_rec > 0
+      if (b%axis_rec == 0) return
+      do e = 1, model%mesh%nelem
+         do k = 1, 4
+            n = model%mesh%conn(k, e)
+            if (model%mesh%x(1, n) < 0.0_wp) then
+               call fail(rd, merge(b%nrec(n), b%axis_rec, b%nrec(n) > 0), 'node '//itoa(n)// &
+                         ' (of element '//itoa(e)//') at r = x = '//rtoa(model%mesh%x(1, n))// &
+                         ' < 0 with GLOBal AXISymmetric (at '//where(rd, b%axis_rec)// &
+                         '): expected every node at r >= 0 (x = r, y = z)', err)
+               return
+            end if
+         end do
+         m = model%mesh%mat(e)
+         if (model%materials(m)%kind == MAT_RIGID .and. model%materials(m)%free) then
+            call fail(rd, b%mat_rec(m), 'MATErial '//itoa(m)//': a free rigid body (RIGId,FREE) '// &
+                      'is not supported with GLOBal AXISymmetric (at '//where(rd, b%axis_rec)// &
+                      '): expected RIGId (fixed or driven) or a SOLId', err)
+            return
+         end if
+         if (model%materials(m)%kind /= MAT_RIGID) then
+            do k = 1, 4
+               n = model%mesh%conn(k, e)
+               if (model%mesh%x(1, n) == 0.0_wp) then
+                  model%mesh%bc(1, n) = 1
+                  model%mesh%disp(1, n) = 0.0_wp
+               end if
+            end do
+         end if
+      end do
+   end subroutine check_axisymmetric
 
    !> An element's material set missing: `err` names it (for a GMSH element, the physical
    !> surface that asked for it).

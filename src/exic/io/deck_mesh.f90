@@ -81,6 +81,7 @@ module exic_io_deck_mesh
                                                 !< each node (0: none), checked at END
       integer :: region = 0                     !< REGIon of the elements that follow
       integer :: block_mat = 0                  !< material of the previous BLOCk (0: none yet)
+      integer :: axis_rec = 0                   !< GLOBal AXISymmetric record (0: plane strain)
       real(wp) :: origin(2) = 0.0_wp            !< SHIFt: centre of POLAr blocks
       integer :: nmat = 0
       type(material_t), allocatable :: mats(:)  !< growable, indexed by set number
@@ -618,21 +619,30 @@ contains
       end subroutine point_record
    end subroutine cmd_cbound
 
-   !> GLOBal: `PLANe STRAin` (the default) and `FINIte` (exic is always finite-deformation)
-   !> are accepted; any other option is not supported.
-   subroutine cmd_global(rd, err)
+   !> GLOBal: `PLANe STRAin` (the default), `AXISymmetric` (x = r, y = z; doc/axisymmetry.md)
+   !> and `FINIte` (exic is always finite-deformation) are accepted; any other option is not
+   !> supported.
+   subroutine cmd_global(rd, b, err)
       type(reader_t), intent(inout) :: rd
+      type(builder_t), intent(inout) :: b
       type(error_t), allocatable, intent(out) :: err
       integer :: i
       do
          call next_in_set(rd, i)
          if (i == 0) return
-         if (keyword_is(word(rd, i, 1), 'plan') .and. keyword_is(word(rd, i, 2), 'stra')) cycle
+         if (keyword_is(word(rd, i, 1), 'plan') .and. keyword_is(word(rd, i, 2), 'stra')) then
+            b%axis_rec = 0
+            cycle
+         end if
+         if (keyword_is(word(rd, i, 1), 'axis')) then
+            b%axis_rec = i
+            cycle
+         end if
          if (keyword_is(word(rd, i, 1), 'fini')) cycle
          call check_data_record(rd, i, 'GLOBal', err)
          if (allocated(err)) return
          call fail(rd, i, 'GLOBal option "'//trim(rd%src%rec(i)%text)//'" is not supported: '// &
-                   'expected PLANe STRAin', err)
+                   'expected PLANe STRAin or AXISymmetric', err)
          return
       end do
    end subroutine cmd_global

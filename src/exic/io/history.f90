@@ -28,11 +28,12 @@ module exic_io_history
    character(len=*), parameter, public :: NUMBER_FORMAT = '1x,es24.16e3'
 
    !> Column names of <stem>.ene, in order (prescribed_work [ext], doc/loads.md section 3, and
-   !> friction_dissipation [ext], doc/friction.md section 5, appended after the older columns so
-   !> that they keep their positions).
+   !> friction_dissipation [ext], doc/friction.md section 5, and plastic_work [ext],
+   !> doc/axisymmetry.md section 8, appended after the older columns so that they keep their
+   !> positions).
    character(len=*), parameter :: ENERGY_COLUMNS = &
       't step dt kinetic strain external_work contact_work total drift momentum_x momentum_y '// &
-      'active hourglass prescribed_work friction_dissipation'
+      'active hourglass prescribed_work friction_dissipation plastic_work'
 
    !> The three text files of one run.
    type :: history_files_t
@@ -133,30 +134,31 @@ contains
    !> One row of <stem>.ene. A row with a non-finite value is not written (see the module
    !> header); `err` then says which.
    subroutine files_ene_row(self, t, step, dt, kinetic, strain, wext, wcon, total, drift, &
-                            momentum, nactive, hourglass, wpm, dfric, err)
+                            momentum, nactive, hourglass, wpm, dfric, wpl, err)
       class(history_files_t), intent(inout) :: self
       real(wp), intent(in) :: t, dt, kinetic, strain, wext, wcon, total, drift, momentum(2), hourglass
       real(wp), intent(in) :: wpm      !< work of the prescribed motion
       real(wp), intent(in) :: dfric    !< frictional dissipation
+      real(wp), intent(in) :: wpl      !< plastic work dissipated
       integer(i8), intent(in) :: step
       integer, intent(in) :: nactive
       type(error_t), allocatable, intent(out), optional :: err
-      character(len=20), parameter :: names(13) = [character(len=20) :: 't', 'dt', 'kinetic', &
+      character(len=20), parameter :: names(14) = [character(len=20) :: 't', 'dt', 'kinetic', &
          'strain', 'external_work', 'contact_work', 'total', 'drift', 'momentum_x', 'momentum_y', &
-         'hourglass', 'prescribed_work', 'friction_dissipation']
-      real(wp) :: v(13)
+         'hourglass', 'prescribed_work', 'friction_dissipation', 'plastic_work']
+      real(wp) :: v(14)
       integer :: k, n
-      v = [t, dt, kinetic, strain, wext, wcon, total, drift, momentum, hourglass, wpm, dfric]
+      v = [t, dt, kinetic, strain, wext, wcon, total, drift, momentum, hourglass, wpm, dfric, wpl]
       do k = 1, size(v)
          if (.not. ieee_is_finite(v(k))) then
             call refuse(self, 'ene', trim(names(k)), v(k), t, err)
             return
          end if
       end do
-      ! the text of write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,3('// &
+      ! the text of write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,4('// &
       ! NUMBER_FORMAT//'))') t, step, dt, kinetic, strain, wext, wcon, total, drift, momentum, &
-      ! nactive, hourglass, wpm, dfric
-      call reserve(self, 13*REAL_WIDTH + 22)
+      ! nactive, hourglass, wpm, dfric, wpl
+      call reserve(self, 14*REAL_WIDTH + 22)
       n = 0
       call put_real(self%row, n, t)
       call put_int(self%row, n, step, 12)
@@ -167,6 +169,7 @@ contains
       call put_real(self%row, n, hourglass)
       call put_real(self%row, n, wpm)
       call put_real(self%row, n, dfric)
+      call put_real(self%row, n, wpl)
       write (self%ene, '(a)') self%row(1:n)
       call self%maybe_flush()
    end subroutine files_ene_row

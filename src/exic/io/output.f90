@@ -17,7 +17,7 @@ module exic_io_output
    use exic_io_fields, only: field_writer_t
    use exic_io_report, only: energy_balance
    use exic_explicit_step, only: stepper_t
-   use exic_explicit_assembly, only: element_stress, all_stresses
+   use exic_explicit_assembly, only: element_stress, all_stresses, NSIG
    use exic_explicit_loading, only: reaction
    use exic_explicit_rigid, only: RB_PLAIN, RB_FREE
    implicit none
@@ -30,11 +30,16 @@ module exic_io_output
       integer, allocatable :: nodes(:)
    end type node_list_t
 
-   !> The energies of the field output, datasets /energies/<name>; the last only when the run has
-   !> friction (doc/friction.md, section 5).
-   character(len=20), parameter :: ENERGY_NAMES(6) = [character(len=20) :: 'kinetic', 'strain', &
+   !> The energies of the field output, datasets /energies/<name>; friction_dissipation only when
+   !> the run has friction (doc/friction.md, section 5), plastic_work only for decks with a plastic
+   !> set (doc/axisymmetry.md).
+   character(len=20), parameter :: ENERGY_NAMES(7) = [character(len=20) :: 'kinetic', 'strain', &
                                                       'external_work', 'contact_work', 'hourglass', &
-                                                      'friction_dissipation']
+                                                      'friction_dissipation', 'plastic_work']
+   !> The element values of the field output of a deck with a plastic set (others: the first 7,
+   !> fields.f90's default).
+   character(len=20), parameter :: PLASTIC_CELL_NAMES(10) = [character(len=20) :: 'sxx', 'syy', &
+      'szz', 'sxy', 'pressure', 'von_mises', 'J', 'plastic_strain', 'temperature', 'yield_stress']
 
    !> The run's output files and their schedules.
    type :: output_t
@@ -141,7 +146,7 @@ contains
       type(model_t), intent(in) :: model
       type(stepper_t), intent(in) :: stp
       integer :: k
-      real(wp) :: sig(7), total, drift
+      real(wp) :: sig(NSIG), total, drift
 
       do k = 1, size(self%values)
          associate (q => model%requests(k), st => stp%st)
@@ -174,7 +179,7 @@ contains
          call energy_balance(st, total, drift)
          call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
                                  st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm, &
-                                 stp%contact%dissipation)
+                                 stp%contact%dissipation, st%plastic)
       end associate
       self%last_row_step = stp%st%step
    end subroutine write_rows
@@ -285,17 +290,30 @@ contains
       if (self%fields%is_open()) return
       self%field_dt = dt_out
       self%field_next = stp%st%t
-      call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, model%mesh%nelem, &
-                            model%mesh%x, model%mesh%conn, model%mesh%region, model%mesh%mat, &
-                            stp%contact%edges(), err, energy_names=ENERGY_NAMES(:nenergy(stp)), &
-                            friction=stp%contact%friction)
+      if (stp%st%has_plastic) then
+         call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
+                               model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
+                               model%mesh%mat, stp%contact%edges(), err, cell_names=PLASTIC_CELL_NAMES, &
+                               energy_names=pack(ENERGY_NAMES, energy_mask(stp)), &
+                               friction=stp%contact%friction)
+      else
+         call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
+                               model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
+                               model%mesh%mat, stp%contact%edges(), err, &
+                               energy_names=pack(ENERGY_NAMES, energy_mask(stp)), &
+                               friction=stp%contact%friction)
+      end if
    end subroutine output_open_fields
 
-   !> Number of field-output energies of the run: the frictional dissipation with friction only.
-   pure integer function nenergy(stp)
+   !> Which of ENERGY_NAMES the run's field output has: the frictional dissipation with friction
+   !> only, the plastic work with a plastic set only.
+   pure function energy_mask(stp) result(mask)
       type(stepper_t), intent(in) :: stp
-      nenergy = merge(6, 5, stp%contact%friction)
-   end function nenergy
+      logical :: mask(size(ENERGY_NAMES))
+      mask = .true.
+      mask(6) = stp%contact%friction
+      mask(7) = stp%st%has_plastic
+   end function energy_mask
 
    !> Write the fields when an output time is due. The next output time is the first multiple
    !> of the interval after t: with an interval below the time step the fields are written once
@@ -331,19 +349,23 @@ contains
       type(error_t), allocatable, intent(out) :: err
       real(wp), allocatable :: sig(:, :)
       integer, allocatable :: flag(:)
-      real(wp) :: energies(6)
+      real(wp) :: energies(7)
+      integer :: nc
       associate (st => stp%st)
-         allocate (sig(7, st%nelem), flag(st%nnode))
+         nc = merge(NSIG, 7, st%has_plastic)
+         allocate (sig(nc, st%nelem), flag(st%nnode))
          call all_stresses(st, stp%sets, sig)
          flag = merge(1, 0, st%fcon(1, :) /= 0.0_wp .or. st%fcon(2, :) /= 0.0_wp)
          energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass, &
-                     stp%contact%dissipation]
+                     stp%contact%dissipation, st%plastic]
          if (stp%contact%friction) then
             call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                        energies, ENERGY_NAMES, err, stp%contact%ffric)
+                                        pack(energies, energy_mask(stp)), &
+                                        pack(ENERGY_NAMES, energy_mask(stp)), err, stp%contact%ffric)
          else
             call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                        energies(1:5), ENERGY_NAMES(1:5), err)
+                                        pack(energies, energy_mask(stp)), &
+                                        pack(ENERGY_NAMES, energy_mask(stp)), err)
          end if
          self%field_last = st%t
       end associate

@@ -152,15 +152,16 @@ contains
                      field_files)
    end subroutine report_final
 
-   !> The energy balance of <stem>.ene: total = kinetic + strain + hourglass - external work -
+   !> The energy balance of <stem>.ene: total = kinetic + strain + hourglass + plastic work
+   !> (doc/axisymmetry.md, (A13)) - external work -
    !> contact work - prescribed work, and its drift from the initial total relative to the largest of |initial
    !> total| and the physical energy now.
    pure subroutine energy_balance(st, total, drift)
       type(state_t), intent(in) :: st
       real(wp), intent(out) :: total, drift
       real(wp) :: denom
-      total = st%kinetic + st%strain + st%hourglass - st%wext - st%wcon - st%wpm
-      denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass, tiny(1.0_wp))
+      total = st%kinetic + st%strain + st%hourglass + st%plastic - st%wext - st%wcon - st%wpm
+      denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass + st%plastic, tiny(1.0_wp))
       drift = (total - st%total0)/denom
    end subroutine energy_balance
 

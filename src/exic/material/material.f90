@@ -1,7 +1,9 @@
-!> Material sets: the compressible neo-Hookean solid of the seed's eq. 7.2, or a rigid body
-!> (fixed or driven with infinite mass, or free with the mass and inertia of its elements).
+!> Material sets: the compressible neo-Hookean solid of the seed's eq. 7.2 (elastic, or with
+!> finite-strain J2 plasticity on it: doc/plasticity.md), or a rigid body (fixed or driven with
+!> infinite mass, or free with the mass and inertia of its elements).
 module exic_material_material
    use exic_base_kinds, only: wp
+   use exic_material_j2_hardening, only: j2_param_t
    implicit none
    private
 
@@ -19,6 +21,9 @@ module exic_material_material
       real(wp) :: hourglass = 0.1_wp                 !< hourglass coefficient for quadrature 1
       real(wp) :: body(2) = 0.0_wp                   !< BODY bx by: force per unit reference volume
       logical :: free = .false.                      !< RIGId,FREE: a free rigid body (3 dofs)
+      logical :: plastic = .false.                   !< PLAStic: J2 plasticity (material/j2.f90)
+      type(j2_param_t) :: j2                         !< its parameters (PLAStic, SPECific heat)
+      logical :: mixed = .false.                     !< MIXEd: mean dilatation (2x2 element)
       character(len=:), allocatable :: where         !< file:line of the MATErial record
    end type material_t
 

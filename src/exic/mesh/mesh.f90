@@ -21,6 +21,8 @@ module exic_mesh_mesh
       real(wp), allocatable :: disp(:, :)       !< (2, nnode) prescribed displacement values
       real(wp), allocatable :: v0(:, :)         !< (2, nnode) initial velocity
       type(edge_set_t), allocatable :: edge_sets(:)  !< named edge sets (Gmsh physical curves)
+      !> GLOBal AXISymmetric: x = r, y = z, every extensive quantity per radian (doc/axisymmetry.md)
+      logical :: axisymmetric = .false.
    end type mesh_t
 
 end module exic_mesh_mesh

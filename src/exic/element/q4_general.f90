@@ -1,0 +1,567 @@
+!> The general solid path of the 4-node element: axisymmetric solids (GLOBal AXISymmetric), sets
+!> with J2 plasticity (history per Gauss point) and the mean-dilatation 2x2 element (MIXEd), in
+!> the block structure of quad4.f90 (doc/axisymmetry.md derives every equation tagged (Ak)).
+!>
+!> The material kernel is j2_piola (src/exic/material/j2.f90) for every set of this path: a
+!> plastic set passes its history, an elastic one the virgin history Cp^-1 = 1 with a yield stress
+!> that is never reached (j2_piola then gives nh_piola's stress and energy, with F33 = r/R in
+!> axisymmetry). The plane-strain elastic sets keep the kernels of quad4.f90.
+!>
+!> Block steps (gather, kinematics, forces, stable step, scatter) are quad4.f90's; this module adds
+!> the hoop terms (A1)-(A5), the mean dilatation (A10)-(A12), the history copies and the ring
+!> correction of the stable step (A7)-(A9).
+module exic_element_q4_general
+   use exic_base_kinds, only: wp
+   use exic_base_sums, only: lane_sum
+   use exic_material_j2_hardening, only: j2_param_t, j2_has_temperature, j2_static_yield, J2_MISES
+   use exic_material_j2, only: j2_piola, j2_cauchy, j2_init_history
+   use exic_material_neohookean, only: nh_wave_speed2_block
+   use exic_element_quad4, only: NBLOCK, gather => q4b_gather, kinematics_2x2 => q4b_kinematics_2x2, &
+                                 kinematics_1pt => q4b_kinematics_1pt, positive => q4b_positive, &
+                                 forces_2x2 => q4b_forces_2x2, forces_1pt => q4b_forces_1pt, &
+                                 check_points => q4b_check_points, current => q4b_current, &
+                                 stable_block => q4b_stable_block, &
+                                 block_minimum => q4b_block_minimum, scatter => q4b_scatter
+   implicit none
+   private
+
+   public :: q4_solid_t, q4g_init, q4g_force, q4g_stable_dt, q4g_stress, q4g_hist_init
+   public :: NSIG
+
+   !> Element output rows: sxx syy szz sxy pressure mises J, ep, temperature, yield stress.
+   integer, parameter :: NSIG = 10
+
+   real(wp), parameter :: xin(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]   !< xi_a
+   real(wp), parameter :: etn(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]   !< eta_a
+   real(wp), parameter :: gq = 0.57735026918962576451_wp                 !< 1/sqrt(3)
+
+   !> What a set of the general path is: quadrature, geometry, options and its law.
+   type :: q4_solid_t
+      integer :: nq = 2                      !< 2: 2x2 Gauss; 1: one point + hourglass
+      logical :: axi = .false.               !< GLOBal AXISymmetric
+      logical :: mixed = .false.             !< MIXEd: mean dilatation (2x2 only)
+      logical :: plastic = .false.           !< J2 plasticity with history
+      integer :: nvar = 0                    !< history values per point (5, or 6 with T)
+      real(wp) :: lambda = 0.0_wp, mu = 0.0_wp, rho = 0.0_wp, hg = 0.0_wp
+      type(j2_param_t) :: prm                !< the law (elastic sets: a yield never reached)
+   end type q4_solid_t
+
+contains
+
+   !> The description of a set: prm is the material's plastic law when plastic, else a linear
+   !> law with an infinite yield stress (j2_piola then stays elastic).
+   pure function q4g_init(nq, axi, mixed, plastic, lambda, mu, rho, hg, prm) result(o)
+      integer, intent(in) :: nq
+      logical, intent(in) :: axi, mixed, plastic
+      real(wp), intent(in) :: lambda, mu, rho, hg
+      type(j2_param_t), intent(in) :: prm
+      type(q4_solid_t) :: o
+      o%nq = nq
+      o%axi = axi
+      o%mixed = mixed .and. nq == 2
+      o%plastic = plastic
+      o%lambda = lambda
+      o%mu = mu
+      o%rho = rho
+      o%hg = hg
+      if (plastic) then
+         o%prm = prm
+         o%nvar = 5
+         if (j2_has_temperature(prm)) o%nvar = 6
+      else
+         o%prm%law = J2_MISES
+         o%prm%y0 = huge(1.0_wp)
+         o%prm%yinf = huge(1.0_wp)
+      end if
+   end function q4g_init
+
+   !> The initial history of nel elements: hist(nvar, nq*nq, nel) (j2_init_history).
+   pure subroutine q4g_hist_init(o, nel, hist)
+      type(q4_solid_t), intent(in) :: o
+      integer, intent(in) :: nel
+      real(wp), intent(out) :: hist(:, :, :)
+      real(wp) :: t(1), a11(1), a12(1), a22(1), a33(1), ep(1)
+      integer :: e, g
+      t = 0.0_wp
+      call j2_init_history(1, o%prm, a11, a12, a22, a33, ep, t)
+      do e = 1, nel
+         do g = 1, o%nq*o%nq
+            hist(1:5, g, e) = [a11(1), a12(1), a22(1), a33(1), ep(1)]
+            if (o%nvar == 6) hist(6, g, e) = t(1)
+         end do
+      end do
+   end subroutine q4g_hist_init
+
+   !> Internal forces of nel elements (the general path of q4_force_2x2/q4_force_1pt), fused
+   !> with the stable step, updating the history hist(nvar, nq*nq, nel) of a plastic set (not
+   !> used otherwise). dt: the step over which u changed (Johnson-Cook's rate). wint: strain
+   !> energy, whg: hourglass energy, wdis: plastic dissipation of the step; the rest as in
+   !> q4_force_2x2.
+   pure subroutine q4g_force(o, nel, nnode, conn, x0, u, dt, hist, f, wint, whg, wdis, jmin, ebad, &
+                             dt2min, emin, efold)
+      type(q4_solid_t), intent(in) :: o
+      integer, intent(in) :: nel, nnode
+      integer, intent(in) :: conn(4, nel)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode), dt
+      real(wp), intent(inout) :: hist(:, :, :)
+      real(wp), intent(inout) :: f(2, nnode)
+      real(wp), intent(out) :: wint, whg, wdis, jmin, dt2min
+      integer, intent(out) :: ebad, emin, efold
+      integer :: e0, nb, h0
+
+      wint = 0.0_wp
+      whg = 0.0_wp
+      wdis = 0.0_wp
+      jmin = huge(1.0_wp)
+      dt2min = huge(1.0_wp)
+      ebad = 0
+      emin = 0
+      efold = 0
+      do e0 = 1, nel, NBLOCK
+         nb = min(NBLOCK, nel - e0 + 1)
+         h0 = 1
+         if (o%plastic) h0 = e0
+         if (o%nq == 2) then
+            call block_2x2(o, nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, dt, hist, h0, f, &
+                           wint, wdis, jmin, ebad, dt2min, emin, efold)
+         else
+            call block_1pt(o, nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, dt, hist, h0, f, &
+                           wint, whg, wdis, jmin, ebad, dt2min, emin, efold)
+         end if
+      end do
+   end subroutine q4g_force
+
+   !> N_a at the Gauss points of the 2x2 rule (point g at (xi_g, eta_g) = gq (xi_g, eta_g) of the
+   !> node of the same number).
+   pure real(wp) function shape2(a, g)
+      integer, intent(in) :: a, g
+      shape2 = 0.25_wp*(1.0_wp + xin(a)*gq*xin(g))*(1.0_wp + etn(a)*gq*etn(g))
+   end function shape2
+
+   !> One block of the 2x2 general path: kinematics with F33 and the ring weights (A1), (A3),
+   !> mean dilatation (A10)-(A12), the law with the block's history, forces with the hoop term
+   !> (A4), the stable step (A9).
+   pure subroutine block_2x2(o, nb, off, nnode, conn, x0, u, dt, hist, h0, f, wint, wdis, jmin, &
+                             ebad, dt2min, emin, efold)
+      type(q4_solid_t), intent(in) :: o
+      integer, intent(in) :: nb, off, nnode, h0
+      integer, intent(in) :: conn(4, nb)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode), dt
+      real(wp), intent(inout) :: hist(:, :, :)
+      real(wp), intent(inout) :: f(2, nnode), wint, wdis, jmin, dt2min
+      integer, intent(inout) :: ebad, emin, efold
+      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, js, wt, i11, i12, &
+                                        i21, i22, p11, p12, p21, p22, p33, wq, fx, fy, f33, rg, jchk, &
+                                        b11, b12, b21, b22, b33, bj, al, dw, ys
+      real(wp), dimension(NBLOCK, 4, 6) :: h
+      real(wp) :: dt2(NBLOCK), good(NBLOCK), we(NBLOCK), wd(NBLOCK), nn(4, 4)
+      integer :: k, g, a
+
+      do g = 1, 4
+         do a = 1, 4
+            nn(a, g) = shape2(a, g)
+         end do
+      end do
+      call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
+      call kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+      call hoop_2x2(o%axi, nn, xe, uxe, wt, rg, f33)
+      call point_checks(4*NBLOCK, jac, f33, js, jchk)
+      ! F of the law: F, or Fbar (A10)
+      b11 = f11
+      b12 = f12
+      b21 = f21
+      b22 = f22
+      b33 = f33
+      bj = js
+      if (o%mixed) call mean_dilatation(wt, js, f33, al, b11, b12, b21, b22, b33, bj)
+      call law(o, 4, nb, dt, hist, h0, h, b11, b12, b21, b22, b33, bj, wt, p11, p12, p21, p22, p33, &
+               wq, dw, ys)
+      if (o%mixed) call mixed_stress(wt, js, f11, f12, f21, f22, f33, al, b11, b12, b21, b22, b33, &
+                                     p11, p12, p21, p22, p33)
+      call forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
+      if (o%axi) then
+         ! hoop forces (A4)
+         do a = 1, 4
+            do k = 1, NBLOCK
+               fx(k, a) = fx(k, a) + (((p33(k, 1)/rg(k, 1))*nn(a, 1) + (p33(k, 2)/rg(k, 2))*nn(a, 2)) &
+                                      + ((p33(k, 3)/rg(k, 3))*nn(a, 3) + (p33(k, 4)/rg(k, 4))*nn(a, 4)))
+            end do
+         end do
+      end if
+      do k = 1, NBLOCK
+         we(k) = ((wq(k, 1) + wq(k, 2)) + wq(k, 3)) + wq(k, 4)
+         wd(k) = ((dw(k, 1) + dw(k, 2)) + dw(k, 3)) + dw(k, 4)
+      end do
+      wint = wint + lane_sum(nb, we)
+      wdis = wdis + lane_sum(nb, wd)
+      call check_points(nb, 4, off, jchk, jmin, ebad)
+      call current(xe, ye, uxe, uye)
+      call stable_block(2, xe, ye, uxe, uye, o%lambda, o%mu, o%rho, dt2, good)
+      if (o%axi) call ring_step(2, xe, ye, uxe, uye, o%lambda, o%mu, o%rho, dt2)
+      call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
+      call scatter(nb, nnode, conn, fx, fy, f)
+   end subroutine block_2x2
+
+   !> Reference radii rg, hoop stretch f33 = r/R and the ring weights wt <- wt R (A1), (A3) at the
+   !> 2x2 points (x: reference radii, ux: radial displacements of the nodes); plane strain:
+   !> f33 = 1, rg = 1, wt unchanged.
+   pure subroutine hoop_2x2(axi, nn, xe, uxe, wt, rg, f33)
+      logical, intent(in) :: axi
+      real(wp), intent(in) :: nn(4, 4)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, uxe
+      real(wp), intent(inout), dimension(NBLOCK, 4) :: wt
+      real(wp), intent(out), dimension(NBLOCK, 4) :: rg, f33
+      real(wp) :: ur
+      integer :: k, g
+      if (.not. axi) then
+         rg = 1.0_wp
+         f33 = 1.0_wp
+         return
+      end if
+      do g = 1, 4
+         do k = 1, NBLOCK
+            rg(k, g) = (nn(1, g)*xe(k, 1) + nn(2, g)*xe(k, 2)) + (nn(3, g)*xe(k, 3) + nn(4, g)*xe(k, 4))
+            ur = (nn(1, g)*uxe(k, 1) + nn(2, g)*uxe(k, 2)) + (nn(3, g)*uxe(k, 3) + nn(4, g)*uxe(k, 4))
+            f33(k, g) = (rg(k, g) + ur)/rg(k, g)
+            wt(k, g) = wt(k, g)*rg(k, g)
+         end do
+      end do
+   end subroutine hoop_2x2
+
+   !> js = j where the in-plane j > 0, else 1; f33 <- 1 where f33 <= 0 (the law stays finite on
+   !> an element the caller rejects); jchk = J = j F33 where both are positive, else the
+   !> smaller of the two (<= 0: the point is inverted or through the axis).
+   pure subroutine point_checks(n, jac, f33, js, jchk)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: jac(n)
+      real(wp), intent(inout) :: f33(n)
+      real(wp), intent(out) :: js(n), jchk(n)
+      integer :: q
+      call positive(n, jac, js)
+      do q = 1, n
+         jchk(q) = merge(jac(q)*f33(q), min(jac(q), f33(q)), jac(q) > 0.0_wp .and. f33(q) > 0.0_wp)
+         f33(q) = merge(f33(q), 1.0_wp, f33(q) > 0.0_wp)
+      end do
+   end subroutine point_checks
+
+   !> Fbar = alpha F, alpha = (Jbar/J)^(1/3) with Jbar the weighted mean of J = j F33 over the
+   !> element's four points (A10); b.. hold F on entry and Fbar on exit, bj the in-plane j of Fbar.
+   pure subroutine mean_dilatation(wt, js, f33, al, b11, b12, b21, b22, b33, bj)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: wt, js, f33
+      real(wp), intent(out), dimension(NBLOCK, 4) :: al
+      real(wp), intent(inout), dimension(NBLOCK, 4) :: b11, b12, b21, b22, b33, bj
+      real(wp) :: v0, jb
+      integer :: k, g
+      do k = 1, NBLOCK
+         v0 = (wt(k, 1) + wt(k, 2)) + (wt(k, 3) + wt(k, 4))
+         jb = ((wt(k, 1)*(js(k, 1)*f33(k, 1)) + wt(k, 2)*(js(k, 2)*f33(k, 2))) &
+               + (wt(k, 3)*(js(k, 3)*f33(k, 3)) + wt(k, 4)*(js(k, 4)*f33(k, 4))))/v0
+         do g = 1, 4
+            al(k, g) = (jb/(js(k, g)*f33(k, g)))**(1.0_wp/3.0_wp)
+            b11(k, g) = al(k, g)*b11(k, g)
+            b12(k, g) = al(k, g)*b12(k, g)
+            b21(k, g) = al(k, g)*b21(k, g)
+            b22(k, g) = al(k, g)*b22(k, g)
+            b33(k, g) = al(k, g)*b33(k, g)
+            bj(k, g) = (al(k, g)*al(k, g))*bj(k, g)
+         end do
+      end do
+   end subroutine mean_dilatation
+
+   !> The stress that works on delta F of the mean-dilatation element (A11), (A12): p holds
+   !> w P(Fbar) on entry and p* on exit; f.. is F, b.. is Fbar, js the in-plane j of F.
+   pure subroutine mixed_stress(wt, js, f11, f12, f21, f22, f33, al, b11, b12, b21, b22, b33, p11, &
+                                p12, p21, p22, p33)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: wt, js, f11, f12, f21, f22, f33, al, b11, b12, &
+                                                    b21, b22, b33
+      real(wp), intent(inout), dimension(NBLOCK, 4) :: p11, p12, p21, p22, p33
+      real(wp) :: t(4), v0, jb, pm, c, rj
+      integer :: k, g
+      do k = 1, NBLOCK
+         v0 = (wt(k, 1) + wt(k, 2)) + (wt(k, 3) + wt(k, 4))
+         jb = ((wt(k, 1)*(js(k, 1)*f33(k, 1)) + wt(k, 2)*(js(k, 2)*f33(k, 2))) &
+               + (wt(k, 3)*(js(k, 3)*f33(k, 3)) + wt(k, 4)*(js(k, 4)*f33(k, 4))))/v0
+         do g = 1, 4
+            t(g) = (p11(k, g)*b11(k, g) + p12(k, g)*b12(k, g)) + (p21(k, g)*b21(k, g) &
+                   + p22(k, g)*b22(k, g)) + p33(k, g)*b33(k, g)
+         end do
+         pm = ((t(1) + t(2)) + (t(3) + t(4)))/(3.0_wp*jb*v0)
+         do g = 1, 4
+            c = pm*wt(k, g)*(js(k, g)*f33(k, g)) - t(g)/3.0_wp
+            rj = c/js(k, g)
+            p11(k, g) = al(k, g)*p11(k, g) + rj*f22(k, g)
+            p12(k, g) = al(k, g)*p12(k, g) - rj*f21(k, g)
+            p21(k, g) = al(k, g)*p21(k, g) - rj*f12(k, g)
+            p22(k, g) = al(k, g)*p22(k, g) + rj*f11(k, g)
+            p33(k, g) = al(k, g)*p33(k, g) + c/f33(k, g)
+         end do
+      end do
+   end subroutine mixed_stress
+
+   !> The law at the np x NBLOCK points of a block: j2_piola with the block's history copied in
+   !> from hist(:, :, h0 + k - 1) (lanes 1..nb; the padding lanes repeat lane nb) and back after
+   !> the call, for a plastic set; the virgin history for an elastic one.
+   pure subroutine law(o, np, nb, dt, hist, h0, h, f11, f12, f21, f22, f33, js, wt, p11, p12, p21, &
+                       p22, p33, wq, dw, ys)
+      type(q4_solid_t), intent(in) :: o
+      integer, intent(in) :: np, nb, h0
+      real(wp), intent(in) :: dt
+      real(wp), intent(inout) :: hist(:, :, :)
+      real(wp), intent(out) :: h(NBLOCK, np, 6)
+      real(wp), intent(in), dimension(NBLOCK, np) :: f11, f12, f21, f22, f33, js, wt
+      real(wp), intent(out), dimension(NBLOCK, np) :: p11, p12, p21, p22, p33, wq, dw, ys
+      integer :: k, g, v
+      if (o%plastic) then
+         do g = 1, np
+            do v = 1, o%nvar
+               do k = 1, nb
+                  h(k, g, v) = hist(v, g, h0 + k - 1)
+               end do
+               h(nb + 1:, g, v) = h(nb, g, v)
+            end do
+         end do
+         if (o%nvar < 6) h(:, :, 6) = 0.0_wp
+      else
+         h(:, :, 1) = 1.0_wp
+         h(:, :, 2) = 0.0_wp
+         h(:, :, 3) = 1.0_wp
+         h(:, :, 4) = 1.0_wp
+         h(:, :, 5) = 0.0_wp
+         h(:, :, 6) = 0.0_wp
+      end if
+      call j2_piola(np*NBLOCK, o%lambda, o%mu, o%prm, dt, f11, f12, f21, f22, f33, js, wt, &
+                    h(:, :, 1), h(:, :, 2), h(:, :, 3), h(:, :, 4), h(:, :, 5), h(:, :, 6), p11, p12, &
+                    p21, p22, p33, wq, dw, ys)
+      if (o%plastic) then
+         do g = 1, np
+            do v = 1, o%nvar
+               do k = 1, nb
+                  hist(v, g, h0 + k - 1) = h(k, g, v)
+               end do
+            end do
+         end do
+      end if
+   end subroutine law
+
+   !> One block of the one-point general path: F at the centroid with F33 = r_c/R_c and the
+   !> weight A0 R_c, hoop force p33/(4 R_c), hourglass forces and energy times R_c (section 3).
+   pure subroutine block_1pt(o, nb, off, nnode, conn, x0, u, dt, hist, h0, f, wint, whg, wdis, jmin, &
+                             ebad, dt2min, emin, efold)
+      type(q4_solid_t), intent(in) :: o
+      integer, intent(in) :: nb, off, nnode, h0
+      integer, intent(in) :: conn(4, nb)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode), dt
+      real(wp), intent(inout) :: hist(:, :, :)
+      real(wp), intent(inout) :: f(2, nnode), wint, whg, wdis, jmin, dt2min
+      integer, intent(inout) :: ebad, emin, efold
+      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy, hx, hy
+      real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, jac, js, a0, r0, p11, p12, p21, p22, p33, &
+                                     wq, eh, dt2, good, f33, rc, wt, jchk, dw, ys, zero
+      real(wp) :: h(NBLOCK, 1, 6), kh
+      integer :: k, a
+
+      kh = o%hg*(o%lambda + 2.0_wp*o%mu)
+      call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
+      call kinematics_1pt(xe, ye, uxe, uye, f11, f12, f21, f22, jac, a0, r0)
+      if (o%axi) then
+         do k = 1, NBLOCK
+            rc(k) = 0.25_wp*((xe(k, 1) + xe(k, 2)) + (xe(k, 3) + xe(k, 4)))
+            f33(k) = (rc(k) + 0.25_wp*((uxe(k, 1) + uxe(k, 2)) + (uxe(k, 3) + uxe(k, 4))))/rc(k)
+            wt(k) = a0(k)*rc(k)
+         end do
+      else
+         f33 = 1.0_wp
+         wt = a0
+      end if
+      call point_checks(NBLOCK, jac, f33, js, jchk)
+      call law(o, 1, nb, dt, hist, h0, h, f11, f12, f21, f22, f33, js, wt, p11, p12, p21, p22, p33, &
+               wq, dw, ys)
+      if (o%axi) then
+         ! mean part with the ring weights, hourglass part of the plane element times R_c
+         zero = 0.0_wp
+         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fx, fy, eh)
+         call forces_1pt(xe, ye, uxe, uye, r0, zero, zero, zero, zero, kh, hx, hy, eh)
+         do a = 1, 4
+            do k = 1, NBLOCK
+               fx(k, a) = fx(k, a) + rc(k)*hx(k, a) + 0.25_wp*(p33(k)/rc(k))
+               fy(k, a) = fy(k, a) + rc(k)*hy(k, a)
+            end do
+         end do
+         eh = rc*eh
+      else
+         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
+      end if
+      wint = wint + lane_sum(nb, wq)
+      whg = whg + lane_sum(nb, eh)
+      wdis = wdis + lane_sum(nb, dw)
+      call check_points(nb, 1, off, jchk, jmin, ebad)
+      call current(xe, ye, uxe, uye)
+      call stable_block(1, xe, ye, uxe, uye, o%lambda, o%mu, o%rho, dt2, good)
+      if (o%axi) call ring_step(1, xe, ye, uxe, uye, o%lambda, o%mu, o%rho, dt2)
+      call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
+      call scatter(nb, nnode, conn, fx, fy, f)
+   end subroutine block_1pt
+
+   !> The stable step of ring elements (A7)-(A9): dt2 holds the plane estimate dt_p^2 on entry
+   !> (0: no step) and dt^2 = 1/(sqrt(R_max/rbar_min)/dt_p + omega_h/2)^2 on exit. (xr, yr):
+   !> reference corners, (xc, yc): current ones.
+   pure subroutine ring_step(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2)
+      integer, intent(in) :: nq
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, xc, yc
+      real(wp), intent(in) :: lambda, mu, rho0
+      real(wp), intent(inout) :: dt2(NBLOCK)
+      real(wp), dimension(NBLOCK) :: jr, c2, sr, hm
+      real(wp) :: d(4), rg(4), m(4), mp(4), hh(4), nn, c1x, c2x, c3x, c1y, c2y, c3y, xi, eta, rmax, &
+                  rc, rcur, a0, a, dtp
+      integer :: k, g, i
+
+      do k = 1, NBLOCK
+         c1x = 0.25_wp*((xr(k, 2) - xr(k, 1)) + (xr(k, 3) - xr(k, 4)))
+         c2x = 0.25_wp*((xr(k, 4) - xr(k, 1)) + (xr(k, 3) - xr(k, 2)))
+         c3x = 0.25_wp*((xr(k, 1) - xr(k, 2)) + (xr(k, 3) - xr(k, 4)))
+         c1y = 0.25_wp*((yr(k, 2) - yr(k, 1)) + (yr(k, 3) - yr(k, 4)))
+         c2y = 0.25_wp*((yr(k, 4) - yr(k, 1)) + (yr(k, 3) - yr(k, 2)))
+         c3y = 0.25_wp*((yr(k, 1) - yr(k, 2)) + (yr(k, 3) - yr(k, 4)))
+         m = 0.0_wp
+         mp = 0.0_wp
+         hh = 0.0_wp
+         do g = 1, 4
+            xi = gq*xin(g)
+            eta = gq*etn(g)
+            d(g) = (c1x + c3x*eta)*(c2y + c3y*xi) - (c2x + c3x*xi)*(c1y + c3y*eta)
+            rg(g) = 0.0_wp
+            do i = 1, 4
+               rg(g) = rg(g) + shape2(i, g)*xr(k, i)
+            end do
+            do i = 1, 4
+               nn = shape2(i, g)
+               m(i) = m(i) + d(g)*nn*rg(g)
+               mp(i) = mp(i) + d(g)*nn
+               hh(i) = hh(i) + d(g)*nn/rg(g)
+            end do
+         end do
+         rc = 0.25_wp*((xr(k, 1) + xr(k, 2)) + (xr(k, 3) + xr(k, 4)))
+         a0 = 0.5_wp*((xr(k, 3) - xr(k, 1))*(yr(k, 4) - yr(k, 2)) - (yr(k, 3) - yr(k, 1))*(xr(k, 4) - xr(k, 2)))
+         if (nq == 1) then
+            rmax = rc
+            hh = a0/(4.0_wp*rc)
+         else
+            rmax = maxval(rg)
+         end if
+         sr(k) = sqrt(rmax/minval(m/mp))
+         hm(k) = maxval(hh/m)
+         rcur = 0.25_wp*((xc(k, 1) + xc(k, 2)) + (xc(k, 3) + xc(k, 4)))
+         a = 0.5_wp*((xc(k, 3) - xc(k, 1))*(yc(k, 4) - yc(k, 2)) - (yc(k, 3) - yc(k, 1))*(xc(k, 4) - xc(k, 2)))
+         jr(k) = (a/a0)*(rcur/rc)
+         if (.not. jr(k) > 0.0_wp) jr(k) = 1.0_wp
+      end do
+      call nh_wave_speed2_block(NBLOCK, lambda, mu, rho0, jr, c2)
+      do k = 1, NBLOCK
+         if (.not. dt2(k) > 0.0_wp) cycle
+         dtp = sqrt(dt2(k))
+         dt2(k) = (1.0_wp/(sr(k)/dtp + 0.5_wp*sqrt(c2(k)*hm(k))))**2
+      end do
+   end subroutine ring_step
+
+   !> The stable step of nel elements at the current coordinates x (q4_stable_dt with the ring
+   !> correction (A9) in axisymmetry).
+   pure subroutine q4g_stable_dt(o, nel, nnode, conn, x0, x, dtmin, emin, efold)
+      type(q4_solid_t), intent(in) :: o
+      integer, intent(in) :: nel, nnode
+      integer, intent(in) :: conn(4, nel)
+      real(wp), intent(in) :: x0(2, nnode), x(2, nnode)
+      real(wp), intent(out) :: dtmin
+      integer, intent(out) :: emin, efold
+      real(wp), dimension(NBLOCK, 4) :: xr, yr, xc, yc
+      real(wp) :: dt2(NBLOCK), good(NBLOCK), dt2min
+      integer :: e0, nb
+
+      dt2min = huge(1.0_wp)
+      emin = 0
+      efold = 0
+      do e0 = 1, nel, NBLOCK
+         nb = min(NBLOCK, nel - e0 + 1)
+         call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, x, xr, yr, xc, yc)
+         call stable_block(o%nq, xr, yr, xc, yc, o%lambda, o%mu, o%rho, dt2, good)
+         if (o%axi) call ring_step(o%nq, xr, yr, xc, yc, o%lambda, o%mu, o%rho, dt2)
+         call block_minimum(nb, e0 - 1, dt2, good, dt2min, emin, efold)
+      end do
+      dtmin = sqrt(dt2min)
+   end subroutine q4g_stable_dt
+
+   !> Element outputs sig(NSIG, nel): the mean over the points of the Cauchy stress (sxx, syy,
+   !> szz = hoop or out-of-plane, sxy) of j2_cauchy from F (Fbar with MIXEd) and the history,
+   !> pressure, von Mises, J, and the means of ep, temperature and static yield stress
+   !> (doc/axisymmetry.md, section 8). A point with J <= 0 contributes zero stress.
+   pure subroutine q4g_stress(o, nel, nnode, conn, x0, u, hist, sig)
+      type(q4_solid_t), intent(in) :: o
+      integer, intent(in) :: nel, nnode
+      integer, intent(in) :: conn(4, nel)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      real(wp), intent(in) :: hist(:, :, :)
+      real(wp), intent(out) :: sig(NSIG, nel)
+      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, js, wt, i11, i12, &
+                                        i21, i22, f33, rg, jchk, al, b11, b12, b21, b22, b33, bj
+      real(wp), dimension(NBLOCK) :: a0, r0
+      real(wp) :: h(6), s(4), ys(1), nn(4, 4), r, fb(5)
+      integer :: e0, nb, k, g, ng, e, a
+
+      do g = 1, 4
+         do a = 1, 4
+            nn(a, g) = shape2(a, g)
+         end do
+      end do
+      ng = o%nq*o%nq
+      r = 1.0_wp/real(ng, wp)
+      do e0 = 1, nel, NBLOCK
+         nb = min(NBLOCK, nel - e0 + 1)
+         call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, xe, ye, uxe, uye)
+         if (o%nq == 2) then
+            call kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+            call hoop_2x2(o%axi, nn, xe, uxe, wt, rg, f33)
+         else
+            call kinematics_1pt(xe, ye, uxe, uye, f11(:, 1), f12(:, 1), f21(:, 1), f22(:, 1), &
+                                jac(:, 1), a0, r0)
+            do k = 1, NBLOCK
+               f33(k, 1) = 1.0_wp
+               if (o%axi) f33(k, 1) = 1.0_wp + sum(uxe(k, :))/sum(xe(k, :))
+            end do
+            wt(:, 1) = a0
+         end if
+         call point_checks(NBLOCK*ng, jac(:, 1:ng), f33(:, 1:ng), js(:, 1:ng), jchk(:, 1:ng))
+         b11 = f11
+         b12 = f12
+         b21 = f21
+         b22 = f22
+         b33 = f33
+         bj = js
+         if (o%mixed) call mean_dilatation(wt, js, f33, al, b11, b12, b21, b22, b33, bj)
+         do k = 1, nb
+            e = e0 + k - 1
+            sig(:, e) = 0.0_wp
+            do g = 1, ng
+               h = [1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp]
+               if (o%plastic) h(1:o%nvar) = hist(:, g, e)
+               if (jchk(k, g) > 0.0_wp) then
+                  fb = [b11(k, g), b12(k, g), b21(k, g), b22(k, g), b33(k, g)]
+                  call j2_cauchy(1, o%lambda, o%mu, o%prm, fb(1:1), fb(2:2), fb(3:3), fb(4:4), &
+                                 fb(5:5), h(1:1), h(2:2), h(3:3), h(4:4), h(5:5), h(6:6), s(1:1), &
+                                 s(2:2), s(3:3), s(4:4), ys)
+                  sig(1:4, e) = sig(1:4, e) + r*s
+               end if
+               sig(7, e) = sig(7, e) + r*jchk(k, g)
+               if (o%plastic) then
+                  sig(8, e) = sig(8, e) + r*h(5)
+                  sig(9, e) = sig(9, e) + r*h(6)
+                  sig(10, e) = sig(10, e) + r*j2_static_yield(o%prm, h(5), h(6))
+               end if
+            end do
+            s = sig(1:4, e)
+            sig(5, e) = -(s(1) + s(2) + s(3))/3.0_wp
+            sig(6, e) = sqrt(0.5_wp*((s(1) - s(2))**2 + (s(2) - s(3))**2 + (s(3) - s(1))**2) &
+                             + 3.0_wp*s(4)**2)
+         end do
+      end do
+   end subroutine q4g_stress
+
+end module exic_element_q4_general
