@@ -40,6 +40,7 @@ def fmt(v, spec=".3g"):
 def write(load, figdir, doc, log):
     os.makedirs(figdir, exist_ok=True)
     sc, fz, cfl, lg, lg6 = (load(n) for n in ("scenes", "fuzz", "cfl", "long", "long_1e6"))
+    kl = load("kills")
     out = []
     w = out.append
     w("# Numerical stability: the stress suite\n")
@@ -70,11 +71,56 @@ def write(load, figdir, doc, log):
     for data in (lg, lg6):
         if data:
             _long(data, w, figdir)
+    if kl:
+        _kills(kl, w)
     _todo(sc, fz, lg, lg6, w)
     with open(doc, "w") as f:
         f.write("\n".join(out) + "\n")
     _saved_readme()
     log(f"report: {os.path.relpath(doc, ROOT)}")
+
+
+# --- kills -------------------------------------------------------------------------------
+
+def _kills(data, w):
+    res = data["kills"]
+    n = len(res)
+    w(f"## 5. Runs killed at random moments ({n} kills, seed {data['seed']})\n")
+    w(f"`tools/stress/stress.py --only kills --kills {n} --seed {data['seed']}` ({data['seconds']:.0f} s "
+      "on two cores; `tools/stress/kills.py`). The seed's example 7.2 with fields every 0.002 "
+      f"({data['reference_times']} output times) and a restart file every 0.05 (SAVE,,0.05) runs once "
+      f"to the end ({data['reference_seconds']:.2f} s), then is killed after a random delay (uniform over "
+      "1.1 times that) by SIGKILL, SIGTERM and SIGINT in turn. Checked after each kill: the .h5 "
+      "opens with h5dump and h5py and its /time is the reference's first output times (a SIGTERM or "
+      "SIGINT run adds the state it stopped in); both XDMF files parse and name only times the .h5 "
+      "holds (they name an output time only once the .h5 holding it is flushed, so every output time "
+      "completed before the kill is there); the .his reaches the last time of the .h5; every "
+      "restart file present opens, and the run continued from the newest ends with the reference's "
+      ".his byte for byte.\n")
+    w("| signal | kills | ended before the signal | exit as documented | .h5 readable | .h5 times right "
+      "| XDMF right | .his not behind | restart files present | continued runs identical | failures |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|")
+    for name in ("SIGKILL", "SIGTERM", "SIGINT"):
+        rs = [r for r in res if r["signal"] == name]
+        if not rs:
+            continue
+
+        def count(word):
+            return sum(1 for r in rs if not any(word in f for f in r["failures"]))
+        present = sum(1 for r in rs if r.get("restart_files", 0) > 0)
+        cont = sum(1 for r in rs if r.get("restart_files", 0) > 0
+                   and not any(("restart" in f or "continued" in f) for f in r["failures"]))
+        bad = sum(1 for r in rs if r["failures"])
+        w(f"| {name} | {len(rs)} | {sum(1 for r in rs if r['finished_before'])} | {count('exit code')} | "
+          f"{count('h5 unreadable')} | {count('/time')} | {count('xdmf')} | {count('.his behind')} | "
+          f"{present} | {cont} of {present} | {bad} |")
+    w("")
+    fails = [r for r in res if r["failures"]]
+    if fails:
+        w("Failures:\n")
+        for r in fails[:20]:
+            w(f"- kill {r['index']} ({r['signal']} after {r['delay']} s): {'; '.join(r['failures'])}")
+        w("")
 
 
 # --- scenes ------------------------------------------------------------------------------

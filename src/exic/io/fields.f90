@@ -63,6 +63,7 @@ module exic_io_fields
       logical :: broken = .false.                   !< a write failed half-way
    contains
       procedure :: open => writer_open
+      procedure :: reopen => writer_reopen
       procedure :: write_step => writer_write_step
       procedure :: close => writer_close
       procedure :: mark_failed => writer_mark_failed
@@ -91,7 +92,6 @@ contains
       character(len=*), intent(in), optional :: cell_names(:)
       character(len=*), intent(in), optional :: energy_names(:)
       type(error_t), allocatable :: err2
-      character(len=:), allocatable :: ref
 
       if (self%h5%is_open()) then
          call make_error(err, "field output: cannot open '"//path_h5//"': the writer already has '"// &
@@ -107,24 +107,8 @@ contains
       else
          self%comp_names = STRESS_NAMES
       end if
-      call xdmf_reference(path_h5, path_xdmf, ref, err)
+      call prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err)
       if (allocated(err)) return
-
-      self%h5_ref = xml_escape(ref, dash=.true.)
-      self%last_path = path_xdmf
-      self%nnode = nnode
-      self%nelem = nelem
-      self%ncomp = size(self%comp_names)
-      self%x0 = x0
-      self%conn = conn
-      if (allocated(self%x)) deallocate (self%x, self%vec3, self%nodal, self%col_cell, self%col_node)
-      allocate (self%x(2, nnode), self%vec3(3, nnode), self%nodal(self%ncomp, nnode), &
-                self%col_cell(nelem), self%col_node(nnode))
-      self%ntime = 0
-      self%t_last = 0.0_wp
-      self%nenergy = -1
-      self%broken = .false.
-      if (allocated(self%energy_names)) deallocate (self%energy_names)
 
       call self%h5%create(path_h5, err)
       if (allocated(err)) return
@@ -142,6 +126,89 @@ contains
          call self%h5%close(err2)
       end if
    end subroutine writer_open
+
+   !> The writer's set-up for a mesh (names, sizes, work arrays), before its files are made.
+   subroutine prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err)
+      type(field_writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path_h5, path_xdmf
+      integer, intent(in) :: nnode, nelem
+      real(wp), intent(in) :: x0(:, :)
+      integer, intent(in) :: conn(:, :)
+      type(error_t), allocatable, intent(out) :: err
+      character(len=:), allocatable :: ref
+      call xdmf_reference(path_h5, path_xdmf, ref, err)
+      if (allocated(err)) return
+      self%h5_ref = xml_escape(ref, dash=.true.)
+      self%last_path = path_xdmf
+      self%nnode = nnode
+      self%nelem = nelem
+      self%ncomp = size(self%comp_names)
+      self%x0 = x0
+      self%conn = conn
+      if (allocated(self%x)) deallocate (self%x, self%vec3, self%nodal, self%col_cell, self%col_node)
+      allocate (self%x(2, nnode), self%vec3(3, nnode), self%nodal(self%ncomp, nnode), &
+                self%col_cell(nelem), self%col_node(nnode))
+      self%ntime = 0
+      self%t_last = 0.0_wp
+      self%nenergy = -1
+      self%broken = .false.
+      if (allocated(self%energy_names)) deallocate (self%energy_names)
+   end subroutine prepare
+
+   !> Continue the field output of a restarted run: open the existing `path_h5` (written by
+   !> `open` for the same mesh with the default element values and `energy_names`), keep its
+   !> first `ntime` output times (those written before the restart point) and write the series
+   !> file anew for them. The last-state file is rewritten at the next output time.
+   subroutine writer_reopen(self, path_h5, path_xdmf, nnode, nelem, x0, conn, ntime, energy_names, err)
+      class(field_writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path_h5, path_xdmf
+      integer, intent(in) :: nnode, nelem, ntime
+      real(wp), intent(in), contiguous :: x0(:, :)
+      integer, intent(in), contiguous :: conn(:, :)
+      character(len=*), intent(in) :: energy_names(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(error_t), allocatable :: err2
+      real(wp), allocatable :: times(:)
+      integer(i8), allocatable :: steps(:)
+      integer :: i
+
+      self%comp_names = STRESS_NAMES
+      call prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err)
+      if (allocated(err)) return
+      call self%h5%open(path_h5, .true., err)
+      if (allocated(err)) return
+      do i = 1, size(NODE_VECTORS)
+         if (.not. allocated(err)) call self%h5%shorten_series('/fields/'//trim(NODE_VECTORS(i)), ntime, err)
+      end do
+      if (.not. allocated(err)) call self%h5%shorten_series('/fields/contact_active', ntime, err)
+      if (.not. allocated(err)) call self%h5%shorten_series('/fields/stress', ntime, err)
+      if (.not. allocated(err)) call self%h5%shorten_series('/fields/nodal_stress', ntime, err)
+      do i = 1, size(energy_names)
+         if (.not. allocated(err)) call self%h5%shorten_series('/energies/'//trim(energy_names(i)), ntime, err)
+      end do
+      if (.not. allocated(err)) call self%h5%shorten_series('/time', ntime, err)
+      if (.not. allocated(err)) call self%h5%shorten_series('/step', ntime, err)
+      allocate (times(ntime), steps(ntime))
+      if (.not. allocated(err)) call self%h5%read('/time', times, err)
+      if (.not. allocated(err)) call self%h5%read('/step', steps, err)
+      if (.not. allocated(err)) call self%h5%flush(err)
+      if (.not. allocated(err)) then
+         self%energy_names = energy_names
+         self%nenergy = size(energy_names)
+         call self%series%create(series_path(path_xdmf), series_head(), series_tail(), err)
+      end if
+      do i = 1, ntime
+         if (allocated(err)) exit
+         self%ntime = i
+         self%t_last = times(i)
+         call self%series%append(series_grid(self, i - 1, times(i)), err)
+      end do
+      if (allocated(err)) then
+         call self%series%abandon()
+         call self%h5%close(err2)
+         err%message = 'field output (restart): '//err%message
+      end if
+   end subroutine writer_reopen
 
    !> Append one output time t (solver step `step`): nodal displacement u, velocity v,
    !> acceleration a and contact force fcont, each (2, nnode); the contact flag active(nnode)
