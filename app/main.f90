@@ -7,7 +7,7 @@ program exic_main
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model, RUN_INTERRUPTED
-   use exic_base_signals, only: ignore_file_size_signal
+   use exic_base_signals, only: ignore_file_size_signal, signals_install
    use exic_io_posix, only: make_directories, exit_now
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    !$ use omp_lib, only: omp_set_num_threads
@@ -19,6 +19,9 @@ program exic_main
    character(len=:), allocatable :: deck, outdir, arg
    integer :: i, n, nlen, status
 
+   ! signals are recorded from here on (the run answers them after its steps, README): one that
+   ! comes while the deck is read stops the run after its first step, with its files complete
+   if (.not. signals_install()) write (error_unit, '(a)') 'exic: warning: cannot install the signal handlers'
    ! one thread unless OMP_NUM_THREADS asks for more: on a shared machine a thread waiting at a
    ! barrier for a preempted partner loses its time slice (doc/performance.md)
    call get_environment_variable('OMP_NUM_THREADS', length=nlen)

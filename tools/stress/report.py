@@ -89,17 +89,21 @@ def _kills(data, w):
     w(f"`tools/stress/stress.py --only kills --kills {n} --seed {data['seed']}` ({data['seconds']:.0f} s "
       "on two cores; `tools/stress/kills.py`). The seed's example 7.2 with fields every 0.002 "
       f"({data['reference_times']} output times) and a restart file every 0.05 (SAVE,,0.05) runs once "
-      f"to the end ({data['reference_seconds']:.2f} s), then is killed after a random delay (uniform over "
-      "1.1 times that) by SIGKILL, SIGTERM and SIGINT in turn. Checked after each kill: the .h5 "
+      f"to the end ({data['reference_seconds']:.2f} s from the creation of its .out to its end), then is "
+      "killed by SIGKILL, SIGTERM and SIGINT in turn after a random delay (uniform over 1.1 times "
+      "that) counted from the creation of its .out. Checked after each kill: the .h5 "
       "opens with h5dump and h5py and its /time is the reference's first output times (a SIGTERM or "
       "SIGINT run adds the state it stopped in); both XDMF files parse and name only times the .h5 "
       "holds (they name an output time only once the .h5 holding it is flushed, so every output time "
       "completed before the kill is there); the .his reaches the last time of the .h5; every "
       "restart file present opens, and the run continued from the newest ends with the reference's "
       ".his byte for byte.\n")
-    w("| signal | kills | ended before the signal | exit as documented | .h5 readable | .h5 times right "
+    w("A signal that comes while the program is still being loaded (its shared libraries, before "
+      "its first statement; over a second on the loaded test machine) ends it by the signal's "
+      "default action before it has written anything: counted apart as *before start*.\n")
+    w("| signal | kills | before start | ended before the signal | exit as documented | .h5 readable | .h5 times right "
       "| XDMF right | .his not behind | restart files present | continued runs identical | failures |")
-    w("|---|---|---|---|---|---|---|---|---|---|---|")
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name in ("SIGKILL", "SIGTERM", "SIGINT"):
         rs = [r for r in res if r["signal"] == name]
         if not rs:
@@ -111,7 +115,8 @@ def _kills(data, w):
         cont = sum(1 for r in rs if r.get("restart_files", 0) > 0
                    and not any(("restart" in f or "continued" in f) for f in r["failures"]))
         bad = sum(1 for r in rs if r["failures"])
-        w(f"| {name} | {len(rs)} | {sum(1 for r in rs if r['finished_before'])} | {count('exit code')} | "
+        w(f"| {name} | {len(rs)} | {sum(1 for r in rs if r.get('before_start'))} | "
+          f"{sum(1 for r in rs if r['finished_before'])} | {count('exit code')} | "
           f"{count('h5 unreadable')} | {count('/time')} | {count('xdmf')} | {count('.his behind')} | "
           f"{present} | {cont} of {present} | {bad} |")
     w("")

@@ -25,7 +25,8 @@ static void exic_on_signal(int sig)
 }
 
 /* Install the handler for the four signals (SA_RESTART: interrupted reads and writes resume).
- * Returns 0 on success, -1 when sigaction fails. */
+ * Signals already recorded stay recorded (installing twice loses none). Returns 0 on success,
+ * -1 when sigaction fails. */
 int exic_c_signals_install(void)
 {
     static const int sigs[4] = {SIGINT, SIGTERM, SIGUSR1, SIGUSR2};
@@ -35,10 +36,8 @@ int exic_c_signals_install(void)
     sa.sa_handler = exic_on_signal;
     sigemptyset(&sa.sa_mask);
     sa.sa_flags = SA_RESTART;
-    for (k = 0; k < 4; k++) {
-        exic_pending[k] = 0;
+    for (k = 0; k < 4; k++)
         if (sigaction(sigs[k], &sa, NULL) != 0) return -1;
-    }
     return 0;
 }
 
