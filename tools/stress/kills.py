@@ -2,7 +2,7 @@
 
 The seed's example 7.2 with fields every 0.002 and a restart file every 0.05 (SAVE,,0.05) is
 run to the end once (the reference), then N times killed by SIGKILL, SIGTERM or SIGINT in turn,
-a random delay (uniform over 1.1 times the reference's run time) after the run has created its
+a random delay (uniform over the reference's run time) after the run has created its
 .out (so that the delays fall on the run, not on loading the program's libraries, which takes a
 varying part of a second on a loaded machine). After each kill:
 
@@ -217,7 +217,7 @@ def run_kills(exic, seed, n, jobs, work, save, log):
         ref = {"times": times, "his": f.read()}
     log(f"kills: {n} kills of seed 7.2 (reference {wall:.2f} s, {len(times)} output times), seed {seed}")
     rng = random.Random(seed)
-    plan = [(k, rng.uniform(0.0, 1.1 * wall), *SIGNALS[k % 3]) for k in range(n)]
+    plan = [(k, rng.uniform(0.0, wall), *SIGNALS[k % 3]) for k in range(n)]
     t1 = time.time()
     results = []
     with cf.ThreadPoolExecutor(max_workers=jobs) as ex:

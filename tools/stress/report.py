@@ -71,9 +71,9 @@ def write(load, figdir, doc, log):
     for data in (lg, lg6):
         if data:
             _long(data, w, figdir)
+    _todo(sc, fz, lg, lg6, w)
     if kl:
         _kills(kl, w)
-    _todo(sc, fz, lg, lg6, w)
     with open(doc, "w") as f:
         f.write("\n".join(out) + "\n")
     _saved_readme()
@@ -85,13 +85,14 @@ def write(load, figdir, doc, log):
 def _kills(data, w):
     res = data["kills"]
     n = len(res)
-    w(f"## 5. Runs killed at random moments ({n} kills, seed {data['seed']})\n")
+    w(f"## 6. Runs killed at random moments ({n} kills, seed {data['seed']})\n")
     w(f"`tools/stress/stress.py --only kills --kills {n} --seed {data['seed']}` ({data['seconds']:.0f} s "
       "on two cores; `tools/stress/kills.py`). The seed's example 7.2 with fields every 0.002 "
       f"({data['reference_times']} output times) and a restart file every 0.05 (SAVE,,0.05) runs once "
       f"to the end ({data['reference_seconds']:.2f} s from the creation of its .out to its end), then is "
-      "killed by SIGKILL, SIGTERM and SIGINT in turn after a random delay (uniform over 1.1 times "
-      "that) counted from the creation of its .out. Checked after each kill: the .h5 "
+      "killed by SIGKILL, SIGTERM and SIGINT in turn after a random delay (uniform over that time) "
+      "counted from the creation of its .out (runs that vary in speed with the machine's load end "
+      "before some signals: counted apart). Checked after each kill: the .h5 "
       "opens with h5dump and h5py and its /time is the reference's first output times (a SIGTERM or "
       "SIGINT run adds the state it stopped in); both XDMF files parse and name only times the .h5 "
       "holds (they name an output time only once the .h5 holding it is flushed, so every output time "

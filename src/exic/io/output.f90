@@ -92,12 +92,15 @@ contains
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: err
       self%base = base
+      ! the .h5 first: when it cannot be continued, the text files stay as they are
+      if (self%field_dt > 0.0_wp) then
+         call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, model%mesh%nelem, &
+                                 model%mesh%x, model%mesh%conn, self%saved_field_times, ENERGY_NAMES, err)
+         if (allocated(err)) return
+      end if
       call self%files%resume(base, self%saved_his_bytes, self%saved_ene_bytes, err)
       if (allocated(err)) return
       call self%begin(model, header=.false.)
-      if (self%field_dt > 0.0_wp) &
-         call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, model%mesh%nelem, &
-                                 model%mesh%x, model%mesh%conn, self%saved_field_times, ENERGY_NAMES, err)
    end subroutine output_resume
 
    !> At the start of the time loop: the history header (`header` false: a restarted run, whose
