@@ -32,7 +32,7 @@ contains
       call execute_command_line('rm -rf '//dir//'; mkdir -p '//dir)
       call section(s, 'restart: seed example 7.2 stopped by SIGINT halfway, continued with --restart')
       call ex72_sigint(s, exic, child)
-      call section(s, 'restart: SIGUSR1 writes a restart file and the run goes on')
+      call section(s, 'restart: SIGUSR1 writes a restart file and the run goes on; SIGUSR2 a status line')
       call ex72_sigusr1(s, child)
       call section(s, 'restart: loads, a driven and a free rigid body, one-point quadrature')
       call continued(s, exic, 'punch', punch_deck())
@@ -133,8 +133,11 @@ contains
       call ex72_in(d)
       code = shell(abs(child)//' --child '//d//'/ex72.inp '//d//'/ex72 20 '//d//'/ready signals > '// &
                    d//'/child.log 2>&1 & pid=$!; while [ ! -e '//d//'/ready ] && [ $SECONDS -lt 120 ]; '// &
-                   'do sleep 0.05; done; kill -USR1 $pid; wait $pid; exit $?')
+                   'do sleep 0.05; done; kill -USR1 $pid; kill -USR2 $pid; wait $pid; exit $?')
       call check(s, code == 0, 'SIGUSR1: the run goes on to its end', 'exit code '//itoa(code))
+      call check(s, shell('grep -q "^exic: status: t = .*, step .*, dt = .*, energy balance .*ETA" '//d// &
+                          '/child.log') == 0, 'SIGUSR2: a status line (t, step, dt, energy balance, ETA)', &
+                 d//'/child.log')
       ! restart files: SIGUSR1 (t = 0.04), SAVE,,0.15, the end
       call check(s, shell('test "$(grep -c "^restart file" '//d//'/ex72.out)" = 3') == 0 .and. &
                  shell('grep "^restart file" '//d//'/ex72.out | head -1 | grep -q "t = 3.88"') == 0, &

@@ -55,8 +55,8 @@ module exic_io_restart
       logical :: saving = .true.
       type(error_t), allocatable :: err            !< the first failure; later items do nothing
    contains
-      procedure, private :: real0, real1, real2, int0, int1, int2, i80, log0
-      generic :: item => real0, real1, real2, int0, int1, int2, i80, log0
+      procedure, private :: real0, real1, real2, real3, int0, int1, int2, i80, log0
+      generic :: item => real0, real1, real2, real3, int0, int1, int2, i80, log0
    end type archive_t
 
 contains
@@ -328,8 +328,9 @@ contains
       call ar%item('stepper.time_forces', stp%time_forces)
       call ar%item('stepper.time_steps', stp%time_steps)
       do k = 1, size(stp%sets)
-         ! a material with history per point keeps it in the set; save it here when allocated
-         ! (e.g. hist(nvar, nq*nq, nel): call ar%item('set'//itoa(k)//'.hist', reshape...))
+         ! a material with history per point keeps it in the set, hist(nvar, nq*nq, nel); it is
+         ! saved here when allocated:
+         !    if (allocated(stp%sets(k)%hist)) call ar%item('set'//itoa(k)//'.hist', stp%sets(k)%hist)
          call ar%item('set'//itoa(k)//'.nel', stp%sets(k)%nel)
       end do
       call visit_contact(ar, stp%contact)
@@ -450,6 +451,15 @@ contains
       flat(1:size(x)) => x
       call real1(ar, name, flat)
    end subroutine real2
+
+   subroutine real3(ar, name, x)
+      class(archive_t), intent(inout) :: ar
+      character(len=*), intent(in) :: name
+      real(wp), intent(inout), contiguous, target :: x(:, :, :)
+      real(wp), pointer, contiguous :: flat(:)
+      flat(1:size(x)) => x
+      call real1(ar, name, flat)
+   end subroutine real3
 
    subroutine real0(ar, name, x)
       class(archive_t), intent(inout) :: ar
