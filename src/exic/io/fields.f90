@@ -13,7 +13,8 @@
 !> also written as plain arrays into one of two buffers `/last/a`, `/last/b` (alternately, so
 !> that the buffer the `<stem>.xdmf` names is never the one being written).
 !>
-!> Kill safety: after every output time the HDF5 file is flushed (H5Fflush) and only then are
+!> Kill safety: the file is created whole (mesh, empty series, buffers) under a temporary name,
+!> closed and renamed before anything else; after every output time it is flushed (H5Fflush) and only then are
 !> the XDMF files updated: the series is appended to in place by writes each of which leaves a
 !> well-formed document (exic_io_xdmf), the last-state file is written to a temporary name and
 !> renamed. A run killed at any moment leaves an HDF5 file readable up to its last flushed
@@ -24,6 +25,7 @@ module exic_io_fields
    use exic_base_error, only: error_t, make_error
    use exic_mesh_smoothing, only: nodal_average
    use exic_io_hdf5_file, only: hdf5_file_t, DTYPE_REAL, DTYPE_INT, DTYPE_INT64
+   use exic_io_posix, only: rename_file
    use exic_io_xdmf, only: xdmf_series_t, write_whole_file, xml_escape, real_text, data_item, &
                            attribute
    implicit none
@@ -110,13 +112,17 @@ contains
       call prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err)
       if (allocated(err)) return
 
-      call self%h5%create(path_h5, err)
+      ! made whole under a temporary name, closed and renamed: a run killed while the file is
+      ! being created leaves no .h5 rather than a broken one
+      call self%h5%create(path_h5//'.tmp', err)
       if (allocated(err)) return
       call write_mesh(self%h5, x0, conn, region, mat, surf_edges, err)
       if (.not. allocated(err)) call create_field_series(self, err)
       if (.not. allocated(err)) call create_last_buffers(self, err)
       if (.not. allocated(err) .and. present(energy_names)) call create_energy_series(self, energy_names, err)
-      if (.not. allocated(err)) call self%h5%flush(err)
+      if (.not. allocated(err)) call self%h5%close(err)
+      if (.not. allocated(err)) call rename_file(path_h5//'.tmp', path_h5, err)
+      if (.not. allocated(err)) call self%h5%open(path_h5, .true., err)
       if (.not. allocated(err)) call self%series%create(series_path(path_xdmf), series_head(), &
                                                         series_tail(), err)
       if (.not. allocated(err)) call write_whole_file(self%last_path, last_document(self, -1, 0.0_wp, &

@@ -12,6 +12,7 @@ module exic_io_hdf5_file
    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_char
    use exic_base_kinds, only: wp, i8
    use exic_base_error, only: error_t, make_error
+   use exic_base_strings, only: itoa
    use hdf5, only: hid_t, hsize_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fopen_f, h5fclose_f, &
                    h5fflush_f, h5gcreate_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
                    h5sclose_f, h5sselect_hyperslab_f, h5sget_simple_extent_ndims_f, &
@@ -658,8 +659,8 @@ contains
       call series_dims(self, name, did, dims, err)
       if (allocated(err)) return
       if (product(int(dims, i8)) /= n) then
-         call fail(self, err, 'read '//itoa8(n)//' values from the dataset of '// &
-                   itoa8(product(int(dims, i8)))//' values', name)
+         call fail(self, err, 'read '//itoa(n)//' values from the dataset of '// &
+                   itoa(product(int(dims, i8)))//' values', name)
       else if (n > 0) then
          call h5dread_f(did, mem_type(dtype), buf, st)
          if (st < 0) call fail(self, err, 'read dataset', name)
@@ -667,14 +668,6 @@ contains
       call close_handles(err, self, name, dset=did)
    end subroutine read_raw
 
-   !> An integer(i8) as text.
-   function itoa8(n) result(s)
-      integer(i8), intent(in) :: n
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write (buf, '(i0)') n
-      s = trim(buf)
-   end function itoa8
 
    ! ---------------------------------------------------------------------------- views
 

@@ -113,7 +113,7 @@ contains
       character(len=256) :: msg
       if (bytes >= 0) then
          if (file_size(path) < bytes) then
-            call make_error(err, 'the file is shorter than at the restart point ('//itoa8(bytes)// &
+            call make_error(err, 'the file is shorter than at the restart point ('//itoa(bytes)// &
                             ' bytes): it is not the output of the run that wrote the restart file', path)
             return
          end if
@@ -125,14 +125,6 @@ contains
       if (ios /= 0) call make_error(err, 'cannot open output file to continue it: '//trim(msg), path)
    end subroutine reopen
 
-   !> An integer(i8) as text.
-   function itoa8(n) result(s)
-      integer(i8), intent(in) :: n
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write (buf, '(i0)') n
-      s = trim(buf)
-   end function itoa8
 
    !> Keep the first I/O failure (status `ios`, message `msg`) on the file `path`.
    subroutine check_io(self, ios, msg, path)
