@@ -121,6 +121,11 @@ def _kills(data, w):
           f"{count('h5 unreadable')} | {count('/time')} | {count('xdmf')} | {count('.his behind')} | "
           f"{present} | {cont} of {present} | {bad} |")
     w("")
+    reached = sorted(r.get("h5_times") or 0 for r in res if not r["finished_before"])
+    if reached:
+        w(f"Output times in the .h5 at the signal (of {data['reference_times']}): smallest {reached[0]}, "
+          f"median {reached[len(reached) // 2]}, largest {reached[-1]}; the kills fall early in the run when "
+          "the machine is busier than during the reference run (its time sets the delays).\n")
     fails = [r for r in res if r["failures"]]
     if fails:
         w("Failures:\n")
