@@ -668,7 +668,6 @@ contains
       call close_handles(err, self, name, dset=did)
    end subroutine read_raw
 
-
    ! ---------------------------------------------------------------------------- views
 
    !> Create the virtual dataset `name` that shows the whole series `source` at every time,

@@ -125,7 +125,6 @@ contains
       if (ios /= 0) call make_error(err, 'cannot open output file to continue it: '//trim(msg), path)
    end subroutine reopen
 
-
    !> Keep the first I/O failure (status `ios`, message `msg`) on the file `path`.
    subroutine check_io(self, ios, msg, path)
       class(history_files_t), intent(inout) :: self
@@ -148,7 +147,7 @@ contains
    end subroutine open_new
 
    !> Write the '#' header naming every column of <stem>.his.
-   !> (`write` false: only take the labels, the file has its header: a restarted run).
+   !> (`write_it` false: only take the labels, the file has its header: a restarted run).
    subroutine files_his_header(self, labels, write_it)
       class(history_files_t), intent(inout) :: self
       character(len=*), intent(in) :: labels(:)
