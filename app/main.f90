@@ -6,8 +6,9 @@ program exic_main
    use exic_base_error, only: error_t, fatal_error
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
-   use exic_driver, only: run_options_t, run_model
-   use exic_io_posix, only: make_directories
+   use exic_driver, only: run_options_t, run_model, RUN_INTERRUPTED
+   use exic_base_signals, only: ignore_file_size_signal, signals_install
+   use exic_io_posix, only: make_directories, exit_now
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    !$ use omp_lib, only: omp_set_num_threads
    implicit none
@@ -16,8 +17,11 @@ program exic_main
    type(run_options_t) :: opts
    type(error_t), allocatable :: err
    character(len=:), allocatable :: deck, outdir, arg
-   integer :: i, n, nlen
+   integer :: i, n, nlen, status
 
+   ! signals are recorded from here on (the run answers them after its steps, README): one that
+   ! comes while the deck is read stops the run after its first step, with its files complete
+   if (.not. signals_install()) write (error_unit, '(a)') 'exic: warning: cannot install the signal handlers'
    ! one thread unless OMP_NUM_THREADS asks for more: on a shared machine a thread waiting at a
    ! barrier for a preempted partner loses its time slice (doc/performance.md)
    call get_environment_variable('OMP_NUM_THREADS', length=nlen)
@@ -41,6 +45,10 @@ program exic_main
          outdir = argument(i)
       case ('-q', '--quiet')
          opts%quiet = .true.
+      case ('--restart')
+         if (i == n) call die('--restart needs a restart file')
+         i = i + 1
+         opts%restart = argument(i)
       case default
          if (arg(1:1) == '-') call die('unknown option '//arg//' (see exic --help)')
          if (len(deck) > 0) call die('only one deck per run (got '//deck//' and '//arg//')')
@@ -60,8 +68,24 @@ program exic_main
    end if
    opts%base = output_base(deck, outdir)
    if (.not. opts%quiet) write (output_unit, '(a)') 'exic: '//deck//' -> '//opts%base//'.{his,ene,out}'
-   call run_model(model, opts, err)
-   if (allocated(err)) call fatal_error(err, 1)
+   ! SIGINT, SIGTERM, SIGUSR1, SIGUSR2 answered between steps (README); a write past the file
+   ! size limit fails with EFBIG and is reported like a full disk instead of killing exic
+   opts%signals = .true.
+   call ignore_file_size_signal()
+   call run_model(model, opts, err, status)
+   if (allocated(err)) then
+      ! every file of the run is closed (or its close failed and was reported): end without the
+      ! library exit handlers (see exit_now)
+      write (error_unit, '(a)') 'exic: error: '//err%message
+      flush (error_unit)
+      flush (output_unit)
+      call exit_now(1)
+   end if
+   if (status == RUN_INTERRUPTED) then
+      write (error_unit, '(a)') 'exic: interrupted; final state and restart file '//opts%base// &
+         '.rst written (continue with --restart '//opts%base//'.rst)'
+      stop 3, quiet=.true.
+   end if
    if (.not. opts%quiet) write (output_unit, '(a)') 'exic: done'
 
 contains
@@ -107,7 +131,7 @@ contains
    !> The --help text.
    subroutine usage()
       write (output_unit, '(a)') &
-         'usage: exic DECK [-o DIR] [-q]', &
+         'usage: exic DECK [-o DIR] [-q] [--restart FILE]', &
          '', &
          'Runs the FEAP-like input deck DECK (see doc/input-language.md): explicit central-difference', &
          'dynamics of 2-D plane-strain bodies with implicit contact, and writes', &
@@ -123,10 +147,17 @@ contains
          'options:', &
          '  -o DIR      write the outputs under DIR (created if missing)', &
          '  -q          no progress line and no final summary on the console', &
+         '  --restart FILE  continue the run of DECK from the restart file FILE (BATCh SAVE', &
+         '              writes <stem>.rst; the outputs are continued from that point)', &
          '  --version   print the version', &
          '  -h, --help  this text', &
          '', &
-         'exit codes: 0 success, 1 the run failed (outputs kept up to the failure), 2 bad input'
+         'signals: SIGINT, SIGTERM  finish the step, write the final state and <stem>.rst, exit 3', &
+         '         SIGUSR1          write <stem>.rst and go on', &
+         '         SIGUSR2          print a status line (time, step, dt, energy balance, ETA)', &
+         '', &
+         'exit codes: 0 success, 1 the run failed (outputs kept up to the failure; an I/O error', &
+         '            names the file), 2 bad input, 3 interrupted by SIGINT or SIGTERM'
    end subroutine usage
 
 end program exic_main

@@ -30,6 +30,7 @@ program exic_tests
    use test_math, only: run_math_tests
    use test_threads, only: run_threads_tests
    use test_friction, only: run_friction_tests
+   use test_restart, only: run_restart_tests
    implicit none
    type(runner_t) :: r
 
@@ -50,6 +51,7 @@ program exic_tests
    call r%run('threads', run_threads_tests)
    call r%run('contact', run_contact_tests)
    call r%run('run_output', run_run_output_tests)
+   call r%run('restart', run_restart_tests)
    call r%run('console', run_console_tests)
    call r%run('deck', run_deck_tests)
    call r%run('inputs', run_inputs_tests)

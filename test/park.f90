@@ -5,7 +5,7 @@ module park
    implicit none
    private
 
-   public :: park_until_killed
+   public :: park_until_killed, park_until_signal
 
    interface
       !> unsigned int sleep(unsigned int seconds);
@@ -32,5 +32,26 @@ contains
       end do
       error stop 'nobody killed this child process within 2 minutes'
    end subroutine park_until_killed
+
+   !> Write `text` to the file `marker`, then sleep until `pending()` is non-zero (a signal
+   !> handler has recorded a signal; sleep(3) returns early when one comes); stop with an error
+   !> if none comes within 2 minutes.
+   subroutine park_until_signal(marker, text, pending)
+      character(len=*), intent(in) :: marker, text
+      interface
+         integer function pending()
+         end function pending
+      end interface
+      integer :: u, i
+      integer(c_int) :: left
+      open (newunit=u, file=marker, status='replace', action='write')
+      write (u, '(a)') text
+      close (u)
+      do i = 1, 120
+         if (pending() /= 0) return
+         left = c_sleep(1_c_int)
+      end do
+      error stop 'no signal came to this child process within 2 minutes'
+   end subroutine park_until_signal
 
 end module park

@@ -8,8 +8,12 @@ module exic_driver
    use exic_base_constants, only: TIME_TOL
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
-   use exic_base_progress, only: progress_t
+   use exic_base_progress, only: progress_t, clock_text
+   use exic_base_strings, only: itoa, rtoa
+   use exic_base_signals, only: signals_install, signals_take, SIG_BIT_INT, SIG_BIT_TERM, SIG_BIT_USR1, &
+                                SIG_BIT_USR2
    use exic_io_model, only: model_t
+   use exic_io_restart, only: run_position_t, write_restart, read_restart
    use exic_io_program, only: MAX_LOOP_DEPTH
    use exic_io_output, only: output_t
    use exic_io_report, only: report_preamble, report_summary, report_final, console_summary, &
@@ -19,6 +23,10 @@ module exic_driver
    private
 
    public :: run_options_t, run_model, fields_observer
+
+   !> How run_model ended (its `status`): the program ran to its end, or SIGINT/SIGTERM stopped
+   !> it after a step with its final state and a restart file written (exit code 3 of `exic`).
+   integer, parameter, public :: RUN_COMPLETE = 0, RUN_INTERRUPTED = 3
 
    abstract interface
       !> Told after each field output time is written and flushed: how many there are and t.
@@ -33,6 +41,9 @@ module exic_driver
    type :: run_options_t
       character(len=:), allocatable :: base   !< output path without extension: dir/stem
       logical :: quiet = .false.              !< no progress line and no summary on the console
+      character(len=:), allocatable :: restart !< continue from this restart file (else the deck's
+                                               !< RESTart file, else none)
+      logical :: signals = .false.            !< answer SIGINT, SIGTERM, SIGUSR1, SIGUSR2 (README)
       !> called after every field output time, when associated (a library user following the run)
       procedure(fields_observer), pointer, nopass :: on_fields => null()
    end type run_options_t
@@ -42,36 +53,76 @@ module exic_driver
       type(stepper_t) :: stp
       type(output_t) :: out
       type(progress_t) :: progress
-      integer :: print_inc = 0                 !< PRINt,ENERgy interval (0: none)
+      type(run_position_t) :: pos              !< program position and schedules (saved in restarts)
+      character(len=:), allocatable :: rst     !< <stem>.rst
+      logical :: signals = .false.
+      logical :: interrupted = .false.         !< SIGINT or SIGTERM came: stop after this step
+      real(wp) :: wall_start = 0.0_wp
+      real(wp) :: t_start = 0.0_wp             !< simulated time when this process began stepping
+      integer(i8) :: saved_step = -1           !< step of the last restart file written
       procedure(fields_observer), pointer, nopass :: on_fields => null()
    end type run_t
 
 contains
 
-   !> Run `model`'s program. On error, every output written so far is kept and closed.
-   subroutine run_model(model, opts, err)
+   !> Run `model`'s program, or continue it from a restart file (opts%restart, or the deck's
+   !> RESTart). On error, every output written so far is kept and closed. `status`: RUN_COMPLETE,
+   !> or RUN_INTERRUPTED when a SIGINT or SIGTERM stopped the run (opts%signals).
+   subroutine run_model(model, opts, err, status)
       type(model_t), intent(in) :: model
       type(run_options_t), intent(in) :: opts
       type(error_t), allocatable, intent(out) :: err
+      integer, intent(out), optional :: status
       type(run_t) :: r
       type(error_t), allocatable :: ferr
       real(wp) :: wall_start, wall
-      character(len=:), allocatable :: field_files
+      character(len=:), allocatable :: field_files, restart
 
       wall_start = wall_time()
+      r%wall_start = wall_start
       r%on_fields => opts%on_fields
-      call r%out%open(opts%base, err)
-      if (.not. allocated(err)) call report_preamble(r%out%files, model)
-      if (.not. allocated(err)) call r%stp%init(model%mesh, model%materials, model%contact, err, model%loads)
+      r%rst = opts%base//'.rst'
+      restart = ''
+      if (allocated(model%restart_file)) restart = model%restart_file
+      if (allocated(opts%restart)) then
+         if (len(opts%restart) > 0) restart = opts%restart
+      end if
+      if (opts%signals) then
+         r%signals = signals_install()
+         if (.not. r%signals) write (error_unit, '(a)') 'exic: warning: cannot install the signal handlers'
+      end if
+      if (len(restart) > 0) then
+         call resume(r, model, opts%base, restart, err)
+      else
+         call r%out%open(opts%base, err)
+         if (.not. allocated(err)) call report_preamble(r%out%files, model)
+         if (.not. allocated(err)) call r%stp%init(model%mesh, model%materials, model%contact, err, model%loads)
+         if (.not. allocated(err)) call report_summary(r%out%files, model, r%stp)
+      end if
+      ! the .out holds the deck and the model before the first step
+      call r%out%files%flush_all()
       if (.not. allocated(err)) then
-         call report_summary(r%out%files, model, r%stp)
          call r%progress%begin(opts%quiet)
+         r%t_start = r%stp%st%t
          call execute(r, model, err)
+      end if
+      if (.not. allocated(err) .and. allocated(r%out%files%io_error)) &
+         call make_error(err, r%out%files%io_error)
+      ! the restart file of the end (SAVE) or of the interruption comes before the final rows
+      ! and fields: a run continued from it writes them again, as the run that went on would
+      ! (an interruption wrote its restart file after its step, in after_step)
+      if (.not. allocated(err) .and. r%stp%started .and. r%pos%save_on .and. .not. r%interrupted .and. &
+          r%saved_step /= r%stp%st%step) then
+         r%pos%pc = size(model%program)
+         call save_restart(r, model, err)
       end if
       ! the final state is always written; after a failure, its fields are (doc/fields.md)
       if (r%stp%started .and. .not. allocated(err)) then
          call r%out%final(model, r%stp, ferr)
-         if (allocated(ferr)) call r%out%files%say('error: '//ferr%message)
+         if (allocated(ferr)) then
+            call r%out%files%say('error: '//ferr%message)
+            call move_alloc(ferr, err)
+         end if
       else if (r%stp%started) then
          call r%out%failed(r%stp, err%message, ferr)
          if (allocated(ferr)) call r%out%files%say('error: '//ferr%message)
@@ -84,8 +135,43 @@ contains
       wall = wall_time() - wall_start
       call report_final(r%out%files, r%stp, err, wall, field_files)
       call r%out%close()
+      if (.not. allocated(err) .and. allocated(r%out%files%io_error)) &
+         call make_error(err, r%out%files%io_error)
       if (.not. opts%quiet .and. r%stp%started) write (output_unit, '(a)') console_summary(r%stp, wall)
+      if (present(status)) status = merge(RUN_INTERRUPTED, RUN_COMPLETE, r%interrupted .and. .not. allocated(err))
    end subroutine run_model
+
+   !> Set the run up from the restart file `path`: the stepper made from the model, then its
+   !> state, the output schedules and the program position read; the outputs continued.
+   subroutine resume(r, model, base, path, err)
+      type(run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      character(len=*), intent(in) :: base, path
+      type(error_t), allocatable, intent(out) :: err
+      call r%stp%init(model%mesh, model%materials, model%contact, err, model%loads)
+      if (allocated(err)) return
+      call read_restart(path, model, r%stp, r%out, r%pos, err)
+      if (allocated(err)) return
+      call r%out%resume(base, model, r%stp, err)
+      if (allocated(err)) return
+      r%pos%pc = r%pos%pc + 1
+      call r%out%files%say('')
+      call r%out%files%say('restarted from '//path//' at t = '//rtoa(r%stp%st%t)//', step '// &
+                           itoa(int(r%stp%st%step)))
+   end subroutine resume
+
+   !> Write the restart file of the state now (the files flushed and measured first).
+   subroutine save_restart(r, model, err)
+      type(run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: err
+      call r%out%checkpoint()
+      call write_restart(r%rst, model, r%stp, r%out, r%pos, err)
+      if (allocated(err)) return
+      r%saved_step = r%stp%st%step
+      call r%out%files%say('restart file '//r%rst//' written at t = '//rtoa(r%stp%st%t)//', step '// &
+                           itoa(int(r%stp%st%step)))
+   end subroutine save_restart
 
    !> Interpret the BATCh program.
    subroutine execute(r, model, err)
@@ -95,8 +181,9 @@ contains
       integer :: pc, depth, nfields
       integer :: remaining(MAX_LOOP_DEPTH)
 
-      pc = 1
-      depth = 0
+      pc = r%pos%pc
+      depth = r%pos%depth
+      remaining = r%pos%remaining
       do while (pc <= size(model%program))
          associate (c => model%program(pc))
             select case (c%name)
@@ -139,6 +226,13 @@ contains
             case ('form')
                call start(r, model, err)
                if (.not. allocated(err)) call step(r, err)
+               if (.not. allocated(err)) then
+                  r%pos%pc = pc
+                  r%pos%depth = depth
+                  r%pos%remaining = remaining
+                  call after_step(r, model, err)
+                  if (r%interrupted .and. .not. allocated(err)) return
+               end if
             case ('tplo')
                r%out%his_inc = max(1, nint(c%v(1)))
             case ('init')
@@ -146,7 +240,11 @@ contains
             case ('outp')
                call r%out%open_fields(model, r%stp, c%v(1), err)
             case ('prin')
-               r%print_inc = max(1, nint(c%v(1)))
+               r%pos%print_inc = max(1, nint(c%v(1)))
+            case ('save')
+               r%pos%save_on = .true.
+               r%pos%save_dt = c%v(1)
+               r%pos%save_next = r%stp%st%t + c%v(1)
             case ('chec')
                call r%stp%set_energy_limits(c%v(1), c%v(2))
             case default
@@ -195,8 +293,8 @@ contains
       call pass_messages(r)
       if (allocated(err)) return
       associate (st => r%stp%st)
-         if (r%print_inc > 0) then
-            if (mod(st%step, int(r%print_inc, i8)) == 0) then
+         if (r%pos%print_inc > 0) then
+            if (mod(st%step, int(r%pos%print_inc, i8)) == 0) then
                call r%progress%clear()
                print '(a,es12.5,a,i0,a,es12.5,a,es12.5,a,es12.5,a,es12.5)', ' t=', st%t, ' step ', st%step, &
                   ' K=', st%kinetic, ' U=', st%strain + st%hourglass, ' Wext=', st%wext, ' Wc=', st%wcon
@@ -208,6 +306,63 @@ contains
          end if
       end associate
    end subroutine step
+
+   !> After a step: a write failure of the text files stops the run; the SAVE interval; the
+   !> signals that came during the step (once per step: the handlers only record them).
+   subroutine after_step(r, model, err)
+      type(run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: err
+      integer :: bits
+      logical :: due
+      if (allocated(r%out%files%io_error)) then
+         call make_error(err, r%out%files%io_error)
+         return
+      end if
+      due = .false.
+      if (r%pos%save_on .and. r%pos%save_dt > 0.0_wp) then
+         if (r%stp%st%t >= r%pos%save_next*(1.0_wp - TIME_TOL)) then
+            due = .true.
+            do while (r%pos%save_next <= r%stp%st%t*(1.0_wp + TIME_TOL))
+               r%pos%save_next = r%pos%save_next + r%pos%save_dt
+            end do
+         end if
+      end if
+      bits = 0
+      if (r%signals) bits = signals_take()
+      if (iand(bits, SIG_BIT_USR2) /= 0) call status_line(r)
+      if (iand(bits, SIG_BIT_USR1) /= 0) due = .true.
+      if (iand(bits, SIG_BIT_INT + SIG_BIT_TERM) /= 0) then
+         r%interrupted = .true.
+         due = .true.
+         call r%progress%clear()
+         write (error_unit, '(a)') 'exic: '//trim(merge('SIGINT ', 'SIGTERM', iand(bits, SIG_BIT_INT) /= 0))// &
+            ' at t = '//rtoa(r%stp%st%t)//', step '//itoa(int(r%stp%st%step))// &
+            ': writing the final state and the restart file '//r%rst
+         call r%out%files%say('interrupted by a signal at t = '//rtoa(r%stp%st%t)//', step '// &
+                              itoa(int(r%stp%st%step)))
+      end if
+      if (due) call save_restart(r, model, err)
+   end subroutine after_step
+
+   !> SIGUSR2: one line on standard error: time, step, dt, energy balance, wall time, ETA.
+   subroutine status_line(r)
+      type(run_t), intent(inout) :: r
+      real(wp) :: total, drift, wall, eta
+      character(len=:), allocatable :: eta_text
+      call energy_balance(r%stp%st, total, drift)
+      wall = wall_time() - r%wall_start
+      eta_text = 'unknown'
+      if (r%stp%tmax > r%stp%st%t .and. r%stp%st%t > r%t_start) then
+         eta = wall*(r%stp%tmax - r%stp%st%t)/(r%stp%st%t - r%t_start)
+         eta_text = trim(clock_text(eta))
+      end if
+      call r%progress%clear()
+      write (error_unit, '(a)') 'exic: status: t = '//rtoa(r%stp%st%t)//' of '//rtoa(r%stp%tmax)// &
+         ', step '//itoa(int(r%stp%st%step))//', dt = '//rtoa(r%stp%st%dt)//', energy balance '// &
+         rtoa(total)//' (drift '//rtoa(drift)//'), wall '//trim(clock_text(wall))//', ETA '//eta_text
+      flush (error_unit)
+   end subroutine status_line
 
    !> The progress line of the state the run ended in.
    subroutine finish_progress(r)

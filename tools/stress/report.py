@@ -40,6 +40,7 @@ def fmt(v, spec=".3g"):
 def write(load, figdir, doc, log):
     os.makedirs(figdir, exist_ok=True)
     sc, fz, cfl, lg, lg6 = (load(n) for n in ("scenes", "fuzz", "cfl", "long", "long_1e6"))
+    kl = load("kills")
     out = []
     w = out.append
     w("# Numerical stability: the stress suite\n")
@@ -71,10 +72,66 @@ def write(load, figdir, doc, log):
         if data:
             _long(data, w, figdir)
     _todo(sc, fz, lg, lg6, w)
+    if kl:
+        _kills(kl, w)
     with open(doc, "w") as f:
         f.write("\n".join(out) + "\n")
     _saved_readme()
     log(f"report: {os.path.relpath(doc, ROOT)}")
+
+
+# --- kills -------------------------------------------------------------------------------
+
+def _kills(data, w):
+    res = data["kills"]
+    n = len(res)
+    w(f"## 6. Runs killed at random moments ({n} kills, seed {data['seed']})\n")
+    w(f"`tools/stress/stress.py --only kills --kills {n} --seed {data['seed']}` ({data['seconds']:.0f} s "
+      "on two cores; `tools/stress/kills.py`). The seed's example 7.2 with fields every 0.002 "
+      f"({data['reference_times']} output times) and a restart file every 0.05 (SAVE,,0.05) runs once "
+      f"to the end ({data['reference_seconds']:.2f} s from the creation of its .out to its end), then is "
+      "killed by SIGKILL, SIGTERM and SIGINT in turn after a random delay (uniform over that time) "
+      "counted from the creation of its .out (runs that vary in speed with the machine's load end "
+      "before some signals: counted apart). Checked after each kill: the .h5 "
+      "opens with h5dump and h5py and its /time is the reference's first output times (a SIGTERM or "
+      "SIGINT run adds the state it stopped in); both XDMF files parse and name only times the .h5 "
+      "holds (they name an output time only once the .h5 holding it is flushed, so every output time "
+      "completed before the kill is there); the .his reaches the last time of the .h5; every "
+      "restart file present opens, and the run continued from the newest ends with the reference's "
+      ".his byte for byte.\n")
+    w("A signal that comes while the program is still being loaded (its shared libraries, before "
+      "its first statement; over a second on the loaded test machine) ends it by the signal's "
+      "default action before it has written anything: counted apart as *before start*.\n")
+    w("| signal | kills | before start | ended before the signal | exit as documented | .h5 readable | .h5 times right "
+      "| XDMF right | .his not behind | restart files present | continued runs identical | failures |")
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for name in ("SIGKILL", "SIGTERM", "SIGINT"):
+        rs = [r for r in res if r["signal"] == name]
+        if not rs:
+            continue
+
+        def count(word):
+            return sum(1 for r in rs if not any(word in f for f in r["failures"]))
+        present = sum(1 for r in rs if r.get("restart_files", 0) > 0)
+        cont = sum(1 for r in rs if r.get("restart_files", 0) > 0
+                   and not any(("restart" in f or "continued" in f) for f in r["failures"]))
+        bad = sum(1 for r in rs if r["failures"])
+        w(f"| {name} | {len(rs)} | {sum(1 for r in rs if r.get('before_start'))} | "
+          f"{sum(1 for r in rs if r['finished_before'])} | {count('exit code')} | "
+          f"{count('h5 unreadable')} | {count('/time')} | {count('xdmf')} | {count('.his behind')} | "
+          f"{present} | {cont} of {present} | {bad} |")
+    w("")
+    reached = sorted(r.get("h5_times") or 0 for r in res if not r["finished_before"])
+    if reached:
+        w(f"Output times in the .h5 at the signal (of {data['reference_times']}): smallest {reached[0]}, "
+          f"median {reached[len(reached) // 2]}, largest {reached[-1]}; the kills fall early in the run when "
+          "the machine is busier than during the reference run (its time sets the delays).\n")
+    fails = [r for r in res if r["failures"]]
+    if fails:
+        w("Failures:\n")
+        for r in fails[:20]:
+            w(f"- kill {r['index']} ({r['signal']} after {r['delay']} s): {'; '.join(r['failures'])}")
+        w("")
 
 
 # --- scenes ------------------------------------------------------------------------------

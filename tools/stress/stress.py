@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """The stress suite of exic (issue 10): random scenes, a fuzzer over the decks of inputs/, CFL
-sweeps on the seed's examples 7.2 and 7.3 and long runs; writes doc/stability.md, its figures
+sweeps on the seed's examples 7.2 and 7.3, long runs, and runs killed at random moments
+(SIGKILL, SIGTERM, SIGINT: tools/stress/kills.py); writes doc/stability.md, its figures
 and JSON results under doc/stability/.
 
-    tools/stress/stress.py [--exic PATH] [--seed N] [--scenes N] [--fuzz N] [--long]
-                           [--only scenes,fuzz,cfl,long] [--jobs 2] [--keep]
+    tools/stress/stress.py [--exic PATH] [--seed N] [--scenes N] [--fuzz N] [--kills N] [--long]
+                           [--only scenes,fuzz,cfl,long,kills] [--jobs 2] [--keep]
 
 `make stress` builds the release binary and runs this with the defaults (500 scenes of seed
 20240610, 2,000 fuzzed decks, CFL 0.1-1.0, long runs of 2e4-5e4 steps; about 20 minutes on
@@ -184,8 +185,9 @@ def main():
     ap.add_argument("--seed", type=int, default=20240610)
     ap.add_argument("--scenes", type=int, default=500)
     ap.add_argument("--fuzz", type=int, default=2000)
+    ap.add_argument("--kills", type=int, default=300)
     ap.add_argument("--long", action="store_true", help="long runs of 10^6 steps")
-    ap.add_argument("--only", default="scenes,fuzz,cfl,long")
+    ap.add_argument("--only", default="scenes,fuzz,cfl,long,kills")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--timeout", type=float, default=120.0)
     ap.add_argument("--no-report", action="store_true")
@@ -207,6 +209,9 @@ def main():
     if "long" in only:
         import sweeps
         sweeps.run_long(exic, args.long, jobs, WORK, save, log)
+    if "kills" in only:
+        import kills
+        kills.run_kills(exic, args.seed, args.kills, jobs, WORK, save, log)
     if not args.no_report:
         import report
         report.write(load, RESULTS, os.path.join(ROOT, "doc", "stability.md"), log)

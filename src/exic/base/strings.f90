@@ -1,21 +1,33 @@
 !> Numbers as text for messages and reports.
 module exic_base_strings
-   use exic_base_kinds, only: wp
+   use exic_base_kinds, only: wp, i8
    implicit none
    private
 
    public :: itoa, rtoa
 
+   !> An integer (default or 64-bit) as text, without blanks.
+   interface itoa
+      module procedure itoa_default, itoa_i8
+   end interface itoa
+
 contains
 
-   !> An integer as text, without blanks.
-   pure function itoa(i) result(s)
+   pure function itoa_default(i) result(s)
       integer, intent(in) :: i
       character(len=:), allocatable :: s
       character(len=16) :: buf
       write (buf, '(i0)') i
       s = trim(buf)
-   end function itoa
+   end function itoa_default
+
+   pure function itoa_i8(i) result(s)
+      integer(i8), intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=24) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function itoa_i8
 
    !> A real as text, without blanks, in format `fmt` (default es14.7, and es15.7e3 when the
    !> exponent needs three digits: es14.7 would drop the letter E, `1.2345678-302`).

@@ -13,7 +13,9 @@
 !>   v(1) = r or m, v(2:3) = vx, vy; every node of those elements is given);
 !> - `outp` option `hdf5`, v(1) = dt_out; `prin` option `ener`, v(1) = n;
 !> - [ext] `chec` option `ener`, v(1) = warn, v(2) = stop (energy guard limits);
-!> - `prop` v(1) = n1, v(2) = n2 (>= n1): proportional functions read after END (deck_loads).
+!> - `prop` v(1) = n1, v(2) = n2 (>= n1): proportional functions read after END (deck_loads);
+!> - `save` v(1) = dt (0: at the end only): restart files; RESTart,file is not a command of the
+!>   program but sets model%restart_file.
 module exic_io_deck_batch
    use exic_base_kinds, only: wp
    use exic_base_constants, only: DEFAULT_CFL, ENERGY_WARN, ENERGY_STOP
@@ -37,13 +39,13 @@ module exic_io_deck_batch
 
    public :: read_batch, read_batch_data
 
-   character(len=12), parameter :: commands(13) = [character(len=12) :: 'TRANsient', 'DT', &
+   character(len=12), parameter :: commands(15) = [character(len=12) :: 'TRANsient', 'DT', &
                                                    'LOOP', 'NEXT', 'TIME', 'FORM', 'TPLOt', &
                                                    'INITial', 'OUTPut', 'PRINt', 'CHECk', 'END', &
-                                                   'PROPortional']
+                                                   'PROPortional', 'SAVE', 'RESTart']
    !> Value fields (after the option) each command uses, in the order of `commands`; a value
    !> beyond them is reported by the reader as not used (INITial,RATE|VELOcity take none).
-   integer, parameter :: nvalues(13) = [0, 1, 1, 0, 1, 0, 1, 3, 1, 1, 2, 0, 2]
+   integer, parameter :: nvalues(15) = [0, 1, 1, 0, 1, 0, 1, 3, 1, 1, 2, 0, 2, 1, 0]
    character(len=12), parameter :: requests(10) = [character(len=12) :: 'disp', 'velo', 'acce', &
                                                    'stre', 'reac', 'cont', 'mome', 'show', 'ener', &
                                                    'rigi']
@@ -72,6 +74,16 @@ contains
          end if
          call check_command(rd, i, cut)
          if (keyword_is(word(rd, i, 1), 'end')) exit
+         if (keyword_is(word(rd, i, 1), 'rest')) then
+            ! RESTart,file: the whole run continues from that restart file (not a step of the
+            ! program: the position in the program is the file's)
+            if (len(field(rd, i, 2)) == 0) then
+               call fail(rd, i, 'RESTart,file: expected the name of a restart file', err)
+               return
+            end if
+            model%restart_file = field(rd, i, 2)
+            cycle
+         end if
          call parse_command(rd, i, model, c, err)
          if (allocated(err)) return
          if (n == size(prog)) then
@@ -177,6 +189,12 @@ contains
          end if
       case ('chec')
          call parse_check(rd, i, c, err)
+      case ('save')
+         if (len(opt) > 0) then
+            call fail(rd, i, 'SAVE,'//field(rd, i, 2)//' is not supported: expected SAVE or SAVE,,dt', err)
+         else if (c%v(1) < 0.0_wp) then
+            call fail(rd, i, 'SAVE,,dt: expected dt >= 0 (0: only at the end)', err)
+         end if
       case ('prop')
          call parse_prop(rd, i, c, err)
       case ('prin')

@@ -13,7 +13,8 @@
 !> also written as plain arrays into one of two buffers `/last/a`, `/last/b` (alternately, so
 !> that the buffer the `<stem>.xdmf` names is never the one being written).
 !>
-!> Kill safety: after every output time the HDF5 file is flushed (H5Fflush) and only then are
+!> Kill safety: the file is created whole (mesh, empty series, buffers) under a temporary name,
+!> closed and renamed before anything else; after every output time it is flushed (H5Fflush) and only then are
 !> the XDMF files updated: the series is appended to in place by writes each of which leaves a
 !> well-formed document (exic_io_xdmf), the last-state file is written to a temporary name and
 !> renamed. A run killed at any moment leaves an HDF5 file readable up to its last flushed
@@ -24,6 +25,7 @@ module exic_io_fields
    use exic_base_error, only: error_t, make_error
    use exic_mesh_smoothing, only: nodal_average
    use exic_io_hdf5_file, only: hdf5_file_t, DTYPE_REAL, DTYPE_INT, DTYPE_INT64
+   use exic_io_posix, only: rename_file
    use exic_io_xdmf, only: xdmf_series_t, write_whole_file, xml_escape, real_text, data_item, &
                            attribute
    implicit none
@@ -66,6 +68,7 @@ module exic_io_fields
       logical :: broken = .false.                   !< a write failed half-way
    contains
       procedure :: open => writer_open
+      procedure :: reopen => writer_reopen
       procedure :: write_step => writer_write_step
       procedure :: close => writer_close
       procedure :: mark_failed => writer_mark_failed
@@ -96,7 +99,6 @@ contains
       character(len=*), intent(in), optional :: energy_names(:)
       logical, intent(in), optional :: friction
       type(error_t), allocatable :: err2
-      character(len=:), allocatable :: ref
 
       if (self%h5%is_open()) then
          call make_error(err, "field output: cannot open '"//path_h5//"': the writer already has '"// &
@@ -112,9 +114,42 @@ contains
       else
          self%comp_names = STRESS_NAMES
       end if
-      call xdmf_reference(path_h5, path_xdmf, ref, err)
+      call prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err, friction)
       if (allocated(err)) return
 
+      ! made whole under a temporary name, closed and renamed: a run killed while the file is
+      ! being created leaves no .h5 rather than a broken one
+      call self%h5%create(path_h5//'.tmp', err)
+      if (allocated(err)) return
+      call write_mesh(self%h5, x0, conn, region, mat, surf_edges, err)
+      if (.not. allocated(err)) call create_field_series(self, err)
+      if (.not. allocated(err)) call create_last_buffers(self, err)
+      if (.not. allocated(err) .and. present(energy_names)) call create_energy_series(self, energy_names, err)
+      if (.not. allocated(err)) call self%h5%close(err)
+      if (.not. allocated(err)) call rename_file(path_h5//'.tmp', path_h5, err)
+      if (.not. allocated(err)) call self%h5%open(path_h5, .true., err)
+      if (.not. allocated(err)) call self%series%create(series_path(path_xdmf), series_head(), &
+                                                        series_tail(), err)
+      if (.not. allocated(err)) call write_whole_file(self%last_path, last_document(self, -1, 0.0_wp, &
+                                                                                    0_i8), err)
+      if (allocated(err)) then
+         call self%series%abandon()
+         call self%h5%close(err2)
+      end if
+   end subroutine writer_open
+
+   !> The writer's set-up for a mesh (names, sizes, work arrays), before its files are made.
+   subroutine prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err, friction)
+      type(field_writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path_h5, path_xdmf
+      integer, intent(in) :: nnode, nelem
+      real(wp), intent(in) :: x0(:, :)
+      integer, intent(in) :: conn(:, :)
+      type(error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: friction
+      character(len=:), allocatable :: ref
+      call xdmf_reference(path_h5, path_xdmf, ref, err)
+      if (allocated(err)) return
       self%h5_ref = xml_escape(ref, dash=.true.)
       self%last_path = path_xdmf
       self%nnode = nnode
@@ -134,23 +169,69 @@ contains
       self%nenergy = -1
       self%broken = .false.
       if (allocated(self%energy_names)) deallocate (self%energy_names)
+   end subroutine prepare
 
-      call self%h5%create(path_h5, err)
+   !> Continue the field output of a restarted run: open the existing `path_h5` (written by
+   !> `open` for the same mesh with the same `cell_names`, `energy_names` and `friction`), keep
+   !> its first `ntime` output times (those written before the restart point) and write the
+   !> series file anew for them. The last-state file is rewritten at the next output time.
+   subroutine writer_reopen(self, path_h5, path_xdmf, nnode, nelem, x0, conn, ntime, energy_names, err, &
+                            cell_names, friction)
+      class(field_writer_t), intent(inout) :: self
+      character(len=*), intent(in) :: path_h5, path_xdmf
+      integer, intent(in) :: nnode, nelem, ntime
+      real(wp), intent(in), contiguous :: x0(:, :)
+      integer, intent(in), contiguous :: conn(:, :)
+      character(len=*), intent(in) :: energy_names(:)
+      type(error_t), allocatable, intent(out) :: err
+      character(len=*), intent(in), optional :: cell_names(:)
+      logical, intent(in), optional :: friction
+      type(error_t), allocatable :: err2
+      real(wp), allocatable :: times(:)
+      integer(i8), allocatable :: steps(:)
+      integer :: i
+
+      if (present(cell_names)) then
+         self%comp_names = cell_names
+      else
+         self%comp_names = STRESS_NAMES
+      end if
+      call prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err, friction)
       if (allocated(err)) return
-      call write_mesh(self%h5, x0, conn, region, mat, surf_edges, err)
-      if (.not. allocated(err)) call create_field_series(self, err)
-      if (.not. allocated(err)) call create_last_buffers(self, err)
-      if (.not. allocated(err) .and. present(energy_names)) call create_energy_series(self, energy_names, err)
+      call self%h5%open(path_h5, .true., err)
+      if (allocated(err)) return
+      do i = 1, self%nvec
+         if (.not. allocated(err)) call self%h5%shorten_series('/fields/'//trim(NODE_VECTORS(i)), ntime, err)
+      end do
+      if (.not. allocated(err)) call self%h5%shorten_series('/fields/contact_active', ntime, err)
+      if (.not. allocated(err)) call self%h5%shorten_series('/fields/stress', ntime, err)
+      if (.not. allocated(err)) call self%h5%shorten_series('/fields/nodal_stress', ntime, err)
+      do i = 1, size(energy_names)
+         if (.not. allocated(err)) call self%h5%shorten_series('/energies/'//trim(energy_names(i)), ntime, err)
+      end do
+      if (.not. allocated(err)) call self%h5%shorten_series('/time', ntime, err)
+      if (.not. allocated(err)) call self%h5%shorten_series('/step', ntime, err)
+      allocate (times(ntime), steps(ntime))
+      if (.not. allocated(err)) call self%h5%read('/time', times, err)
+      if (.not. allocated(err)) call self%h5%read('/step', steps, err)
       if (.not. allocated(err)) call self%h5%flush(err)
-      if (.not. allocated(err)) call self%series%create(series_path(path_xdmf), series_head(), &
-                                                        series_tail(), err)
-      if (.not. allocated(err)) call write_whole_file(self%last_path, last_document(self, -1, 0.0_wp, &
-                                                                                    0_i8), err)
+      if (.not. allocated(err)) then
+         self%energy_names = energy_names
+         self%nenergy = size(energy_names)
+         call self%series%create(series_path(path_xdmf), series_head(), series_tail(), err)
+      end if
+      do i = 1, ntime
+         if (allocated(err)) exit
+         self%ntime = i
+         self%t_last = times(i)
+         call self%series%append(series_grid(self, i - 1, times(i)), err)
+      end do
       if (allocated(err)) then
          call self%series%abandon()
          call self%h5%close(err2)
+         err%message = 'field output (restart): '//err%message
       end if
-   end subroutine writer_open
+   end subroutine writer_reopen
 
    !> Append one output time t (solver step `step`): nodal displacement u, velocity v,
    !> acceleration a and contact force fcont, each (2, nnode); the contact flag active(nnode)

@@ -12,11 +12,12 @@ module exic_io_hdf5_file
    use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_char
    use exic_base_kinds, only: wp, i8
    use exic_base_error, only: error_t, make_error
+   use exic_base_strings, only: itoa
    use hdf5, only: hid_t, hsize_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fopen_f, h5fclose_f, &
                    h5fflush_f, h5gcreate_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
                    h5sclose_f, h5sselect_hyperslab_f, h5sget_simple_extent_ndims_f, &
                    h5sget_simple_extent_dims_f, h5dcreate_f, h5dopen_f, h5dclose_f, h5dwrite_f, &
-                   h5dget_space_f, h5dset_extent_f, h5pcreate_f, h5pclose_f, h5pset_chunk_f, &
+                   h5dget_space_f, h5dset_extent_f, h5dread_f, h5lexists_f, h5pcreate_f, h5pclose_f, h5pset_chunk_f, &
                    h5pset_fill_value_f, h5pset_virtual_f, h5oopen_f, h5oclose_f, h5aexists_f, &
                    h5adelete_f, h5acreate_f, h5awrite_f, h5aclose_f, h5tcopy_f, h5tclose_f, &
                    h5tset_size_f, h5tset_strpad_f, h5kind_to_type, &
@@ -56,11 +57,18 @@ module exic_io_hdf5_file
       procedure :: create_series => file_create_series
       procedure :: series_length => file_series_length
       procedure :: create_series_view => file_create_series_view
+      procedure :: size_of => file_size_of
+      procedure :: exists => file_exists
+      procedure :: shorten_series => file_shorten_series
       procedure :: flush => file_flush
       procedure :: close => file_close
       procedure, private :: write_real1, write_real2, write_int1, write_int2
       procedure, private :: rewrite_real1, rewrite_real2, rewrite_int1
       procedure, private :: append_real0, append_real1, append_real2, append_int1, append_int64_0
+      procedure, private :: read_real, read_int, read_int64
+      !> Read the whole dataset `name` into `x` (real(wp), integer or integer(i8), rank 1, as many
+      !> elements as the dataset holds, in Fortran order): `call f%read(name, x, err)`.
+      generic :: read => read_real, read_int, read_int64
       procedure, private :: attr_real0, attr_real1, attr_int0, attr_int1, attr_int64_0, attr_string
       !> Write a fixed dataset: `call f%write(name, x, err)`, x real(wp) or integer, rank 1 or 2.
       generic :: write => write_real1, write_real2, write_int1, write_int2
@@ -553,6 +561,116 @@ contains
       end block steps
       call close_handles(err, self, name, dset=did, space=fspace, space2=mspace)
    end subroutine append_raw
+
+   !> Number of elements of the dataset `name` (all dimensions).
+   subroutine file_size_of(self, name, n, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer(i8), intent(out) :: n
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t), allocatable :: dims(:)
+      integer(hid_t) :: did
+      n = 0
+      call series_dims(self, name, did, dims, err)
+      if (allocated(err)) return
+      n = product(int(dims, i8))
+      call close_handles(err, self, name, dset=did)
+   end subroutine file_size_of
+
+   !> True when the link `name` (one level below an existing group, or at the root) exists.
+   logical function file_exists(self, name) result(yes)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer :: st
+      yes = .false.
+      if (self%fid < 0) return
+      call h5lexists_f(self%fid, name, yes, st)
+      if (st < 0) yes = .false.
+   end function file_exists
+
+   !> Cut the series `name` to its first `n` slabs (a restarted run drops the output times
+   !> written after its restart point).
+   subroutine file_shorten_series(self, name, n, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: n
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t), allocatable :: dims(:)
+      integer(hid_t) :: did
+      integer :: st
+      call series_dims(self, name, did, dims, err)
+      if (allocated(err)) return
+      if (dims(size(dims)) < int(n, hsize_t)) then
+         call fail(self, err, 'restart: the file holds fewer output times than the restart '// &
+                   'file recorded in', name)
+      else if (dims(size(dims)) > int(n, hsize_t)) then
+         dims(size(dims)) = int(n, hsize_t)
+         call h5dset_extent_f(did, dims, st)
+         if (st < 0) call fail(self, err, 'shorten', name)
+      end if
+      call close_handles(err, self, name, dset=did)
+   end subroutine file_shorten_series
+
+   !> Read the real dataset `name` whole into x (size(x) elements exactly).
+   subroutine read_real(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      real(wp), intent(inout), target, contiguous :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call read_raw(self, name, DTYPE_REAL, int(size(x), i8), p, err)
+   end subroutine read_real
+
+   !> Read the integer dataset `name` whole into x (size(x) elements exactly).
+   subroutine read_int(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer, intent(inout), target, contiguous :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call read_raw(self, name, DTYPE_INT, int(size(x), i8), p, err)
+   end subroutine read_int
+
+   !> Read the 64-bit integer dataset `name` whole into x (size(x) elements exactly).
+   subroutine read_int64(self, name, x, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer(i8), intent(inout), target, contiguous :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(c_ptr) :: p
+      p = c_null_ptr
+      if (size(x) > 0) p = c_loc(x)
+      call read_raw(self, name, DTYPE_INT64, int(size(x), i8), p, err)
+   end subroutine read_int64
+
+   !> Read the whole dataset `name`, which must hold n elements, into the memory at `p`.
+   subroutine read_raw(self, name, dtype, n, p, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: dtype
+      integer(i8), intent(in) :: n
+      type(c_ptr), intent(in) :: p
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t), allocatable :: dims(:)
+      integer(hid_t) :: did
+      integer :: st
+      type(c_ptr) :: buf
+      buf = p
+      call series_dims(self, name, did, dims, err)
+      if (allocated(err)) return
+      if (product(int(dims, i8)) /= n) then
+         call fail(self, err, 'read '//itoa(n)//' values from the dataset of '// &
+                   itoa(product(int(dims, i8)))//' values', name)
+      else if (n > 0) then
+         call h5dread_f(did, mem_type(dtype), buf, st)
+         if (st < 0) call fail(self, err, 'read dataset', name)
+      end if
+      call close_handles(err, self, name, dset=did)
+   end subroutine read_raw
 
    ! ---------------------------------------------------------------------------- views
 

@@ -1,7 +1,10 @@
 !> The text outputs of a run (spec section 6): <stem>.his, <stem>.ene and <stem>.out.
 !>
 !> Rows are written as the run goes; files are flushed at most every `flush_interval` seconds
-!> of wall time and always when closed, so an aborted run keeps what it wrote.
+!> of wall time, before every field output time (so that after a kill they are never behind the
+!> .h5, doc/fields.md "Kill safety") and always when closed, so an aborted run keeps what it
+!> wrote. Every write, flush and close is checked: the first failure (a full disk, EFBIG, EIO)
+!> is kept in `io_error`, naming the file, and the run stops on it.
 !>
 !> Numbers are written `1x,es24.16e3` (NUMBER_FORMAT): 17 significant digits and always an
 !> exponent letter with three exponent digits (`1.2188988004400879E-302`), so every reader
@@ -19,6 +22,7 @@ module exic_io_history
    use exic_base_clock, only: wall_time
    use exic_base_strings, only: itoa, rtoa
    use exic_io_number, only: put_real, put_int, REAL_WIDTH
+   use exic_io_posix, only: truncate_file, file_size
    implicit none
    private
 
@@ -46,8 +50,12 @@ module exic_io_history
       logical :: nonfinite = .false.             !< a row with a non-finite value was refused
       character(len=:), allocatable :: nonfinite_message  !< the first such value: file, column, t
       character(len=:), allocatable :: row       !< the text of a row, assembled before its write
+      character(len=:), allocatable :: io_error  !< the first failed write, flush or close
    contains
       procedure :: open => files_open
+      procedure :: resume => files_resume
+      procedure :: flush_all => files_flush_all
+      procedure :: sizes => files_sizes
       procedure :: his_header => files_his_header
       procedure :: his_row => files_his_row
       procedure :: ene_row => files_ene_row
@@ -63,6 +71,8 @@ contains
       class(history_files_t), intent(inout) :: self
       character(len=*), intent(in) :: base
       type(error_t), allocatable, intent(out) :: err
+      integer :: ios
+      character(len=256) :: msg
       self%his_path = base//'.his'
       self%ene_path = base//'.ene'
       self%out_path = base//'.out'
@@ -73,9 +83,60 @@ contains
       call open_new(self%out_path, self%out, err)
       if (allocated(err)) return
       self%opened = .true.
-      write (self%ene, '(a)') '# '//ENERGY_COLUMNS
+      write (self%ene, '(a)', iostat=ios, iomsg=msg) '# '//ENERGY_COLUMNS
+      call check_io(self, ios, msg, self%ene_path)
       self%last_flush = wall_time()
    end subroutine files_open
+
+   !> Continue the files of a run from its restart point: <base>.his and <base>.ene cut to the
+   !> lengths they had then (`his_bytes`, `ene_bytes`) and appended to, <base>.out appended to.
+   subroutine files_resume(self, base, his_bytes, ene_bytes, err)
+      class(history_files_t), intent(inout) :: self
+      character(len=*), intent(in) :: base
+      integer(i8), intent(in) :: his_bytes, ene_bytes
+      type(error_t), allocatable, intent(out) :: err
+      self%his_path = base//'.his'
+      self%ene_path = base//'.ene'
+      self%out_path = base//'.out'
+      call reopen(self%his_path, his_bytes, self%his, err)
+      if (.not. allocated(err)) call reopen(self%ene_path, ene_bytes, self%ene, err)
+      if (.not. allocated(err)) call reopen(self%out_path, -1_i8, self%out, err)
+      if (allocated(err)) return
+      self%opened = .true.
+      self%last_flush = wall_time()
+   end subroutine files_resume
+
+   !> Open `path` to append to it, after cutting it to `bytes` (>= 0; -1: as it is). The file
+   !> must hold at least `bytes`.
+   subroutine reopen(path, bytes, unit, err)
+      character(len=*), intent(in) :: path
+      integer(i8), intent(in) :: bytes
+      integer, intent(out) :: unit
+      type(error_t), allocatable, intent(out) :: err
+      integer :: ios
+      character(len=256) :: msg
+      if (bytes >= 0) then
+         if (file_size(path) < bytes) then
+            call make_error(err, 'the file is shorter than at the restart point ('//itoa(bytes)// &
+                            ' bytes): it is not the output of the run that wrote the restart file', path)
+            return
+         end if
+         call truncate_file(path, bytes, err)
+         if (allocated(err)) return
+      end if
+      open (newunit=unit, file=path, status='unknown', position='append', action='write', &
+            form='formatted', iostat=ios, iomsg=msg)
+      if (ios /= 0) call make_error(err, 'cannot open output file to continue it: '//trim(msg), path)
+   end subroutine reopen
+
+   !> Keep the first I/O failure (status `ios`, message `msg`) on the file `path`.
+   subroutine check_io(self, ios, msg, path)
+      class(history_files_t), intent(inout) :: self
+      integer, intent(in) :: ios
+      character(len=*), intent(in) :: msg, path
+      if (ios == 0 .or. allocated(self%io_error)) return
+      self%io_error = "cannot write '"//path//"': "//trim(msg)
+   end subroutine check_io
 
    !> Open `path` for writing, replacing an old file.
    subroutine open_new(path, unit, err)
@@ -90,16 +151,24 @@ contains
    end subroutine open_new
 
    !> Write the '#' header naming every column of <stem>.his.
-   subroutine files_his_header(self, labels)
+   !> (`write_it` false: only take the labels, the file has its header: a restarted run).
+   subroutine files_his_header(self, labels, write_it)
       class(history_files_t), intent(inout) :: self
       character(len=*), intent(in) :: labels(:)
-      integer :: k
+      logical, intent(in), optional :: write_it
+      character(len=:), allocatable :: line
+      integer :: k, ios
+      character(len=256) :: msg
       self%labels = labels
-      write (self%his, '(a)', advance='no') '# t'
+      if (present(write_it)) then
+         if (.not. write_it) return
+      end if
+      line = '# t'
       do k = 1, size(labels)
-         write (self%his, '(2a)', advance='no') '  ', trim(labels(k))
+         line = line//'  '//trim(labels(k))
       end do
-      write (self%his, '(a)') ''
+      write (self%his, '(a)', iostat=ios, iomsg=msg) line
+      call check_io(self, ios, msg, self%his_path)
    end subroutine files_his_header
 
    !> One row of <stem>.his: time, then the requested values at full precision. A row with a
@@ -109,7 +178,8 @@ contains
       real(wp), intent(in) :: t
       real(wp), intent(in) :: values(:)
       type(error_t), allocatable, intent(out), optional :: err
-      integer :: k, n
+      integer :: k, n, ios
+      character(len=256) :: msg
       if (.not. ieee_is_finite(t)) then
          call refuse(self, 'his', 't', t, t, err)
          return
@@ -127,7 +197,8 @@ contains
       do k = 1, size(values)
          call put_real(self%row, n, values(k))
       end do
-      write (self%his, '(a)') self%row(1:n)
+      write (self%his, '(a)', iostat=ios, iomsg=msg) self%row(1:n)
+      call check_io(self, ios, msg, self%his_path)
       call self%maybe_flush()
    end subroutine files_his_row
 
@@ -147,7 +218,8 @@ contains
          'strain', 'external_work', 'contact_work', 'total', 'drift', 'momentum_x', 'momentum_y', &
          'hourglass', 'prescribed_work', 'friction_dissipation', 'plastic_work']
       real(wp) :: v(14)
-      integer :: k, n
+      integer :: k, n, ios
+      character(len=256) :: msg
       v = [t, dt, kinetic, strain, wext, wcon, total, drift, momentum, hourglass, wpm, dfric, wpl]
       do k = 1, size(v)
          if (.not. ieee_is_finite(v(k))) then
@@ -170,7 +242,8 @@ contains
       call put_real(self%row, n, wpm)
       call put_real(self%row, n, dfric)
       call put_real(self%row, n, wpl)
-      write (self%ene, '(a)') self%row(1:n)
+      write (self%ene, '(a)', iostat=ios, iomsg=msg) self%row(1:n)
+      call check_io(self, ios, msg, self%ene_path)
       call self%maybe_flush()
    end subroutine files_ene_row
 
@@ -222,8 +295,11 @@ contains
    subroutine files_say(self, text)
       class(history_files_t), intent(inout) :: self
       character(len=*), intent(in) :: text
+      integer :: ios
+      character(len=256) :: msg
       if (.not. self%opened) return
-      write (self%out, '(a)') text
+      write (self%out, '(a)', iostat=ios, iomsg=msg) text
+      call check_io(self, ios, msg, self%out_path)
    end subroutine files_say
 
    !> Flush every file when `flush_interval` seconds have passed since the last flush.
@@ -232,20 +308,45 @@ contains
       real(wp) :: now
       now = wall_time()
       if (now - self%last_flush < self%flush_interval) return
-      if (.not. self%opened) return
-      flush (self%his)
-      flush (self%ene)
-      flush (self%out)
-      self%last_flush = now
+      call self%flush_all()
    end subroutine files_maybe_flush
 
-   !> Close every file (which flushes it).
+   !> Flush every file now (checked).
+   subroutine files_flush_all(self)
+      class(history_files_t), intent(inout) :: self
+      integer :: ios
+      character(len=256) :: msg
+      if (.not. self%opened) return
+      flush (self%his, iostat=ios, iomsg=msg)
+      call check_io(self, ios, msg, self%his_path)
+      flush (self%ene, iostat=ios, iomsg=msg)
+      call check_io(self, ios, msg, self%ene_path)
+      flush (self%out, iostat=ios, iomsg=msg)
+      call check_io(self, ios, msg, self%out_path)
+      self%last_flush = wall_time()
+   end subroutine files_flush_all
+
+   !> Flush, then the lengths of <stem>.his and <stem>.ene in bytes (for a restart file).
+   subroutine files_sizes(self, his_bytes, ene_bytes)
+      class(history_files_t), intent(inout) :: self
+      integer(i8), intent(out) :: his_bytes, ene_bytes
+      call self%flush_all()
+      his_bytes = file_size(self%his_path)
+      ene_bytes = file_size(self%ene_path)
+   end subroutine files_sizes
+
+   !> Close every file (which flushes it; checked).
    subroutine files_close(self)
       class(history_files_t), intent(inout) :: self
+      integer :: ios
+      character(len=256) :: msg
       if (.not. self%opened) return
-      close (self%his)
-      close (self%ene)
-      close (self%out)
+      close (self%his, iostat=ios, iomsg=msg)
+      call check_io(self, ios, msg, self%his_path)
+      close (self%ene, iostat=ios, iomsg=msg)
+      call check_io(self, ios, msg, self%ene_path)
+      close (self%out, iostat=ios, iomsg=msg)
+      call check_io(self, ios, msg, self%out_path)
       self%opened = .false.
    end subroutine files_close
 

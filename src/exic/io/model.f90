@@ -21,6 +21,7 @@ module exic_io_model
       type(load_spec_t) :: loads                       !< loads and prescribed motion (doc/loads.md)
       type(command_t), allocatable :: program(:)       !< BATCh commands in order
       type(request_t), allocatable :: requests(:)      !< TPLOt requests in order
+      character(len=:), allocatable :: restart_file    !< BATCh RESTart,file: continue from it
       character(len=:), allocatable :: echo            !< the deck's records, for <stem>.out
       character(len=:), allocatable :: warnings        !< reader warnings, newline separated
    end type model_t

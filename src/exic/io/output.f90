@@ -55,8 +55,13 @@ module exic_io_output
       real(wp) :: field_next = 0.0_wp               !< time of the next field output
       real(wp) :: field_last = -huge(1.0_wp)        !< time of the last field output
       logical :: warned_interval = .false.          !< the interval-below-the-step warning was given
+      ! what the files held at the last restart point (`checkpoint`)
+      integer(i8) :: saved_his_bytes = 0, saved_ene_bytes = 0
+      integer :: saved_field_times = 0
    contains
       procedure :: open => output_open
+      procedure :: checkpoint => output_checkpoint
+      procedure :: resume => output_resume
       procedure :: begin => output_begin
       procedure :: record => output_record
       procedure :: open_fields => output_open_fields
@@ -77,10 +82,49 @@ contains
       call self%files%open(base, err)
    end subroutine output_open
 
-   !> At the start of the time loop: the history header and the region of every node.
-   subroutine output_begin(self, model)
+   !> Flush the files and note their lengths and the number of field output times, for a
+   !> restart file written now.
+   subroutine output_checkpoint(self)
+      class(output_t), intent(inout) :: self
+      call self%files%sizes(self%saved_his_bytes, self%saved_ene_bytes)
+      self%saved_field_times = self%fields%count()
+   end subroutine output_checkpoint
+
+   !> Continue the outputs of the run that wrote a restart file, whose output state (schedules,
+   !> lengths, number of output times) has been read into self: the text files cut to their
+   !> lengths then, the field files to their output times then, and appended to.
+   subroutine output_resume(self, base, model, stp, err)
+      class(output_t), intent(inout) :: self
+      character(len=*), intent(in) :: base
+      type(model_t), intent(in) :: model
+      type(stepper_t), intent(in) :: stp
+      type(error_t), allocatable, intent(out) :: err
+      self%base = base
+      ! the .h5 first: when it cannot be continued, the text files stay as they are
+      if (self%field_dt > 0.0_wp) then
+         if (stp%st%has_plastic) then
+            call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
+                                    model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
+                                    pack(ENERGY_NAMES, energy_mask(stp)), err, cell_names=PLASTIC_CELL_NAMES, &
+                                    friction=stp%contact%friction)
+         else
+            call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
+                                    model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
+                                    pack(ENERGY_NAMES, energy_mask(stp)), err, friction=stp%contact%friction)
+         end if
+         if (allocated(err)) return
+      end if
+      call self%files%resume(base, self%saved_his_bytes, self%saved_ene_bytes, err)
+      if (allocated(err)) return
+      call self%begin(model, header=.false.)
+   end subroutine output_resume
+
+   !> At the start of the time loop: the history header (`header` false: a restarted run, whose
+   !> file has it) and the region of every node.
+   subroutine output_begin(self, model, header)
       class(output_t), intent(inout) :: self
       type(model_t), intent(in) :: model
+      logical, intent(in), optional :: header
       character(len=32), allocatable :: labels(:)
       character(len=4), parameter :: names(10) = ['disp', 'velo', 'acce', 'stre', 'reac', 'cont', 'mome', &
                                                    'reac', 'reac', 'rigi']
@@ -95,7 +139,7 @@ contains
             write (labels(k), '(a,a,a,i0,a,i0,a)') names(q%kind), '(', tags(q%kind), q%id, ',', q%comp, ')'
          end associate
       end do
-      call self%files%his_header(labels)
+      call self%files%his_header(labels, header)
       ! the region of the last element that uses each node (-huge for unused nodes)
       allocate (self%region_of_node(model%mesh%nnode), source=-huge(1))
       do e = 1, model%mesh%nelem
@@ -338,6 +382,9 @@ contains
       do while (self%field_next <= stp%st%t*(1.0_wp + TIME_TOL))
          self%field_next = self%field_next + self%field_dt
       end do
+      ! the rows written so far reach the disk first: after a kill the text files are never
+      ! behind the .h5
+      call self%files%flush_all()
       call write_fields(self, stp, err)
    end subroutine output_fields_due
 
@@ -378,6 +425,7 @@ contains
       type(stepper_t), intent(in) :: stp
       type(error_t), allocatable, intent(out) :: err
       if (self%last_row_step /= stp%st%step) call write_rows(self, model, stp)
+      call self%files%flush_all()
       if (self%fields%is_open() .and. stp%st%t > self%field_last) call write_fields(self, stp, err)
    end subroutine output_final
 

@@ -1,7 +1,8 @@
 !> The few C library (POSIX) operations exic needs, with status codes turned into errors.
 !>
 !> `rename` and nothing else is bound directly; the calls that need ABI-specific structures or
-!> macros (stat(2) with S_ISREG, mkdir(2) with errno, getrlimit(2) with RLIMIT_AS) go through
+!> macros (stat(2) with S_ISREG and st_size, mkdir(2) and truncate(2) with errno, getrlimit(2)
+!> with RLIMIT_AS) go through
 !> the plain functions of `posix_c.c` next to this file. No shell is ever started.
 module exic_io_posix
    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_long_long, c_null_char, c_ptr, &
@@ -11,7 +12,8 @@ module exic_io_posix
    implicit none
    private
 
-   public :: rename_file, c_string, file_kind, make_directories, address_space_limit
+   public :: rename_file, c_string, file_kind, make_directories, address_space_limit, truncate_file, &
+             file_size, exit_now
 
    !> file_kind results.
    integer, parameter, public :: FILE_MISSING = 0, FILE_REGULAR = 1, FILE_DIRECTORY = 2, &
@@ -55,9 +57,55 @@ module exic_io_posix
          integer(c_long_long), intent(out) :: bytes
          integer(c_int) :: status
       end function c_address_space_limit
+
+      !> int exic_c_truncate(const char *path, long long size);  (posix_c.c)
+      function c_truncate(path, size) bind(C, name='exic_c_truncate') result(errnum)
+         import :: c_char, c_int, c_long_long
+         character(kind=c_char), dimension(*), intent(in) :: path
+         integer(c_long_long), value :: size
+         integer(c_int) :: errnum
+      end function c_truncate
+
+      !> long long exic_c_file_size(const char *path);  (posix_c.c)
+      function c_file_size(path) bind(C, name='exic_c_file_size') result(size)
+         import :: c_char, c_long_long
+         character(kind=c_char), dimension(*), intent(in) :: path
+         integer(c_long_long) :: size
+      end function c_file_size
+
+      !> void exic_c_exit_now(int code);  (posix_c.c)
+      subroutine c_exit_now(code) bind(C, name='exic_c_exit_now')
+         import :: c_int
+         integer(c_int), value :: code
+      end subroutine c_exit_now
    end interface
 
 contains
+
+   !> End the process with exit code `code` at once: the Fortran units must be closed and the
+   !> console flushed by the caller; no exit handler runs (HDF5's would retry a file whose
+   !> close failed on a full disk and crash: doc/fields.md, "Write failures").
+   subroutine exit_now(code)
+      integer, intent(in) :: code
+      call c_exit_now(int(code, c_int))
+   end subroutine exit_now
+
+   !> Cut the file `path` to `size` bytes (truncate(2)).
+   subroutine truncate_file(path, size, err)
+      character(len=*), intent(in) :: path
+      integer(i8), intent(in) :: size
+      type(error_t), allocatable, intent(out) :: err
+      integer(c_int) :: e
+      e = c_truncate(path//c_null_char, int(size, c_long_long))
+      if (e /= 0_c_int) call make_error(err, "cannot cut '"//path//"' to the length the restart file "// &
+                                        "recorded (truncate failed)")
+   end subroutine truncate_file
+
+   !> Size of the file `path` in bytes, -1 when it cannot be read (stat(2)).
+   integer(i8) function file_size(path)
+      character(len=*), intent(in) :: path
+      file_size = int(c_file_size(path//c_null_char), i8)
+   end function file_size
 
    !> Rename `from` to `to`, replacing `to` atomically when both are on one file system.
    subroutine rename_file(from, to, err)

@@ -8,6 +8,7 @@
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 /* What `path` is: 1 a regular file, 2 a directory, 3 something else (character or block
  * device, FIFO, socket), 0 when stat(2) fails (no such file, no permission). Symbolic links
@@ -44,4 +45,28 @@ int exic_c_address_space_limit(long long *bytes)
         *bytes = (long long)rl.rlim_cur;
     }
     return 0;
+}
+
+/* Cut the file `path` to `size` bytes (truncate(2)). Returns 0 or errno. */
+int exic_c_truncate(const char *path, long long size)
+{
+    if (truncate(path, (off_t)size) == 0) return 0;
+    return errno;
+}
+
+/* The size of `path` in bytes, -1 when stat(2) fails. */
+long long exic_c_file_size(const char *path)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) return -1;
+    return (long long)st.st_size;
+}
+
+/* Flush the C streams and end the process with `code` without running the exit handlers
+ * (_exit(2)): after a failed write, HDF5's own handler would try again to flush the file it
+ * could not close, and crash. */
+void exic_c_exit_now(int code)
+{
+    fflush(NULL);
+    _exit(code);
 }
