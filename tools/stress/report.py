@@ -119,8 +119,10 @@ def _before_after(before, after, w):
       "every contact. After: this campaign (seed "
       f"{after['seed']}, the same generator `scenes.make_scene`, a different draw), with the geometric "
       "check (`<stem>.out` warns about nodes deeper than 1e-3 edges inside another body) and the "
-      "normal of t(n+1) for nodes in contact at the start of a step and near segment ends "
-      "(doc/contact-detection.md, \"Frozen normal of a node in contact\"). The energy growth of the "
+      "contact normal of the time of contact (t(n+1) for nodes in contact from the start of a step; "
+      "doc/contact-detection.md, \"Frozen normal of a node in contact\"). The two draws differ, so "
+      "counts of a few scenes (the stops by inversion, which depend on the speeds drawn) are not a "
+      "comparison of the code. The energy growth of the "
       "before column was measured without the work of prescribed motion (driven rigid bodies), so it "
       "counts a few driven scenes as growing that are not.\n")
     w("| | before | after |")
