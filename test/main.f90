@@ -31,6 +31,8 @@ program exic_tests
    use test_threads, only: run_threads_tests
    use test_friction, only: run_friction_tests
    use test_restart, only: run_restart_tests
+   use test_inside, only: run_inside_tests
+   use test_stress_decks, only: run_stress_decks_tests
    implicit none
    type(runner_t) :: r
 
@@ -41,6 +43,7 @@ program exic_tests
    call r%run('math', run_math_tests)
    call r%run('corrector', run_corrector_tests)
    call r%run('contact_geom', run_contact_geom_tests)
+   call r%run('inside', run_inside_tests)
    call r%run('element', run_element_tests)
    call r%run('plasticity', run_plasticity_tests)
    call r%run('axisymmetric', run_axisymmetric_tests)
@@ -60,6 +63,7 @@ program exic_tests
    call r%run('rigid', run_rigid_tests)
    call r%run('friction', run_friction_tests)
    call r%run('hostile', run_hostile_tests)
+   call r%run('stress_decks', run_stress_decks_tests)
    call r%run('legacy', run_legacy_tests)
    call r%finish()
 end program exic_tests

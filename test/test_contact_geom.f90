@@ -14,7 +14,7 @@ module test_contact_geom
    implicit none
    private
 
-   public :: run_contact_geom_tests
+   public :: run_contact_geom_tests, block
 
    !> State of the test's own linear congruential generator (deterministic scenes).
    type :: lcg_t

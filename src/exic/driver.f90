@@ -19,6 +19,8 @@ module exic_driver
    use exic_io_report, only: report_preamble, report_summary, report_final, console_summary, &
                              energy_balance
    use exic_explicit_step, only: stepper_t
+   use exic_contact_inside, only: inside_t
+   use exic_base_constants, only: PENETRATION_WARN
    implicit none
    private
 
@@ -27,6 +29,8 @@ module exic_driver
    !> How run_model ended (its `status`): the program ran to its end, or SIGINT/SIGTERM stopped
    !> it after a step with its final state and a restart file written (exit code 3 of `exic`).
    integer, parameter, public :: RUN_COMPLETE = 0, RUN_INTERRUPTED = 3
+   !> Steps between two geometric penetration checks besides the field output times and the end.
+   integer, parameter :: INSIDE_STEPS = 1000
 
    abstract interface
       !> Told after each field output time is written and flushed: how many there are and t.
@@ -60,6 +64,8 @@ module exic_driver
       real(wp) :: wall_start = 0.0_wp
       real(wp) :: t_start = 0.0_wp             !< simulated time when this process began stepping
       integer(i8) :: saved_step = -1           !< step of the last restart file written
+      type(inside_t) :: inside                 !< geometric penetration check (with contact)
+      integer(i8) :: inside_step = -1          !< step of its last check
       procedure(fields_observer), pointer, nopass :: on_fields => null()
    end type run_t
 
@@ -102,6 +108,9 @@ contains
       ! the .out holds the deck and the model before the first step
       call r%out%files%flush_all()
       if (.not. allocated(err)) then
+         call init_inside(r, model, err)
+      end if
+      if (.not. allocated(err)) then
          call r%progress%begin(opts%quiet)
          r%t_start = r%stp%st%t
          call execute(r, model, err)
@@ -128,16 +137,17 @@ contains
          if (allocated(ferr)) call r%out%files%say('error: '//ferr%message)
       end if
       call pass_messages(r)
+      if (r%stp%started) call check_inside(r)
       if (r%stp%started) call finish_progress(r)
       field_files = ''
       if (r%out%field_dt > 0.0_wp) field_files = ' '//opts%base//'.h5 '//opts%base//'.xdmf '// &
                                                  opts%base//'_series.xdmf'
       wall = wall_time() - wall_start
-      call report_final(r%out%files, r%stp, err, wall, field_files)
+      call report_final(r%out%files, r%stp, err, wall, field_files, r%inside)
       call r%out%close()
       if (.not. allocated(err) .and. allocated(r%out%files%io_error)) &
          call make_error(err, r%out%files%io_error)
-      if (.not. opts%quiet .and. r%stp%started) write (output_unit, '(a)') console_summary(r%stp, wall)
+      if (.not. opts%quiet .and. r%stp%started) write (output_unit, '(a)') console_summary(r%stp, wall, r%inside)
       if (present(status)) status = merge(RUN_INTERRUPTED, RUN_COMPLETE, r%interrupted .and. .not. allocated(err))
    end subroutine run_model
 
@@ -216,6 +226,8 @@ contains
                if (.not. allocated(err)) call r%out%fields_due(r%stp, err)
                if (.not. allocated(err) .and. r%out%fields%count() > nfields .and. associated(r%on_fields)) &
                   call r%on_fields(r%out%fields%count(), r%stp%st%t)
+               if (.not. allocated(err) .and. (r%out%fields%count() > nfields .or. &
+                                               r%stp%st%step - r%inside_step >= INSIDE_STEPS)) call check_inside(r)
                if (.not. allocated(err) .and. c%v(1) > 0.0_wp) then
                   r%stp%tmax = c%v(1)
                   if (r%stp%st%t >= r%stp%tmax*(1.0_wp - TIME_TOL) .and. depth > 0) then
@@ -246,7 +258,11 @@ contains
                r%pos%save_dt = c%v(1)
                r%pos%save_next = r%stp%st%t + c%v(1)
             case ('chec')
-               call r%stp%set_energy_limits(c%v(1), c%v(2))
+               if (c%option == 'pene') then
+                  r%inside%fraction = c%v(1)
+               else
+                  call r%stp%set_energy_limits(c%v(1), c%v(2))
+               end if
             case default
                call make_error(err, 'solution command '//trim(c%name)//' is not implemented', c%where)
             end select
@@ -255,6 +271,46 @@ contains
          pc = pc + 1
       end do
    end subroutine execute
+
+   !> The geometric penetration check (src/exic/contact/inside.f90) over the regions, for the
+   !> pairs of regions that the contact passes cover; nothing without contact.
+   subroutine init_inside(r, model, err)
+      type(run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: err
+      integer :: k, j
+      if (.not. r%stp%contact%active) return
+      call r%inside%init(r%stp%st%nnode, size(model%mesh%conn, 2), model%mesh%conn, model%mesh%region, &
+                         PENETRATION_WARN, err)
+      if (allocated(err)) return
+      associate (c => r%stp%contact)
+         ! the passes of the PAIRs, and every pair of AUTOmatic surfaces (whose passes are made
+         ! per step for the surfaces found near)
+         do k = 1, c%nfixed
+            call r%inside%allow(c%surfaces(c%passes(k)%slave)%nodes, c%surfaces(c%passes(k)%master)%nodes)
+         end do
+         if (c%auto_pass%auto) then
+            do k = c%auto_first + 1, size(c%surfaces)
+               do j = c%auto_first + 1, size(c%surfaces)
+                  if (j /= k) call r%inside%allow(c%surfaces(k)%nodes, c%surfaces(j)%nodes)
+               end do
+            end do
+         end if
+      end associate
+   end subroutine init_inside
+
+   !> Check the positions now for nodes inside other bodies; warnings go to <stem>.out and the
+   !> console.
+   subroutine check_inside(r)
+      type(run_t), intent(inout) :: r
+      character(len=:), allocatable :: warn
+      if (.not. r%inside%active) return
+      if (r%inside_step == r%stp%st%step) return
+      r%inside_step = r%stp%st%step
+      call r%inside%check(r%stp%st%x0 + r%stp%st%u, r%stp%st%t, warn)
+      if (len(warn) > 0) call r%stp%messages%add(warn)
+      call pass_messages(r)
+   end subroutine check_inside
 
    !> Index of the NEXT that closes the innermost loop around command `pc`.
    integer function find_next(model, pc) result(k)

@@ -116,17 +116,19 @@ def read_table(path):
 
 def energy_growth(ene_path):
     """Largest growth of the physical energy E = kinetic + strain (strain includes hourglass)
-    over the energy put in, E(0) + external work, relative to |E(0)| + |W_ext| (the measure of
-    exic's energy guard): (max growth, its time, final growth, rows)."""
+    over the energy put in, E(0) + external work + work of prescribed motion (driven rigid
+    bodies), relative to |E(0)| + |W_ext| + |W_pm| (the measure of exic's energy guard):
+    (max growth, its time, final growth, rows)."""
     e = read_table(ene_path)
     if not e or "kinetic" not in e:
         return None
     phys = e["kinetic"] + e["strain"]
     w = e["external_work"]
+    wpm = e.get("prescribed_work", np.zeros_like(w))
     e0 = phys[0]
-    scale = np.abs(e0) + np.abs(w)
+    scale = np.abs(e0) + np.abs(w) + np.abs(wpm)
     scale = np.where(scale > 0, scale, np.nan)
-    g = (phys - (e0 + w)) / scale
+    g = (phys - (e0 + w + wpm)) / scale
     k = int(np.nanargmax(g)) if np.isfinite(g).any() else 0
     return {"max": float(g[k]) if np.isfinite(g[k]) else float("nan"), "t_max": float(e["t"][k]),
             "final": float(g[-1]), "rows": int(len(g)),

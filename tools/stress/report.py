@@ -41,6 +41,7 @@ def write(load, figdir, doc, log):
     os.makedirs(figdir, exist_ok=True)
     sc, fz, cfl, lg, lg6 = (load(n) for n in ("scenes", "fuzz", "cfl", "long", "long_1e6"))
     kl = load("kills")
+    before = load("scenes_before")
     out = []
     w = out.append
     w("# Numerical stability: the stress suite\n")
@@ -49,19 +50,22 @@ def write(load, figdir, doc, log):
       "Re-run one section with `tools/stress/stress.py --only scenes|fuzz|cfl|long`; "
       "`make stress STRESS_ARGS=--long` runs the long cases for 10^6 steps.\n")
     w("What is measured, and the limits used to call something a failure:\n")
-    w("- **Energy growth** of a run: the largest over its rows of (E - E_in) / (|E(0)| + |W_ext|), "
-      "E = kinetic + strain (with hourglass) energy from `<stem>.ene`, E_in = E(0) + W_ext the energy "
-      "put in (the measure of exic's energy guard). Above 1 % (and 5 %) a finished run is a failure "
+    w("- **Energy growth** of a run: the largest over its rows of (E - E_in) / (|E(0)| + |W_ext| + |W_pm|), "
+      "E = kinetic + strain (with hourglass) energy from `<stem>.ene`, E_in = E(0) + W_ext + W_pm the energy "
+      "put in by the initial state, the external forces and prescribed motion (the measure of exic's energy guard). Above 1 % (and 5 %) a finished run is a failure "
       "unless exic warned (a `warning: ... energy` line in `<stem>.out`). Impact losses make it negative.")
     w("- **Penetration**, measured by the harness itself: at every field output of `<stem>.h5` every "
       "node of every body is tested against the deformed boundary polygon of every other body "
       "(even-odd rule, so holes of rings count); its depth is the distance to that boundary, relative "
       "to the length of the nearest boundary edge. Deeper than 1e-3 of an edge in a finished run is a "
-      "failure unless exic warned (a `warning: ... penetrat` line). `<stem>.out`'s own figure counts "
-      "detected pairs only and is shown beside it.")
+      "failure unless exic warned (a `warning: ... penetrat` line: exic's own geometric check, "
+      "src/exic/contact/inside.f90, at the same output times). `<stem>.out`'s largest penetration is "
+      "that geometric depth, shown beside it.")
     w("- **Stops** (exit 1) must give a physical reason that names a node, element or pair; the reason "
       "is read from the message (inversion, non-finite, energy, time step, ...). A crash is a signal "
       "or an exit code other than 0-2; a hang is a run killed at the timeout.\n")
+    if sc and before:
+        _before_after(before, sc, w)
     if sc:
         _scenes(sc, w, figdir)
     if fz:
@@ -135,6 +139,58 @@ def _kills(data, w):
 
 
 # --- scenes ------------------------------------------------------------------------------
+
+def _counts(data):
+    res = data["scenes"]
+    fin = [r for r in res if r["class"] == "finished"]
+    stop = [r for r in res if r["class"] == "stopped"]
+
+    def grown(r, lim):
+        return ((r.get("energy") or {}).get("max") or 0.0) > lim
+
+    def deep(r):
+        return ((r.get("penetration") or {}).get("relative") or 0.0) > DEPTH_LIMIT
+
+    return [
+        ("scenes", len(res)),
+        ("finished", len(fin)),
+        ("stopped: inversion", sum(1 for r in stop if r.get("reason") == "inversion")),
+        ("stopped: energy guard", sum(1 for r in stop if r.get("reason") == "energy")),
+        ("stopped: other", sum(1 for r in stop if r.get("reason") not in ("inversion", "energy"))),
+        ("stops naming a node, element or pair", sum(1 for r in stop if r.get("named"))),
+        ("hang or crash", sum(1 for r in res if r["class"] in ("hang", "crash"))),
+        ("finished, energy growth > 1 %", sum(1 for r in fin if grown(r, GROWTH_WARN))),
+        ("... of which not warned", sum(1 for r in fin if grown(r, GROWTH_WARN) and not r.get("energy_warned"))),
+        ("finished, energy growth > 5 %", sum(1 for r in fin if grown(r, GROWTH_BAD))),
+        ("finished, a node > 1e-3 edge inside another body", sum(1 for r in fin if deep(r))),
+        ("... of which not warned", sum(1 for r in fin if deep(r) and not r.get("penetration_warned"))),
+        ("finished, a node > 0.1 edge inside another body",
+         sum(1 for r in fin if ((r.get("penetration") or {}).get("relative") or 0.0) > 0.1)),
+    ]
+
+
+def _before_after(before, after, w):
+    w("## 0. Random scenes before and after the fixes\n")
+    w(f"Before: the first campaign (seed {before['seed']}, `doc/stability/scenes_before.json`), exic "
+      "without the geometric penetration check and with the frozen normal of the predicted t(n+2) for "
+      "every contact. After: this campaign (seed "
+      f"{after['seed']}, the same generator `scenes.make_scene`, a different draw), with the geometric "
+      "check (`<stem>.out` warns about nodes deeper than 1e-3 edges inside another body) and the "
+      "contact normal of the time of contact (t(n+1) for nodes in contact from the start of a step; "
+      "doc/contact-detection.md, \"Frozen normal of a node in contact\"). The two draws differ, so "
+      "counts of a few scenes (the stops by inversion, which depend on the speeds drawn) are not a "
+      "comparison of the code. The after column ran a build whose contact point switched to the "
+      "projection of the predicted position at tau_c = 0 exactly; the committed code blends the two "
+      "over 0 < tau_c < 0.01 (of the nine saved scenes of seed 20240610 only scene 14 changes verdict: energy growth 1.5 % with the switch, 0.7 % with the blend). "
+      "The energy growth of the "
+      "before column was measured without the work of prescribed motion (driven rigid bodies), so it "
+      "counts a few driven scenes as growing that are not.\n")
+    w("| | before | after |")
+    w("|---|---:|---:|")
+    for (k, a), (_, b) in zip(_counts(before), _counts(after)):
+        w(f"| {k} | {a} | {b} |")
+    w("")
+
 
 def _scenes(data, w, figdir):
     res = data["scenes"]

@@ -20,4 +20,8 @@ module exic_base_constants
    real(wp), parameter, public :: ENERGY_WARN = 0.01_wp
    real(wp), parameter, public :: ENERGY_STOP = 0.10_wp
 
+   !> The geometric penetration check (src/exic/contact/inside.f90) warns when a node lies deeper
+   !> than PENETRATION_WARN element edges inside another body; [ext] `CHECk,PENEtration,fraction`.
+   real(wp), parameter, public :: PENETRATION_WARN = 1.0e-3_wp
+
 end module exic_base_constants

@@ -24,10 +24,15 @@
 !> -tol <= alpha <= 1 + tol with tol = ALPHA_TOL + 4 eps max|x| / |xb - xa| (a share of
 !> the segment length plus the rounding of the coordinates).
 !>
-!> The normal returned for the corrector is frozen: the unit normal of the master segment
-!> at the predicted positions, n_f ~ n(t(n+2)) (seed section 4), or the master node normal
-!> when the contact point is at a segment end (see detect_pairs). The returned gap is the
-!> predicted gap at t(n+2): (xs_f - (1 - alpha) xa_f - alpha xb_f) . n.
+!> The normal returned for the corrector is frozen: the unit normal of the master segment, or
+!> the master node normal when the contact point is at a segment end (see detect_pairs), at
+!> the positions of the time of contact x0 + tau_c (x1 - x0). The seed (section 4) freezes
+!> n_f ~ n(t(n+2)) of the predicted positions; for a slave already in contact at the start of a
+!> step (tau_c = 0) that normal made sliding along a segment do work, the normal of t(n+1) does
+!> not (doc/contact-detection.md, "Frozen normal of a node in contact", eq. D.1-D.2). Such a
+!> slave's contact point is the projection of its predicted position on the predicted segment
+!> (it then ends the step on the segment). Static detection: normal at the predicted x1. The
+!> returned gap is the predicted gap at t(n+2): (xs_f - (1 - alpha) xa_f - alpha xb_f) . n.
 module exic_contact_detect
    use exic_base_kinds, only: wp
    use exic_contact_spec, only: DETECT_SWEPT, DETECT_STATIC
@@ -44,6 +49,11 @@ module exic_contact_detect
    !> Default facing limit: a slave whose own outward normal ns gives ns . n >= FACING_LIMIT
    !> with the master normal n is not paired (0: the two must face each other).
    real(wp), parameter, public :: FACING_LIMIT = 0.0_wp
+   !> A slave in contact from the start of a step (tau_c = 0) takes as contact point the
+   !> projection of its predicted position on the predicted segment; for 0 < tau_c < TAU_BLEND
+   !> the contact point moves linearly from that to the seed's alpha(tau_c), so that rounding of
+   !> tau_c near 0 never switches between the two (doc/contact-detection.md).
+   real(wp), parameter, public :: TAU_BLEND = 0.01_wp
 
    !> Accepted contacts of one detection pass, at most one per slave node, in slave order.
    type :: contact_set_t
@@ -222,7 +232,7 @@ contains
       logical, intent(out) :: cend(nslave)
       real(wp), intent(out) :: calpha(nslave), cnormal(2, nslave), ctau(nslave), cgap(nslave)
       integer :: j, j0, s, k, node, ma, mb, best, bkey(2), key(2)
-      real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap
+      real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap, w
       logical :: hit
 
       ncon = 0
@@ -270,17 +280,38 @@ contains
          cseg(ncon) = best
          cmaster(:, ncon) = seg(:, best)
          ctau(ncon) = btau
-         call finish_contact(nnode, x1, node, snrm(:, s), nseg, seg, link, best, balpha, &
-                             facing, cend(ncon), calpha(ncon), cnormal(:, ncon), cgap(ncon))
+         ! the normal at the time of contact tau_c (doc/contact-detection.md, "Frozen normal");
+         ! a node in contact from the start: the contact point of its predicted position,
+         ! blended into the seed's alpha(tau_c) over tau_c < TAU_BLEND (continuous in tau_c)
+         if (mode == DETECT_SWEPT .and. btau < TAU_BLEND) then
+            w = 1.0_wp - btau/TAU_BLEND
+            balpha = (1.0_wp - w)*balpha + &
+                     w*end_point(x1(:, node), x1(:, cmaster(1, ncon)), x1(:, cmaster(2, ncon)), balpha)
+         end if
+         call finish_contact(nnode, x0, x1, merge(btau, 1.0_wp, mode == DETECT_SWEPT), node, snrm(:, s), &
+                             nseg, seg, link, best, balpha, facing, cend(ncon), calpha(ncon), &
+                             cnormal(:, ncon), cgap(ncon))
       end do
    end subroutine detect_pairs
 
-   !> Snap a contact point near a segment end to that end, pick the frozen normal
-   !> (segment normal, or master node normal at an end) and the predicted gap.
-   pure subroutine finish_contact(nnode, x1, node, ns, nseg, seg, link, k, alpha_in, &
+   !> Projection of xs1 on the segment xa1-xb1, clamped to it (alpha_c for a zero-length segment).
+   pure real(wp) function end_point(xs1, xa1, xb1, alpha_c) result(alpha)
+      real(wp), intent(in) :: xs1(2), xa1(2), xb1(2), alpha_c
+      real(wp) :: t(2), tt
+      t = xb1 - xa1
+      tt = dot_product(t, t)
+      alpha = alpha_c
+      if (tt > 0.0_wp) alpha = min(max(dot_product(xs1 - xa1, t)/tt, 0.0_wp), 1.0_wp)
+   end function end_point
+
+   !> Snap a contact point near a segment end to that end, pick the frozen normal (segment
+   !> normal, or master node normal at an end) at the positions of the time of
+   !> contact, x0 + tau (x1 - x0) (tau = 0: x(n+1); tau = 1, static detection: the predicted
+   !> x1), and the predicted gap along it.
+   pure subroutine finish_contact(nnode, x0, x1, tau, node, ns, nseg, seg, link, k, alpha_in, &
                                   facing, at_end, alpha, n, gap)
       integer, intent(in) :: nnode, node, nseg, k
-      real(wp), intent(in) :: x1(2, nnode), ns(2), alpha_in, facing
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), tau, ns(2), alpha_in, facing
       integer, intent(in) :: seg(2, nseg), link(2, nseg)
       logical, intent(out) :: at_end
       real(wp), intent(out) :: alpha, n(2), gap
@@ -300,10 +331,10 @@ contains
          alpha = 1.0_wp
          nbr = link(2, k)
       end if
-      n = segment_normal(x1(:, ma), x1(:, mb))
+      n = segment_normal(at(ma), at(mb))
       if (nbr > 0) then
          if (seg(1, nbr) /= node .and. seg(2, nbr) /= node) then
-            nb = segment_normal(x1(:, seg(1, nbr)), x1(:, seg(2, nbr)))
+            nb = segment_normal(at(seg(1, nbr)), at(seg(2, nbr)))
             if (faces(ns, nb, facing)) then
                navg = average_normal(n, nb)
                if (any(navg /= 0.0_wp)) n = navg
@@ -311,6 +342,17 @@ contains
          end if
       end if
       gap = dot_product(x1(:, node) - ((1.0_wp - alpha)*x1(:, ma) + alpha*x1(:, mb)), n)
+   contains
+      !> Position of node j at the time of contact (exactly x1 at tau = 1, x0 at tau = 0).
+      pure function at(j) result(p)
+         integer, intent(in) :: j
+         real(wp) :: p(2)
+         if (tau == 1.0_wp) then
+            p = x1(:, j)
+         else
+            p = x0(:, j) + tau*(x1(:, j) - x0(:, j))
+         end if
+      end function at
    end subroutine finish_contact
 
    !> Narrow phase into a contact set (grown to nslave entries when needed); see

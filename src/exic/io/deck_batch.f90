@@ -12,13 +12,14 @@
 !>   data(2, nnode) and given(nnode), read after END (rate/velo) or computed (regi/mate:
 !>   v(1) = r or m, v(2:3) = vx, vy; every node of those elements is given);
 !> - `outp` option `hdf5`, v(1) = dt_out; `prin` option `ener`, v(1) = n;
-!> - [ext] `chec` option `ener`, v(1) = warn, v(2) = stop (energy guard limits);
+!> - [ext] `chec` option `ener`, v(1) = warn, v(2) = stop (energy guard limits); option `pene`,
+!>   v(1) = fraction (geometric penetration warning limit);
 !> - `prop` v(1) = n1, v(2) = n2 (>= n1): proportional functions read after END (deck_loads);
 !> - `save` v(1) = dt (0: at the end only): restart files; RESTart,file is not a command of the
 !>   program but sets model%restart_file.
 module exic_io_deck_batch
    use exic_base_kinds, only: wp
-   use exic_base_constants, only: DEFAULT_CFL, ENERGY_WARN, ENERGY_STOP
+   use exic_base_constants, only: DEFAULT_CFL, ENERGY_WARN, ENERGY_STOP, PENETRATION_WARN
    use exic_base_error, only: error_t, make_error
    use exic_mesh_mesh, only: mesh_t
    use exic_io_model, only: model_t
@@ -209,12 +210,23 @@ contains
 
    !> [ext] CHECk,ENERgy,warn,stop: the energy guard's limits as fractions of the energy put in
    !> (blank: ENERGY_WARN, ENERGY_STOP of src/exic/base/constants.f90); 0 < warn <= stop.
+   !> [ext] CHECk,PENEtration,fraction: the depth, in element edges, past which the geometric
+   !> penetration check warns (blank: PENETRATION_WARN); fraction > 0.
    subroutine parse_check(rd, i, c, err)
       type(reader_t), intent(in) :: rd
       integer, intent(in) :: i
       type(command_t), intent(inout) :: c
       type(error_t), allocatable, intent(out) :: err
-      character(len=12), parameter :: opts(1) = [character(len=12) :: 'ENERgy']
+      character(len=12), parameter :: opts(2) = [character(len=12) :: 'ENERgy', 'PENEtration']
+      if (keyword_is(c%option, 'pene')) then
+         c%option = 'pene'
+         if (.not. has_field(rd, i, 3)) c%v(1) = PENETRATION_WARN
+         if (.not. (c%v(1) > 0.0_wp .and. c%v(1) < huge(1.0_wp))) &
+            call fail(rd, i, 'CHECk,PENEtration,fraction = '//rtoa(c%v(1))//': expected fraction > 0', err)
+         if (has_field(rd, i, 4)) call fail(rd, i, 'CHECk,PENEtration,fraction takes one value; the fourth '// &
+                                            'field '//field(rd, i, 4)//' is not used', err)
+         return
+      end if
       if (.not. keyword_is(c%option, 'ener')) then
          call unknown_keyword(rd, i, 'CHECk option', field(rd, i, 2), opts, err)
          return

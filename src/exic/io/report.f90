@@ -11,6 +11,7 @@ module exic_io_report
    use exic_explicit_rigid, only: RB_FREE, RB_DRIVEN
    use exic_explicit_loads, only: FN_UNDEFINED
    use exic_explicit_state, only: state_t
+   use exic_contact_inside, only: inside_t
    !$ use omp_lib, only: omp_get_max_threads
    implicit none
    private
@@ -102,12 +103,13 @@ contains
 
    !> Final time, energy balance, the error if the run failed, wall time per phase, contact
    !> statistics and the files written.
-   subroutine report_final(files, stp, err, wall, field_files)
+   subroutine report_final(files, stp, err, wall, field_files, inside)
       type(history_files_t), intent(inout) :: files
       type(stepper_t), intent(in) :: stp
       type(error_t), allocatable, intent(in) :: err
       real(wp), intent(in) :: wall                !< wall time of the whole run
       character(len=*), intent(in) :: field_files !< the .h5 and .xdmf written, or ''
+      type(inside_t), intent(in) :: inside        !< the geometric penetration check
       real(wp) :: ts
       call files%say('')
       associate (st => stp%st, c => stp%contact)
@@ -132,7 +134,7 @@ contains
                            ', element-steps per second '//rtoa(real(st%step, wp)*st%nelem/ts))
          end if
          if (c%active) then
-            call files%say('contact: largest penetration over the run '//rtoa(c%max_penetration)// &
+            call files%say('contact: largest penetration over the run '//largest_penetration(stp, inside)// &
                            ', redundant constraints removed '//itoa(c%nredundant)// &
                            ', steps whose corrector reached its pass limit '//itoa(c%corr%pass_limit_hits)// &
                            ' (each kept its last compressive multipliers)')
@@ -146,6 +148,7 @@ contains
                                            'limit '//itoa(c%fr%pass_limit_hits)//', tangential factorizations '// &
                                            itoa(c%fr%tt%nsolves)//' (reused '//itoa(c%fr%tt%nreused)// &
                                            '), frictional dissipation '//rtoa(c%dissipation))
+            if (inside%active) call files%say(inside%report())
          end if
       end associate
       call files%say('files written: '//files%his_path//' '//files%ene_path//' '//files%out_path// &
@@ -168,9 +171,10 @@ contains
    !> The lines printed on the console at the end of a run: steps, wall time and rates (the
    !> figures of <stem>.out), the largest penetration, and the energy balance of the last
    !> <stem>.ene row.
-   function console_summary(stp, wall) result(text)
+   function console_summary(stp, wall, inside) result(text)
       type(stepper_t), intent(in) :: stp
       real(wp), intent(in) :: wall                !< wall time of the whole run
+      type(inside_t), intent(in) :: inside        !< the geometric penetration check
       character(len=:), allocatable :: text
       character(len=*), parameter :: NL = achar(10)
       real(wp) :: ts, total, drift
@@ -181,7 +185,7 @@ contains
             text = text//NL//'exic: steps per second '//rtoa(real(st%step, wp)/ts)// &
                    ', element-steps per second '//rtoa(real(st%step, wp)*st%nelem/ts)
          end if
-         if (c%active) text = text//NL//'exic: largest penetration over the run '//rtoa(c%max_penetration)
+         if (c%active) text = text//NL//'exic: largest penetration over the run '//largest_penetration(stp, inside)
          call energy_balance(st, total, drift)
          text = text//NL//'exic: energy: initial total '//rtoa(st%total0)//', kinetic '//rtoa(st%kinetic)// &
                 ', strain '//rtoa(st%strain + st%hourglass)//', external work '//rtoa(st%wext)// &
@@ -189,5 +193,26 @@ contains
                 ', drift '//rtoa(drift)
       end associate
    end function console_summary
+
+   !> The largest penetration over the run: the geometric one (the deepest node found inside
+   !> another body at the checked times, with its node, regions, depth in element edges and
+   !> time), then the largest gap violation of the detected contact pairs.
+   function largest_penetration(stp, inside) result(text)
+      type(stepper_t), intent(in) :: stp
+      type(inside_t), intent(in) :: inside
+      character(len=:), allocatable :: text
+      associate (w => inside%worst)
+         if (inside%active .and. w%node > 0) then
+            text = rtoa(w%depth)//' (geometric: node '//itoa(w%node)//' of region '//itoa(w%of_body)// &
+                   ' inside region '//itoa(w%in_body)//' by '//rtoa(w%edges)//' element edges at t = '// &
+                   rtoa(w%t)//'; detected pairs '//rtoa(stp%contact%max_penetration)//')'
+         else if (inside%active) then
+            text = rtoa(0.0_wp)//' (geometric, at '//itoa(inside%nchecks)//' checked times; detected pairs '// &
+                   rtoa(stp%contact%max_penetration)//')'
+         else
+            text = rtoa(stp%contact%max_penetration)//' (detected pairs)'
+         end if
+      end associate
+   end function largest_penetration
 
 end module exic_io_report
