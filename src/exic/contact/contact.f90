@@ -26,6 +26,7 @@ module exic_contact_contact
    use exic_contact_detect, only: contact_set_t, detect_contacts
    use exic_contact_corrector, only: constraints_t, corrector_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
+   use exic_contact_massless_face, only: massless_face_t
    implicit none
    private
 
@@ -63,6 +64,7 @@ module exic_contact_contact
       integer :: pair = 0                      !< index into pair results
       integer :: slave = 0, master = 0         !< surface indices
       integer :: method = METHOD_LAGRANGE
+      logical :: energy = .false.              !< LAGRange,ENERgy: massless faces (doc/impact.md)
       integer :: detection = DETECT_SWEPT
       real(wp) :: k = 0.0_wp                   !< penalty stiffness
       type(broad_t) :: broad
@@ -89,6 +91,9 @@ module exic_contact_contact
       type(pair_result_t), allocatable :: results(:)
       type(constraints_t) :: cs
       type(corrector_t) :: corr
+      logical :: energy = .false.              !< some pass asks for LAGRange,ENERgy
+      type(massless_face_t) :: face            !< the massless faces (set up by the caller: face_nodes, face%init)
+      real(wp), allocatable :: fres(:, :)      !< (2, nnode) f_ext - f_int for the face's free solve
       real(wp) :: lref = 1.0_wp                !< mean segment length
       real(wp) :: depth = 0.0_wp               !< penetration accepted at the start of a step (DEPTH_SHARE x lref)
       real(wp), allocatable :: xp(:, :)           !< (2, nnode) predicted positions x~(n+2)
@@ -103,6 +108,7 @@ module exic_contact_contact
       procedure :: pair_value => contact_pair_value
       procedure :: summary => contact_summary
       procedure :: edges => contact_edges
+      procedure :: face_nodes => contact_face_nodes
    end type contact_t
 
 contains
@@ -277,6 +283,8 @@ contains
          self%passes(k)%slave = p(k)%slave
          self%passes(k)%master = p(k)%master
          self%passes(k)%method = p(k)%method
+         self%passes(k)%energy = p(k)%energy .and. p(k)%method == METHOD_LAGRANGE
+         if (self%passes(k)%energy) self%energy = .true.
          self%passes(k)%detection = p(k)%detection
          self%passes(k)%k = p(k)%k
       end do
@@ -293,6 +301,7 @@ contains
       p(np)%slave = slave
       p(np)%master = master
       p(np)%method = ps%method
+      p(np)%energy = ps%energy
       p(np)%detection = ps%detection
       p(np)%k = ps%penalty
       if (ps%penalty_scaled) p(np)%k = -ps%penalty   ! scale factor, resolved in penalty_stiffness
@@ -362,7 +371,9 @@ contains
    !> t = 0), dt = dt(n+1); fcon = nodal contact forces, nactive = constraints in force.
    !> `rb`: the free rigid bodies, three-dof bodies in the corrector (doc/loads.md, section 5);
    !> the caller moves them with the contact forces on their nodes.
-   subroutine contact_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err, rb)
+   !> fext, fint: the external and internal forces at t(n+1), needed by massless faces
+   !> (LAGRange,ENERgy, doc/impact.md eq. I.5) once `face` is set up.
+   subroutine contact_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err, rb, fext, fint)
       class(contact_t), intent(inout) :: self
       integer, intent(in) :: nnode
       real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode), dt_prev, dt
@@ -371,6 +382,7 @@ contains
       integer, intent(out) :: nactive
       type(error_t), allocatable, intent(out) :: err
       type(rigid_dofs_t), intent(inout), optional :: rb
+      real(wp), intent(in), optional :: fext(2, nnode), fint(2, nnode)
       integer :: k, j, i, node
       real(wp) :: c, gnow, pen, t0, t1
 
@@ -380,6 +392,19 @@ contains
       fcon = 0.0_wp
       ! predicted positions at t(n+2), eq. 4.4
       self%xp = x + dt*vt + (0.5_wp*dt*dt)*a
+      ! c = dt(n+1) (dt(n) + dt(n+1)) / 2, eq. 4.7
+      c = 0.5_wp*dt*(dt_prev + dt)
+      if (self%face%active) then
+         ! massless faces: the free solve places them at their trial positions (eq. I.5, I.7)
+         if (.not. (present(fext) .and. present(fint))) then
+            call make_error(err, 'LAGRange,ENERgy needs the forces of the step (contact_t%correct: fext, fint)')
+            return
+         end if
+         if (.not. allocated(self%fres)) allocate (self%fres(2, nnode))
+         self%fres = fext - fint
+         call self%face%trial(nnode, x, self%fres, c, self%xp, a, err)
+         if (allocated(err)) return
+      end if
       do k = 1, size(self%results)
          self%results(k)%fnormal = 0.0_wp
          self%results(k)%force = 0.0_wp
@@ -415,9 +440,11 @@ contains
       t1 = wall_time()
       self%time_search = self%time_search + (t1 - t0)
       if (self%cs%n > 0) then
-         ! c = dt(n+1) (dt(n) + dt(n+1)) / 2, eq. 4.7
-         c = 0.5_wp*dt*(dt_prev + dt)
-         call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb)
+         if (self%face%active) then
+            call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb, self%face)
+         else
+            call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb)
+         end if
          self%time_corrector = self%time_corrector + (wall_time() - t1)
          if (allocated(err)) return
          self%nredundant = self%nredundant + self%corr%nredundant
@@ -580,6 +607,7 @@ contains
             text = text//'contact pass '//itoa(k)//' of pair '//itoa(self%results(ps%pair)%id)// &
                    ': nodes of surface '//itoa(ps%slave)//' against segments of surface '// &
                    itoa(ps%master)//', '//trim(methods(ps%method))//', '//trim(detections(ps%detection))
+            if (ps%energy) text = text//', massless faces (ENERgy)'
             if (k < size(self%passes)) text = text//nl
          end associate
       end do
@@ -600,6 +628,23 @@ contains
          n = n + self%surfaces(k)%nseg
       end do
    end function contact_edges
+
+   !> Nodes of the surfaces (slave and master) of the passes that ask for LAGRange,ENERgy: the
+   !> candidates for massless faces (doc/impact.md, section 3.1; the caller removes rigid and
+   !> prescribed nodes and those of elements that would keep no mass).
+   function contact_face_nodes(self, nnode) result(on)
+      class(contact_t), intent(in) :: self
+      integer, intent(in) :: nnode
+      logical :: on(nnode)
+      integer :: k
+      on = .false.
+      if (.not. self%active) return
+      do k = 1, size(self%passes)
+         if (.not. self%passes(k)%energy) cycle
+         on(self%surfaces(self%passes(k)%slave)%nodes) = .true.
+         on(self%surfaces(self%passes(k)%master)%nodes) = .true.
+      end do
+   end function contact_face_nodes
 
    !> Sorted unique values.
    function unique(a) result(u)

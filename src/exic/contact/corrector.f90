@@ -25,6 +25,10 @@
 !> their `rigid_dofs_t`: S gains g_i^b . M_b^-1 g_j^b for every body two constraints touch, and
 !> the corrected gaps of a pass count the bodies' accelerations. The caller applies the bodies'
 !> share of G p (the nodal contact forces on their nodes) to the bodies.
+!>
+!> Massless contact faces (`LAGRange,ENERgy`, doc/impact.md) join through their compliance
+!> `face`: their dofs have minv = 0, S gains (1/c) G_F^T K_FF^-1 G_F (eq. I.6), the corrected gaps
+!> count the face's motion and the face's accelerations follow eq. I.7.
 module exic_contact_corrector
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
@@ -32,6 +36,7 @@ module exic_contact_corrector
    use exic_linalg_sparse_ldl, only: sparse_ldl_t
    use exic_linalg_dense_spd, only: dense_spd_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
+   use exic_contact_massless_face, only: massless_face_t
    implicit none
    private
 
@@ -134,8 +139,9 @@ contains
    !> for three more passes), then only the last one in candidate order (Murty's rule, finite
    !> for the positive definite S of independent constraints). Constraints the factorization
    !> finds redundant carry p = 0 and are never infeasible.
-   !> `rb`: the free rigid bodies (their nodes have minv = 0), when the model has any.
-   subroutine corrector_solve(self, cs, nnode, minv, c, a, fcon, err, rb)
+   !> `rb`: the free rigid bodies (their nodes have minv = 0), when the model has any;
+   !> `face`: the massless contact faces (their nodes have minv = 0), when any pair asks for them.
+   subroutine corrector_solve(self, cs, nnode, minv, c, a, fcon, err, rb, face)
       class(corrector_t), intent(inout) :: self
       type(constraints_t), intent(inout) :: cs
       integer, intent(in) :: nnode
@@ -145,6 +151,7 @@ contains
       real(wp), intent(inout) :: fcon(2, nnode)
       type(error_t), allocatable, intent(out) :: err
       type(rigid_dofs_t), intent(inout), optional :: rb
+      type(massless_face_t), intent(inout), optional :: face
       integer :: m, nact, pass, k, i, nbad, ninf, best, budget, last
       real(wp) :: g
       logical :: have_safe
@@ -172,7 +179,11 @@ contains
       call grow(self%bad, m)
       self%rhs(1:m) = -cs%gap(1:m)/c
       if (present(rb)) call rb%prepare(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m))
-      call assemble(self, cs, nnode, minv, m, rb)
+      if (present(face)) then
+         call face%prepare(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m), err)
+         if (allocated(err)) return
+      end if
+      call assemble(self, cs, nnode, minv, m, rb, face)
 
       best = huge(1)
       budget = 3
@@ -203,13 +214,17 @@ contains
          end if
          call apply(cs, nnode, self%fwork)
          if (present(rb)) call rb%accelerations(m, cs%p(1:m))
+         if (present(face)) call face%respond(m, cs%p(1:m))
          ninf = 0
          last = 0
          do i = 1, m
             if (cs%active(i)) then
                self%infeasible(i) = cs%p(i) < 0.0_wp
-            else if (present(rb)) then
-               g = cs%gap(i) + c*(gap_change(cs, i, nnode, minv, self%fwork) + rb%gap_part(i))
+            else if (present(rb) .or. present(face)) then
+               g = gap_change(cs, i, nnode, minv, self%fwork)
+               if (present(rb)) g = g + rb%gap_part(i)
+               if (present(face)) g = g + face%gap_part(cs%node(:, i), cs%w(:, i), cs%nrm(:, i))
+               g = cs%gap(i) + c*g
                self%infeasible(i) = g < -self%gap_tol
             else
                g = cs%gap(i) + c*gap_change(cs, i, nnode, minv, self%fwork)
@@ -233,6 +248,7 @@ contains
                cs%p(1:m) = 0.0_wp
             end if
             call apply(cs, nnode, self%fwork)
+            if (present(face)) call face%respond(m, cs%p(1:m))
             exit
          end if
          if (ninf < best) then
@@ -253,6 +269,7 @@ contains
       end do
       ! a(n+1) = a~(n+1) + M^-1 G p  (eq. 4.5 with p = -lambda)
       a = a + minv*self%fwork
+      if (present(face)) call face%accelerate(nnode, a)
       fcon = fcon + self%fwork
    end subroutine corrector_solve
 
@@ -324,12 +341,13 @@ contains
    !> S = G^T M^-1 G over all m candidates: dense (m <= dense_limit) or in compressed columns
    !> with the full pattern (the pivoting passes drop constraints in the factorization). With
    !> free rigid bodies `rb`, each column gains the coupling of the bodies its candidate touches.
-   subroutine assemble(self, cs, nnode, minv, m, rb)
+   subroutine assemble(self, cs, nnode, minv, m, rb, face)
       type(corrector_t), intent(inout) :: self
       type(constraints_t), intent(in) :: cs
       integer, intent(in) :: nnode, m
       real(wp), intent(in) :: minv(2, nnode)
       type(rigid_dofs_t), intent(in), optional :: rb
+      type(massless_face_t), intent(in), optional :: face
       integer :: j, k, nd, q, i, nnz, first, l, qj, b, e
       real(wp) :: v
 
@@ -368,6 +386,15 @@ contains
                   call add_entry(i, v)
                end do
             end do
+         end if
+         if (present(face)) then
+            ! every candidate i on the face when j is: S(i, j) += (1/c) G_F,i^T K_FF^-1 G_F,j (eq. I.6)
+            if (face%slot(j) > 0) then
+               do i = 1, m
+                  v = face%coupling(i, j, cs%node(:, i), cs%w(:, i), cs%nrm(:, i))
+                  if (v /= 0.0_wp) call add_entry(i, v)
+               end do
+            end if
          end if
          if (m > self%dense_limit) call sort_column(self%ai(first:nnz), self%ax(first:nnz))
          self%ap(j + 1) = nnz + 1

@@ -39,6 +39,7 @@ module exic_explicit_step
    use exic_explicit_central, only: cd_displacement, cd_predictor, cd_velocity, positions
    use exic_explicit_loads, only: load_spec_t
    use exic_explicit_loading, only: loading_t
+   use exic_explicit_face, only: face_setup
    implicit none
    private
 
@@ -124,7 +125,7 @@ contains
       type(contact_spec_t), intent(in) :: spec
       type(error_t), allocatable, intent(out) :: err
       type(load_spec_t), intent(in), optional :: loads
-      integer :: n, k
+      integer :: n, k, nface, nkept
       real(wp) :: modulus
 
       call assembly_init(mesh, materials, self%st, self%sets, err)
@@ -142,6 +143,15 @@ contains
       end do
       call self%contact%init(spec, n, self%st%x0, self%x, mesh%nelem, mesh%conn, mesh%region, mesh%mat, &
                              modulus, err)
+      if (allocated(err)) return
+      if (self%contact%energy) then
+         ! LAGRange,ENERgy: massless contact faces (doc/impact.md, section 3)
+         call face_setup(self%st, self%sets, self%contact, nface, nkept, err)
+         if (allocated(err)) return
+         call self%messages%add('LAGRange,ENERgy: '//itoa(nface)//' massless face nodes, '//itoa(nkept)// &
+                                ' surface nodes keep their mass (rigid, prescribed, or in elements '// &
+                                'with every node on the face)')
+      end if
    end subroutine stepper_init
 
    !> Contact acts in the step (exic's own or a host's).
@@ -224,10 +234,10 @@ contains
          if (self%ld%varying) then
             ! loads that vary in time: the trapezoid rule 1/2 (F(n) + F(n+1)) . du
             call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, self%ld%favg, self%du, contact_on, &
-                             self%fcon_old, st%fcon, st%v, st%wext, st%wcon)
+                             self%fcon_old, st%fcon, st%minv, st%v, st%wext, st%wcon)
          else
             call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, st%fext, self%du, contact_on, &
-                             self%fcon_old, st%fcon, st%v, st%wext, st%wcon)
+                             self%fcon_old, st%fcon, st%minv, st%v, st%wext, st%wcon)
          end if
          if (self%ld%active) call self%ld%finish(st, self%du, 0.5_wp*st%dt_prev, .false.)
       end associate
@@ -271,10 +281,10 @@ contains
                                    st%nactive, err)
          else if (self%contact%active .and. self%ld%has_free) then
             call self%contact%correct(st%nnode, self%x, vt, st%a, st%minv, st%dt_prev, st%dt, st%fcon, &
-                                      st%nactive, err, self%ld%rb)
+                                      st%nactive, err, self%ld%rb, st%fext, st%fint)
          else if (self%contact%active) then
             call self%contact%correct(st%nnode, self%x, vt, st%a, st%minv, st%dt_prev, st%dt, st%fcon, &
-                                      st%nactive, err)
+                                      st%nactive, err, fext=st%fext, fint=st%fint)
          end if
          if (self%contact%corr%pass_limit_hits > hits) then
             self%pass_limit_warnings = self%pass_limit_warnings + 1

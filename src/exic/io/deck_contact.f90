@@ -6,7 +6,7 @@
 !> (gaps generated as for ELEMents: copies of the previous facet with non-zero nodes + ng) |
 !> **[ext]** `PHYSical,c` (the edges of edge set c, a Gmsh physical curve, resolved after END);
 !> `PAIR,id,NTOS|SYMMetric,s,m` | `PAIR,id,SELF,s`; `AUTOmatic`; method records after a PAIR
-!> or AUTOmatic: `LAGRange`, `PENAlty,k`, `PENAlty,SCALe,f` (f defaults to 0.1),
+!> or AUTOmatic: `LAGRange`, `LAGRange,ENERgy` (massless contact faces, doc/impact.md), `PENAlty,k`, `PENAlty,SCALe,f` (f defaults to 0.1),
 !> `DETEction,SWEPt|STATic`. `END CONTact` (or `END`) closes the block.
 module exic_io_deck_contact
    use exic_base_kinds, only: wp
@@ -221,6 +221,7 @@ contains
          character(len=12), parameter :: methods(3) = [character(len=12) :: 'LAGRange', &
                                                        'PENAlty', 'DETEction']
          character(len=12), parameter :: detections(2) = [character(len=12) :: 'SWEPt', 'STATic']
+         character(len=12), parameter :: schemes(1) = [character(len=12) :: 'ENERgy']
          type(pair_spec_t) :: p
          character(len=:), allocatable :: w
          if (target == 0) then
@@ -236,6 +237,15 @@ contains
          w = word(rd, i, k0)
          if (keyword_is(w, 'lagr')) then
             p%method = METHOD_LAGRANGE
+            p%energy = .false.
+            if (has_field(rd, i, k0 + 1)) then
+               if (keyword_is(word(rd, i, k0 + 1), 'ener')) then
+                  p%energy = .true.
+               else
+                  call unknown_keyword(rd, i, 'LAGRange option', field(rd, i, k0 + 1), schemes, err)
+                  return
+               end if
+            end if
          else if (keyword_is(w, 'pena')) then
             p%method = METHOD_PENALTY
             if (keyword_is(word(rd, i, k0 + 1), 'scal')) then
