@@ -119,7 +119,7 @@ contains
       real(wp) :: u(2, 4), fp(2, 4), fm(2, 4), h, w, whg, jmin, dt2
       integer :: j, conn_l(4, 1), eb, em, ef
       conn_l(:, 1) = [1, 2, 3, 4]
-      h = FD_SHARE*sqrt(max(maxval(xe(1, :)) - minval(xe(1, :)), maxval(xe(2, :)) - minval(xe(2, :)))**2)
+      h = FD_SHARE*max(maxval(xe(1, :)) - minval(xe(1, :)), maxval(xe(2, :)) - minval(xe(2, :)))
       do j = 1, 8
          u = 0.0_wp
          u(mod(j - 1, 2) + 1, (j + 1)/2) = h
