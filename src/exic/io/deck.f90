@@ -101,7 +101,7 @@ contains
       if (allocated(err)) return
       call check_contact(model%contact, model%mesh, err)
       if (allocated(err)) return
-      call energy_warnings(rd, model%contact, model%mesh, model%materials)
+      if (allocated(model%materials)) call energy_warnings(rd, model%contact, model%mesh, model%materials)
       map = [(n, n=1, model%mesh%nnode)]
       do
          call next_nonblank(rd, i)
