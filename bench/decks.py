@@ -162,6 +162,31 @@ def deforming_block(n, quad=2, steps=300, tplot=100, a=0.5, b=0.5):
             + _program(steps=steps, tplot=tplot, requests=["disp,,1,0,0", "velo,,1,0,0"]))
 
 
+def body_grid(nside, ne=4, gap=0.05, v=5.0, steps=300, tplot=100, auto=True, far=False):
+    """nside x nside free square bodies (REGIons) of ne x ne elements 0.25 wide, gap apart, with
+    AUTOmatic contact: the columns move at +v and -v in x alternately, so columns 1-2, 3-4, ...
+    close their gap after gap / (2 v) and collide, while the gaps between columns 2-3, 4-5, ...
+    open and bodies above each other slide side by side without touching. `far`: only two
+    bodies, the second 100 widths away (a pair that never comes near). Without `auto` the
+    same bodies run without a CONTact block."""
+    h = 0.25*ne
+    pitch = h + gap
+    s = (f"FEAP * * {nside} x {nside} bodies of {ne} x {ne} elements, AUTOmatic contact\n0 0 0 2 2 4\n"
+         + _lame_parameters() + _material(1))
+    places = [(ix, iy) for iy in range(nside) for ix in range(nside)]
+    if far:
+        places = [(0, 0), (100, 0)]
+    init = []
+    for r, (ix, iy) in enumerate(places, start=1):
+        x0, y0 = ix*pitch, iy*pitch
+        s += f"REGIon,{r}\n" + _block(ne, ne, 1, [(x0, y0), (x0 + h, y0), (x0 + h, y0 + h), (x0, y0 + h)])
+        init.append(f"  REGIon,{r},{(v if ix % 2 == 0 else -v)!r},0")
+    s += "INITial,VELOcity\n" + "\n".join(init) + "\n\n"
+    if auto:
+        s += "CONTact\n  AUTOmatic\nEND CONTact\n\n"
+    return s + _program(steps=steps, tplot=tplot, requests=["disp,,1,0,0"])
+
+
 # The three 1-D impacts of the work-precision study (doc/performance.md section 4, exact values
 # in doc/contact-verification.md "Two bars"): E = 1e4, nu = 0, bars L x H = 30 x 4, v0 = 0.1.
 IMPACT_E, IMPACT_V0, IMPACT_L, IMPACT_H = 1.0e4, 0.1, 30.0, 4.0

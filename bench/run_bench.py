@@ -16,6 +16,8 @@ Sections (doc/performance.md explains each):
               scheme, LAGRange,ENERgy and penalty; duration, mean force, force RMS, rebound,
               final energy against processor time (--big adds 480 x 96)
   stability   CFL sweep, fixed DT around the limit, distorted meshes, contact
+  bodies      AUTOmatic contact between 4..256 bodies: shares of search and corrector, the step
+              against --baseline-bindir when given; an idle pair of bodies against no contact
   compare     (only when asked, with --baseline-bindir) two builds side by side: whole-step rates
               of a block in which every element deforms, 10^3 .. 10^6 elements, both
               quadratures, the current build on one and on two threads; memory per element
@@ -645,6 +647,72 @@ def crossover(rows, key):
     return nc
 
 
+def bodies(args, run):
+    """AUTOmatic contact between many bodies (decks.body_grid): n x n bodies of ne x ne elements,
+    columns colliding pairwise; shares of search and corrector in the step (<stem>.out phase
+    times, medians), and with --baseline-bindir the whole step against the baseline build,
+    alternated. The idle pair: two bodies that never come near, with AUTOmatic contact against
+    the same deck without a CONTact block (processor time from two run lengths)."""
+    base = Runner(os.path.abspath(args.baseline_bindir)) if args.baseline_bindir else None
+    nrep = 2 if args.quick else 5
+    res = {"deck": "decks.body_grid: n x n free bodies of ne x ne elements 0.25 wide, gap 0.05, "
+                   "columns at +-5 alternately (pairs of columns collide)", "grid": [], "idle": {}}
+    for ne in (4, 8):
+        for n in ([2, 4, 8] if args.quick else [2, 4, 8, 16]):
+            steps = 300
+            runs = {"current": [], "baseline": []}
+            for rep in range(nrep):
+                for who, rr in (("current", run), ("baseline", base)):
+                    # the baseline's pass per pair takes minutes a run beyond 64 bodies
+                    if rr is None or (who == "baseline" and n*n > 64):
+                        continue
+                    r = rr.run(f"bodies_{who}", decks.body_grid(n, ne=ne, steps=steps))
+                    if r["rc"] != 0:
+                        raise RuntimeError(f"bodies run failed ({who}): {r['stderr'][-300:]}")
+                    r["max_active"] = max(read_table(r["stem"] + ".ene")["active"])
+                    runs[who].append(r)
+            row = {"n": n*n, "ne": ne, "elements": runs["current"][0]["elements"], "steps": steps,
+                   "max_active": runs["current"][0]["max_active"]}
+            for who, rs in runs.items():
+                if not rs:
+                    continue
+                row[who] = {"step_us": median([1e6*x["time_steps"]/x["steps"] for x in rs]),
+                            "share_search": median([x["time_search"]/x["time_steps"] for x in rs]),
+                            "share_corrector": median([x["time_corrector"]/x["time_steps"] for x in rs]),
+                            "share_contact": median([(x["time_search"] + x["time_corrector"])/x["time_steps"]
+                                                     for x in rs]),
+                            "cpu": median([x["cpu"] for x in rs])}
+            if runs["baseline"]:
+                row["ratio_step"] = median([b["time_steps"]/c["time_steps"]
+                                            for c, b in zip(runs["current"], runs["baseline"])])
+                row["ratio_cpu"] = median([b["cpu"]/c["cpu"] for c, b in zip(runs["current"], runs["baseline"])])
+                row["same_results"] = all(open(c["stem"] + ".ene").read() == open(b["stem"] + ".ene").read()
+                                          for c, b in zip(runs["current"][-1:], runs["baseline"][-1:]))
+            res["grid"].append(row)
+            log(f"bodies {n*n:4d} x {ne}x{ne}: step {row['current']['step_us']:.0f} us, search + corrector "
+                f"{100*row['current']['share_contact']:.1f} %"
+                + (f"; baseline {100*row['baseline']['share_contact']:.1f} %, faster x{row['ratio_step']:.2f} "
+                   f"(time in steps), identical .ene: {row['same_results']}" if runs["baseline"] else ""))
+    # the idle pair: 2 bodies of 60 x 60 elements, 100 widths apart
+    n1, n2 = (100, 400) if args.quick else (200, 1000)
+    rates = {"auto": [], "none": []}
+    for rep in range(nrep + 2):
+        for key, auto in (("auto", True), ("none", False)):
+            r1 = run.run(f"idle_{key}_short", decks.body_grid(1, ne=60, far=True, steps=n1, auto=auto))
+            r2 = run.run(f"idle_{key}", decks.body_grid(1, ne=60, far=True, steps=n2, auto=auto))
+            rates[key].append({"cpu_step": (r2["cpu"] - r1["cpu"])/(n2 - n1),
+                               "share_contact": (r2["time_search"] + r2["time_corrector"])/r2["time_steps"]
+                               if auto else 0.0})
+    res["idle"] = {"elements": 7200, "steps": [n1, n2],
+                   "cost": spread([a["cpu_step"]/b["cpu_step"] - 1.0 for a, b in zip(rates["auto"], rates["none"])]),
+                   "share_contact": spread([a["share_contact"] for a in rates["auto"]])}
+    log(f"bodies idle pair: step with AUTOmatic / without - 1 = {100*res['idle']['cost']['median']:.2f} % "
+        f"(range {100*res['idle']['cost']['min']:.1f} .. {100*res['idle']['cost']['max']:.1f}), contact phases "
+        f"{100*res['idle']['share_contact']['median']:.2f} % of the step")
+    save("bodies", res)
+    return res
+
+
 def contact_measures(t, f, fexact):
     """Impulse, duration and mean force of a contact force history (as test_contact.f90):
     duration from t(1) to the last fall of f through fexact/2."""
@@ -1002,6 +1070,24 @@ def summary():
             L.append("- load average (1 min) at the start of each section: "
                      + ", ".join(f"{k} {v:.2f}" for k, v in ld.items() if v is not None))
         L.append("")
+    b = load("bodies")
+    if b:
+        L += ["## AUTOmatic contact between many bodies (decks.body_grid)", "",
+              "Shares of the step from <stem>.out phase times (wall clock: only meaningful on a quiet machine); "
+              "baseline ratio = time in steps of the baseline build / this build, alternated.", "",
+              "| bodies | elements each | elements | step [us] | search + corrector | baseline share | "
+              "faster than baseline | same .ene |", "|---|---|---|---|---|---|---|---|"]
+        for row in b["grid"]:
+            cur, bas = row["current"], row.get("baseline")
+            L.append(f"| {row['n']} | {row['ne']} x {row['ne']} | {row['elements']} | {cur['step_us']:.0f} | "
+                     f"{100*cur['share_contact']:.1f} % | "
+                     + (f"{100*bas['share_contact']:.1f} % | x{row['ratio_step']:.2f} | {row['same_results']} |"
+                        if bas else "- | - | - |"))
+        i = b["idle"]
+        L += ["", f"Idle pair (2 bodies of 60 x 60 elements apart, {i['steps'][1]} - {i['steps'][0]} steps): "
+              f"processor time per step with AUTOmatic / without - 1 = {100*i['cost']['median']:.2f} % "
+              f"(range {100*i['cost']['min']:.2f} .. {100*i['cost']['max']:.2f} %), contact phases "
+              f"{100*i['share_contact']['median']:.2f} % of the step.", ""]
     r = load("rate")
     if r:
         k = r["kernel"]
@@ -1218,6 +1304,8 @@ def main(argv=None):
             stability(args, run)
         elif sec == "compare":
             compare(args, run)
+        elif sec == "bodies":
+            bodies(args, run)
         else:
             ap.error("unknown section " + sec)
         log(f"-- {sec}: {time.time() - t1:.0f} s (load average at its start {loads[sec]})")

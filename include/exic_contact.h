@@ -50,6 +50,11 @@ void exic_c_contact_set_option(int ih, int iopt, int ival, int *ierr);
 void exic_c_contact_step(int ih, int nnode, const double *x, const double *v, double *a,
                          double dtprev, double dt, double *fcon, int *nactive, int *ierr);
 void exic_c_contact_pair_results(int ih, int ipair, double *res, int *ierr);
+/* Coulomb friction of pair ipair: static amus, dynamic amud <= amus, decay with slip speed
+ * (0: amus at rest, amud sliding); amus = 0: frictionless (doc/friction.md) */
+void exic_c_contact_set_friction(int ih, int ipair, double amus, double amud, double decay, int *ierr);
+/* res[4]: friction force, sticking and slipping constraints of the last step, dissipation */
+void exic_c_contact_pair_friction(int ih, int ipair, double *res, int *ierr);
 void exic_c_contact_ncon(int ih, int *ncon, int *ierr);
 void exic_c_contact_constraints(int ih, int mcon, int *ncon, int *icon, double *rcon, int *ierr);
 void exic_c_contact_work(int ih, double *wcon, double *penmax, int *ierr);

@@ -28,6 +28,7 @@ program exic_tests
    use test_hostile, only: run_hostile_tests
    use test_math, only: run_math_tests
    use test_threads, only: run_threads_tests
+   use test_friction, only: run_friction_tests
    implicit none
    type(runner_t) :: r
 
@@ -53,6 +54,7 @@ program exic_tests
    call r%run('gmsh', run_gmsh_tests)
    call r%run('loads', run_loads_tests)
    call r%run('rigid', run_rigid_tests)
+   call r%run('friction', run_friction_tests)
    call r%run('hostile', run_hostile_tests)
    call r%run('legacy', run_legacy_tests)
    call r%finish()

@@ -7,6 +7,7 @@ module test_contact_geom
    use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, &
                                  segment_normal, average_normal, node_normals
    use exic_contact_broad, only: broad_t, broad_search, broad_brute, surfaces_apart
+   use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: gap_coefficients, first_crossing, swept_pair, static_pair, &
                                   contact_set_t, detect_contacts, ALPHA_TOL, FACING_LIMIT
    use testing, only: suite_t, check, check_close, section
@@ -35,6 +36,7 @@ contains
       call test_corner(s)
       call test_broad_random(s)
       call test_broad_scaling(s)
+      call test_broad_all(s)
    end subroutine run_contact_geom_tests
 
    ! ---------------------------------------------------------------- helpers
@@ -638,5 +640,104 @@ contains
       call check(s, tests(2) <= 15_i8*tests(1), 'box tests grow linearly with the scene')
       call check(s, tests(2) <= 5_i8*1000_i8, 'box tests far below n_slave x n_segment')
    end subroutine test_broad_scaling
+
+   !> nb closed polygons of m nodes (radius 0.5, nodes numbered body after body, bodies on a
+   !> jittered grid of pitch `pitch`), moved at random by up to `move`.
+   subroutine polygons(g, nb, m, pitch, move, x0, x1, seg)
+      type(lcg_t), intent(inout) :: g
+      integer, intent(in) :: nb, m
+      real(wp), intent(in) :: pitch, move
+      real(wp), allocatable, intent(out) :: x0(:, :), x1(:, :)
+      integer, allocatable, intent(out) :: seg(:, :)
+      integer :: b, k, nrow
+      real(wp) :: c(2), ang
+      allocate (x0(2, nb*m), x1(2, nb*m), seg(2, nb*m))
+      nrow = max(1, int(sqrt(real(nb, wp))))
+      do b = 1, nb
+         c = pitch*[real(mod(b - 1, nrow), wp), real((b - 1)/nrow, wp)] + &
+             [rnd(g, -0.1_wp, 0.1_wp), rnd(g, -0.1_wp, 0.1_wp)]
+         do k = 1, m
+            ang = 6.2831853_wp*(k - 1)/m
+            x0(:, (b - 1)*m + k) = c + 0.5_wp*[cos(ang), sin(ang)]
+            seg(:, (b - 1)*m + k) = [(b - 1)*m + k, (b - 1)*m + mod(k, m) + 1]
+         end do
+      end do
+      do k = 1, nb*m
+         x1(:, k) = x0(:, k) + [rnd(g, -move, move), rnd(g, -move, move)]
+      end do
+   end subroutine polygons
+
+   !> The search over all surfaces gives, for every ordered pair of surfaces, exactly the
+   !> candidate list of broad_brute on that pair (none: no group), in the order of the pairs.
+   subroutine test_broad_all(s)
+      type(suite_t), intent(inout) :: s
+      type(lcg_t) :: g
+      type(broad_all_t) :: ba, bb
+      real(wp), allocatable :: x0(:, :), x1(:, :)
+      integer, allocatable :: seg(:, :), cand(:, :)
+      integer :: scene, nb, m, i, j, ncand, grp, nexp, k
+      integer(i8) :: tests(2)
+      logical :: ok, order
+
+      call section(s, 'contact geometry: one broad phase over all surfaces')
+      do scene = 1, 3
+         nb = 9*scene
+         m = 6 + 4*scene
+         call polygons(g, nb, m, 1.05_wp, 0.04_wp*scene, x0, x1, seg)
+         ba = broad_all_t()
+         do i = 1, nb
+            call ba%add_surface([((i - 1)*m + k, k=1, m)], seg(:, (i - 1)*m + 1:i*m))
+         end do
+         call ba%search(nb*m, x0, x1, 0.02_wp)
+         ok = .true.
+         nexp = 0
+         grp = 0
+         do i = 1, nb
+            do j = 1, nb
+               if (i == j) cycle
+               call broad_brute(nb*m, x0, x1, m, [((i - 1)*m + k, k=1, m)], m, &
+                                seg(:, (j - 1)*m + 1:j*m), 0.02_wp, ncand, cand)
+               if (ncand == 0) cycle
+               nexp = nexp + 1
+               grp = grp + 1
+               if (grp > ba%ngroup) then
+                  ok = .false.
+                  cycle
+               end if
+               if (ba%gslave(grp) /= i .or. ba%gmaster(grp) /= j .or. &
+                   ba%gfirst(grp + 1) - ba%gfirst(grp) /= ncand) then
+                  ok = .false.
+                  cycle
+               end if
+               if (any(ba%gcand(:, ba%gfirst(grp):ba%gfirst(grp + 1) - 1) /= cand(:, 1:ncand))) ok = .false.
+            end do
+         end do
+         call check(s, ok .and. ba%ngroup == nexp .and. nexp > 0, &
+                    'polygon scene '//achar(48 + scene)//': every pair''s candidates as brute force, in pair order')
+      end do
+      ! bodies far apart: no group; the work grows like the number of bodies
+      order = .true.
+      do scene = 1, 2
+         nb = 100*10**(scene - 1)
+         call polygons(g, nb, 8, 3.0_wp, 0.1_wp, x0, x1, seg)
+         bb = broad_all_t()
+         do i = 1, nb
+            call bb%add_surface([((i - 1)*8 + k, k=1, 8)], seg(:, (i - 1)*8 + 1:i*8))
+         end do
+         call bb%search(nb*8, x0, x1, 0.02_wp)
+         tests(scene) = bb%ntests
+         order = order .and. bb%ngroup == 0
+      end do
+      call check(s, order, 'bodies apart: no pair of surfaces searched')
+      call check(s, tests(2) <= 15_i8*tests(1) .and. tests(2) <= 5_i8*1000_i8, &
+                 'bodies apart: box tests grow like the number of bodies', &
+                 'box tests '//trim(adjustl(i8str(tests(1))))//' -> '//trim(adjustl(i8str(tests(2)))))
+   end subroutine test_broad_all
+
+   function i8str(v) result(t)
+      integer(i8), intent(in) :: v
+      character(len=24) :: t
+      write (t, '(i0)') v
+   end function i8str
 
 end module test_contact_geom

@@ -14,7 +14,7 @@ module test_fields
    private
 
    public :: run_fields_tests, synthetic_mesh, synthetic_step, write_synthetic
-   public :: NNODE_T, NELEM_T, run_python
+   public :: NNODE_T, NELEM_T, run_python, h5dump
 
    integer, parameter :: NNODE_T = 12, NELEM_T = 6
    character(len=*), parameter :: DIR = 'build/test_fields'
@@ -472,6 +472,7 @@ contains
 
       space = ''
       allocate (vals(0))
+      call execute_command_line('mkdir -p '//DIR)
       call execute_command_line(env//'h5dump -A 0 -y -w 0 -m %.17g '//args//' > '//out//' 2>&1', &
                                 exitstat=code)
       ok = code == 0

@@ -14,13 +14,14 @@
 !> - fields a record has but no command uses.
 module test_hostile
    use, intrinsic :: iso_c_binding, only: c_int, c_long
-   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, ieee_is_finite
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
    use exic_io_history, only: history_files_t
+   use exic_io_number, only: put_real, put_int, REAL_WIDTH
    use exic_io_memory, only: mesh_memory_message
    use exic_io_posix, only: make_directories, file_kind, FILE_DIRECTORY, FILE_MISSING
    use testing, only: suite_t, check, section
@@ -335,7 +336,7 @@ contains
       type(history_files_t) :: f
       type(error_t), allocatable :: err
       real(wp), parameter :: tiny_value = 1.2188988004400879e-302_wp
-      real(wp) :: row(3), ene(13)
+      real(wp) :: row(3), ene(14)
       character(len=32) :: labels(2)
       character(len=400) :: line
       integer :: u, ios
@@ -347,7 +348,7 @@ contains
       call f%his_row(1.0e-300_wp, [tiny_value, -tiny_value], err)
       call check(s, .not. allocated(err), 'a row of tiny values is written')
       call f%ene_row(2.0_wp, 7_i8, 1.0e-301_wp, tiny_value, 3.0e300_wp, 0.0_wp, -tiny_value, &
-                     1.0_wp, 0.0_wp, [1.0e-310_wp, -2.0e-320_wp], 3, 0.0_wp, 0.0_wp, err)
+                     1.0_wp, 0.0_wp, [1.0e-310_wp, -2.0e-320_wp], 3, 0.0_wp, 0.0_wp, 0.0_wp, err)
       call check(s, .not. allocated(err), 'an energy row of tiny values is written')
       call f%close()
       open (newunit=u, file=tmp//'fmt.his', status='old', action='read')
@@ -371,7 +372,68 @@ contains
                  '.ene values (subnormals too) round-trip exactly')
       call check(s, has(rtoa(tiny_value), 'E-302'), 'rtoa writes the E of a 3-digit exponent', &
                  rtoa(tiny_value))
+      call row_text(s)
    end subroutine number_format
+
+   !> The rows' own number formatting (exic_io_number) gives the characters of Fortran's
+   !> `1x,es24.16e3` and `i12` editing: zeros, subnormals, the extremes, powers of ten and
+   !> their neighbours, and 300000 random bit patterns of every exponent.
+   subroutine row_text(s)
+      type(suite_t), intent(inout) :: s
+      character(len=REAL_WIDTH) :: want
+      character(len=64) :: got
+      character(len=200) :: first
+      integer :: k, n, nbad, e
+      integer(i8) :: state, bits, iv(6)
+      real(wp) :: x, special(10)
+      nbad = 0
+      first = ''
+      special = [0.0_wp, -0.0_wp, tiny(1.0_wp), -huge(1.0_wp), huge(1.0_wp), 4.9406564584124654e-324_wp, &
+                 1.0_wp, 9.9999999999999995e-1_wp, 0.5_wp, -1.0e300_wp]
+      do k = 1, size(special)
+         call compare(special(k))
+      end do
+      do e = -320, 308
+         x = 10.0_wp**e
+         if (x == 0.0_wp .or. .not. ieee_is_finite(x)) cycle
+         call compare(x)
+         call compare(nearest(x, 1.0_wp))
+         call compare(-nearest(x, -1.0_wp))
+      end do
+      state = 88172645463325252_i8
+      do k = 1, 300000
+         ! xorshift64: every exponent and mantissa pattern
+         state = ieor(state, shiftl(state, 13))
+         state = ieor(state, shiftr(state, 7))
+         state = ieor(state, shiftl(state, 17))
+         bits = state
+         x = transfer(bits, 1.0_wp)
+         if (.not. ieee_is_finite(x)) cycle
+         call compare(x)
+      end do
+      call check(s, nbad == 0, 'row text of reals equals es24.16e3 editing (random bit patterns, powers of ten)', &
+                 trim(first))
+      iv = [0_i8, 7_i8, -3_i8, 123456789012_i8, 999999999999_i8, 1000000000000_i8]
+      nbad = 0
+      do k = 1, size(iv)
+         write (want(1:12), '(i12)') iv(k)
+         n = 0
+         call put_int(got, n, iv(k), 12)
+         if (n /= 12 .or. got(1:12) /= want(1:12)) nbad = nbad + 1
+      end do
+      call check(s, nbad == 0, 'row text of integers equals i12 editing (and asterisks beyond 12 digits)')
+   contains
+      subroutine compare(y)
+         real(wp), intent(in) :: y
+         write (want, '(1x,es24.16e3)') y
+         n = 0
+         got = ''
+         call put_real(got, n, y)
+         if (n == REAL_WIDTH .and. got(1:n) == want) return
+         nbad = nbad + 1
+         if (first == '') first = 'first difference: "'//want//'" against "'//got(1:REAL_WIDTH)//'"'
+      end subroutine compare
+   end subroutine row_text
 
    !> A row with a NaN or an infinity is not written; the writer says which column and when.
    subroutine nonfinite_rows(s)
@@ -397,7 +459,7 @@ contains
                                      'naming the column', err%message)
       call check(s, f%nonfinite, 'and sets the nonfinite flag')
       call f%ene_row(0.5_wp, 1_i8, 0.1_wp, inf, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, &
-                     [0.0_wp, 0.0_wp], 0, 0.0_wp, 0.0_wp, err)
+                     [0.0_wp, 0.0_wp], 0, 0.0_wp, 0.0_wp, 0.0_wp, err)
       call check(s, allocated(err), 'a .ene row with an infinity returns an error')
       if (allocated(err)) call check(s, has(err%message, 'infinite value in column kinetic'), &
                                      'naming the column', err%message)

@@ -83,7 +83,43 @@ contains
       call c_host_test(s)
       call section(s, 'legacy API: the link lines and the F77 skeleton of doc/api.md')
       call skeleton_test(s)
+      call section(s, 'legacy API: F77 host with Coulomb friction')
+      call slide_test(s)
    end subroutine run_legacy_tests
+
+   !> The F77 host examples/legacy_host/slide.f (a square of springs, mass 1, launched at 1 on a
+   !> rigid floor under g = 10 with EXIC_CONTACT_SET_FRICTION mu = 0.5): its centre slides
+   !> v0^2/(2 mu g) = 0.1 within 1 %, the friction force of EXIC_CONTACT_PAIR_FRICTION is mu times
+   !> the normal force of EXIC_CONTACT_PAIR_RESULTS while both corners slip, and at the end both
+   !> corners stick; the square still rings on its undamped springs, which may unload a corner
+   !> for a moment, so the corners' motion over the last 300 steps is held to 1e-4 of the slide.
+   subroutine slide_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: out
+      integer :: stat, cstat, k, ios, nstick
+      real(wp) :: dist, rel, creep
+      call execute_command_line(bindir//'/slide > '//bindir//'/slide.txt 2>&1', exitstat=stat, cmdstat=cstat)
+      out = text_of(bindir//'/slide.txt')
+      call check(s, stat == 0 .and. cstat == 0, 'the F77 host with friction runs', out)
+      dist = 0.0_wp
+      rel = huge(1.0_wp)
+      creep = huge(1.0_wp)
+      nstick = 0
+      k = index(out, 'DISTANCE')
+      if (k > 0) out = out(k:)
+      if (k > 0) read (out(9:), *, iostat=ios) dist
+      k = index(out, ' FRICTION ')
+      if (k > 0) read (out(k + 10:), *, iostat=ios) rel
+      k = index(out, 'CREEP')
+      if (k > 0) read (out(k + 5:), *, iostat=ios) creep
+      k = index(out, 'STICKING')
+      if (k > 0) read (out(k + 8:), *, iostat=ios) nstick
+      call check(s, abs(dist - 0.1_wp) <= 1.0e-3_wp, 'F77 host: the square slides v0^2/(2 mu g) = 0.1 within 1 %', &
+                 rtoa(dist))
+      call check(s, rel <= 1.0e-12_wp, 'F77 host: friction force = mu N while both corners slip', rtoa(rel))
+      call check(s, nstick == 2 .and. creep <= 1.0e-5_wp, 'F77 host: at the end both corners stick and stay', &
+                 itoa(nstick)//' sticking, corners moved '//rtoa(creep))
+   end subroutine slide_test
 
    ! ------------------------------------------------------------------ scenes
 
@@ -497,7 +533,7 @@ contains
       fpm = fpm_command()
       if (len(fpm) == 0) then
          built = .false.
-         call skip(s, 'install exic and build the F77 and C hosts (and their 35 checks)', 'fpm ($EXIC_FPM or on PATH)', 35)
+         call skip(s, 'install exic and build the F77 and C hosts (and their 39 checks)', 'fpm ($EXIC_FPM or on PATH)', 39)
          return
       end if
       ! an empty prefix, so the check of what is installed sees this installation only
@@ -794,7 +830,8 @@ contains
       integer :: stat, cstat
       call execute_command_line(bindir//'/chost > '//run_dir//'/chost.txt 2>&1', exitstat=stat, cmdstat=cstat)
       call check(s, stat == 0 .and. cstat == 0, 'chost: one step closes the gap, contact force = m a, '// &
-                 'unknown handle reported (output in '//run_dir//'/chost.txt)')
+                 'unknown handle reported; with mu = 0.5 the node slides with friction force mu N '// &
+                 'against its motion, mud > mus refused (output in '//run_dir//'/chost.txt)')
    end subroutine c_host_test
 
 end module test_legacy

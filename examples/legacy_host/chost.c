@@ -5,7 +5,10 @@
  * 1 -> 2) and a free node 3 at (0, h) falling at speed w; the step from t = 0 with dt would
  * carry it to y = h - w dt < 0. The corrector must close the gap at t(n+2): the corrected
  * position h + dt w_y + dt^2/2 a_y is 0, and the contact force on node 3 is m a_y.
- * Prints one line and exits 0 when all holds.
+ * The same node then falls again on a fresh handle with mu = 0.5 (exic_c_contact_set_friction)
+ * while moving at 3 along the ground: it slides, the friction force is mu times the normal
+ * force and opposes the motion (exic_c_contact_pair_friction), and mud > mus is refused.
+ * Prints its lines and exits 0 when all holds.
  */
 #include <math.h>
 #include <stdio.h>
@@ -59,5 +62,26 @@ int main(void) {
     if (nactive != 1 || fabs(y2) > 1e-14 || fabs(fy - m * a[5]) > 1e-12 * fabs(fy) ||
         fabs(res[0] - fy) > 1e-12 * fabs(fy) || lmsg == 0 || ierr != EXIC_OK)
         return 2;
+    /* Coulomb friction through the C names */
+    {
+        double vf[6] = {0.0, 0.0, 0.0, 0.0, 3.0, -w}, af[6] = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+        double ff[6], rp[6], rf[4];
+        int ihf, nf, ebad;
+        exic_c_contact_create_segments(3, x0, mass, 1, iseg, 1, isn, 1, ipair, ppair, &ihf, &ierr);
+        if (ierr != EXIC_OK) return 4;
+        exic_c_contact_set_friction(ihf, 1, 0.3, 0.5, 0.0, &ebad);
+        exic_c_contact_set_friction(ihf, 1, 0.5, 0.5, 0.0, &ierr);
+        if (ierr != EXIC_OK || ebad != EXIC_EARGUMENT) return 4;
+        exic_c_contact_step(ihf, 3, x0, vf, af, 0.0, dt, ff, &nf, &ierr);
+        if (ierr != EXIC_OK) return 4;
+        exic_c_contact_pair_results(ihf, 1, rp, &ierr);
+        exic_c_contact_pair_friction(ihf, 1, rf, &ierr);
+        printf("chost: friction force %.6e normal force %.6e sticking %g slipping %g fx %.6e\n",
+               rf[0], rp[0], rf[1], rf[2], ff[4]);
+        exic_c_contact_free(ihf, &ierr);
+        if (nf != 1 || rf[2] != 1.0 || rf[1] != 0.0 || fabs(rf[0] - 0.5 * rp[0]) > 1e-12 * rp[0] ||
+            !(ff[4] < 0.0) || fabs(fabs(ff[4]) - 0.5 * ff[5]) > 1e-12 * ff[5])
+            return 5;
+    }
     return 0;
 }

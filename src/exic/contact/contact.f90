@@ -5,8 +5,10 @@
 !> pair of every two regions. Per step and pass: predicted positions x~(n+2) (eq. 4.4), the
 !> broad phase on swept boxes, swept (or static) node-to-segment detection (eq. 6.1-6.6), and
 !> candidate constraints with the predicted gap of eq. 3.19 at t(n+2) and a frozen normal. All
-!> Lagrange candidates of all passes are solved together by the corrector (eq. 4.5-4.7);
-!> penalty passes add k x penetration forces at t(n+1) instead.
+!> Lagrange candidates of all passes are solved together by the corrector (eq. 4.5-4.7), or,
+!> when a pair has Coulomb friction, by the frictional corrector (doc/friction.md, eq. F6-F15);
+!> penalty passes add k x penetration forces at t(n+1) instead (src/exic/contact/penalty.f90,
+!> with the regularised friction law F18).
 !>
 !> Everything comes in as plain arrays: the CONTact block's spec, the positions, the element
 !> connectivity with region and material numbers (for REGIon/MATErial and AUTOmatic surfaces),
@@ -15,16 +17,20 @@
 !> `init` and `correct`.
 module exic_contact_contact
    use exic_base_kinds, only: wp
-   use exic_base_strings, only: itoa
+   use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
+   use exic_base_grow, only: grow
    use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, SURF_NODES, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
                                 DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t
    use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, node_normals
    use exic_contact_broad, only: broad_t, broad_search
+   use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: contact_set_t, detect_contacts
    use exic_contact_corrector, only: constraints_t, corrector_t
+   use exic_contact_friction, only: friction_t, coulomb_mu
+   use exic_contact_penalty, only: penalty_forces, penalty_history_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
    use exic_contact_massless_face, only: massless_face_t
    implicit none
@@ -38,8 +44,6 @@ module exic_contact_contact
    !> other body's corner (deformed a little off 90 degrees) gives about 0 and is rejected, so
    !> corners of bodies of equal height do not pair with each other's side faces.
    real(wp), parameter :: FACING = -0.5_wp
-   !> Viscous damping of penalty contact as a fraction of critical (LS-DYNA's customary 10 %).
-   real(wp), parameter :: PENALTY_DAMPING = 0.1_wp
    !> Share of the mean segment length up to which a slave node found behind a master segment at
    !> the start of a step is still caught (and pushed back by the corrector). The corrector closes
    !> each gap along a normal frozen over the step (seed section 4), so a node that slides past
@@ -57,6 +61,7 @@ module exic_contact_contact
       integer, allocatable :: nodes(:)         !< (nnode) sorted
       integer, allocatable :: where(:, :)      !< (2, nseg) positions of seg nodes in `nodes`
       real(wp), allocatable :: nrm(:, :)       !< (2, nnode) node normals at t(n+1)
+      integer :: nrm_stamp = -1                !< search whose positions nrm holds
    end type surface_t
 
    !> One pass: the nodes of surface `slave` against the segments of surface `master`.
@@ -67,6 +72,14 @@ module exic_contact_contact
       logical :: energy = .false.              !< LAGRange,ENERgy: massless faces (doc/impact.md)
       integer :: detection = DETECT_SWEPT
       real(wp) :: k = 0.0_wp                   !< penalty stiffness
+      logical :: friction = .false.            !< Coulomb friction with law(1) = mus > 0
+      real(wp) :: law(3) = 0.0_wp              !< mus, mud, decay (doc/friction.md, eq. F12)
+      type(penalty_history_t) :: hist          !< tangential state of a penalty pass with friction
+      !> per hit of a penalty pass: penetration, normal force, force on the slave, tangential
+      !> force and state (grown, never shrunk)
+      real(wp), allocatable :: pen(:), fn(:), f(:, :), q(:)
+      integer, allocatable :: state(:)
+      logical :: auto = .false.                !< AUTOmatic: candidates from the search over all surfaces
       type(broad_t) :: broad
       type(contact_set_t) :: hits
    end type pass_t
@@ -80,6 +93,11 @@ module exic_contact_contact
       !> -p g(n+1), the gap each closes by t(n+2) (positive: the pair pushed bodies apart)
       real(wp) :: work = 0.0_wp
       integer :: nactive = 0
+      ! friction (doc/friction.md, section 7)
+      real(wp) :: ftangent = 0.0_wp            !< friction force: sum of |q| over the pair's constraints
+      integer :: nstick = 0, nslip = 0         !< constraints that stick, that slip
+      real(wp) :: dissipation = 0.0_wp         !< frictional dissipation over the run (eq. F16-F17)
+      real(wp) :: pending = 0.0_wp             !< Coulomb work of the last step, booked at the next
    end type pair_result_t
 
    !> All contact of a model. Inactive (no work at all) when the deck has no CONTact block.
@@ -88,6 +106,18 @@ module exic_contact_contact
       logical :: any_penalty = .false.
       type(surface_t), allocatable :: surfaces(:)
       type(pass_t), allocatable :: passes(:)
+      !> passes in force: 1..nfixed those of the PAIR records (and of a penalty AUTOmatic), then
+      !> one per pair of AUTOmatic surfaces that the search over all surfaces found near
+      integer :: npass = 0, nfixed = 0
+      type(pass_t) :: auto_pass                !< options of the Lagrange AUTOmatic passes
+      type(broad_all_t) :: auto                !< the AUTOmatic surfaces and their search
+      integer :: auto_first = 0                !< surfaces(auto_first + r) is AUTOmatic surface r
+      integer, allocatable :: cnodes(:)        !< every node of every contact surface
+      integer :: stamp = 0                     !< searches made (normals are formed once per search)
+      !> the caller passes the same fcon to every call and leaves it alone in between (the
+      !> stepper): fcon is then zeroed only when the last call left forces in it
+      logical :: keep_fcon = .false.
+      logical :: fcon_clean = .false.          !< the last call left fcon zero everywhere
       type(pair_result_t), allocatable :: results(:)
       type(constraints_t) :: cs
       type(corrector_t) :: corr
@@ -101,6 +131,14 @@ module exic_contact_contact
       real(wp) :: time_search = 0.0_wp         !< wall time in search (broad + narrow phase)
       real(wp) :: time_corrector = 0.0_wp      !< wall time in the corrector (assembly + solve)
       integer :: nredundant = 0                !< redundant constraints removed over the run
+      ! friction (doc/friction.md); allocated and used only when a pair has it
+      logical :: friction = .false.            !< some pass has Coulomb friction
+      type(friction_t) :: fr                   !< the frictional corrector's tangential problem
+      real(wp), allocatable :: vslip(:)        !< (nnode) slip speed of each slave at the last step (< 0: stuck, none)
+      real(wp), allocatable :: ffric(:, :)     !< (2, nnode) nodal friction forces of the last step
+      real(wp), allocatable :: xold(:, :)      !< (2, nnode) positions of the last step (penalty friction)
+      real(wp) :: dissipation = 0.0_wp         !< frictional dissipation booked up to t(n+1) (eq. F17)
+      real(wp) :: pending = 0.0_wp             !< Coulomb work of the last step, booked at the next
    contains
       procedure :: init => contact_init
       procedure :: correct => contact_correct
@@ -148,14 +186,48 @@ contains
       if (nlen > 0) self%lref = len_sum/nlen
       self%depth = DEPTH_SHARE*self%lref
       self%corr%gap_tol = 1.0e-13_wp*self%lref
-      allocate (self%xp(2, nnode))
+      allocate (self%xp(2, nnode), source=0.0_wp)
+      call contact_nodes(self, nnode)
       np = size(self%passes)
       do k = 1, np
          if (self%passes(k)%method == METHOD_PENALTY) self%any_penalty = .true.
       end do
       call penalty_stiffness(self, modulus)
+      call friction_arrays(self, nnode, x)
+      if (self%energy .and. self%friction) then
+         ! the massless faces enter the normal problem only (doc/impact.md, section 3.3)
+         call make_error(err, 'LAGRange,ENERgy (massless contact faces) together with Coulomb friction '// &
+                         'in one model is not supported: expected friction only on LAGRange pairs of a '// &
+                         'model without ENERgy')
+         return
+      end if
       call check_overlap(self, nnode, x, err)
    end subroutine contact_init
+
+   !> The friction state of the passes and of the model (at init): allocated only when some
+   !> pass has friction (x: the positions now).
+   subroutine friction_arrays(self, nnode, x)
+      type(contact_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x(2, nnode)
+      integer :: k
+      self%friction = .false.
+      do k = 1, size(self%passes)
+         associate (ps => self%passes(k))
+            ps%friction = ps%law(1) > 0.0_wp
+            if (ps%friction) self%friction = .true.
+            if (ps%friction .and. ps%method == METHOD_PENALTY .and. .not. allocated(ps%hist%q)) &
+               call ps%hist%init(nnode)
+         end associate
+      end do
+      ! the options of the Lagrange AUTOmatic passes (auto_passes copies them)
+      self%auto_pass%friction = self%auto_pass%auto .and. self%auto_pass%law(1) > 0.0_wp
+      if (self%auto_pass%friction) self%friction = .true.
+      if (.not. self%friction) return
+      if (.not. allocated(self%vslip)) allocate (self%vslip(nnode), source=-1.0_wp)
+      if (.not. allocated(self%ffric)) allocate (self%ffric(2, nnode), source=0.0_wp)
+      if (.not. allocated(self%xold)) allocate (self%xold(2, nnode), source=x)
+   end subroutine friction_arrays
 
    !> Surfaces of the SURFace records, plus one per region for AUTOmatic.
    subroutine build_surfaces(self, spec, nelem, conn, region, mat, err)
@@ -233,13 +305,15 @@ contains
       type(error_t), allocatable, intent(out) :: err
       integer :: npair, np, k, i, j, nauto, ns, maxid, npass
       type(pass_t), allocatable :: p(:)
+      logical :: auto_penalty
 
       npair = 0
       if (allocated(spec%pairs)) npair = size(spec%pairs)
       ns = 0
       if (allocated(spec%surfaces)) ns = size(spec%surfaces)
       nauto = size(self%surfaces) - ns
-      allocate (p(2*npair + nauto*max(nauto - 1, 0)))
+      auto_penalty = spec%auto_options%method == METHOD_PENALTY
+      allocate (p(2*npair + merge(nauto*max(nauto - 1, 0), 1, auto_penalty)))
       maxid = 0
       np = 0
       allocate (self%results(npair + merge(1, 0, nauto > 0)))
@@ -268,15 +342,31 @@ contains
             end select
          end associate
       end do
-      if (nauto > 0) then
+      if (nauto > 0 .and. auto_penalty) then
          self%results(npair + 1)%id = maxid + 1
          do i = ns + 1, ns + nauto
             do j = ns + 1, ns + nauto
                if (i /= j) call add_pass(p, np, npair + 1, i, j, spec%auto_options)
             end do
          end do
+      else if (nauto > 0) then
+         ! Lagrange AUTOmatic: one search over all its surfaces per step makes the passes of
+         ! the pairs of surfaces found near (auto_passes), in the order of i, then j
+         self%results(npair + 1)%id = maxid + 1
+         call add_pass(p, np, npair + 1, 0, 0, spec%auto_options)
+         self%auto_pass = p(np)
+         self%auto_pass%auto = .true.
+         self%auto_pass%energy = self%auto_pass%energy .and. self%auto_pass%method == METHOD_LAGRANGE
+         if (self%auto_pass%energy) self%energy = .true.
+         np = np - 1
+         self%auto_first = ns
+         do i = ns + 1, ns + nauto
+            call self%auto%add_surface(self%surfaces(i)%nodes, self%surfaces(i)%seg)
+         end do
       end if
       npass = np
+      self%nfixed = npass
+      self%npass = npass
       allocate (self%passes(npass))
       do k = 1, npass
          self%passes(k)%pair = p(k)%pair
@@ -287,6 +377,7 @@ contains
          if (self%passes(k)%energy) self%energy = .true.
          self%passes(k)%detection = p(k)%detection
          self%passes(k)%k = p(k)%k
+         self%passes(k)%law = p(k)%law
       end do
    end subroutine build_passes
 
@@ -305,6 +396,7 @@ contains
       p(np)%detection = ps%detection
       p(np)%k = ps%penalty
       if (ps%penalty_scaled) p(np)%k = -ps%penalty   ! scale factor, resolved in penalty_stiffness
+      p(np)%law = [ps%mus, ps%mud, ps%decay]
    end subroutine add_pass
 
    !> PENAlty,SCALe,f: k = f x modulus, the largest constrained modulus lambda + 2 mu of the solids.
@@ -339,12 +431,13 @@ contains
 
       worst = 0.0_wp
       worst_node = 0
-      do k = 1, size(self%passes)
+      call auto_passes(self, nnode, x, x, 0.5_wp*self%lref)
+      do k = 1, self%npass
          associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
                     ms => self%surfaces(self%passes(k)%master))
-            call node_normals(nnode, x, sl%nseg, sl%seg, sl%nnode, sl%where, sl%nrm)
-            call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, &
-                              0.5_wp*self%lref)
+            call surface_normals(self, sl, nnode, x)
+            if (.not. ps%auto) call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, &
+                                                 0.5_wp*self%lref)
             call detect_contacts(ps%hits, DETECT_STATIC, nnode, x, x, sl%nnode, sl%nodes, &
                                  sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
                                  0.5_wp*self%lref, FACING)
@@ -370,7 +463,8 @@ contains
    !> minv the inverse mass per dof (0: rigid, prescribed or inactive), dt_prev = dt(n) (0 at
    !> t = 0), dt = dt(n+1); fcon = nodal contact forces, nactive = constraints in force.
    !> `rb`: the free rigid bodies, three-dof bodies in the corrector (doc/loads.md, section 5);
-   !> the caller moves them with the contact forces on their nodes.
+   !> the caller moves them with the contact forces on their nodes. With friction
+   !> (doc/friction.md) fcon carries the friction forces too; they are also in self%ffric.
    !> fext, fint: the external and internal forces at t(n+1), needed by massless faces
    !> (LAGRange,ENERgy, doc/impact.md eq. I.5) once `face` is set up.
    subroutine contact_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err, rb, fext, fint)
@@ -384,14 +478,16 @@ contains
       type(rigid_dofs_t), intent(inout), optional :: rb
       real(wp), intent(in), optional :: fext(2, nnode), fint(2, nnode)
       integer :: k, j, i, node
-      real(wp) :: c, gnow, pen, t0, t1
+      real(wp) :: c, gnow, pen, t0, t1, mu
+      logical :: touched
 
       nactive = 0
       if (.not. self%active) return
       t0 = wall_time()
-      fcon = 0.0_wp
-      ! predicted positions at t(n+2), eq. 4.4
-      self%xp = x + dt*vt + (0.5_wp*dt*dt)*a
+      if (.not. (self%keep_fcon .and. self%fcon_clean)) fcon = 0.0_wp
+      self%fcon_clean = .false.
+      touched = .false.
+      call predicted_positions(self, nnode, x, vt, a, dt)
       ! c = dt(n+1) (dt(n) + dt(n+1)) / 2, eq. 4.7
       c = 0.5_wp*dt*(dt_prev + dt)
       if (self%face%active) then
@@ -412,16 +508,21 @@ contains
          self%results(k)%penetration = 0.0_wp
          self%results(k)%pmax = 0.0_wp
       end do
+      if (self%friction) call friction_begin(self)
+      self%cs%friction = self%friction
       call self%cs%reserve(64)
-      do k = 1, size(self%passes)
+      call auto_passes(self, nnode, x, self%xp, self%depth)
+      do k = 1, self%npass
          associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
                     ms => self%surfaces(self%passes(k)%master))
-            call node_normals(nnode, x, sl%nseg, sl%seg, sl%nnode, sl%where, sl%nrm)
+            call surface_normals(self, sl, nnode, x)
             if (ps%method == METHOD_PENALTY) then
-               call penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, fcon, nactive)
+               call penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, dt_prev, fcon, nactive)
+               if (ps%broad%ncand > 0) touched = .true.
                cycle
             end if
-            call broad_search(ps%broad, nnode, x, self%xp, sl%nnode, sl%nodes, ms%nseg, ms%seg, self%depth)
+            if (.not. ps%auto) call broad_search(ps%broad, nnode, x, self%xp, sl%nnode, sl%nodes, ms%nseg, &
+                                                 ms%seg, self%depth)
             if (ps%broad%ncand == 0) cycle
             call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                  sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
@@ -432,7 +533,13 @@ contains
                           al => ps%hits%alpha(j), nr => ps%hits%normal(:, j))
                   ! gap at t(n+1) along the frozen normal (eq. 3.19)
                   gnow = dot_product(x(:, node) - (1.0_wp - al)*x(:, m1) - al*x(:, m2), nr)
-                  call self%cs%add(node, m1, m2, al, nr, ps%hits%gap(j), gnow, ps%pair)
+                  if (ps%friction) then
+                     ! the step's coefficient from the slave's last state (eq. F12)
+                     mu = coulomb_mu(ps%law(1), ps%law(2), ps%law(3), self%vslip(node))
+                     call self%cs%add(node, m1, m2, al, nr, ps%hits%gap(j), gnow, ps%pair, mu)
+                  else
+                     call self%cs%add(node, m1, m2, al, nr, ps%hits%gap(j), gnow, ps%pair)
+                  end if
                end associate
             end do
          end associate
@@ -440,7 +547,9 @@ contains
       t1 = wall_time()
       self%time_search = self%time_search + (t1 - t0)
       if (self%cs%n > 0) then
-         if (self%face%active) then
+         if (self%friction) then
+            call self%fr%solve(self%corr, self%cs, nnode, minv, c, x, self%xp, a, fcon, self%ffric, err, rb)
+         else if (self%face%active) then
             call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb, self%face)
          else
             call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb)
@@ -462,60 +571,196 @@ contains
          end do
          nactive = nactive + count(self%cs%p(1:self%cs%n) > 0.0_wp)
       end if
+      if (self%friction) call friction_results(self, dt)
       do k = 1, size(self%results)
          self%max_penetration = max(self%max_penetration, self%results(k)%penetration)
       end do
+      if (self%friction) self%xold = x
+      self%fcon_clean = self%cs%n == 0 .and. .not. touched
    end subroutine contact_correct
 
-   !> Penalty baseline: f = k (-g) n on the slave at t(n+1), opposite on the master nodes, plus
-   !> a viscous part -c v_n with c = 2 PENALTY_DAMPING sqrt(k m) (m the pair's effective mass,
-   !> v_n the relative normal velocity of the predictor), the normal force never tensile. The
-   !> damping is the usual companion of explicit penalty contact: without it, the on/off
-   !> switching of stiff springs within a step feeds energy into the struck nodes.
-   subroutine penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, fcon, nactive)
+   !> The passes of Lagrange AUTOmatic contact for this search: one search over every AUTOmatic
+   !> surface (src/exic/contact/broad_all.f90) over x0 -> x1 with margin, then one pass per pair
+   !> of surfaces with candidates, after the fixed passes, holding those candidates.
+   subroutine auto_passes(self, nnode, x0, x1, margin)
+      type(contact_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+      integer :: g, need
+      type(pass_t), allocatable :: tmp(:)
+
+      self%stamp = self%stamp + 1
+      self%npass = self%nfixed
+      if (.not. self%auto_pass%auto) return
+      call self%auto%search(nnode, x0, x1, margin)
+      need = self%nfixed + self%auto%ngroup
+      if (need > size(self%passes)) then
+         allocate (tmp(max(need, 2*size(self%passes), 8)))
+         tmp(1:size(self%passes)) = self%passes
+         call move_alloc(tmp, self%passes)
+      end if
+      do g = 1, self%auto%ngroup
+         associate (ps => self%passes(self%nfixed + g))
+            ! the options of auto_pass (its work arrays stay those of the slot)
+            ps%pair = self%auto_pass%pair
+            ps%method = self%auto_pass%method
+            ps%detection = self%auto_pass%detection
+            ps%k = self%auto_pass%k
+            ps%law = self%auto_pass%law
+            ps%friction = self%auto_pass%friction
+            ps%energy = self%auto_pass%energy
+            ps%auto = .true.
+            ps%slave = self%auto_first + self%auto%gslave(g)
+            ps%master = self%auto_first + self%auto%gmaster(g)
+            call self%auto%take(g, ps%broad)
+         end associate
+      end do
+      self%npass = need
+   end subroutine auto_passes
+
+   !> Node normals of surface sf at positions x, once per search.
+   subroutine surface_normals(self, sf, nnode, x)
+      type(contact_t), intent(in) :: self
+      type(surface_t), intent(inout) :: sf
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x(2, nnode)
+      if (sf%nrm_stamp == self%stamp) return
+      call node_normals(nnode, x, sf%nseg, sf%seg, sf%nnode, sf%where, sf%nrm)
+      sf%nrm_stamp = self%stamp
+   end subroutine surface_normals
+
+   !> Every node of every contact surface, once (cnodes).
+   subroutine contact_nodes(self, nnode)
+      type(contact_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      logical, allocatable :: on(:)
+      integer :: k
+      allocate (on(nnode), source=.false.)
+      do k = 1, size(self%surfaces)
+         on(self%surfaces(k)%nodes) = .true.
+      end do
+      self%cnodes = pack([(k, k=1, nnode)], on)
+   end subroutine contact_nodes
+
+   !> Predicted positions x~(n+2) = x + dt vt + dt^2/2 a (eq. 4.4) of the contact nodes, the
+   !> only ones the search and the corrector read; with massless faces of every node, since the
+   !> face's free solve (eq. I.5) reads the predicted motion of the interior nodes next to it.
+   subroutine predicted_positions(self, nnode, x, vt, a, dt)
+      type(contact_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x(2, nnode), vt(2, nnode), a(2, nnode), dt
+      integer :: k, node
+      real(wp) :: h
+      h = 0.5_wp*dt*dt
+      if (self%face%active) then
+         self%xp = x + dt*vt + h*a
+         return
+      end if
+      do k = 1, size(self%cnodes)
+         node = self%cnodes(k)
+         self%xp(:, node) = x(:, node) + dt*vt(:, node) + h*a(:, node)
+      end do
+   end subroutine predicted_positions
+
+
+   !> At the start of a step with friction: the Coulomb work of the last step, whose interval
+   !> has now been stepped, joins the dissipation (doc/friction.md, eq. F17); the step's
+   !> friction results and forces start from zero.
+   subroutine friction_begin(self)
+      type(contact_t), intent(inout) :: self
+      integer :: k
+      self%dissipation = self%dissipation + self%pending
+      self%pending = 0.0_wp
+      do k = 1, size(self%results)
+         associate (r => self%results(k))
+            r%dissipation = r%dissipation + r%pending
+            r%pending = 0.0_wp
+            r%ftangent = 0.0_wp
+            r%nstick = 0
+            r%nslip = 0
+         end associate
+      end do
+      self%ffric = 0.0_wp
+   end subroutine friction_begin
+
+   !> After the frictional corrector: the pairs' friction results, the Coulomb work of the step
+   !> (eq. F16, booked at the next step) and each slave's slip speed for the next step's
+   !> coefficient (eq. F12); dt = dt(n+1).
+   subroutine friction_results(self, dt)
+      type(contact_t), intent(inout) :: self
+      real(wp), intent(in) :: dt
+      integer :: i, node
+      real(wp) :: d, tng(2)
+      self%vslip = -1.0_wp
+      do i = 1, self%cs%n
+         node = self%cs%node(1, i)
+         if (self%cs%state(i) == 0) cycle
+         associate (r => self%results(self%cs%pair(i)))
+            tng = [-self%cs%nrm(2, i), self%cs%nrm(1, i)]
+            r%force = r%force + self%cs%q(i)*tng
+            r%ftangent = r%ftangent + abs(self%cs%q(i))
+            if (self%cs%state(i) == 1) then
+               r%nstick = r%nstick + 1
+            else
+               r%nslip = r%nslip + 1
+               d = self%cs%mu(i)*self%cs%p(i)*abs(self%cs%slip(i))
+               r%pending = r%pending + d
+               self%pending = self%pending + d
+               self%vslip(node) = abs(self%cs%slip(i))/dt
+            end if
+         end associate
+      end do
+   end subroutine friction_results
+
+   !> Penalty baseline of one pass (src/exic/contact/penalty.f90): static detection at t(n+1),
+   !> forces k x penetration (plus damping) on the hits, with the regularised friction law when
+   !> the pass has friction; the pair's results.
+   subroutine penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, dt_prev, fcon, nactive)
       type(contact_t), intent(inout) :: self
       type(pass_t), intent(inout) :: ps
       type(surface_t), intent(in) :: sl, ms
       integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode)
+      real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode), dt_prev
       real(wp), intent(inout) :: a(2, nnode), fcon(2, nnode)
       integer, intent(inout) :: nactive
-      integer :: j, node, m1, m2
-      real(wp) :: f(2), al, pen, nr(2), vn, w, fn
+      integer :: j, n
+      real(wp) :: diss
       call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, self%depth)
       if (ps%broad%ncand == 0) return
       call detect_contacts(ps%hits, DETECT_STATIC, nnode, x, x, sl%nnode, sl%nodes, &
                            sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
                            self%depth, FACING)
-      do j = 1, ps%hits%n
-         pen = -ps%hits%gap(j)
-         if (pen <= 0.0_wp) cycle
-         node = ps%hits%slave(j)
-         m1 = ps%hits%master(1, j)
-         m2 = ps%hits%master(2, j)
-         al = ps%hits%alpha(j)
-         nr = ps%hits%normal(:, j)
-         vn = dot_product(vt(:, node) - (1.0_wp - al)*vt(:, m1) - al*vt(:, m2), nr)
-         w = minv(1, node) + (1.0_wp - al)**2*minv(1, m1) + al**2*minv(1, m2)
-         fn = ps%k*pen
-         if (w > 0.0_wp) fn = fn - 2.0_wp*PENALTY_DAMPING*sqrt(ps%k/w)*vn
-         fn = max(fn, 0.0_wp)
-         f = fn*nr
-         fcon(:, node) = fcon(:, node) + f
-         fcon(:, m1) = fcon(:, m1) - (1.0_wp - al)*f
-         fcon(:, m2) = fcon(:, m2) - al*f
-         a(:, node) = a(:, node) + minv(:, node)*f
-         a(:, m1) = a(:, m1) - minv(:, m1)*(1.0_wp - al)*f
-         a(:, m2) = a(:, m2) - minv(:, m2)*al*f
-         associate (r => self%results(ps%pair))
+      n = ps%hits%n
+      call grow(ps%pen, n)
+      call grow(ps%fn, n)
+      call grow(ps%f, n, 2)
+      diss = 0.0_wp
+      if (ps%friction) then
+         call grow(ps%q, n)
+         call grow(ps%state, n)
+         call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n), &
+                             ps%hist, ps%law, self%xold, dt_prev, self%ffric, ps%q(1:n), ps%state(1:n), diss)
+      else
+         call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n))
+      end if
+      associate (r => self%results(ps%pair), pen => ps%pen, fn => ps%fn, f => ps%f)
+         do j = 1, n
+            if (pen(j) <= 0.0_wp) cycle
             r%nactive = r%nactive + 1
-            r%fnormal = r%fnormal + fn
-            r%pmax = max(r%pmax, fn)
-            r%force = r%force + f
-            r%penetration = max(r%penetration, pen)
-         end associate
-         nactive = nactive + 1
-      end do
+            r%fnormal = r%fnormal + fn(j)
+            r%pmax = max(r%pmax, fn(j))
+            r%force = r%force + f(:, j)
+            r%penetration = max(r%penetration, pen(j))
+            nactive = nactive + 1
+            if (.not. ps%friction) cycle
+            r%ftangent = r%ftangent + abs(ps%q(j))
+            if (ps%state(j) == 1) r%nstick = r%nstick + 1
+            if (ps%state(j) == 2) r%nslip = r%nslip + 1
+         end do
+         ! the realised slip of [t(n), t(n+1)] is booked at once
+         r%dissipation = r%dissipation + diss
+         self%dissipation = self%dissipation + diss
+      end associate
    end subroutine penalty_pass
 
    !> Critical step of the penalty springs: 1 / sqrt(k (1/m_s + 1/m_master)) over the slave
@@ -547,9 +792,11 @@ contains
       end do
    end function contact_stable_dt
 
-   !> A TPLOt `cont,pair,comp` value: 1 normal force, 2-3 force x, y on the slave side,
-   !> 4 active constraints, 5 largest penetration at t(n+1), 6 largest multiplier [ext],
-   !> 7 work of the pair's multipliers over the run (pair_result_t%work) [ext].
+   !> A TPLOt `cont,pair,comp` value: 1 normal force, 2-3 force x, y on the slave side (normal
+   !> and friction), 4 active constraints, 5 largest penetration at t(n+1), 6 largest multiplier
+   !> [ext], 7 work of the pair's multipliers over the run (pair_result_t%work) [ext]; friction
+   !> (doc/friction.md, section 7) [ext]: 8 friction force sum |q|, 9 constraints that stick,
+   !> 10 constraints that slip, 11 frictional dissipation over the run.
    real(wp) function contact_pair_value(self, pair, comp) result(val)
       class(contact_t), intent(in) :: self
       integer, intent(in) :: pair, comp
@@ -573,6 +820,14 @@ contains
             val = self%results(k)%pmax
          case (7)
             val = self%results(k)%work
+         case (8)
+            val = self%results(k)%ftangent
+         case (9)
+            val = real(self%results(k)%nstick, wp)
+         case (10)
+            val = real(self%results(k)%nslip, wp)
+         case (11)
+            val = self%results(k)%dissipation
          end select
          return
       end do
@@ -602,15 +857,29 @@ contains
             end if
          end associate
       end do
-      do k = 1, size(self%passes)
+      do k = 1, self%nfixed
          associate (ps => self%passes(k))
             text = text//'contact pass '//itoa(k)//' of pair '//itoa(self%results(ps%pair)%id)// &
                    ': nodes of surface '//itoa(ps%slave)//' against segments of surface '// &
                    itoa(ps%master)//', '//trim(methods(ps%method))//', '//trim(detections(ps%detection))
             if (ps%energy) text = text//', massless faces (ENERgy)'
-            if (k < size(self%passes)) text = text//nl
+            if (ps%friction) text = text//', Coulomb friction mus '//rtoa(ps%law(1))//' mud '// &
+                                    rtoa(ps%law(2))//' decay '//rtoa(ps%law(3))
+            if (k < self%nfixed) text = text//nl
          end associate
       end do
+      if (self%auto_pass%auto) then
+         associate (ps => self%auto_pass)
+            if (self%nfixed > 0) text = text//nl
+            text = text//'contact passes of pair '//itoa(self%results(ps%pair)%id)//' (automatic): nodes of '// &
+                   'each of surfaces '//itoa(self%auto_first + 1)//'-'//itoa(self%auto_first + self%auto%nsurf)// &
+                   ' against segments of each other one near it (one search over all of them per step), '// &
+                   trim(methods(ps%method))//', '//trim(detections(ps%detection))
+            if (ps%energy) text = text//', massless faces (ENERgy)'
+            if (ps%friction) text = text//', Coulomb friction mus '//rtoa(ps%law(1))//' mud '// &
+                                    rtoa(ps%law(2))//' decay '//rtoa(ps%law(3))
+         end associate
+      end if
    end function contact_summary
 
    !> Every contact segment of every surface, (2, nedge); empty without contact.
@@ -639,11 +908,17 @@ contains
       integer :: k
       on = .false.
       if (.not. self%active) return
-      do k = 1, size(self%passes)
+      do k = 1, self%nfixed
          if (.not. self%passes(k)%energy) cycle
          on(self%surfaces(self%passes(k)%slave)%nodes) = .true.
          on(self%surfaces(self%passes(k)%master)%nodes) = .true.
       end do
+      ! AUTOmatic: every one of its surfaces can meet another one
+      if (self%auto_pass%auto .and. self%auto_pass%energy) then
+         do k = self%auto_first + 1, self%auto_first + self%auto%nsurf
+            on(self%surfaces(k)%nodes) = .true.
+         end do
+      end if
    end function contact_face_nodes
 
    !> Sorted unique values.

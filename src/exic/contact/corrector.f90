@@ -15,11 +15,14 @@
 !> pivoting (see corrector_solve): tensile multipliers leave it and candidates whose corrected
 !> gap is still violated join it, for at most `max_passes` passes. S is assembled once per step
 !> over every candidate; a pass only drops the constraints outside its active set. Redundant
-!> constraints (dependent columns of G) are removed by the factorization (see
-!> exic_linalg_sparse_ldl) and carry p = 0. Steps with up to `dense_limit` candidates factorize S
-!> densely (LAPACK), steps with more use SuiteSparse LDL' with AMD ordering, whose symbolic
-!> analysis is reused while the candidates' pattern is unchanged (across the passes of a step,
-!> and across steps).
+!> constraints (dependent columns of G) are removed by the factorization and carry p = 0. The
+!> assembly and the dense (LAPACK) or sparse (SuiteSparse LDL', AMD) factorisation are
+!> `system_t`'s (src/exic/contact/system.f90), which this type extends.
+!>
+!> With friction (doc/friction.md) the step's frictional problem (src/exic/contact/friction.f90)
+!> calls the same normal problem (`prepare`, then `pivot` with the gaps shifted by the
+!> tangential forces) in turn with a tangential one; without friction `solve` does all of it
+!> and nothing else.
 !>
 !> Free rigid bodies (doc/loads.md, section 5) join as three-dof bodies when the caller passes
 !> their `rigid_dofs_t`: S gains g_i^b . M_b^-1 g_j^b for every body two constraints touch, and
@@ -27,20 +30,20 @@
 !> share of G p (the nodal contact forces on their nodes) to the bodies.
 !>
 !> Massless contact faces (`LAGRange,ENERgy`, doc/impact.md) join through their compliance
-!> `face`: their dofs have minv = 0, S gains (1/c) G_F^T K_FF^-1 G_F (eq. I.6), the corrected gaps
-!> count the face's motion and the face's accelerations follow eq. I.7.
+!> `face`: their dofs have minv = 0, S gains (1/c) G_F^T K_FF^-1 G_F (eq. I.6, in system_t's
+!> assembly), the corrected gaps count the face's motion and the face's accelerations follow
+!> eq. I.7. They join the normal problem only (a model with friction has no massless faces).
 module exic_contact_corrector
    use exic_base_kinds, only: wp
-   use exic_base_error, only: error_t, make_error
+   use exic_base_error, only: error_t
    use exic_base_grow, only: grow
-   use exic_linalg_sparse_ldl, only: sparse_ldl_t
-   use exic_linalg_dense_spd, only: dense_spd_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
+   use exic_contact_system, only: system_t
    use exic_contact_massless_face, only: massless_face_t
    implicit none
    private
 
-   public :: constraints_t, corrector_t
+   public :: constraints_t, corrector_t, apply
 
    !> Candidate constraints of one step, in a deterministic order.
    type :: constraints_t
@@ -53,29 +56,27 @@ module exic_contact_corrector
       integer, allocatable :: pair(:)        !< (n) pair index
       real(wp), allocatable :: p(:)          !< (n) multiplier, >= 0 in compression
       logical, allocatable :: active(:)      !< (n) carries force after the corrector
+      ! friction (doc/friction.md): kept only when `friction` (set before the candidates are
+      ! added), so that frictionless steps do no work for them
+      logical :: friction = .false.
+      real(wp), allocatable :: mu(:)         !< (n) friction coefficient of the step (eq. F12)
+      real(wp), allocatable :: q(:)          !< (n) tangential multiplier: force on the slave along t = e3 x n
+      real(wp), allocatable :: slip(:)       !< (n) relative tangential increment of the step ds (eq. F6)
+      integer, allocatable :: state(:)       !< (n) 0 no friction force, 1 stick, 2 slip (after the corrector)
    contains
       procedure :: reserve => constraints_reserve
       procedure :: add => constraints_add
    end type constraints_t
 
-   !> Solver state kept across steps (factorization objects, work arrays).
-   type :: corrector_t
-      integer :: dense_limit = 30            !< steps with up to this many candidates factorize S densely (measured crossover)
+   !> Solver state kept across steps (the factorisation objects of system_t, work arrays).
+   type, extends(system_t) :: corrector_t
       integer :: max_passes = 30             !< active-set passes before giving up on the step
       real(wp) :: gap_tol = 0.0_wp           !< corrected gaps above -gap_tol count as closed
-      type(sparse_ldl_t) :: sparse
-      type(dense_spd_t) :: dense
       ! statistics
       integer :: passes = 0                  !< passes of the last call
       integer :: nredundant = 0              !< constraints removed as redundant in the last call
       integer :: pass_limit_hits = 0         !< calls that ended at max_passes
-      integer :: nsolves = 0, ndense = 0, nsparse = 0
       ! work arrays (grown, never shrunk); m is the number of candidates of the step
-      integer, allocatable :: ap(:), ai(:)          !< S in compressed columns: (m + 1), (nnz)
-      real(wp), allocatable :: ax(:)                !< (nnz) values of S in compressed columns
-      real(wp), allocatable :: s(:, :)              !< (m, m) S for the dense path
-      integer, allocatable :: mark(:)               !< (m) last column that touched a row (assembly)
-      integer, allocatable :: bad(:)                !< (m) constraints the factorization finds redundant
       real(wp), allocatable :: rhs(:), sol(:)       !< (m) -g~/c and the multipliers of a pass
       real(wp), allocatable :: fwork(:, :)          !< (2, nnode) G p of the current pass
       logical, allocatable :: drop(:)               !< (m) left out of the pass's factorization
@@ -84,6 +85,8 @@ module exic_contact_corrector
       integer, allocatable :: nstart(:), nlist(:)   !< node -> candidates incidence (CSR)
    contains
       procedure :: solve => corrector_solve
+      procedure :: prepare => corrector_prepare
+      procedure :: pivot => corrector_pivot
    end type corrector_t
 
 contains
@@ -108,13 +111,20 @@ contains
       call grow(cs%pair, m)
       call grow(cs%p, m)
       call grow(cs%active, m)
+      if (.not. cs%friction) return
+      call grow(cs%mu, m)
+      call grow(cs%q, m)
+      call grow(cs%slip, m)
+      call grow(cs%state, m)
    end subroutine grow_all
 
-   !> Append one candidate (the arrays grow, keeping their contents, when full).
-   subroutine constraints_add(self, s, m1, m2, alpha, nrm, gap, gap_now, pair)
+   !> Append one candidate (the arrays grow, keeping their contents, when full); `mu` its
+   !> friction coefficient for the step (0 when absent; kept only when self%friction).
+   subroutine constraints_add(self, s, m1, m2, alpha, nrm, gap, gap_now, pair, mu)
       class(constraints_t), intent(inout) :: self
       integer, intent(in) :: s, m1, m2, pair
       real(wp), intent(in) :: alpha, nrm(2), gap, gap_now
+      real(wp), intent(in), optional :: mu
       integer :: k
       k = self%n + 1
       call grow_all(self, max(k, 64))
@@ -127,6 +137,12 @@ contains
       self%pair(k) = pair
       self%p(k) = 0.0_wp
       self%active(k) = .false.
+      if (.not. self%friction) return
+      self%mu(k) = 0.0_wp
+      if (present(mu)) self%mu(k) = mu
+      self%q(k) = 0.0_wp
+      self%slip(k) = 0.0_wp
+      self%state(k) = 0
    end subroutine constraints_add
 
    !> Solve for the multipliers of `cs`, add the correction M^-1 G p to `a` and G p to `fcon`.
@@ -152,9 +168,7 @@ contains
       type(error_t), allocatable, intent(out) :: err
       type(rigid_dofs_t), intent(inout), optional :: rb
       type(massless_face_t), intent(inout), optional :: face
-      integer :: m, nact, pass, k, i, nbad, ninf, best, budget, last
-      real(wp) :: g
-      logical :: have_safe
+      integer :: m
 
       m = cs%n
       self%passes = 0
@@ -163,33 +177,75 @@ contains
       cs%p(1:m) = 0.0_wp
       cs%active(1:m) = cs%gap(1:m) < 0.0_wp
       if (.not. any(cs%active(1:m))) return
+      if (present(face)) then
+         ! z_j = K_FF^-1 G_F,j of the candidates on the face (eq. I.6)
+         call face%prepare(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m), err)
+         if (allocated(err)) return
+      end if
+      call self%prepare(cs, nnode, minv, rb, face)
+      call self%pivot(cs, nnode, minv, c, cs%gap(1:m), err, rb, face)
+      if (allocated(err)) return
+      ! a(n+1) = a~(n+1) + M^-1 G p  (eq. 4.5 with p = -lambda)
+      a = a + minv*self%fwork
+      ! the face: a_F += K_FF^-1 G_F p / c (eq. I.7)
+      if (present(face)) call face%accelerate(nnode, a)
+      fcon = fcon + self%fwork
+   end subroutine corrector_solve
+
+   !> What every pass of a step shares: the node -> candidates incidence, the work arrays, the
+   !> free bodies' columns and S = G_N^T M^-1 G_N over every candidate, assembled once: the
+   !> pivoting passes only change which constraints are dropped, so the pattern (and the sparse
+   !> symbolic analysis) stays the same within the step, and across steps while the candidates do.
+   !> `face`: the massless faces, already prepared for these candidates (face%prepare).
+   subroutine corrector_prepare(self, cs, nnode, minv, rb, face)
+      class(corrector_t), intent(inout) :: self
+      type(constraints_t), intent(in) :: cs
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: minv(2, nnode)
+      type(rigid_dofs_t), intent(inout), optional :: rb
+      type(massless_face_t), intent(in), optional :: face
+      integer :: m
+      m = cs%n
       call grow(self%infeasible, m)
       call build_incidence(self, cs, nnode)
       if (allocated(self%fwork)) then
          if (size(self%fwork, 2) /= nnode) deallocate (self%fwork)
       end if
       if (.not. allocated(self%fwork)) allocate (self%fwork(2, nnode))
-
-      ! S over every candidate, assembled once: the pivoting passes only change which
-      ! constraints are dropped, so the pattern (and the sparse symbolic analysis) stays the same
-      ! within the step, and across steps while the candidates do
       call grow(self%drop, m)
       call grow(self%rhs, m)
       call grow(self%sol, m)
-      call grow(self%bad, m)
-      self%rhs(1:m) = -cs%gap(1:m)/c
+      call grow(self%psafe, m)
       if (present(rb)) call rb%prepare(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m))
-      if (present(face)) then
-         call face%prepare(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m), err)
-         if (allocated(err)) return
-      end if
-      call assemble(self, cs, nnode, minv, m, rb, face)
+      call self%assemble(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m), nnode, minv, &
+                         self%nstart, self%nlist, rb, face=face)
+   end subroutine corrector_prepare
 
+   !> The normal problem of `prepare`d candidates for the predicted gaps gap0(m) (cs%gap, or
+   !> with friction the gaps shifted by the tangential forces, doc/friction.md eq. F13), from
+   !> the active set cs%active: on return cs%p holds the multipliers, cs%active the candidates
+   !> in force and self%fwork = G_N p (see corrector_solve for the pivoting rule); with massless
+   !> faces `face` (prepared), face%dx = K_FF^-1 G_F p of the multipliers returned.
+   subroutine corrector_pivot(self, cs, nnode, minv, c, gap0, err, rb, face)
+      class(corrector_t), intent(inout) :: self
+      type(constraints_t), intent(inout) :: cs
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: minv(2, nnode)
+      real(wp), intent(in) :: c
+      real(wp), intent(in) :: gap0(:)
+      type(error_t), allocatable, intent(out) :: err
+      type(rigid_dofs_t), intent(inout), optional :: rb
+      type(massless_face_t), intent(inout), optional :: face
+      integer :: m, nact, pass, k, i, nbad, ninf, best, budget, last
+      real(wp) :: g
+      logical :: have_safe
+
+      m = cs%n
+      self%rhs(1:m) = -gap0(1:m)/c
       best = huge(1)
       budget = 3
       pass = 0
       have_safe = .false.
-      call grow(self%psafe, m)
       do
          pass = pass + 1
          ! the active set F: every other candidate is dropped from the factorization
@@ -197,7 +253,7 @@ contains
          self%drop(1:m) = .not. cs%active(1:m)
          nbad = 0
          if (nact > 0) then
-            call factor_and_solve(self, m, nbad, err)
+            call self%factor_solve(m, self%drop, self%rhs, self%sol, nbad, err)
             if (allocated(err)) return
          else
             self%sol(1:m) = 0.0_wp
@@ -220,14 +276,17 @@ contains
          do i = 1, m
             if (cs%active(i)) then
                self%infeasible(i) = cs%p(i) < 0.0_wp
-            else if (present(rb) .or. present(face)) then
+            else if (present(face)) then
+               ! the face's motion K_FF^-1 G_F p counts in the corrected gap (eq. I.6)
                g = gap_change(cs, i, nnode, minv, self%fwork)
                if (present(rb)) g = g + rb%gap_part(i)
-               if (present(face)) g = g + face%gap_part(cs%node(:, i), cs%w(:, i), cs%nrm(:, i))
-               g = cs%gap(i) + c*g
+               g = gap0(i) + c*(g + face%gap_part(cs%node(:, i), cs%w(:, i), cs%nrm(:, i)))
+               self%infeasible(i) = g < -self%gap_tol
+            else if (present(rb)) then
+               g = gap0(i) + c*(gap_change(cs, i, nnode, minv, self%fwork) + rb%gap_part(i))
                self%infeasible(i) = g < -self%gap_tol
             else
-               g = cs%gap(i) + c*gap_change(cs, i, nnode, minv, self%fwork)
+               g = gap0(i) + c*gap_change(cs, i, nnode, minv, self%fwork)
                self%infeasible(i) = g < -self%gap_tol
             end if
             if (self%infeasible(i)) then
@@ -267,13 +326,9 @@ contains
       do i = 1, m
          cs%active(i) = cs%p(i) > 0.0_wp
       end do
-      ! a(n+1) = a~(n+1) + M^-1 G p  (eq. 4.5 with p = -lambda)
-      a = a + minv*self%fwork
-      if (present(face)) call face%accelerate(nnode, a)
-      fcon = fcon + self%fwork
-   end subroutine corrector_solve
+   end subroutine corrector_pivot
 
-   !> fcon = G p: the nodal contact forces.
+   !> fcon = G_N p: the nodal contact forces of the normal multipliers.
    subroutine apply(cs, nnode, fcon)
       type(constraints_t), intent(in) :: cs
       integer, intent(in) :: nnode
@@ -337,156 +392,5 @@ contains
       end do
       self%nstart(1) = 1
    end subroutine build_incidence
-
-   !> S = G^T M^-1 G over all m candidates: dense (m <= dense_limit) or in compressed columns
-   !> with the full pattern (the pivoting passes drop constraints in the factorization). With
-   !> free rigid bodies `rb`, each column gains the coupling of the bodies its candidate touches.
-   subroutine assemble(self, cs, nnode, minv, m, rb, face)
-      type(corrector_t), intent(inout) :: self
-      type(constraints_t), intent(in) :: cs
-      integer, intent(in) :: nnode, m
-      real(wp), intent(in) :: minv(2, nnode)
-      type(rigid_dofs_t), intent(in), optional :: rb
-      type(massless_face_t), intent(in), optional :: face
-      integer :: j, k, nd, q, i, nnz, first, l, qj, b, e
-      real(wp) :: v
-
-      if (m <= self%dense_limit) then
-         if (allocated(self%s)) then
-            if (size(self%s, 1) < m) deallocate (self%s)
-         end if
-         if (.not. allocated(self%s)) allocate (self%s(max(m, 16), max(m, 16)))
-         self%s(1:m, 1:m) = 0.0_wp
-      end if
-      call grow(self%ap, m + 1)
-      call grow(self%mark, m)
-      self%mark(1:m) = 0
-      nnz = 0
-      self%ap(1) = 1
-      do j = 1, m
-         first = nnz + 1
-         do k = 1, 3
-            if (cs%w(k, j) == 0.0_wp) cycle
-            nd = cs%node(k, j)
-            ! every candidate i that shares node nd with candidate j: S(i, j) += w_kj w_i(nd) n_j M^-1 n_i
-            do q = self%nstart(nd), self%nstart(nd + 1) - 1
-               i = self%nlist(q)
-               v = cs%w(k, j)*node_weight(cs, i, nd)* &
-                   (cs%nrm(1, j)*minv(1, nd)*cs%nrm(1, i) + cs%nrm(2, j)*minv(2, nd)*cs%nrm(2, i))
-               call add_entry(i, v)
-            end do
-         end do
-         if (present(rb)) then
-            ! every candidate i on a body b that candidate j touches: S(i, j) += g_i^b . M_b^-1 g_j^b
-            do qj = 1, rb%nslot(j)
-               b = rb%sbody(qj, j)
-               do e = rb%bstart(b), rb%bstart(b + 1) - 1
-                  i = rb%bcand(e)
-                  v = dot_product(rb%sg(:, rb%bslot(e), i), rb%minv(:, b)*rb%sg(:, qj, j))
-                  call add_entry(i, v)
-               end do
-            end do
-         end if
-         if (present(face)) then
-            ! every candidate i on the face when j is: S(i, j) += (1/c) G_F,i^T K_FF^-1 G_F,j (eq. I.6)
-            if (face%slot(j) > 0) then
-               do i = 1, m
-                  v = face%coupling(i, j, cs%node(:, i), cs%w(:, i), cs%nrm(:, i))
-                  if (v /= 0.0_wp) call add_entry(i, v)
-               end do
-            end if
-         end if
-         if (m > self%dense_limit) call sort_column(self%ai(first:nnz), self%ax(first:nnz))
-         self%ap(j + 1) = nnz + 1
-      end do
-   contains
-      !> S(i, j) += v (dense), or into column j of the compressed columns.
-      subroutine add_entry(i, v)
-         integer, intent(in) :: i
-         real(wp), intent(in) :: v
-         if (m <= self%dense_limit) then
-            self%s(i, j) = self%s(i, j) + v
-         else
-            if (self%mark(i) /= j) then
-               self%mark(i) = j
-               nnz = nnz + 1
-               call grow(self%ai, nnz)
-               call grow(self%ax, nnz)
-               self%ai(nnz) = i
-               self%ax(nnz) = v
-            else
-               do l = first, nnz
-                  if (self%ai(l) == i) then
-                     self%ax(l) = self%ax(l) + v
-                     exit
-                  end if
-               end do
-            end if
-         end if
-      end subroutine add_entry
-   end subroutine assemble
-
-   !> The weight of node `nd` in candidate `i` (sum over its occurrences).
-   pure real(wp) function node_weight(cs, i, nd) result(w)
-      type(constraints_t), intent(in) :: cs
-      integer, intent(in) :: i, nd
-      integer :: k
-      w = 0.0_wp
-      do k = 1, 3
-         if (cs%node(k, i) == nd) w = w + cs%w(k, i)
-      end do
-   end function node_weight
-
-   !> Insertion sort of one short column by row index.
-   pure subroutine sort_column(ai, ax)
-      integer, intent(inout) :: ai(:)
-      real(wp), intent(inout) :: ax(:)
-      integer :: i, j, ki
-      real(wp) :: kx
-      do i = 2, size(ai)
-         ki = ai(i)
-         kx = ax(i)
-         j = i - 1
-         do while (j >= 1)
-            if (ai(j) <= ki) exit
-            ai(j + 1) = ai(j)
-            ax(j + 1) = ax(j)
-            j = j - 1
-         end do
-         ai(j + 1) = ki
-         ax(j + 1) = kx
-      end do
-   end subroutine sort_column
-
-   !> Factorize the assembled S of the m candidates without the dropped ones and solve for sol.
-   subroutine factor_and_solve(self, m, nbad, err)
-      type(corrector_t), intent(inout) :: self
-      integer, intent(in) :: m
-      integer, intent(out) :: nbad
-      type(error_t), allocatable, intent(out) :: err
-      integer :: stat, k
-      self%nsolves = self%nsolves + 1
-      if (m <= self%dense_limit) then
-         self%ndense = self%ndense + 1
-         call self%dense%factorize(self%s(1:m, 1:m), nbad, self%bad, err, self%drop(1:m))
-         if (allocated(err)) return
-         call self%dense%solve(self%rhs(1:m), self%sol(1:m), stat)
-      else
-         self%nsparse = self%nsparse + 1
-         call self%sparse%refactorize(m, self%ap(1:m + 1), self%ai(1:self%ap(m + 1) - 1), &
-                                      self%ax(1:self%ap(m + 1) - 1), nbad, self%bad, err, &
-                                      self%drop(1:m))
-         if (allocated(err)) return
-         call self%sparse%solve(self%rhs(1:m), self%sol(1:m), stat)
-      end if
-      if (stat /= 0) then
-         call make_error(err, 'contact corrector: the solve of S p = -g/c failed')
-         return
-      end if
-      do k = 1, nbad
-         self%drop(self%bad(k)) = .true.
-         self%sol(self%bad(k)) = 0.0_wp
-      end do
-   end subroutine factor_and_solve
 
 end module exic_contact_corrector

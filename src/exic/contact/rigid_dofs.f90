@@ -10,6 +10,11 @@
 !> node-wise assembly; this module gives it, per step, each candidate's body columns ("slots")
 !> and the candidates of each body, and per pivoting pass the bodies' accelerations
 !> M_b^-1 sum_i p_i g_i^b. Plain arrays in: the candidates' nodes, weights and normals.
+!>
+!> With friction (doc/friction.md, eq. F5) each candidate also has tangential body columns
+!> g_T,i^b = sum w_ik (t_x, t_y, r_k x t_i) in the same slots (`tangent_columns`), the bodies'
+!> accelerations count the tangential multipliers too (`accelerations_nt`), and `slide_part`
+!> gives a candidate's change of slip through the bodies.
 module exic_contact_rigid_dofs
    use exic_base_kinds, only: wp
    use exic_base_grow, only: grow
@@ -31,11 +36,15 @@ module exic_contact_rigid_dofs
       integer, allocatable :: bstart(:)        !< (nbody + 1) body -> candidate slots (CSR)
       integer, allocatable :: bcand(:), bslot(:) !< candidate and slot of each entry
       real(wp), allocatable :: acc(:, :)       !< (3, nbody) M_b^-1 sum_i p_i g_i^b of one pass
+      real(wp), allocatable :: sgt(:, :, :)    !< (3, 3, m) the tangential columns g_T,i^b (friction)
    contains
       procedure :: init => rigid_dofs_init
       procedure :: prepare => rigid_dofs_prepare
       procedure :: accelerations => rigid_dofs_accelerations
       procedure :: gap_part => rigid_dofs_gap_part
+      procedure :: tangent_columns => rigid_dofs_tangent_columns
+      procedure :: accelerations_nt => rigid_dofs_accelerations_nt
+      procedure :: slide_part => rigid_dofs_slide_part
    end type rigid_dofs_t
 
 contains
@@ -149,5 +158,62 @@ contains
          dg = dg + dot_product(self%sg(:, q, i), self%acc(:, self%sbody(q, i)))
       end do
    end function rigid_dofs_gap_part
+
+   !> The tangential body columns g_T,i^b = sum_{k on b} w_ik (t_x, t_y, r_k x t_i) of the m
+   !> candidates prepared last, in the slots of their normal columns (tng(2, m): the tangents).
+   subroutine rigid_dofs_tangent_columns(self, m, node, w, tng)
+      class(rigid_dofs_t), intent(inout) :: self
+      integer, intent(in) :: m
+      integer, intent(in) :: node(3, m)
+      real(wp), intent(in) :: w(3, m), tng(2, m)
+      integer :: i, k, q, nd
+      real(wp) :: rk(2)
+      if (allocated(self%sgt)) then
+         if (size(self%sgt, 3) < m) deallocate (self%sgt)
+      end if
+      if (.not. allocated(self%sgt)) allocate (self%sgt(3, 3, max(m, 64)))
+      do i = 1, m
+         self%sgt(:, 1:self%nslot(i), i) = 0.0_wp
+         do k = 1, 3
+            if (w(k, i) == 0.0_wp) cycle
+            nd = node(k, i)
+            if (self%body(nd) == 0) cycle
+            q = findloc(self%sbody(1:self%nslot(i), i), self%body(nd), 1)
+            rk = self%r(:, nd)
+            self%sgt(1, q, i) = self%sgt(1, q, i) + w(k, i)*tng(1, i)
+            self%sgt(2, q, i) = self%sgt(2, q, i) + w(k, i)*tng(2, i)
+            self%sgt(3, q, i) = self%sgt(3, q, i) + w(k, i)*(rk(1)*tng(2, i) - rk(2)*tng(1, i))
+         end do
+      end do
+   end subroutine rigid_dofs_tangent_columns
+
+   !> acc(:, b) = M_b^-1 sum_i (p_i g_N,i^b + q_i g_T,i^b): the bodies' accelerations under the
+   !> normal and tangential multipliers p(m), q(m).
+   subroutine rigid_dofs_accelerations_nt(self, m, p, q)
+      class(rigid_dofs_t), intent(inout) :: self
+      integer, intent(in) :: m
+      real(wp), intent(in) :: p(m), q(m)
+      integer :: i, j, b
+      self%acc = 0.0_wp
+      do i = 1, m
+         do j = 1, self%nslot(i)
+            b = self%sbody(j, i)
+            if (p(i) /= 0.0_wp) self%acc(:, b) = self%acc(:, b) + p(i)*self%sg(:, j, i)
+            if (q(i) /= 0.0_wp) self%acc(:, b) = self%acc(:, b) + q(i)*self%sgt(:, j, i)
+         end do
+      end do
+      self%acc = self%acc*self%minv
+   end subroutine rigid_dofs_accelerations_nt
+
+   !> sum_b g_T,i^b . acc(:, b): the change of candidate i's slip per unit c through the bodies.
+   pure real(wp) function rigid_dofs_slide_part(self, i) result(ds)
+      class(rigid_dofs_t), intent(in) :: self
+      integer, intent(in) :: i
+      integer :: q
+      ds = 0.0_wp
+      do q = 1, self%nslot(i)
+         ds = ds + dot_product(self%sgt(:, q, i), self%acc(:, self%sbody(q, i)))
+      end do
+   end function rigid_dofs_slide_part
 
 end module exic_contact_rigid_dofs

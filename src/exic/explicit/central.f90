@@ -22,6 +22,7 @@ module exic_explicit_central
    private
 
    public :: cd_displacement, cd_predictor, cd_velocity, positions, cd_zero, cd_kinetic
+   public :: positions_at, predictor_velocity_at
 
    !> Nodes per chunk (fixed: the order of the additions of a sum must not depend on threads).
    integer, parameter, public :: CHUNK = 1024
@@ -251,6 +252,37 @@ contains
       end do
       !$omp end parallel do
    end subroutine positions
+
+   !> x = x0 + u at the nodes `list` only (the positions the contact search reads), the same
+   !> operation as `positions` there.
+   pure subroutine positions_at(nnode, x0, u, list, x)
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      integer, intent(in) :: list(:)
+      real(wp), intent(inout) :: x(2, nnode)
+      integer :: k, i
+      do k = 1, size(list)
+         i = list(k)
+         x(1, i) = x0(1, i) + u(1, i)
+         x(2, i) = x0(2, i) + u(2, i)
+      end do
+   end subroutine positions_at
+
+   !> v~ = v + dt/2 (a_old + a) at the nodes `list` only, the same operation as cd_predictor's.
+   pure subroutine predictor_velocity_at(nnode, dt, v, a_old, a, list, vt)
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: dt, v(2, nnode), a_old(2, nnode), a(2, nnode)
+      integer, intent(in) :: list(:)
+      real(wp), intent(inout) :: vt(2, nnode)
+      real(wp) :: h
+      integer :: k, i
+      h = 0.5_wp*dt
+      do k = 1, size(list)
+         i = list(k)
+         vt(1, i) = v(1, i) + h*(a_old(1, i) + a(1, i))
+         vt(2, i) = v(2, i) + h*(a_old(2, i) + a(2, i))
+      end do
+   end subroutine predictor_velocity_at
 
    !> c = a + b on m values.
    pure subroutine add_range(m, a, b, c)

@@ -36,7 +36,8 @@ module exic_explicit_step
    use exic_contact_contact, only: contact_t
    use exic_explicit_state, only: state_t, element_set_t
    use exic_explicit_assembly, only: assembly_init, internal_forces, stable_step, kinetic_energy
-   use exic_explicit_central, only: cd_displacement, cd_predictor, cd_velocity, positions
+   use exic_explicit_central, only: cd_displacement, cd_predictor, cd_velocity, positions, positions_at, &
+                                    predictor_velocity_at
    use exic_explicit_loads, only: load_spec_t
    use exic_explicit_loading, only: loading_t
    use exic_explicit_face, only: face_setup
@@ -99,6 +100,7 @@ module exic_explicit_step
       ! work arrays of a step, (2, nnode)
       real(wp), allocatable :: x(:, :)                !< x(n+1) = x0 + u
       real(wp), allocatable :: du(:, :), a_old(:, :), vt(:, :), fcon_old(:, :)
+      logical :: fcon_old_clean = .false.             !< fcon_old is zero everywhere
       ! wall time
       real(wp) :: time_forces = 0.0_wp                !< element loop and stable step
       real(wp) :: time_steps = 0.0_wp                 !< whole steps
@@ -152,6 +154,8 @@ contains
                                 ' surface nodes keep their mass (rigid, prescribed, or in elements '// &
                                 'with every node on the face)')
       end if
+      ! st%fcon is written by the contact only, so it need not be zeroed where it is zero
+      self%contact%keep_fcon = .true.
    end subroutine stepper_init
 
    !> Contact acts in the step (exic's own or a host's).
@@ -203,7 +207,7 @@ contains
       class(stepper_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
       real(wp) :: t0, t1
-      logical :: contact_on
+      logical :: contact_on, work_con
 
       t0 = wall_time()
       contact_on = self%has_contact()
@@ -213,7 +217,9 @@ contains
          st%t = st%t + st%dt
          st%dt_prev = st%dt
          st%step = st%step + 1
-         if (contact_on) self%fcon_old = st%fcon
+         ! fcon_old = fcon(n): no copy while both are zero (no contact force in either step)
+         if (contact_on .and. .not. (self%fcon_old_clean .and. fcon_clean(self))) self%fcon_old = st%fcon
+         self%fcon_old_clean = fcon_clean(self)
          if (self%ld%active) call self%ld%place(st, self%du)
 
          ! 2-3. forces and dt(n+1) at t(n+1)
@@ -222,21 +228,27 @@ contains
          self%time_forces = self%time_forces + (wall_time() - t1)
          if (allocated(err)) return
          if (self%ld%active) call self%ld%forces(st, self%x, .false.)
-         ! 4. predictor, eq. 4.3-4.4 (v~ only when there is contact to search)
+         ! 4. predictor, eq. 4.3-4.4 (v~ only when there is contact to search; exic's own
+         ! contact without loads reads it at its surface nodes only)
          call cd_predictor(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%v, self%a_old, st%a, &
-                           contact_on, self%vt)
+                           contact_on .and. .not. surface_only(self), self%vt)
+         if (surface_only(self)) call predictor_velocity_at(st%nnode, st%dt_prev, st%v, self%a_old, st%a, &
+                                                            self%contact%cnodes, self%vt)
          if (self%ld%active) call self%ld%predict(st, self%vt, 0.5_wp*st%dt_prev)
          ! 5. contact corrector, eq. 4.5-4.7
          call correct(self, self%vt, err)
          if (allocated(err)) return
          if (self%ld%active) call self%ld%corrected(st)
-         ! 6. v(n+1) and the work of external and contact forces over the step (trapezoid rule)
+         ! 6. v(n+1) and the work of external and contact forces over the step (trapezoid rule);
+         ! without a contact force at t(n) and t(n+1) the contact work's sum is +0 term by term
+         ! and is skipped (the same bits)
+         work_con = contact_on .and. .not. (self%fcon_old_clean .and. fcon_clean(self))
          if (self%ld%varying) then
             ! loads that vary in time: the trapezoid rule 1/2 (F(n) + F(n+1)) . du
-            call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, self%ld%favg, self%du, contact_on, &
+            call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, self%ld%favg, self%du, work_con, &
                              self%fcon_old, st%fcon, st%minv, st%v, st%wext, st%wcon)
          else
-            call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, st%fext, self%du, contact_on, &
+            call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, st%fext, self%du, work_con, &
                              self%fcon_old, st%fcon, st%minv, st%v, st%wext, st%wcon)
          end if
          if (self%ld%active) call self%ld%finish(st, self%du, 0.5_wp*st%dt_prev, .false.)
@@ -257,7 +269,11 @@ contains
       type(error_t), allocatable, intent(out) :: err
       integer :: ebad
       associate (st => self%st)
-         if (self%has_contact() .or. self%ld%active) call positions(st%nnode, st%x0, st%u, self%x)
+         if (surface_only(self)) then
+            call positions_at(st%nnode, st%x0, st%u, self%contact%cnodes, self%x)
+         else if (self%has_contact() .or. self%ld%active) then
+            call positions(st%nnode, st%x0, st%u, self%x)
+         end if
          call internal_forces(st, self%sets, ebad, self%dt_elements, self%dt_elements_at, self%folded)
          if (ebad /= 0) then
             call inverted_error(st, ebad, err)
@@ -267,13 +283,30 @@ contains
       end associate
    end subroutine forces_and_dt
 
+   !> True when the step needs x and v~ at the contact surfaces' nodes only: exic's own contact
+   !> (it reads no other node) and no loads, prescribed motion or rigid bodies (which read all),
+   !> nor massless contact faces (their free solve reads the nodes next to them, doc/impact.md).
+   pure logical function surface_only(self) result(yes)
+      type(stepper_t), intent(in) :: self
+      yes = self%contact%active .and. .not. associated(self%hook) .and. .not. self%ld%active .and. &
+            .not. self%contact%face%active
+   end function surface_only
+
+   !> True when exic's own contact left st%fcon zero everywhere at its last call (a host's hook:
+   !> never known).
+   pure logical function fcon_clean(self) result(clean)
+      type(stepper_t), intent(in) :: self
+      clean = .not. associated(self%hook) .and. self%contact%active .and. self%contact%fcon_clean
+   end function fcon_clean
+
    !> Step 5: the corrector of exic's contact or of the host's hook, on the positions self%x.
    subroutine correct(self, vt, err)
       type(stepper_t), intent(inout) :: self
       real(wp), intent(in) :: vt(:, :)
       type(error_t), allocatable, intent(out) :: err
-      integer :: hits
+      integer :: hits, fhits
       hits = self%contact%corr%pass_limit_hits
+      fhits = self%contact%fr%sweep_limit_hits + self%contact%fr%pass_limit_hits
       associate (st => self%st)
          st%nactive = 0
          if (associated(self%hook)) then
@@ -295,6 +328,13 @@ contains
             if (self%pass_limit_warnings == MAX_PASS_WARNINGS) &
                call self%messages%add('warning: further pass-limit warnings are only counted (<stem>.out, '// &
                                       'contact statistics)')
+         else if (self%contact%fr%sweep_limit_hits + self%contact%fr%pass_limit_hits > fhits) then
+            ! the frictional corrector did not converge (doc/friction.md, section 4)
+            self%pass_limit_warnings = self%pass_limit_warnings + 1
+            if (self%pass_limit_warnings <= MAX_PASS_WARNINGS) &
+               call self%messages%add('warning: the frictional corrector reached its sweep or pass limit at '// &
+                                      'step '//itoa(int(st%step))//', t = '//rtoa(st%t)//'; the last '// &
+                                      'multipliers within the friction bounds were kept')
          end if
       end associate
    end subroutine correct
@@ -427,7 +467,8 @@ contains
 
    !> Stop on a non-finite value, naming where it first appears; the energy guard.
    !>
-   !> E = kinetic + strain + hourglass, E_in = E(0) + W_ext + W_pm (the energy put in, W_pm the
+   !> E = kinetic + strain + hourglass (+ the frictional dissipation, energy that left, with
+   !> friction: doc/friction.md section 5), E_in = E(0) + W_ext + W_pm (the energy put in, W_pm the
    !> work of the prescribed motion, doc/loads.md section 3),
    !> growth = (E - E_in) / (|E(0)| + |W_ext| + |W_pm|): past energy_warn a warning (once), past
    !> energy_stop an error naming the largest contributor (doc/decisions.md, "Energy guard").
@@ -443,6 +484,8 @@ contains
                             itoa(int(st%step))//': '//first_nonfinite(self))
             return
          end if
+         ! frictional dissipation is energy that left the bodies (doc/friction.md, section 5)
+         if (self%contact%friction) e = e + self%contact%dissipation
          if (self%ld%active) then
             ! loads and prescribed motion: the larger of two estimates of their work (loading.f90)
             w_in = self%ld%work_in(st)
@@ -462,7 +505,8 @@ contains
          end if
          if (growth <= self%energy_warn) return
          if (put_in > 0.0_wp) then
-            what = 'the physical energy (kinetic + strain) exceeds the energy put in (initial energy '// &
+            what = 'the physical energy (kinetic + strain'//trim(merge(' + frictional dissipation', &
+                   '                         ', self%contact%friction))//') exceeds the energy put in (initial energy '// &
                    '+ external work + work of prescribed motion) by '//percent(growth)//' of it at t = '// &
                    rtoa(st%t)//', step '//itoa(int(st%step))
          else

@@ -21,7 +21,7 @@ module exic_io_deck
    use exic_io_records, only: read_source, keyword_is, to_lower
    use exic_io_reader, only: reader_t, next_record, next_nonblank, word, field, int_field, fail, &
                              where, check_command, looks_like_data, read_parameters, &
-                             unknown_keyword, itoa
+                             unknown_keyword, itoa, track_fields, unused_fields, use_all
    use exic_io_deck_mesh, only: builder_t, builder_init, cmd_coordinates, cmd_elements, &
                                 cmd_region, cmd_boundary, cmd_ebound, cmd_cbound, &
                                 cmd_nodal_values, cmd_global, cmd_initial
@@ -58,7 +58,12 @@ contains
       call read_source(path, rd%src, err)
       if (allocated(err)) return
       call make_echo(rd, model)
+      call track_fields(rd)
       call read_all(rd, model, err)
+      ! a field no reader used is never dropped quietly (the PAIR and contact method records make
+      ! it an error themselves)
+      if (.not. allocated(err)) call unused_fields(rd)
+      if (associated(rd%seen)) deallocate (rd%seen)
       model%warnings = rd%warnings
    end subroutine read_deck
 
@@ -152,6 +157,7 @@ contains
          call read_parameters(rd, err)
          if (allocated(err)) return
       end do
+      call use_all(rd, i)
       t = adjustl(rd%src%rec(i)%text)
       if (len_trim(t) < 4) t = t//'    '
       if (to_lower(t(1:4)) /= 'feap') then

@@ -41,6 +41,9 @@ module exic_io_deck_batch
                                                    'LOOP', 'NEXT', 'TIME', 'FORM', 'TPLOt', &
                                                    'INITial', 'OUTPut', 'PRINt', 'CHECk', 'END', &
                                                    'PROPortional']
+   !> Value fields (after the option) each command uses, in the order of `commands`; a value
+   !> beyond them is reported by the reader as not used (INITial,RATE|VELOcity take none).
+   integer, parameter :: nvalues(13) = [0, 1, 1, 0, 1, 0, 1, 3, 1, 1, 2, 0, 2]
    character(len=12), parameter :: requests(10) = [character(len=12) :: 'disp', 'velo', 'acce', &
                                                    'stre', 'reac', 'cont', 'mome', 'show', 'ener', &
                                                    'rigi']
@@ -111,7 +114,7 @@ contains
       type(command_t), intent(out) :: c
       type(error_t), allocatable, intent(out) :: err
       character(len=:), allocatable :: w, opt
-      integer :: k, j
+      integer :: k, j, nv
 
       w = word(rd, i, 1)
       opt = word(rd, i, 2)
@@ -125,7 +128,9 @@ contains
       end if
       c%name = keyword_key(commands(k))
       c%option = opt
-      do j = 1, 3
+      nv = nvalues(k)
+      if (c%name == 'init' .and. (keyword_is(opt, 'rate') .or. keyword_is(opt, 'velo'))) nv = 0
+      do j = 1, nv
          call real_field(rd, i, 2 + j, trim(commands(k))//',option,v1,v2,v3', c%v(j), err)
          if (allocated(err)) return
       end do
@@ -497,9 +502,10 @@ contains
             return
          end if
       case (REQ_CONT)
-         if (r%comp < 1 .or. r%comp > 7) then
-            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1..7 (normal force, '// &
-                      'force x, force y, active constraints, penetration, largest multiplier, work)', err)
+         if (r%comp < 1 .or. r%comp > 11) then
+            call fail(rd, i, what//': component '//itoa(r%comp)//': expected 1..11 (normal force, '// &
+                      'force x, force y, active constraints, penetration, largest multiplier, work, '// &
+                      'friction force, sticking, slipping, frictional dissipation)', err)
             return
          end if
          call check_pair(id)

@@ -6,8 +6,15 @@
 !> (gaps generated as for ELEMents: copies of the previous facet with non-zero nodes + ng) |
 !> **[ext]** `PHYSical,c` (the edges of edge set c, a Gmsh physical curve, resolved after END);
 !> `PAIR,id,NTOS|SYMMetric,s,m` | `PAIR,id,SELF,s`; `AUTOmatic`; method records after a PAIR
-!> or AUTOmatic: `LAGRange`, `LAGRange,ENERgy` (massless contact faces, doc/impact.md), `PENAlty,k`, `PENAlty,SCALe,f` (f defaults to 0.1),
-!> `DETEction,SWEPt|STATic`. `END CONTact` (or `END`) closes the block.
+!> or AUTOmatic: `LAGRange`, `LAGRange,ENERgy` (massless contact faces, doc/impact.md),
+!> `PENAlty,k`, `PENAlty,SCALe,f` (f defaults to 0.1), `DETEction,SWEPt|STATic`,
+!> `FRICtion,COULomb,mu` | `FRICtion,COULomb,mus,mud[,decay]` (doc/friction.md). `END CONTact`
+!> (or `END`) closes the block.
+!>
+!> A field that a PAIR or method record does not use is an error (`PAIR,1,NTOS,1,2,FRIC,0.3`
+!> would otherwise run without friction); `LAGRange,ENERgy` together with Coulomb friction
+!> (mus > 0) on the same pair is refused (the massless faces are not coupled to the tangential
+!> problem).
 module exic_io_deck_contact
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
@@ -17,15 +24,16 @@ module exic_io_deck_contact
    use exic_io_records, only: keyword_is
    use exic_io_reader, only: reader_t, next_record, field, word, has_field, real_field, int_field, &
                              fail, where, end_set, unknown_keyword, itoa, rtoa, nfields, &
-                             check_data_record
+                             check_data_record, no_more_fields
    implicit none
    private
 
    public :: cmd_contact
 
-   character(len=12), parameter :: words(10) = [character(len=12) :: 'SURFace', 'REGIon', &
+   character(len=12), parameter :: words(11) = [character(len=12) :: 'SURFace', 'REGIon', &
                                                 'MATErial', 'FACEts', 'PAIR', 'AUTOmatic', &
-                                                'LAGRange', 'PENAlty', 'DETEction', 'PHYSical']
+                                                'LAGRange', 'PENAlty', 'DETEction', 'PHYSical', &
+                                                'FRICtion']
 
 contains
 
@@ -72,7 +80,8 @@ contains
             spec%auto_options%where = where(rd, i)
             target = -1
             if (nfields(rd, i) >= 2) call method(i, 2, err)
-         else if (keyword_is(w, 'lagr') .or. keyword_is(w, 'pena') .or. keyword_is(w, 'dete')) then
+         else if (keyword_is(w, 'lagr') .or. keyword_is(w, 'pena') .or. keyword_is(w, 'dete') .or. &
+                  keyword_is(w, 'fric')) then
             call method(i, 1, err)
          else
             call unknown_keyword(rd, i, 'CONTact record', field(rd, i, 1), words, err)
@@ -188,10 +197,15 @@ contains
          if (allocated(err)) return
          if (p%kind == PAIR_SELF) then
             p%master = p%slave
+            call no_more_fields(rd, i, 4, 'PAIR,id,SELF,s (method records such as FRICtion,COULomb,mu '// &
+                                'follow on their own lines)', err)
          else
             call int_field(rd, i, 5, what, p%master, err)
             if (allocated(err)) return
+            call no_more_fields(rd, i, 5, 'PAIR,id,'//trim(kinds(p%kind))//',slave,master (method records '// &
+                                'such as FRICtion,COULomb,mu follow on their own lines)', err)
          end if
+         if (allocated(err)) return
          if (p%slave < 1 .or. p%master < 1) then
             call fail(rd, i, what//': expected surface ids >= 1', err)
             return
@@ -218,10 +232,9 @@ contains
       subroutine method(i, k0, err)
          integer, intent(in) :: i, k0
          type(error_t), allocatable, intent(out) :: err
-         character(len=12), parameter :: methods(3) = [character(len=12) :: 'LAGRange', &
-                                                       'PENAlty', 'DETEction']
+         character(len=12), parameter :: methods(4) = [character(len=12) :: 'LAGRange', &
+                                                       'PENAlty', 'DETEction', 'FRICtion']
          character(len=12), parameter :: detections(2) = [character(len=12) :: 'SWEPt', 'STATic']
-         character(len=12), parameter :: schemes(1) = [character(len=12) :: 'ENERgy']
          type(pair_spec_t) :: p
          character(len=:), allocatable :: w
          if (target == 0) then
@@ -237,14 +250,28 @@ contains
          w = word(rd, i, k0)
          if (keyword_is(w, 'lagr')) then
             p%method = METHOD_LAGRANGE
-            p%energy = .false.
-            if (has_field(rd, i, k0 + 1)) then
-               if (keyword_is(word(rd, i, k0 + 1), 'ener')) then
-                  p%energy = .true.
-               else
-                  call unknown_keyword(rd, i, 'LAGRange option', field(rd, i, k0 + 1), schemes, err)
-                  return
-               end if
+            p%energy = keyword_is(word(rd, i, k0 + 1), 'ener')
+            if (p%energy) then
+               call no_more_fields(rd, i, k0 + 1, 'LAGRange,ENERgy', err)
+            else
+               call no_more_fields(rd, i, k0, 'LAGRange or LAGRange,ENERgy (friction is a record of '// &
+                                   'its own, FRICtion,COULomb,mu)', err)
+            end if
+            if (allocated(err)) return
+            if (p%energy .and. p%mus > 0.0_wp) then
+               call fail(rd, i, 'LAGRange,ENERgy with Coulomb friction (FRICtion,COULomb,'//rtoa(p%mus)// &
+                         ') on the same pair: not supported (the massless faces are not coupled to '// &
+                         'the tangential problem); expected LAGRange with friction, or ENERgy without', err)
+               return
+            end if
+         else if (keyword_is(w, 'fric')) then
+            call friction(i, k0, p, err)
+            if (allocated(err)) return
+            if (p%energy .and. p%method == METHOD_LAGRANGE .and. p%mus > 0.0_wp) then
+               call fail(rd, i, 'FRICtion,COULomb,'//rtoa(p%mus)//' with LAGRange,ENERgy on the same pair: '// &
+                         'not supported (the massless faces are not coupled to the tangential '// &
+                         'problem); expected LAGRange with friction, or ENERgy without', err)
+               return
             end if
          else if (keyword_is(w, 'pena')) then
             p%method = METHOD_PENALTY
@@ -253,9 +280,11 @@ contains
                p%penalty = 0.1_wp
                if (has_field(rd, i, k0 + 2)) call real_field(rd, i, k0 + 2, 'PENAlty,SCALe,f', &
                                                              p%penalty, err)
+               if (.not. allocated(err)) call no_more_fields(rd, i, k0 + 2, 'PENAlty,SCALe,f', err)
             else
                p%penalty_scaled = .false.
                call real_field(rd, i, k0 + 1, 'PENAlty,k', p%penalty, err)
+               if (.not. allocated(err)) call no_more_fields(rd, i, k0 + 1, 'PENAlty,k', err)
             end if
             if (allocated(err)) return
             if (.not. (p%penalty > 0.0_wp)) then
@@ -272,6 +301,8 @@ contains
                call unknown_keyword(rd, i, 'DETEction option', field(rd, i, k0 + 1), detections, err)
                return
             end if
+            call no_more_fields(rd, i, k0 + 1, 'DETEction,SWEPt|STATic', err)
+            if (allocated(err)) return
          else
             call unknown_keyword(rd, i, 'method record', field(rd, i, k0), methods, err)
             return
@@ -282,6 +313,52 @@ contains
             spec%auto_options = p
          end if
       end subroutine method
+
+      !> FRICtion,COULomb,mu or FRICtion,COULomb,mus,mud[,decay] whose keyword is field k0 of
+      !> record i, into p (doc/friction.md, eq. F12).
+      subroutine friction(i, k0, p, err)
+         integer, intent(in) :: i, k0
+         type(pair_spec_t), intent(inout) :: p
+         type(error_t), allocatable, intent(out) :: err
+         character(len=*), parameter :: what = 'FRICtion,COULomb,mu or FRICtion,COULomb,mus,mud[,decay]'
+         character(len=12), parameter :: laws(1) = [character(len=12) :: 'COULomb']
+         if (.not. has_field(rd, i, k0 + 1)) then
+            call fail(rd, i, 'FRICtion without a law: expected '//what, err)
+            return
+         end if
+         if (.not. keyword_is(word(rd, i, k0 + 1), 'coul')) then
+            call unknown_keyword(rd, i, 'friction law', field(rd, i, k0 + 1), laws, err)
+            return
+         end if
+         if (.not. has_field(rd, i, k0 + 2)) then
+            call fail(rd, i, 'FRICtion,COULomb without a coefficient: expected '//what, err)
+            return
+         end if
+         call real_field(rd, i, k0 + 2, what, p%mus, err)
+         if (allocated(err)) return
+         p%mud = p%mus
+         p%decay = 0.0_wp
+         if (has_field(rd, i, k0 + 3)) call real_field(rd, i, k0 + 3, what, p%mud, err)
+         if (allocated(err)) return
+         if (has_field(rd, i, k0 + 4)) then
+            call real_field(rd, i, k0 + 4, what, p%decay, err)
+            if (allocated(err)) return
+            if (.not. p%decay > 0.0_wp) then
+               call fail(rd, i, 'FRICtion,COULomb decay '//rtoa(p%decay)//': expected decay > 0 (or '// &
+                         'no decay field: mus at rest, mud when sliding)', err)
+               return
+            end if
+         end if
+         if (.not. (p%mus >= 0.0_wp .and. p%mud >= 0.0_wp)) then
+            call fail(rd, i, 'FRICtion,COULomb '//rtoa(p%mus)//', '//rtoa(p%mud)//': expected '// &
+                      'coefficients >= 0', err)
+         else if (p%mud > p%mus) then
+            call fail(rd, i, 'FRICtion,COULomb,mus,mud with mud = '//rtoa(p%mud)//' above mus = '// &
+                      rtoa(p%mus)//': expected mud <= mus (the dynamic coefficient at most the static one)', err)
+         else
+            call no_more_fields(rd, i, k0 + 4, what, err)
+         end if
+      end subroutine friction
 
       subroutine close_block(i, err)
          integer, intent(in) :: i
@@ -316,8 +393,39 @@ contains
          end do
          if (npair == 0 .and. .not. spec%automatic) then
             call fail(rd, icmd, 'CONTact block without PAIR or AUTOmatic: expected at least one', err)
+            return
          end if
+         call energy_with_friction(err)
       end subroutine close_block
+
+      !> LAGRange,ENERgy on one pair and Coulomb friction on another: refused at the pair (or
+      !> AUTOmatic) with friction, since the massless faces enter the normal problem only.
+      subroutine energy_with_friction(err)
+         type(error_t), allocatable, intent(out) :: err
+         integer :: k
+         logical :: energy
+         character(len=*), parameter :: why = ' in a model with LAGRange,ENERgy (massless contact '// &
+                                              'faces, which the frictional corrector does not couple): '// &
+                                              'not supported; expected no friction, or LAGRange without ENERgy'
+         energy = .false.
+         do k = 1, npair
+            if (pair(k)%energy .and. pair(k)%method == METHOD_LAGRANGE) energy = .true.
+         end do
+         if (spec%automatic) then
+            if (spec%auto_options%energy .and. spec%auto_options%method == METHOD_LAGRANGE) energy = .true.
+         end if
+         if (.not. energy) return
+         do k = 1, npair
+            if (pair(k)%mus > 0.0_wp) then
+               call make_error(err, pair(k)%where//': PAIR '//itoa(pair(k)%id)//' has Coulomb friction'//why)
+               return
+            end if
+         end do
+         if (spec%automatic) then
+            if (spec%auto_options%mus > 0.0_wp) &
+               call make_error(err, spec%auto_options%where//': AUTOmatic has Coulomb friction'//why)
+         end if
+      end subroutine energy_with_friction
 
       !> A NTOS or SYMMetric pair whose two surfaces describe the same region or material is
       !> self contact in disguise: an error pointing to SELF.

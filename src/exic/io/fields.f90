@@ -35,9 +35,11 @@ module exic_io_fields
    !> 5 pressure, 6 von Mises, 7 J): the default element values, in `/fields/stress`.
    character(len=9), parameter :: STRESS_NAMES(7) = [character(len=9) :: 'sxx', 'syy', 'szz', &
                                                      'sxy', 'pressure', 'von_mises', 'J']
-   !> Names of the nodal vector fields, datasets `/fields/<name>`.
-   character(len=13), parameter :: NODE_VECTORS(4) = [character(len=13) :: 'displacement', &
-                                                      'velocity', 'acceleration', 'contact_force']
+   !> Names of the nodal vector fields, datasets `/fields/<name>`; the last, the nodal friction
+   !> force (doc/friction.md), only when the run has friction (`nvec`).
+   character(len=14), parameter :: NODE_VECTORS(5) = [character(len=14) :: 'displacement', &
+                                                      'velocity', 'acceleration', 'contact_force', &
+                                                      'friction_force']
    !> The two last-state buffers, `/last/a` and `/last/b`.
    character(len=1), parameter :: BUFFER(0:1) = ['a', 'b']
 
@@ -51,6 +53,7 @@ module exic_io_fields
       character(len=:), allocatable :: last_path    !< <stem>.xdmf
       character(len=:), allocatable :: h5_ref       !< the .h5 file as the XDMF files name it
       integer :: nnode = 0, nelem = 0
+      integer :: nvec = 4                           !< nodal vectors written (5: with friction_force)
       integer :: ncomp = 0                          !< element value components
       character(len=16), allocatable :: comp_names(:)
       real(wp), allocatable :: x0(:, :)             !< reference coordinates (2, nnode)
@@ -79,9 +82,10 @@ contains
    !> time (default STRESS_NAMES; letters, digits and '_'). `energy_names`, when given, creates the
    !> energy series now instead of at the first output time (then every object of the file exists
    !> after `open`, as HDF5's single-writer/multiple-reader mode requires). The files must share
-   !> one directory unless `path_h5` is absolute.
+   !> one directory unless `path_h5` is absolute. `friction`: the run has friction; every output
+   !> time then also holds the nodal friction force.
    subroutine writer_open(self, path_h5, path_xdmf, nnode, nelem, x0, conn, region, mat, &
-                          surf_edges, err, cell_names, energy_names)
+                          surf_edges, err, cell_names, energy_names, friction)
       class(field_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path_h5, path_xdmf
       integer, intent(in) :: nnode, nelem
@@ -90,6 +94,7 @@ contains
       type(error_t), allocatable, intent(out) :: err
       character(len=*), intent(in), optional :: cell_names(:)
       character(len=*), intent(in), optional :: energy_names(:)
+      logical, intent(in), optional :: friction
       type(error_t), allocatable :: err2
       character(len=:), allocatable :: ref
 
@@ -114,6 +119,10 @@ contains
       self%last_path = path_xdmf
       self%nnode = nnode
       self%nelem = nelem
+      self%nvec = 4
+      if (present(friction)) then
+         if (friction) self%nvec = 5
+      end if
       self%ncomp = size(self%comp_names)
       self%x0 = x0
       self%conn = conn
@@ -147,10 +156,11 @@ contains
    !> acceleration a and contact force fcont, each (2, nnode); the contact flag active(nnode)
    !> (1 where a node carries an active constraint); the element values sig(ncomp, nelem) (by
    !> default the stress: sxx, syy, szz, sxy, pressure, von Mises, J), averaged to the nodes here;
-   !> and the energies with their names (the same names, in the same order, at every call).
+   !> and the energies with their names (the same names, in the same order, at every call);
+   !> ffric(2, nnode), the nodal friction force, when the writer was opened with friction.
    !> Flushes the .h5 file, then appends to the series XDMF file and rewrites the last-state one.
    subroutine writer_write_step(self, t, step, u, v, a, sig, fcont, active, energies, &
-                                energy_names, err)
+                                energy_names, err, ffric)
       class(field_writer_t), intent(inout) :: self
       real(wp), intent(in) :: t
       integer(i8), intent(in) :: step
@@ -159,10 +169,19 @@ contains
       real(wp), intent(in) :: energies(:)
       character(len=*), intent(in) :: energy_names(:)
       type(error_t), allocatable, intent(out) :: err
+      real(wp), intent(in), contiguous, optional :: ffric(:, :)
       integer :: i, b
 
       call check_step(self, t, u, v, a, sig, fcont, active, energies, energy_names, err)
       if (allocated(err)) return
+      if (self%nvec == 5) then
+         if (.not. present(ffric)) then
+            call make_error(err, 'field output: the friction force is missing')
+         else if (any(shape(ffric) /= [2, self%nnode])) then
+            call make_error(err, 'field output: the friction force must be (2, nnode)')
+         end if
+         if (allocated(err)) return
+      end if
       if (self%nenergy < 0) then
          call create_energy_series(self, energy_names, err)
          if (allocated(err)) return
@@ -175,6 +194,7 @@ contains
       if (.not. allocated(err)) call self%h5%append('/fields/velocity', v, err)
       if (.not. allocated(err)) call self%h5%append('/fields/acceleration', a, err)
       if (.not. allocated(err)) call self%h5%append('/fields/contact_force', fcont, err)
+      if (.not. allocated(err) .and. self%nvec == 5) call self%h5%append('/fields/friction_force', ffric, err)
       if (.not. allocated(err)) call self%h5%append('/fields/contact_active', active, err)
       if (.not. allocated(err)) call self%h5%append('/fields/stress', sig, err)
       if (.not. allocated(err)) call self%h5%append('/fields/nodal_stress', self%nodal, err)
@@ -187,6 +207,10 @@ contains
       if (.not. allocated(err)) call self%h5%append('/step', step, err)
       b = mod(self%ntime, 2)
       if (.not. allocated(err)) call write_last_buffer(self, b, u, v, a, fcont, active, sig, err)
+      if (.not. allocated(err) .and. self%nvec == 5) then
+         self%vec3(1:2, :) = ffric
+         call self%h5%rewrite('/last/'//BUFFER(b)//'/friction_force', self%vec3, err)
+      end if
       if (.not. allocated(err)) call self%h5%flush(err)
       if (.not. allocated(err)) then
          self%ntime = self%ntime + 1
@@ -412,7 +436,7 @@ contains
          if (.not. allocated(err)) call h5%create_series('/step', DTYPE_INT64, none, err)
          if (.not. allocated(err)) call h5%create_group('/fields', err)
          if (.not. allocated(err)) call h5%create_group('/xdmf', err)
-         do i = 1, size(NODE_VECTORS)
+         do i = 1, self%nvec
             if (allocated(err)) return
             f = trim(NODE_VECTORS(i))
             call h5%create_series('/fields/'//f, DTYPE_REAL, [2, nn], err)
@@ -455,7 +479,7 @@ contains
          g = '/last/'//BUFFER(b)
          call self%h5%create_group(g, err)
          if (.not. allocated(err)) call self%h5%write(g//'/output', [-1], err)
-         do i = 1, size(NODE_VECTORS)
+         do i = 1, self%nvec
             if (.not. allocated(err)) call self%h5%write(g//'/'//trim(NODE_VECTORS(i)), zero3, err)
          end do
          if (.not. allocated(err)) call self%h5%write(g//'/contact_active', izero, err)
@@ -599,7 +623,7 @@ contains
       nc = itoa(self%ncomp)
       s = '  <Grid Name="t'//six_digits(k)//'" GridType="Uniform">'//NL// &
           '        <Time Value="'//real_text(t)//'"/>'//NL//mesh_items(self)
-      do i = 1, size(NODE_VECTORS)
+      do i = 1, self%nvec
          s = s//attribute(trim(NODE_VECTORS(i)), 'Vector', 'Node', data_item(nn//' 3', 'Float', '8', &
                           slab(self, '/xdmf/'//trim(NODE_VECTORS(i)), k, '0 0', '1 1', nn//' 3', nn//' 3')))
       end do
@@ -651,7 +675,7 @@ contains
           '    <Grid Name="'//name//'" GridType="Uniform">'//NL//mesh_items(self)
       if (b >= 0) then
          g = self%h5_ref//':/last/'//BUFFER(b)//'/'
-         do i = 1, size(NODE_VECTORS)
+         do i = 1, self%nvec
             s = s//attribute(trim(NODE_VECTORS(i)), 'Vector', 'Node', &
                              data_item(nn//' 3', 'Float', '8', g//trim(NODE_VECTORS(i))))
          end do

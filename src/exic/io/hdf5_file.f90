@@ -33,8 +33,12 @@ module exic_io_hdf5_file
    !> Element types of datasets: real(wp) (IEEE 64-bit), default integer (32-bit), integer(i8).
    integer, parameter :: DTYPE_REAL = 1, DTYPE_INT = 2, DTYPE_INT64 = 3
 
-   !> Target size of one chunk of a series, bytes (several slabs share a chunk when slabs are small).
-   integer, parameter :: CHUNK_BYTES = 65536
+   !> Target size of one chunk of a series, bytes (several slabs share a chunk when slabs are
+   !> small). The file is flushed after every output time, and a flush writes every chunk that
+   !> changed whole: a chunk of k slabs is written k times while it fills. 4 kB (one page) keeps
+   !> that rewrite small; with 64 kB the seed's 7.2 deck (434 nodes, 7 kB slabs, 150 output
+   !> times) wrote 80 MB for an 11.6 MB file (doc/performance.md, section 2).
+   integer, parameter :: CHUNK_BYTES = 4096
    !> Most slabs in one chunk.
    integer, parameter :: CHUNK_SLABS_MAX = 64
 

@@ -18,6 +18,7 @@ module exic_io_history
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
    use exic_base_strings, only: itoa, rtoa
+   use exic_io_number, only: put_real, put_int, REAL_WIDTH
    implicit none
    private
 
@@ -26,11 +27,12 @@ module exic_io_history
    !> Edit descriptor of one real in <stem>.his and <stem>.ene (with its leading blank).
    character(len=*), parameter, public :: NUMBER_FORMAT = '1x,es24.16e3'
 
-   !> Column names of <stem>.ene, in order (prescribed_work [ext], doc/loads.md section 3,
-   !> appended after the older columns so that they keep their positions).
+   !> Column names of <stem>.ene, in order (prescribed_work [ext], doc/loads.md section 3, and
+   !> friction_dissipation [ext], doc/friction.md section 5, appended after the older columns so
+   !> that they keep their positions).
    character(len=*), parameter :: ENERGY_COLUMNS = &
       't step dt kinetic strain external_work contact_work total drift momentum_x momentum_y '// &
-      'active hourglass prescribed_work'
+      'active hourglass prescribed_work friction_dissipation'
 
    !> The three text files of one run.
    type :: history_files_t
@@ -42,6 +44,7 @@ module exic_io_history
       character(len=64), allocatable :: labels(:)  !< the .his columns after t
       logical :: nonfinite = .false.             !< a row with a non-finite value was refused
       character(len=:), allocatable :: nonfinite_message  !< the first such value: file, column, t
+      character(len=:), allocatable :: row       !< the text of a row, assembled before its write
    contains
       procedure :: open => files_open
       procedure :: his_header => files_his_header
@@ -105,7 +108,7 @@ contains
       real(wp), intent(in) :: t
       real(wp), intent(in) :: values(:)
       type(error_t), allocatable, intent(out), optional :: err
-      integer :: k
+      integer :: k, n
       if (.not. ieee_is_finite(t)) then
          call refuse(self, 'his', 't', t, t, err)
          return
@@ -116,36 +119,68 @@ contains
             return
          end if
       end do
-      write (self%his, '(*('//NUMBER_FORMAT//'))') t, values
+      ! the text of write (self%his, '(*('//NUMBER_FORMAT//'))') t, values
+      call reserve(self, REAL_WIDTH*(1 + size(values)))
+      n = 0
+      call put_real(self%row, n, t)
+      do k = 1, size(values)
+         call put_real(self%row, n, values(k))
+      end do
+      write (self%his, '(a)') self%row(1:n)
       call self%maybe_flush()
    end subroutine files_his_row
 
    !> One row of <stem>.ene. A row with a non-finite value is not written (see the module
    !> header); `err` then says which.
    subroutine files_ene_row(self, t, step, dt, kinetic, strain, wext, wcon, total, drift, &
-                            momentum, nactive, hourglass, wpm, err)
+                            momentum, nactive, hourglass, wpm, dfric, err)
       class(history_files_t), intent(inout) :: self
       real(wp), intent(in) :: t, dt, kinetic, strain, wext, wcon, total, drift, momentum(2), hourglass
       real(wp), intent(in) :: wpm      !< work of the prescribed motion
+      real(wp), intent(in) :: dfric    !< frictional dissipation
       integer(i8), intent(in) :: step
       integer, intent(in) :: nactive
       type(error_t), allocatable, intent(out), optional :: err
-      character(len=16), parameter :: names(12) = [character(len=16) :: 't', 'dt', 'kinetic', &
+      character(len=20), parameter :: names(13) = [character(len=20) :: 't', 'dt', 'kinetic', &
          'strain', 'external_work', 'contact_work', 'total', 'drift', 'momentum_x', 'momentum_y', &
-         'hourglass', 'prescribed_work']
-      real(wp) :: v(12)
-      integer :: k
-      v = [t, dt, kinetic, strain, wext, wcon, total, drift, momentum, hourglass, wpm]
+         'hourglass', 'prescribed_work', 'friction_dissipation']
+      real(wp) :: v(13)
+      integer :: k, n
+      v = [t, dt, kinetic, strain, wext, wcon, total, drift, momentum, hourglass, wpm, dfric]
       do k = 1, size(v)
          if (.not. ieee_is_finite(v(k))) then
             call refuse(self, 'ene', trim(names(k)), v(k), t, err)
             return
          end if
       end do
-      write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,2('//NUMBER_FORMAT//'))') &
-         t, step, dt, kinetic, strain, wext, wcon, total, drift, momentum, nactive, hourglass, wpm
+      ! the text of write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,3('// &
+      ! NUMBER_FORMAT//'))') t, step, dt, kinetic, strain, wext, wcon, total, drift, momentum, &
+      ! nactive, hourglass, wpm, dfric
+      call reserve(self, 13*REAL_WIDTH + 22)
+      n = 0
+      call put_real(self%row, n, t)
+      call put_int(self%row, n, step, 12)
+      do k = 2, 10
+         call put_real(self%row, n, v(k))
+      end do
+      call put_int(self%row, n, int(nactive, i8), 10)
+      call put_real(self%row, n, hourglass)
+      call put_real(self%row, n, wpm)
+      call put_real(self%row, n, dfric)
+      write (self%ene, '(a)') self%row(1:n)
       call self%maybe_flush()
    end subroutine files_ene_row
+
+   !> The row buffer holds at least n characters.
+   subroutine reserve(self, n)
+      class(history_files_t), intent(inout) :: self
+      integer, intent(in) :: n
+      if (allocated(self%row)) then
+         if (len(self%row) >= n) return
+      end if
+      if (allocated(self%row)) deallocate (self%row)
+      allocate (character(len=max(n, 2*REAL_WIDTH*16)) :: self%row)
+   end subroutine reserve
 
    !> Name of .his column k (after t).
    function his_label(self, k) result(name)

@@ -30,9 +30,11 @@ module exic_io_output
       integer, allocatable :: nodes(:)
    end type node_list_t
 
-   !> The energies of the field output, datasets /energies/<name>.
-   character(len=16), parameter :: ENERGY_NAMES(5) = [character(len=16) :: 'kinetic', 'strain', &
-                                                      'external_work', 'contact_work', 'hourglass']
+   !> The energies of the field output, datasets /energies/<name>; the last only when the run has
+   !> friction (doc/friction.md, section 5).
+   character(len=20), parameter :: ENERGY_NAMES(6) = [character(len=20) :: 'kinetic', 'strain', &
+                                                      'external_work', 'contact_work', 'hourglass', &
+                                                      'friction_dissipation']
 
    !> The run's output files and their schedules.
    type :: output_t
@@ -171,7 +173,8 @@ contains
          call self%files%his_row(st%t, self%values)
          call energy_balance(st, total, drift)
          call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
-                                 st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm)
+                                 st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm, &
+                                 stp%contact%dissipation)
       end associate
       self%last_row_step = stp%st%step
    end subroutine write_rows
@@ -284,8 +287,15 @@ contains
       self%field_next = stp%st%t
       call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, model%mesh%nelem, &
                             model%mesh%x, model%mesh%conn, model%mesh%region, model%mesh%mat, &
-                            stp%contact%edges(), err, energy_names=ENERGY_NAMES)
+                            stp%contact%edges(), err, energy_names=ENERGY_NAMES(:nenergy(stp)), &
+                            friction=stp%contact%friction)
    end subroutine output_open_fields
+
+   !> Number of field-output energies of the run: the frictional dissipation with friction only.
+   pure integer function nenergy(stp)
+      type(stepper_t), intent(in) :: stp
+      nenergy = merge(6, 5, stp%contact%friction)
+   end function nenergy
 
    !> Write the fields when an output time is due. The next output time is the first multiple
    !> of the interval after t: with an interval below the time step the fields are written once
@@ -313,21 +323,28 @@ contains
       call write_fields(self, stp, err)
    end subroutine output_fields_due
 
-   !> The fields of the current state.
+   !> The fields of the current state; with friction also the nodal friction force and the
+   !> frictional dissipation (doc/friction.md).
    subroutine write_fields(self, stp, err)
       type(output_t), intent(inout) :: self
       type(stepper_t), intent(in) :: stp
       type(error_t), allocatable, intent(out) :: err
       real(wp), allocatable :: sig(:, :)
       integer, allocatable :: flag(:)
-      real(wp) :: energies(5)
+      real(wp) :: energies(6)
       associate (st => stp%st)
          allocate (sig(7, st%nelem), flag(st%nnode))
          call all_stresses(st, stp%sets, sig)
          flag = merge(1, 0, st%fcon(1, :) /= 0.0_wp .or. st%fcon(2, :) /= 0.0_wp)
-         energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass]
-         call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                     energies, ENERGY_NAMES, err)
+         energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass, &
+                     stp%contact%dissipation]
+         if (stp%contact%friction) then
+            call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
+                                        energies, ENERGY_NAMES, err, stp%contact%ffric)
+         else
+            call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
+                                        energies(1:5), ENERGY_NAMES(1:5), err)
+         end if
          self%field_last = st%t
       end associate
    end subroutine write_fields

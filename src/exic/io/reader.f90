@@ -3,6 +3,12 @@
 !> Every error made here is `file:line: <what was expected>`. A data set ends at a blank
 !> record (a comment-only line is one); when a record that starts like data (digit, sign or
 !> `.`) is then met where a command is expected, a warning names both lines (spec section 1).
+!>
+!> No field is dropped quietly: `field` (and with it `word`, `has_field`, `real_field`,
+!> `int_field`) records the highest field read of every record, and once the deck is read
+!> `unused_fields` warns, with file:line, of every non-empty field beyond it. Records read whole
+!> (the title, PARAmeter records) say so with `use_all`. Where an unused field is an error
+!> (PAIR and contact method records) the parser calls `no_more_fields` itself.
 module exic_io_reader
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa
@@ -15,6 +21,7 @@ module exic_io_reader
    public :: reader_t, next_record, next_in_set, next_nonblank, back_one, nfields, field, word, has_field
    public :: real_field, int_field, fail, warn, warn_at, where, end_set, looks_like_data, check_command
    public :: read_parameters, unknown_keyword, itoa, rtoa, check_data_record, is_command
+   public :: no_more_fields, unused_fields, use_all, track_fields
 
    !> Every command keyword of the language (mesh, solution and top level), used to tell a
    !> command that was read inside a data set.
@@ -32,6 +39,9 @@ module exic_io_reader
       type(param_table_t) :: params
       character(len=:), allocatable :: warnings !< newline-separated "file:line: warning: ..."
       integer :: set_end = -1                   !< index of the blank record that last ended a set
+      !> highest field read of each record (see `field`); a pointer so that the readers that take
+      !> the cursor intent(in) can record what they read; not associated: nothing is recorded
+      integer, pointer :: seen(:) => null()
       character(len=:), allocatable :: deck     !< the deck's path (errors of an empty deck)
    end type reader_t
 
@@ -87,18 +97,19 @@ contains
       nfields = rd%src%rec(i)%nf
    end function nfields
 
-   !> Field `k` of record `i` as written ('' when absent).
-   pure function field(rd, i, k) result(s)
+   !> Field `k` of record `i` as written ('' when absent); records that field k was read.
+   function field(rd, i, k) result(s)
       type(reader_t), intent(in) :: rd
       integer, intent(in) :: i, k
       character(len=:), allocatable :: s
       s = ''
       if (i < 1 .or. i > rd%src%n) return
+      if (associated(rd%seen)) rd%seen(i) = max(rd%seen(i), k)
       if (k >= 1 .and. k <= rd%src%rec(i)%nf) s = rd%src%rec(i)%f(k)%s
    end function field
 
    !> Field `k` of record `i` in lower case ('' when absent).
-   pure function word(rd, i, k) result(s)
+   function word(rd, i, k) result(s)
       type(reader_t), intent(in) :: rd
       integer, intent(in) :: i, k
       character(len=:), allocatable :: s
@@ -106,7 +117,7 @@ contains
    end function word
 
    !> True when record `i` has a non-empty field `k`.
-   pure logical function has_field(rd, i, k)
+   logical function has_field(rd, i, k)
       type(reader_t), intent(in) :: rd
       integer, intent(in) :: i, k
       has_field = len(field(rd, i, k)) > 0
@@ -278,6 +289,55 @@ contains
       end if
    end subroutine int_field
 
+   !> Start recording the fields read of every record (read_deck, before any record is read).
+   subroutine track_fields(rd)
+      type(reader_t), intent(inout) :: rd
+      if (associated(rd%seen)) deallocate (rd%seen)
+      allocate (rd%seen(rd%src%n), source=0)
+   end subroutine track_fields
+
+   !> Record `i` was read as a whole (its raw text), every field of it used.
+   subroutine use_all(rd, i)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i
+      if (.not. associated(rd%seen)) return
+      if (i >= 1 .and. i <= rd%src%n) rd%seen(i) = huge(1)
+   end subroutine use_all
+
+   !> An error naming the first non-empty field of record `i` beyond field `k` (`what` names the
+   !> record's layout): for records where an unused field must not pass (PAIR, contact methods).
+   subroutine no_more_fields(rd, i, k, what, err)
+      type(reader_t), intent(in) :: rd
+      integer, intent(in) :: i, k
+      character(len=*), intent(in) :: what
+      type(error_t), allocatable, intent(out) :: err
+      integer :: j
+      do j = k + 1, rd%src%rec(i)%nf
+         if (len(rd%src%rec(i)%f(j)%s) == 0) cycle
+         call fail(rd, i, what//': field '//itoa(j)//' "'//rd%src%rec(i)%f(j)%s//'" is not used: '// &
+                   'expected at most '//itoa(k)//' fields', err)
+         return
+      end do
+      call use_all(rd, i)
+   end subroutine no_more_fields
+
+   !> Once the deck is read: a warning with file:line for every non-empty field that no reader
+   !> read (records never read field by field are skipped); stops recording.
+   subroutine unused_fields(rd)
+      type(reader_t), intent(inout) :: rd
+      integer :: i, j
+      if (.not. associated(rd%seen)) return
+      do i = 1, rd%src%n
+         if (rd%src%rec(i)%blank .or. rd%seen(i) == 0) cycle
+         do j = min(rd%seen(i), rd%src%rec(i)%nf) + 1, rd%src%rec(i)%nf
+            if (len(rd%src%rec(i)%f(j)%s) == 0) cycle
+            call warn(rd, i, 'field '//itoa(j)//' "'//rd%src%rec(i)%f(j)%s//'" of this record is '// &
+                      'not used (ignored)')
+         end do
+      end do
+      deallocate (rd%seen)
+   end subroutine unused_fields
+
    !> Read a PARAmeter data set: records `name = expression` (several per record may be separated
    !> by commas; blanks inside a record are removed, as FEAP does), ended by a blank record.
    subroutine read_parameters(rd, err)
@@ -302,6 +362,7 @@ contains
       integer :: k, p, q
       real(wp) :: v
 
+      call use_all(rd, i)
       t = ''
       do k = 1, len(rd%src%rec(i)%text)
          if (rd%src%rec(i)%text(k:k) /= ' ') t = t//rd%src%rec(i)%text(k:k)

@@ -139,6 +139,13 @@ contains
             call files%say('contact corrector: factorizations '//itoa(c%corr%nsolves)// &
                            ' (dense '//itoa(c%corr%ndense)//', sparse '//itoa(c%corr%nsparse)// &
                            '), sparse symbolic analyses '//itoa(c%corr%sparse%nanalyze))
+            ! the frictional corrector (doc/friction.md, section 4)
+            if (c%friction) call files%say('friction: steps solved with friction '//itoa(c%fr%ncalls)// &
+                                           ', sweeps '//itoa(c%fr%nsweeps)//', steps at the sweep limit '// &
+                                           itoa(c%fr%sweep_limit_hits)//', tangential problems at their pass '// &
+                                           'limit '//itoa(c%fr%pass_limit_hits)//', tangential factorizations '// &
+                                           itoa(c%fr%tt%nsolves)//' (reused '//itoa(c%fr%tt%nreused)// &
+                                           '), frictional dissipation '//rtoa(c%dissipation))
          end if
       end associate
       call files%say('files written: '//files%his_path//' '//files%ene_path//' '//files%out_path// &

@@ -83,8 +83,8 @@ subroutine exic_contact_step(ih, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr
    call problem_step('EXIC_CONTACT_STEP', ih, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr)
 end subroutine exic_contact_step
 
-!> RES(6) of pair IPAIR in the last step: normal force, force x, y on the slave side, active
-!> constraints, largest penetration at t(n+1), largest multiplier.
+!> RES(6) of pair IPAIR in the last step: normal force, force x, y on the slave side (normal
+!> and friction), active constraints, largest penetration at t(n+1), largest multiplier.
 subroutine exic_contact_pair_results(ih, ipair, res, ierr)
    use exic_legacy_problem, only: problem_pair_results
    implicit none
@@ -93,6 +93,30 @@ subroutine exic_contact_pair_results(ih, ipair, res, ierr)
    integer, intent(out) :: ierr
    call problem_pair_results('EXIC_CONTACT_PAIR_RESULTS', ih, ipair, res, ierr)
 end subroutine exic_contact_pair_results
+
+!> Coulomb friction of pair IPAIR (doc/friction.md): static coefficient AMUS, dynamic AMUD
+!> (0 <= AMUD <= AMUS), DECAY of the coefficient with slip speed (0: AMUS at rest, AMUD when
+!> sliding; else AMUD + (AMUS - AMUD) exp(-DECAY v)). AMUS = 0: frictionless.
+subroutine exic_contact_set_friction(ih, ipair, amus, amud, decay, ierr)
+   use exic_legacy_problem, only: problem_set_friction
+   implicit none
+   integer, intent(in) :: ih, ipair
+   double precision, intent(in) :: amus, amud, decay
+   integer, intent(out) :: ierr
+   call problem_set_friction('EXIC_CONTACT_SET_FRICTION', ih, ipair, amus, amud, decay, ierr)
+end subroutine exic_contact_set_friction
+
+!> RES(4) of pair IPAIR: friction force (sum of the tangential multipliers' sizes) in the last
+!> step, constraints that stick and that slip in it, frictional dissipation so far. The
+!> friction forces are also in FCON and in EXIC_CONTACT_PAIR_RESULTS' force x, y.
+subroutine exic_contact_pair_friction(ih, ipair, res, ierr)
+   use exic_legacy_problem, only: problem_pair_friction
+   implicit none
+   integer, intent(in) :: ih, ipair
+   double precision, intent(out) :: res(4)
+   integer, intent(out) :: ierr
+   call problem_pair_friction('EXIC_CONTACT_PAIR_FRICTION', ih, ipair, res, ierr)
+end subroutine exic_contact_pair_friction
 
 !> NCON: number of candidate constraints of the last step.
 subroutine exic_contact_ncon(ih, ncon, ierr)

@@ -94,6 +94,29 @@ subroutine exic_c_contact_pair_results(ih, ipair, res, ierr) bind(C, name='exic_
    call problem_pair_results('exic_c_contact_pair_results', ih, ipair, res, ierr)
 end subroutine exic_c_contact_pair_results
 
+!> C twin of exic_contact_set_friction.
+subroutine exic_c_contact_set_friction(ih, ipair, amus, amud, decay, ierr) &
+   bind(C, name='exic_c_contact_set_friction')
+   use, intrinsic :: iso_c_binding, only: c_int, c_double
+   use exic_legacy_problem, only: problem_set_friction
+   implicit none
+   integer(c_int), value :: ih, ipair
+   real(c_double), value :: amus, amud, decay
+   integer(c_int), intent(out) :: ierr
+   call problem_set_friction('exic_c_contact_set_friction', ih, ipair, amus, amud, decay, ierr)
+end subroutine exic_c_contact_set_friction
+
+!> C twin of exic_contact_pair_friction.
+subroutine exic_c_contact_pair_friction(ih, ipair, res, ierr) bind(C, name='exic_c_contact_pair_friction')
+   use, intrinsic :: iso_c_binding, only: c_int, c_double
+   use exic_legacy_problem, only: problem_pair_friction
+   implicit none
+   integer(c_int), value :: ih, ipair
+   real(c_double), intent(out) :: res(4)
+   integer(c_int), intent(out) :: ierr
+   call problem_pair_friction('exic_c_contact_pair_friction', ih, ipair, res, ierr)
+end subroutine exic_c_contact_pair_friction
+
 !> C twin of exic_contact_ncon.
 subroutine exic_c_contact_ncon(ih, ncon, ierr) bind(C, name='exic_c_contact_ncon')
    use, intrinsic :: iso_c_binding, only: c_int

@@ -9,6 +9,7 @@ module exic_legacy_interfaces
    public :: exic_contact_set_pair, exic_contact_set_option, exic_contact_step
    public :: exic_contact_pair_results, exic_contact_ncon, exic_contact_constraints
    public :: exic_contact_work, exic_contact_free, exic_contact_error_message
+   public :: exic_contact_set_friction, exic_contact_pair_friction
 
    interface
       !> See api.f90 and doc/api.md.
@@ -74,6 +75,22 @@ module exic_legacy_interfaces
          double precision, intent(out) :: res(6)
          integer, intent(out) :: ierr
       end subroutine exic_contact_pair_results
+
+      !> See api.f90 and doc/api.md.
+      subroutine exic_contact_set_friction(ih, ipair, amus, amud, decay, ierr)
+         implicit none
+         integer, intent(in) :: ih, ipair
+         double precision, intent(in) :: amus, amud, decay
+         integer, intent(out) :: ierr
+      end subroutine exic_contact_set_friction
+
+      !> See api.f90 and doc/api.md.
+      subroutine exic_contact_pair_friction(ih, ipair, res, ierr)
+         implicit none
+         integer, intent(in) :: ih, ipair
+         double precision, intent(out) :: res(4)
+         integer, intent(out) :: ierr
+      end subroutine exic_contact_pair_friction
 
       !> See api.f90 and doc/api.md.
       subroutine exic_contact_ncon(ih, ncon, ierr)

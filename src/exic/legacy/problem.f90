@@ -33,6 +33,7 @@ module exic_legacy_problem
    public :: problem_create_mesh, problem_create_segments, problem_set_fixed, problem_set_pair
    public :: problem_set_option, problem_step, problem_pair_results, problem_ncon
    public :: problem_constraints, problem_work, problem_free, problem_message
+   public :: problem_set_friction, problem_pair_friction
 
    !> Option codes of problem_set_option.
    integer, parameter, public :: OPT_VELOCITY_FORM = 1
@@ -387,6 +388,38 @@ contains
       if (ierr /= IERR_OK) p%message = last_message(0)
    end subroutine problem_set_pair
 
+   !> Coulomb friction of pair ipair (doc/friction.md, eq. F12): static coefficient amus, dynamic
+   !> amud <= amus, decay with slip speed (0: amus at rest, amud sliding); amus = 0 removes it.
+   !> The contact object is rebuilt at the current positions, as for a change of pair options.
+   subroutine problem_set_friction(who, h, ipair, amus, amud, decay, ierr)
+      character(len=*), intent(in) :: who
+      integer, intent(in) :: h, ipair
+      real(wp), intent(in) :: amus, amud, decay
+      integer, intent(out) :: ierr
+      type(problem_t), pointer :: p
+      p => lookup(who, h, ierr)
+      if (.not. associated(p)) return
+      ierr = IERR_ARGUMENT
+      if (ipair < 1 .or. ipair > p%npair) then
+         call fail(h, who//': pair '//itoa(ipair)//' is outside 1..'//itoa(p%npair))
+         return
+      end if
+      if (.not. (ieee_is_finite(amus) .and. ieee_is_finite(amud) .and. ieee_is_finite(decay))) then
+         call fail(h, who//': the friction coefficients and the decay must be finite')
+         return
+      end if
+      if (.not. (amus >= 0.0_wp .and. amud >= 0.0_wp .and. decay >= 0.0_wp .and. amud <= amus)) then
+         call fail(h, who//': expected 0 <= AMUD <= AMUS and DECAY >= 0, got AMUS = '//rtoa(amus)// &
+                   ', AMUD = '//rtoa(amud)//', DECAY = '//rtoa(decay))
+         return
+      end if
+      p%spec%pairs(ipair)%mus = amus
+      p%spec%pairs(ipair)%mud = amud
+      p%spec%pairs(ipair)%decay = decay
+      call rebuild(who, p, ierr)
+      if (ierr /= IERR_OK) p%message = last_message(0)
+   end subroutine problem_set_friction
+
    !> Handle options: OPT_VELOCITY_FORM = 1 (v~(n+1), default) or 2 (v(n+1/2)).
    subroutine problem_set_option(who, h, iopt, ival, ierr)
       character(len=*), intent(in) :: who
@@ -587,7 +620,8 @@ contains
    ! ------------------------------------------------------------------ queries
 
    !> res(6) of pair ipair in the last step: normal force (sum of multipliers), force x, y on
-   !> the slave side, active constraints, largest penetration at t(n+1), largest multiplier.
+   !> the slave side (normal and friction), active constraints, largest penetration at t(n+1),
+   !> largest multiplier.
    subroutine problem_pair_results(who, h, ipair, res, ierr)
       character(len=*), intent(in) :: who
       integer, intent(in) :: h, ipair
@@ -607,6 +641,30 @@ contains
          res(k) = p%contact%pair_value(ipair, k)
       end do
    end subroutine problem_pair_results
+
+   !> res(4) of pair ipair: friction force (sum of |q| over its constraints) in the last step,
+   !> constraints that stick and that slip in it, frictional dissipation since the friction was
+   !> set (doc/friction.md, section 7). The friction forces are also in the pair results' force
+   !> x, y and in the nodal contact forces of the step.
+   subroutine problem_pair_friction(who, h, ipair, res, ierr)
+      character(len=*), intent(in) :: who
+      integer, intent(in) :: h, ipair
+      real(wp), intent(out) :: res(4)
+      integer, intent(out) :: ierr
+      type(problem_t), pointer :: p
+      integer :: k
+      res = 0.0_wp
+      p => lookup(who, h, ierr)
+      if (.not. associated(p)) return
+      if (ipair < 1 .or. ipair > p%npair) then
+         call fail(h, who//': pair '//itoa(ipair)//' is outside 1..'//itoa(p%npair))
+         ierr = IERR_ARGUMENT
+         return
+      end if
+      do k = 1, 4
+         res(k) = p%contact%pair_value(ipair, 7 + k)
+      end do
+   end subroutine problem_pair_friction
 
    !> Number of candidate (Lagrange) constraints of the last step.
    subroutine problem_ncon(who, h, ncon, ierr)

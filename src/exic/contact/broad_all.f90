@@ -1,0 +1,300 @@
+!> Broad phase of AUTOmatic contact over every surface at once (doc/contact-detection.md,
+!> "AUTOmatic contact in one search").
+!>
+!> AUTOmatic contact pairs the nodes of every surface with the segments of every other surface.
+!> Instead of one broad phase per ordered pair of surfaces (N (N - 1) searches, each forming the
+!> boxes of both surfaces), one search per step finds every candidate of every pair:
+!>
+!>  1. the swept box of each surface (its nodes over x0 -> x1), O(surface nodes);
+!>  2. the pairs of surfaces whose boxes overlap (the master's grown by `margin`): the uniform
+!>     bucket grid of `broad_search` run on the N surface boxes themselves (each surface one
+!>     "node" and one "segment" whose boxes are the surface's box), O(N) for bodies spread out;
+!>  3. one `broad_search` over the nodes and segments of the surfaces that have a near partner,
+!>     all at once; pairs within one surface are dropped;
+!>  4. the candidates regrouped by (slave surface, master surface), in the order of the passes
+!>     that one search per pair made, each group's list sorted by slave then segment.
+!>
+!> The candidates of a group are exactly those of `broad_search` on that pair of surfaces: the
+!> same box test on the same box values (step 2 only drops pairs of surfaces whose boxes are
+!> apart, which hold no overlapping entity boxes: a segment's box lies in its surface's box
+!> grown by the same margin). A step in which no two surfaces are near costs the surface
+!> boxes and the search over N boxes, nothing of the size of the surfaces' product.
+module exic_contact_broad_all
+   use exic_base_kinds, only: wp, i8
+   use exic_base_grow, only: grow
+   use exic_contact_broad, only: broad_t, broad_search
+   implicit none
+   private
+
+   public :: broad_all_t
+
+   !> The surfaces of AUTOmatic contact (copies of their node and segment lists) and, after
+   !> `search`, the candidates grouped by pair of surfaces.
+   type :: broad_all_t
+      integer :: nsurf = 0
+      integer, allocatable :: node_first(:)   !< (nsurf + 1) CSR into nodes
+      integer, allocatable :: nodes(:)        !< every surface's nodes, surface after surface
+      integer, allocatable :: seg_first(:)    !< (nsurf + 1) CSR into seg
+      integer, allocatable :: seg(:, :)       !< (2, :) every surface's segments
+      ! result of the last search
+      integer :: ngroup = 0                   !< pairs of surfaces with candidates
+      integer, allocatable :: gslave(:), gmaster(:)  !< (ngroup) surface numbers (1..nsurf)
+      integer, allocatable :: gfirst(:)       !< (ngroup + 1) CSR into gcand
+      integer, allocatable :: gcand(:, :)     !< (2, :) slave index, segment index within the surfaces
+      integer(i8) :: ntests = 0               !< box tests of the last search (both levels)
+      ! work space
+      type(broad_t) :: coarse, fine
+      real(wp), allocatable :: bx0(:, :), bx1(:, :)   !< (2, 2 nsurf) box corners as positions
+      integer, allocatable :: bslave(:), bseg(:, :)   !< the coarse search's "nodes" and "segments"
+      integer, allocatable :: pfirst(:), partner(:)   !< surfaces whose boxes meet each one's (CSR)
+      integer, allocatable :: lnodes(:), lseg(:, :)   !< nodes and segments of the near surfaces
+      integer, allocatable :: lnode_surf(:), lnode_loc(:)    !< surface and index in it of each
+      integer, allocatable :: lseg_surf(:), lseg_loc(:)      !< of lnodes, of lseg
+      integer, allocatable :: count(:), slot(:), jlist(:)
+   contains
+      procedure :: add_surface => broad_all_add_surface
+      procedure :: search => broad_all_search
+      procedure :: take => broad_all_take
+   end type broad_all_t
+
+contains
+
+   !> Append a surface: its nodes and its segments (2, nseg), numbered in the mesh.
+   subroutine broad_all_add_surface(self, nodes, seg)
+      class(broad_all_t), intent(inout) :: self
+      integer, intent(in) :: nodes(:), seg(:, :)
+      integer :: n0, s0
+      if (self%nsurf == 0) then
+         call grow(self%node_first, 1)
+         call grow(self%seg_first, 1)
+         self%node_first(1) = 1
+         self%seg_first(1) = 1
+      end if
+      n0 = self%node_first(self%nsurf + 1) - 1
+      s0 = self%seg_first(self%nsurf + 1) - 1
+      self%nsurf = self%nsurf + 1
+      call grow(self%node_first, self%nsurf + 1)
+      call grow(self%seg_first, self%nsurf + 1)
+      call grow(self%nodes, n0 + size(nodes))
+      call grow(self%seg, s0 + size(seg, 2), 2)
+      self%nodes(n0 + 1:n0 + size(nodes)) = nodes
+      self%seg(:, s0 + 1:s0 + size(seg, 2)) = seg
+      self%node_first(self%nsurf + 1) = n0 + size(nodes) + 1
+      self%seg_first(self%nsurf + 1) = s0 + size(seg, 2) + 1
+   end subroutine broad_all_add_surface
+
+   !> Every candidate (slave node of surface i, segment of surface j /= i) whose swept boxes
+   !> overlap over x0 -> x1, the segment's box grown by margin: grouped by (i, j) in the order
+   !> i, then j; within a group sorted by slave, then segment (both as indices within their
+   !> surface, as `broad_search` on the pair gives them).
+   subroutine broad_all_search(self, nnode, x0, x1, margin)
+      class(broad_all_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+      integer :: r, k, n, nl, ns, node, c
+      real(wp) :: box(4)
+
+      self%ngroup = 0
+      self%ntests = 0
+      n = self%nsurf
+      if (n < 2) return
+      ! 1. the swept box of each surface, as the two positions of a "node" 2r-1 and 2r
+      call grow(self%bx0, 2*n, 2)
+      call grow(self%bx1, 2*n, 2)
+      call grow(self%bslave, n)
+      call grow(self%bseg, n, 2)
+      do r = 1, n
+         self%bx0(:, 2*r - 1) = huge(1.0_wp)
+         self%bx1(:, 2*r - 1) = -huge(1.0_wp)
+         do k = self%node_first(r), self%node_first(r + 1) - 1
+            node = self%nodes(k)
+            self%bx0(:, 2*r - 1) = min(self%bx0(:, 2*r - 1), x0(:, node), x1(:, node))
+            self%bx1(:, 2*r - 1) = max(self%bx1(:, 2*r - 1), x0(:, node), x1(:, node))
+         end do
+         self%bx0(:, 2*r) = self%bx0(:, 2*r - 1)
+         self%bx1(:, 2*r) = self%bx1(:, 2*r - 1)
+         self%bslave(r) = 2*r - 1
+         self%bseg(:, r) = [2*r - 1, 2*r]
+      end do
+      ! 2. pairs of surfaces whose boxes overlap (a surface's own pair is excluded: its
+      ! "segment" holds its "node")
+      call broad_search(self%coarse, 2*n, self%bx0, self%bx1, n, self%bslave, n, self%bseg, margin)
+      self%ntests = self%coarse%ntests
+      if (self%coarse%ncand == 0) return
+      ! the partners of each surface, both ways (CSR)
+      call grow(self%pfirst, n + 1)
+      call grow(self%partner, 2*self%coarse%ncand)
+      self%pfirst(1:n + 1) = 0
+      do c = 1, self%coarse%ncand
+         self%pfirst(self%coarse%cand(1, c) + 1) = self%pfirst(self%coarse%cand(1, c) + 1) + 1
+         self%pfirst(self%coarse%cand(2, c) + 1) = self%pfirst(self%coarse%cand(2, c) + 1) + 1
+      end do
+      self%pfirst(1) = 1
+      do r = 2, n + 1
+         self%pfirst(r) = self%pfirst(r) + self%pfirst(r - 1)
+      end do
+      do c = 1, self%coarse%ncand
+         do k = 1, 2
+            r = self%coarse%cand(k, c)
+            self%partner(self%pfirst(r)) = self%coarse%cand(3 - k, c)
+            self%pfirst(r) = self%pfirst(r) + 1
+         end do
+      end do
+      do r = n + 1, 2, -1
+         self%pfirst(r) = self%pfirst(r - 1)
+      end do
+      self%pfirst(1) = 1
+      ! 3. one search over the entities of the near surfaces that can reach a partner: a node
+      ! whose box meets a partner's box grown by margin, a segment whose box grown by margin
+      ! meets a partner's box (a candidate pair passes both tests: see the module header)
+      nl = 0
+      ns = 0
+      do r = 1, n
+         nl = nl + self%node_first(r + 1) - self%node_first(r)
+         ns = ns + self%seg_first(r + 1) - self%seg_first(r)
+      end do
+      call grow(self%lnodes, nl)
+      call grow(self%lnode_surf, nl)
+      call grow(self%lnode_loc, nl)
+      call grow(self%lseg, ns, 2)
+      call grow(self%lseg_surf, ns)
+      call grow(self%lseg_loc, ns)
+      nl = 0
+      ns = 0
+      do r = 1, n
+         if (self%pfirst(r + 1) == self%pfirst(r)) cycle
+         do k = self%node_first(r), self%node_first(r + 1) - 1
+            node = self%nodes(k)
+            box(1:2) = min(x0(:, node), x1(:, node))
+            box(3:4) = max(x0(:, node), x1(:, node))
+            if (.not. reaches(self, r, box, margin)) cycle
+            nl = nl + 1
+            self%lnodes(nl) = node
+            self%lnode_surf(nl) = r
+            self%lnode_loc(nl) = k - self%node_first(r) + 1
+         end do
+         do k = self%seg_first(r), self%seg_first(r + 1) - 1
+            box(1:2) = min(x0(:, self%seg(1, k)), x1(:, self%seg(1, k)), &
+                           x0(:, self%seg(2, k)), x1(:, self%seg(2, k))) - margin
+            box(3:4) = max(x0(:, self%seg(1, k)), x1(:, self%seg(1, k)), &
+                           x0(:, self%seg(2, k)), x1(:, self%seg(2, k))) + margin
+            if (.not. reaches(self, r, box, 0.0_wp)) cycle
+            ns = ns + 1
+            self%lseg(:, ns) = self%seg(:, k)
+            self%lseg_surf(ns) = r
+            self%lseg_loc(ns) = k - self%seg_first(r) + 1
+         end do
+      end do
+      call broad_search(self%fine, nnode, x0, x1, nl, self%lnodes, ns, self%lseg, margin)
+      self%ntests = self%ntests + self%fine%ntests
+      call regroup(self, n)
+   end subroutine broad_all_search
+
+   !> True when `box` meets the box of a partner of surface r grown by `grow_by` on every side.
+   pure logical function reaches(self, r, box, grow_by) result(yes)
+      type(broad_all_t), intent(in) :: self
+      integer, intent(in) :: r
+      real(wp), intent(in) :: box(4), grow_by
+      integer :: p, q
+      yes = .true.
+      do p = self%pfirst(r), self%pfirst(r + 1) - 1
+         q = self%partner(p)
+         if (self%bx0(1, 2*q) - grow_by <= box(3) .and. box(1) <= self%bx1(1, 2*q) + grow_by .and. &
+             self%bx0(2, 2*q) - grow_by <= box(4) .and. box(2) <= self%bx1(2, 2*q) + grow_by) return
+      end do
+      yes = .false.
+   end function reaches
+
+   !> 4. The fine search's candidates (sorted by slave, then segment, both in surface order)
+   !> without the pairs within one surface, regrouped by (slave surface, master surface).
+   subroutine regroup(self, n)
+      type(broad_all_t), intent(inout) :: self
+      integer, intent(in) :: n
+      integer :: c, c0, c1, i, j, nj, q, p, l, m, g, ntot, v, t
+
+      call grow(self%count, n)
+      call grow(self%slot, n)
+      call grow(self%jlist, n)
+      call grow(self%gcand, self%fine%ncand, 2)
+      call grow(self%gfirst, 1)
+      self%gfirst(1) = 1
+      ntot = 0
+      c0 = 1
+      do while (c0 <= self%fine%ncand)
+         ! the block of slave surface i: consecutive candidates (slaves are in surface order)
+         i = self%lnode_surf(self%fine%cand(1, c0))
+         c1 = c0
+         do while (c1 < self%fine%ncand)
+            if (self%lnode_surf(self%fine%cand(1, c1 + 1)) /= i) exit
+            c1 = c1 + 1
+         end do
+         ! distinct master surfaces of the block, sorted, with their counts
+         nj = 0
+         do c = c0, c1
+            j = self%lseg_surf(self%fine%cand(2, c))
+            if (j == i) cycle
+            if (nj > 0) then
+               if (any(self%jlist(1:nj) == j)) then
+                  self%count(j) = self%count(j) + 1
+                  cycle
+               end if
+            end if
+            nj = nj + 1
+            self%jlist(nj) = j
+            self%count(j) = 1
+         end do
+         ! insertion sort of the (few) master surfaces
+         do q = 2, nj
+            v = self%jlist(q)
+            t = q - 1
+            do while (t >= 1)
+               if (self%jlist(t) <= v) exit
+               self%jlist(t + 1) = self%jlist(t)
+               t = t - 1
+            end do
+            self%jlist(t + 1) = v
+         end do
+         ! one group per master surface; a stable placement keeps (slave, segment) order
+         call grow(self%gslave, self%ngroup + nj)
+         call grow(self%gmaster, self%ngroup + nj)
+         call grow(self%gfirst, self%ngroup + nj + 1)
+         p = ntot + 1
+         do q = 1, nj
+            j = self%jlist(q)
+            self%slot(j) = p
+            p = p + self%count(j)
+            self%gslave(self%ngroup + q) = i
+            self%gmaster(self%ngroup + q) = j
+            self%gfirst(self%ngroup + q + 1) = p
+         end do
+         do c = c0, c1
+            l = self%fine%cand(1, c)
+            m = self%fine%cand(2, c)
+            j = self%lseg_surf(m)
+            if (j == i) cycle
+            g = self%slot(j)
+            self%gcand(1, g) = self%lnode_loc(l)
+            self%gcand(2, g) = self%lseg_loc(m)
+            self%slot(j) = g + 1
+         end do
+         ntot = p - 1
+         self%ngroup = self%ngroup + nj
+         c0 = c1 + 1
+      end do
+   end subroutine regroup
+
+   !> The candidates of group g into bw (ncand, cand), as broad_search on the pair would leave them.
+   subroutine broad_all_take(self, g, bw)
+      class(broad_all_t), intent(in) :: self
+      integer, intent(in) :: g
+      type(broad_t), intent(inout) :: bw
+      integer :: n, f
+      f = self%gfirst(g)
+      n = self%gfirst(g + 1) - f
+      call grow(bw%cand, n, 2)
+      bw%cand(:, 1:n) = self%gcand(:, f:f + n - 1)
+      bw%ncand = n
+      bw%ntests = 0
+   end subroutine broad_all_take
+
+end module exic_contact_broad_all

@@ -1,0 +1,255 @@
+!> The contact operator S = G^T M^-1 G of a step's candidates along one set of directions, and
+!> its factorisation (seed eq. 4.5-4.7).
+!>
+!> Candidate i has nodes node(:, i) with weights w(:, i) and a unit direction dir(:, i): its
+!> column of G holds w_k dir_i at the dofs of node k. The normal problem of the corrector uses
+!> the frozen normals (G = G_N), the frictional corrector also the tangents (G_T, doc/friction.md
+!> eq. F2): both matrices have the pattern of the node incidence of the candidates, and free
+!> rigid bodies add g_i^b . M_b^-1 g_j^b for every body two candidates touch (doc/loads.md,
+!> section 5), g^b the body columns of that direction (rigid_dofs_t: `sg` normal, `sgt`
+!> tangent).
+!>
+!> Steps with up to `dense_limit` candidates keep S dense and factorise it with LAPACK
+!> (dense_spd_t); larger ones keep it in compressed columns with the full pattern and use
+!> SuiteSparse LDL' with AMD ordering (sparse_ldl_t), whose symbolic analysis is reused while the
+!> pattern is unchanged. A factorisation leaves out the candidates a `drop` mask names (the
+!> pivoting passes of an active-set solve) and removes redundant ones (dependent columns of G),
+!> which carry a zero solution. A factorisation of the same assembly with the same mask as the
+!> last one is not repeated (a solve reuses it).
+!>
+!> Massless contact faces (`LAGRange,ENERgy`, doc/impact.md eq. I.6) add their compliance
+!> (1/c) G_F,i^T K_FF^-1 G_F,j to the normal problem's S for every two candidates on the face
+!> (`massless_face_t`, prepared for the step's candidates).
+!>
+!> `corrector_t` (the normal problem) extends this type; `friction_t` owns a second one for the
+!> tangential problem.
+module exic_contact_system
+   use exic_base_kinds, only: wp
+   use exic_base_error, only: error_t, make_error
+   use exic_base_grow, only: grow
+   use exic_linalg_sparse_ldl, only: sparse_ldl_t
+   use exic_linalg_dense_spd, only: dense_spd_t
+   use exic_contact_rigid_dofs, only: rigid_dofs_t
+   use exic_contact_massless_face, only: massless_face_t
+   implicit none
+   private
+
+   public :: system_t
+
+   !> S of the m candidates of a step (dense or in compressed columns) and its factorisation.
+   type :: system_t
+      integer :: dense_limit = 30            !< steps with up to this many candidates factorize S densely (measured crossover)
+      type(sparse_ldl_t) :: sparse
+      type(dense_spd_t) :: dense
+      integer :: nsolves = 0, ndense = 0, nsparse = 0   !< factorisations made (statistics)
+      integer :: nreused = 0                 !< solves that reused the last factorisation
+      integer, allocatable :: ap(:), ai(:)   !< S in compressed columns: (m + 1), (nnz)
+      real(wp), allocatable :: ax(:)         !< (nnz) values of S in compressed columns
+      real(wp), allocatable :: s(:, :)       !< (m, m) S for the dense path
+      integer, allocatable :: mark(:)        !< (m) last column that touched a row (assembly)
+      integer, allocatable :: bad(:)         !< (m) candidates the factorisation finds redundant
+      ! the last factorisation, for reuse
+      logical :: factored = .false.          !< the current assembly has been factorised
+      integer :: mlast = 0, nbad_last = 0
+      logical, allocatable :: drop_last(:)   !< (m) the mask it was made with
+   contains
+      procedure :: assemble => system_assemble
+      procedure :: factor_solve => system_factor_solve
+   end type system_t
+
+contains
+
+   !> S = G^T M^-1 G over all m candidates (nodes node(3, m), weights w(3, m), directions
+   !> dir(2, m)): dense (m <= dense_limit) or in compressed columns with the full pattern.
+   !> nstart(nnode + 1), nlist: node -> candidates incidence (compressed rows). With free rigid
+   !> bodies `rb`, each column gains the coupling of the bodies its candidate touches, through
+   !> the body columns `rb%sgt` when `tangent`, else `rb%sg`. With massless faces `face` (normal
+   !> problem only), each column of a candidate on the face gains the face's compliance (eq. I.6).
+   subroutine system_assemble(self, m, node, w, dir, nnode, minv, nstart, nlist, rb, tangent, face)
+      class(system_t), intent(inout) :: self
+      integer, intent(in) :: m, nnode
+      integer, intent(in) :: node(3, m), nstart(nnode + 1), nlist(:)
+      real(wp), intent(in) :: w(3, m), dir(2, m), minv(2, nnode)
+      type(rigid_dofs_t), intent(in), optional :: rb
+      logical, intent(in), optional :: tangent
+      type(massless_face_t), intent(in), optional :: face
+      integer :: j, k, nd, q, i, nnz, first, l
+      real(wp) :: v
+      logical :: along_t
+
+      along_t = .false.
+      if (present(tangent)) along_t = tangent
+      self%factored = .false.
+      if (m <= self%dense_limit) then
+         if (allocated(self%s)) then
+            if (size(self%s, 1) < m) deallocate (self%s)
+         end if
+         if (.not. allocated(self%s)) allocate (self%s(max(m, 16), max(m, 16)))
+         self%s(1:m, 1:m) = 0.0_wp
+      end if
+      call grow(self%ap, m + 1)
+      call grow(self%mark, m)
+      self%mark(1:m) = 0
+      nnz = 0
+      self%ap(1) = 1
+      do j = 1, m
+         first = nnz + 1
+         do k = 1, 3
+            if (w(k, j) == 0.0_wp) cycle
+            nd = node(k, j)
+            ! every candidate i that shares node nd with candidate j: S(i, j) += w_kj w_i(nd) d_j M^-1 d_i
+            do q = nstart(nd), nstart(nd + 1) - 1
+               i = nlist(q)
+               v = w(k, j)*node_weight(node(:, i), w(:, i), nd)* &
+                   (dir(1, j)*minv(1, nd)*dir(1, i) + dir(2, j)*minv(2, nd)*dir(2, i))
+               call add_entry(i, v)
+            end do
+         end do
+         if (present(rb)) then
+            if (along_t) then
+               call body_entries(rb%sgt)
+            else
+               call body_entries(rb%sg)
+            end if
+         end if
+         if (present(face)) then
+            ! every candidate i on the face when j is: S(i, j) += (1/c) G_F,i^T K_FF^-1 G_F,j (eq. I.6)
+            if (face%slot(j) > 0) then
+               do i = 1, m
+                  v = face%coupling(i, j, node(:, i), w(:, i), dir(:, i))
+                  if (v /= 0.0_wp) call add_entry(i, v)
+               end do
+            end if
+         end if
+         if (m > self%dense_limit) call sort_column(self%ai(first:nnz), self%ax(first:nnz))
+         self%ap(j + 1) = nnz + 1
+      end do
+   contains
+      !> Every candidate i on a body b that candidate j touches: S(i, j) += g_i^b . M_b^-1 g_j^b.
+      subroutine body_entries(sg)
+         real(wp), intent(in) :: sg(:, :, :)
+         integer :: qj, b, e
+         do qj = 1, rb%nslot(j)
+            b = rb%sbody(qj, j)
+            do e = rb%bstart(b), rb%bstart(b + 1) - 1
+               i = rb%bcand(e)
+               v = dot_product(sg(:, rb%bslot(e), i), rb%minv(:, b)*sg(:, qj, j))
+               call add_entry(i, v)
+            end do
+         end do
+      end subroutine body_entries
+
+      !> S(i, j) += v (dense), or into column j of the compressed columns.
+      subroutine add_entry(i, v)
+         integer, intent(in) :: i
+         real(wp), intent(in) :: v
+         if (m <= self%dense_limit) then
+            self%s(i, j) = self%s(i, j) + v
+         else
+            if (self%mark(i) /= j) then
+               self%mark(i) = j
+               nnz = nnz + 1
+               call grow(self%ai, nnz)
+               call grow(self%ax, nnz)
+               self%ai(nnz) = i
+               self%ax(nnz) = v
+            else
+               do l = first, nnz
+                  if (self%ai(l) == i) then
+                     self%ax(l) = self%ax(l) + v
+                     exit
+                  end if
+               end do
+            end if
+         end if
+      end subroutine add_entry
+   end subroutine system_assemble
+
+   !> The weight of node `nd` in a candidate with nodes node(3) and weights w(3) (sum over its
+   !> occurrences).
+   pure real(wp) function node_weight(node, w, nd) result(wsum)
+      integer, intent(in) :: node(3), nd
+      real(wp), intent(in) :: w(3)
+      integer :: k
+      wsum = 0.0_wp
+      do k = 1, 3
+         if (node(k) == nd) wsum = wsum + w(k)
+      end do
+   end function node_weight
+
+   !> Insertion sort of one short column by row index.
+   pure subroutine sort_column(ai, ax)
+      integer, intent(inout) :: ai(:)
+      real(wp), intent(inout) :: ax(:)
+      integer :: i, j, ki
+      real(wp) :: kx
+      do i = 2, size(ai)
+         ki = ai(i)
+         kx = ax(i)
+         j = i - 1
+         do while (j >= 1)
+            if (ai(j) <= ki) exit
+            ai(j + 1) = ai(j)
+            ax(j + 1) = ax(j)
+            j = j - 1
+         end do
+         ai(j + 1) = ki
+         ax(j + 1) = kx
+      end do
+   end subroutine sort_column
+
+   !> Factorise the assembled S of the m candidates without those drop(1:m) names and solve
+   !> S sol = rhs. Redundant candidates found by the factorisation join `drop` with sol = 0
+   !> (nbad of them, listed in self%bad(1:nbad)). The same mask on the same assembly reuses the
+   !> last factorisation.
+   subroutine system_factor_solve(self, m, drop, rhs, sol, nbad, err)
+      class(system_t), intent(inout) :: self
+      integer, intent(in) :: m
+      logical, intent(inout) :: drop(:)
+      real(wp), intent(in) :: rhs(:)
+      real(wp), intent(inout) :: sol(:)
+      integer, intent(out) :: nbad
+      type(error_t), allocatable, intent(out) :: err
+      integer :: stat, k
+      logical :: reuse
+
+      reuse = self%factored .and. self%mlast == m
+      if (reuse) reuse = all(drop(1:m) .eqv. self%drop_last(1:m))
+      if (reuse) then
+         self%nreused = self%nreused + 1
+         nbad = self%nbad_last
+      else
+         call grow(self%bad, m)
+         call grow(self%drop_last, m)
+         self%drop_last(1:m) = drop(1:m)
+         self%mlast = m
+         self%factored = .false.
+         self%nsolves = self%nsolves + 1
+         if (m <= self%dense_limit) then
+            self%ndense = self%ndense + 1
+            call self%dense%factorize(self%s(1:m, 1:m), nbad, self%bad, err, drop(1:m))
+         else
+            self%nsparse = self%nsparse + 1
+            call self%sparse%refactorize(m, self%ap(1:m + 1), self%ai(1:self%ap(m + 1) - 1), &
+                                         self%ax(1:self%ap(m + 1) - 1), nbad, self%bad, err, drop(1:m))
+         end if
+         if (allocated(err)) return
+         self%factored = .true.
+         self%nbad_last = nbad
+      end if
+      if (m <= self%dense_limit) then
+         call self%dense%solve(rhs(1:m), sol(1:m), stat)
+      else
+         call self%sparse%solve(rhs(1:m), sol(1:m), stat)
+      end if
+      if (stat /= 0) then
+         call make_error(err, 'contact corrector: the solve of S p = -g/c failed')
+         return
+      end if
+      do k = 1, nbad
+         drop(self%bad(k)) = .true.
+         sol(self%bad(k)) = 0.0_wp
+      end do
+   end subroutine system_factor_solve
+
+end module exic_contact_system
