@@ -109,11 +109,12 @@ plots: build
 	$(PYTHON) tools/plots.py "$(DECK)" -o "$(OUTDIR)" --exic "$(EXIC)"
 
 # Benchmarks (doc/performance.md): release build, then every section of bench/run_bench.py
-# (about 6 minutes after the build; BENCH_ONLY=rate,output runs a subset, BENCH_ARGS=--quick
-# a 2-minute smoke test). Results: bench/results/, figures: doc/perf_*.png.
+# (about 11 minutes after the build, 5 of them section impact; BENCH_ONLY=rate,output runs a
+# subset, BENCH_ARGS=--quick a 2-minute smoke test, BENCH_ARGS=--big adds the 480 x 96 meshes
+# to section impact). Results: bench/results/, figures: doc/perf_*.png.
 # Section compare runs the release build of BASELINE (a commit, built once in a detached git
 # worktree under build/baseline, with its own flags = RELEASE) side by side with this one.
-BENCH_ONLY ?= machine,compare,bodies,rate,profile,output,contact,workprec,stability
+BENCH_ONLY ?= machine,compare,bodies,rate,profile,output,contact,workprec,impact,stability
 BASELINE   ?= 5744a35
 BASE_DIR   := build/baseline-$(BASELINE)
 bench: setup baseline

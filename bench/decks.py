@@ -185,3 +185,59 @@ def body_grid(nside, ne=4, gap=0.05, v=5.0, steps=300, tplot=100, auto=True, far
     if auto:
         s += "CONTact\n  AUTOmatic\nEND CONTact\n\n"
     return s + _program(steps=steps, tplot=tplot, requests=["disp,,1,0,0"])
+
+
+# The three 1-D impacts of the work-precision study (doc/performance.md section 4, exact values
+# in doc/contact-verification.md "Two bars"): E = 1e4, nu = 0, bars L x H = 30 x 4, v0 = 0.1.
+IMPACT_E, IMPACT_V0, IMPACT_L, IMPACT_H = 1.0e4, 0.1, 30.0, 4.0
+IMPACT_PROBLEMS = {"wall": (0.1, None), "equal": (0.1, 0.1), "unequal": (0.5, 1.0)}
+
+
+def impact_exact(problem):
+    """Exact 1-D answers of `impact_bars(problem)`: contact force, duration, momentum of bar 1
+    after separation, initial energy (doc/contact-verification.md, "Two bars")."""
+    rho1, rho2 = IMPACT_PROBLEMS[problem]
+    E, v0, L, H = IMPACT_E, IMPACT_V0, IMPACT_L, IMPACT_H
+    c1, z1 = math.sqrt(E/rho1), math.sqrt(E*rho1)
+    m1 = rho1*L*H
+    if rho2 is None:                                  # rigid wall: Z2 -> infinity
+        force, p1, e0 = z1*v0*H, -m1*v0, 0.5*m1*v0**2
+    else:
+        z2 = math.sqrt(E*rho2)
+        force = 2.0*v0*z1*z2/(z1 + z2)*H
+        p1 = m1*v0*(z1 - 3.0*z2)/(z1 + z2)
+        e0 = 0.5*(m1 + rho2*L*H)*v0**2
+    # bar 1 is the faster one (rho1 <= rho2): the bars part when its release wave returns
+    return {"force": force, "duration": 2.0*L/c1, "p1": p1, "energy": e0, "m1": m1}
+
+
+def impact_bars(problem, nx, method="LAGRange", tmax=None, tplot=1):
+    """Bar 1 (nx x nx/5 elements, density rho1) at +v0 strikes a fixed rigid wall ("wall") or
+    bar 2 (the same mesh, density rho2) moving at -v0 ("equal": 0.1 and 0.1, "unequal": 0.5 and
+    1.0); the bodies touch at t = 0. The contact surfaces are the struck ends only (FACEts), the
+    same for every `method` (the pair's method record: LAGRange, LAGRange,ENERgy, PENAlty,k).
+    Runs to 1.5 x the exact contact duration."""
+    rho1, rho2 = IMPACT_PROBLEMS[problem]
+    ny = max(1, nx//5)
+    L, H, v0 = IMPACT_L, IMPACT_H, IMPACT_V0
+    if tmax is None:
+        tmax = 1.5*impact_exact(problem)["duration"]
+    nb = (nx + 1)*(ny + 1)                            # nodes of bar 1: node(i, j) = 1 + (nx+1) j + i
+    end1 = "".join(f"      {j + 1},0,{(nx + 1)*(j + 1)},{(nx + 1)*(j + 2)}\n" for j in range(ny))
+    s = (f"FEAP * * {problem} impact, {nx} x {ny}\n0 0 0 2 2 4\n"
+         + _material(1, young=repr(IMPACT_E), nu="0", rho=repr(rho1))
+         + "REGIon,1\n" + _block(nx, ny, 1, [(0.0, 0.0), (L, 0.0), (L, H), (0.0, H)]))
+    if rho2 is None:
+        s += (_material(2, rho="0.1", rigid=True)
+              + "REGIon,2\n" + _block(2, 4, 2, [(L, -H), (L + H, -H), (L + H, 2*H), (L, 2*H)])
+              + f"INITial,VELOcity\n  REGIon,1,{v0!r},0\n\n")
+        surf2 = "    REGIon,2\n"
+    else:
+        s += (_material(2, young=repr(IMPACT_E), nu="0", rho=repr(rho2))
+              + "REGIon,2\n" + _block(nx, ny, 2, [(L, 0.0), (2*L, 0.0), (2*L, H), (L, H)], node1=nb + 1, elmt1=nx*ny + 1)
+              + f"INITial,VELOcity\n  REGIon,1,{v0!r},0\n  REGIon,2,{-v0!r},0\n\n")
+        surf2 = "    FACEts\n" + "".join(f"      {j + 1},0,{nb + 1 + (nx + 1)*(j + 1)},{nb + 1 + (nx + 1)*j}\n"
+                                      for j in range(ny))
+    s += ("CONTact\n  SURFace,1\n    FACEts\n" + end1 + "\n  SURFace,2\n" + surf2
+          + f"\n  PAIR,1,NTOS,1,2\n    {method}\nEND CONTact\n\n")
+    return s + _program(tmax=tmax, tplot=tplot, requests=["cont,1,1", "cont,1,4", "cont,1,5", "mome,1,1"])

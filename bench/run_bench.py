@@ -12,6 +12,9 @@ Sections (doc/performance.md explains each):
   contact     seed example 7.2: share of search and corrector; scaled scenes; the corrector's
               dense/sparse crossover (exic-bench-corrector)
   workprec    work-precision of the 1-D bar on a rigid wall, Lagrange against penalty
+  impact      work-precision of three 1-D impacts (wall, equal bars, unequal bars): the seed's
+              scheme, LAGRange,ENERgy and penalty; duration, mean force, force RMS, rebound,
+              final energy against processor time (--big adds 480 x 96)
   stability   CFL sweep, fixed DT around the limit, distorted meshes, contact
   bodies      AUTOmatic contact between 4..256 bodies: shares of search and corrector, the step
               against --baseline-bindir when given; an idle pair of bodies against no contact
@@ -48,7 +51,7 @@ import decks  # noqa: E402
 RESULTS = os.path.join(HERE, "results")
 DOC = os.path.join(ROOT, "doc")
 WORK = os.path.join(ROOT, "build", "bench-runs")
-SECTIONS = ["machine", "rate", "profile", "output", "contact", "workprec", "stability"]
+SECTIONS = ["machine", "rate", "profile", "output", "contact", "workprec", "impact", "stability"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -774,6 +777,116 @@ def workprec(args, run):
     return res
 
 
+IMPACT_METHODS = {"seed (LAGRange)": "LAGRange", "LAGRange,ENERgy": "LAGRange,ENERgy",
+                  "penalty k = 1e4": "PENAlty,1e4", "penalty k = 1e5": "PENAlty,1e5"}
+IMPACT_MEASURES = [("duration_err", "duration"), ("force_err", "mean force"), ("force_rms", "force RMS"),
+                   ("rebound_err", "rebound"), ("energy_err", "final energy")]
+IMPACT_MIN_RATIO = 120
+
+
+def impact_measures(his, ene, ex):
+    """Errors of one 1-D impact run against the exact values `ex` (decks.impact_exact): duration
+    and mean force (contact_measures), RMS of the force history against the exact step F on
+    [0, T] and 0 after, over the whole run, relative to F; bar 1's momentum at the end against
+    the exact p1 (relative to |p1|); K + U after separation (mean over the steps after the last
+    active one, the last step if none) against the initial energy."""
+    t, f = his["t"], his["cont(p1,1)"]
+    impulse, duration, fmean = contact_measures(t, f, ex["force"])
+    sq = 0.0
+    for k in range(len(t)):
+        w = 0.5*(t[min(k + 1, len(t) - 1)] - t[max(k - 1, 0)])
+        fe = ex["force"] if t[k] < ex["duration"] else 0.0
+        sq += w*(f[k] - fe)**2
+    rms = math.sqrt(sq/(t[-1] - t[0]))/ex["force"]
+    e = [k + u for k, u in zip(ene["kinetic"], ene["strain"])]
+    act = ene["active"]
+    last = max([i for i, a in enumerate(act) if a > 0], default=len(act) - 1)
+    after = e[last + 1:] or e[-1:]
+    return {"duration_err": duration/ex["duration"] - 1.0, "force_err": fmean/ex["force"] - 1.0,
+            "force_rms": rms, "rebound_err": (his["mome(r1,1)"][-1] - ex["p1"])/abs(ex["p1"]),
+            "energy_err": statistics.fmean(after)/e[0] - 1.0, "energy_final": e[-1]/e[0] - 1.0,
+            "penetration_over_L": max(his["cont(p1,5)"])/decks.IMPACT_L}
+
+
+def time_at_error(rows, key, err):
+    """Processor time at which the method of `rows` (coarse to fine) reaches |error| = err, by
+    log-log interpolation between the first two meshes that bracket it, or by extrapolation of
+    its two finest meshes when err is below their errors and falling; (time, extrapolated) or
+    (None, False)."""
+    pts = [(abs(r[key]), r["cpu_steps_s"]) for r in rows if abs(r[key]) > 0]
+
+    def at(p0, p1):
+        s = (math.log(err) - math.log(p0[0]))/(math.log(p1[0]) - math.log(p0[0]))
+        return math.exp(math.log(p0[1]) + s*(math.log(p1[1]) - math.log(p0[1])))
+    for p0, p1 in zip(pts, pts[1:]):
+        if min(p0[0], p1[0]) <= err <= max(p0[0], p1[0]) and p0[0] != p1[0]:
+            return at(p0, p1), False
+    if len(pts) >= 2 and err < pts[-1][0] < pts[-2][0]:
+        return at(pts[-2], pts[-1]), True
+    return None, False
+
+
+def impact_ratios(prob):
+    """For every mesh of LAGRange,ENERgy with at least IMPACT_MIN_RATIO elements along a bar (the
+    coarser runs last milliseconds, below the resolution of the processor-time difference):
+    the time another scheme needs for the same error over ENERgy's time."""
+    ok = {label: [r for r in rows if "failed" not in r] for label, rows in prob["methods"].items()}
+    ratios = {}
+    for key, _ in IMPACT_MEASURES:
+        ratios[key] = {}
+        for label, rows in ok.items():
+            if label == "LAGRange,ENERgy":
+                continue
+            out = []
+            for r in ok["LAGRange,ENERgy"]:
+                if r["nx"] < IMPACT_MIN_RATIO:
+                    continue
+                t, extra = time_at_error(rows, key, abs(r[key]))
+                out.append({"nx": r["nx"], "ratio": t/r["cpu_steps_s"] if t else None, "extrapolated": extra})
+            ratios[key][label] = out
+    return ratios
+
+
+def impact(args, run):
+    """Work-precision of the three 1-D impacts (decks.impact_bars) for the seed's scheme,
+    LAGRange,ENERgy and the penalty baseline."""
+    meshes = [30, 60] if args.quick else [30, 60, 120, 240] + ([480] if args.big else [])
+    res = {"time": "processor time of the run minus that of the same deck stopped after one tiny step, "
+                   "median of 3 runs up to 60 elements along a bar, one run above",
+           "meshes": meshes, "problems": {}}
+    for prob in decks.IMPACT_PROBLEMS:
+        ex = decks.impact_exact(prob)
+        res["problems"][prob] = {"exact": ex, "methods": {}}
+        for label, method in IMPACT_METHODS.items():
+            rows = []
+            for nx in meshes:
+                nrep = 1 if (args.quick or nx > 60) else 3
+                name = f"impact_{prob}_{nx}_{method.replace(',', '_')}"
+                rs = [run.run(name, decks.impact_bars(prob, nx, method))]
+                if rs[0]["rc"] != 0:
+                    # a run the energy guard stops is a result (the penalty between two bodies)
+                    rows.append({"nx": nx, "failed": rs[0]["stderr"].splitlines()[-1][:300]})
+                    log(f"impact {prob} {label} nx={nx}: failed: {rows[-1]['failed']}")
+                    continue
+                rs += [run.run(name, decks.impact_bars(prob, nx, method)) for _ in range(nrep - 1)]
+                setup = [run.run("impact_setup", decks.impact_bars(prob, nx, method, tmax=1e-9))["cpu"]
+                         for _ in range(nrep)]
+                row = {"nx": nx, "elements": rs[0]["elements"], "steps": rs[0]["steps"],
+                       "cpu_s": median([x["cpu"] for x in rs]), "cpu_setup_s": median(setup)}
+                row["cpu_steps_s"] = max(row["cpu_s"] - row["cpu_setup_s"], 1e-6)
+                row.update(impact_measures(read_table(rs[0]["stem"] + ".his"),
+                                           read_table(rs[0]["stem"] + ".ene"), ex))
+                rows.append(row)
+                log(f"impact {prob} {label} nx={nx}: " + ", ".join(
+                    f"{k}={v:.4g}" if isinstance(v, float) else f"{k}={v}" for k, v in row.items()))
+            res["problems"][prob]["methods"][label] = rows
+        ratios = impact_ratios(res["problems"][prob])
+        res["problems"][prob]["ratios"] = ratios
+    save("impact", res)
+    plot_impact(res)
+    return res
+
+
 def stability(args, run):
     """Which runs stay stable: energy growth (not loss: Lagrange contact loses the kinetic
     energy of the struck nodes by design) and refusals."""
@@ -872,6 +985,37 @@ def plot_workprec(res):
                  fontsize=10)
     fig.tight_layout()
     fig.savefig(os.path.join(DOC, "perf_workprec.png"), dpi=110)
+    plt.close(fig)
+
+
+def plot_impact(res):
+    plt = _plt()
+    probs = list(res["problems"])
+    fig, axes = plt.subplots(len(probs), len(IMPACT_MEASURES), figsize=(19, 4.2*len(probs)), squeeze=False)
+    titles = {"wall": "bar on a rigid wall", "equal": "two equal bars", "unequal": "bars of densities 0.5 and 1.0"}
+    for i, prob in enumerate(probs):
+        for j, (key, title) in enumerate(IMPACT_MEASURES):
+            ax = axes[i][j]
+            for m, (label, rows) in enumerate(res["problems"][prob]["methods"].items()):
+                rows = [r for r in rows if "failed" not in r]
+                x = [max(abs(r[key]), 1e-8) for r in rows]
+                y = [max(r["cpu_steps_s"], 1e-3) for r in rows]
+                ax.loglog(x, y, "-o" if "LAGR" in label else "--s", color=f"C{m}", ms=4, label=label)
+                for r, xx, yy in zip(rows, x, y):
+                    ax.annotate(str(r["nx"]), (xx, yy), textcoords="offset points", xytext=(3, 3), fontsize=6)
+                    if r["cpu_steps_s"] < 5e-2:     # within the noise of the set-up time
+                        ax.plot([xx], [yy], "o", color=f"C{m}", mfc="white", ms=6)
+            ax.set_title(f"{titles.get(prob, prob)}: {title}", fontsize=9)
+            ax.set_xlabel("|relative error|", fontsize=8)
+            ax.grid(True, which="both", alpha=0.3)
+            if j == 0:
+                ax.set_ylabel("time of the steps [processor s]", fontsize=8)
+    axes[0][0].legend(fontsize=7)
+    fig.suptitle("1-D impacts, exact answers from 1-D wave theory: processor time against error "
+                 "(labels: elements along a bar; open circles: under 0.05 s, within the noise of the set-up "
+                 "time subtracted; drawn at >= 1 ms)", fontsize=11)
+    fig.tight_layout()
+    fig.savefig(os.path.join(DOC, "perf_impact.png"), dpi=90)
     plt.close(fig)
 
 
@@ -1046,6 +1190,35 @@ def summary():
                          f"{v['duration_err']:+.2e} | {v['force_err']:+.2e} | {v['penetration_over_L']:.1e} | "
                          f"{v['max_energy_gain']:+.1e} |")
         L.append("")
+    im = load("impact")
+    if im:
+        L += ["## Work-precision of three 1-D impacts (section impact)", "", im["time"], "",
+              "| problem | scheme | nx | steps | steps [cpu s] | duration | mean force | force RMS | rebound "
+              "| final energy | penetration / L |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+        for prob, d in im["problems"].items():
+            for label, rows in d["methods"].items():
+                for v in rows:
+                    if "failed" in v:
+                        L.append(f"| {prob} | {label} | {v['nx']} | stopped: {v['failed'][:90]} |")
+                        continue
+                    L.append(f"| {prob} | {label} | {v['nx']} | {v['steps']} | {v['cpu_steps_s']:.4f} | "
+                             f"{v['duration_err']:+.2e} | {v['force_err']:+.2e} | {v['force_rms']:.2e} | "
+                             f"{v['rebound_err']:+.2e} | {v['energy_err']:+.2e} | {v['penetration_over_L']:.1e} |")
+        if not any(n >= IMPACT_MIN_RATIO for n in im["meshes"]):
+            L.append("")
+            im = None
+    if im:
+        L += ["", "Time of another scheme at the error of LAGRange,ENERgy, over ENERgy's time "
+              "(x: extrapolated from the other scheme's two finest meshes):", "",
+              "| problem | measure | scheme | " + " | ".join(f"ENERgy {n}" for n in im["meshes"] if n >= IMPACT_MIN_RATIO)
+              + " |", "|---|---|---|" + "---|"*len([n for n in im["meshes"] if n >= IMPACT_MIN_RATIO])]
+        for prob, d in im["problems"].items():
+            for key, per in impact_ratios(d).items():
+                for label, vals in per.items():
+                    cells = [("-" if v["ratio"] is None else f"{v['ratio']:.3g}" + (" x" if v["extrapolated"] else ""))
+                             for v in vals]
+                    L.append(f"| {prob} | {key} | {label} | " + " | ".join(cells) + " |")
+        L.append("")
     s = load("stability")
     if s:
         L += ["## Stability", "", s["criterion"], "",
@@ -1084,6 +1257,7 @@ def main(argv=None):
     ap.add_argument("--only", default=",".join(SECTIONS), help="comma-separated sections")
     ap.add_argument("--baseline-bindir", help="section 'compare': an older build to compare with --bindir")
     ap.add_argument("--quick", action="store_true", help="fewer repetitions and smaller runs (a smoke test)")
+    ap.add_argument("--big", action="store_true", help="section impact: add the 480 x 96 meshes (long)")
     args = ap.parse_args(argv)
     args.profile_flags = None
     rel = shlex.split(args.release)
@@ -1124,6 +1298,8 @@ def main(argv=None):
             contact(args, run)
         elif sec == "workprec":
             workprec(args, run)
+        elif sec == "impact":
+            impact(args, run)
         elif sec == "stability":
             stability(args, run)
         elif sec == "compare":

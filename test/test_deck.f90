@@ -41,6 +41,7 @@ contains
       call test_initial(s)
       call test_batch(s)
       call test_bar(s)
+      call test_energy_warning(s)
       call test_contact(s)
       call test_disk(s)
       call test_polar_ring(s)
@@ -442,6 +443,44 @@ contains
                  m%requests(2)%id == 4 .and. m%requests(2)%comp == 6 .and. &
                  m%requests(3)%kind == REQ_REAC .and. m%requests(3)%comp == 2, 'requests resolved')
    end subroutine test_batch
+
+   !> LAGRange,ENERgy on a REGIon surface of a deformable body is warned about at the PAIR
+   !> (doc/impact.md, section 4); on a rigid body's REGIon surface it is not.
+   subroutine test_energy_warning(s)
+      type(suite_t), intent(inout) :: s
+      type(model_t) :: m
+      type(error_t), allocatable :: err
+      integer, parameter :: L = 40
+      character(len=L) :: deck(33)
+      call section(s, 'deck: LAGRange,ENERgy on a whole-boundary surface')
+      call execute_command_line('mkdir -p '//tmp)
+      deck = [character(len=L) :: 'FEAP * * two blocks', '0 0 0 2 2 4', 'MATErial,1', ' SOLId', &
+              '  ELAStic NEOHookean 1e4 0', '  DENSity 0.1', '', 'MATErial,2', ' SOLId', &
+              '  ELAStic NEOHookean 1e4 0', '  DENSity 0.1', '', 'REGIon,1', 'BLOCk', ' CARTesian,2,1,1,1,1', &
+              '  1,0,0', '  2,2,0', '  3,2,1', '  4,0,1', '', 'REGIon,2', 'BLOCk', ' CARTesian,2,1,7,3,2', &
+              '  1,2,0', '  2,4,0', '  3,4,1', '  4,2,1', '', &
+              'CONTact', ' SURFace,1', '  FACEts', '   1,0,3,6', '']
+      call write_lines(tmp//'ew.inp', [character(len=L) :: deck, ' SURFace,2', '  REGIon,2', &
+                       ' PAIR,1,NTOS,1,2', '  LAGRange,ENERgy', 'END CONTact', '', 'END', 'BATCh', 'END', 'STOP'])
+      call read_deck(tmp//'ew.inp', m, err)
+      call check(s, .not. allocated(err), 'ENERgy on a REGIon surface reads', msg(err))
+      call check(s, has(m%warnings, 'ew.inp:36: warning: PAIR 1 with LAGRange,ENERgy on SURFace 2'), &
+                 'warning at the PAIR names the REGIon surface', m%warnings)
+      deck(9:11) = [character(len=L) :: ' RIGId', '  DENSity 0.1', '']
+      call write_lines(tmp//'ew.inp', [character(len=L) :: deck, ' SURFace,2', '  REGIon,2', &
+                       ' PAIR,1,NTOS,1,2', '  LAGRange,ENERgy', 'END CONTact', '', 'END', 'BATCh', 'END', 'STOP'])
+      call read_deck(tmp//'ew.inp', m, err)
+      call check(s, .not. allocated(err), 'ENERgy against a rigid REGIon surface reads', msg(err))
+      call check(s, .not. has(m%warnings, 'ENERgy'), 'no warning for a rigid body''s REGIon surface', &
+                 m%warnings)
+   contains
+      function msg(e) result(t)
+         type(error_t), allocatable, intent(in) :: e
+         character(len=:), allocatable :: t
+         t = ''
+         if (allocated(e)) t = e%message
+      end function msg
+   end subroutine test_energy_warning
 
    subroutine test_bar(s)
       type(suite_t), intent(inout) :: s

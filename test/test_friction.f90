@@ -412,7 +412,7 @@ contains
 
    !> Friction records: FRICtion,COULomb under a PAIR and under AUTOmatic are read; a field the
    !> PAIR or a method record does not use is an error with file:line, as are LAGRange,ENERgy
-   !> (not acted on), a record under a PAIR that is not a method, mud > mus and a missing
+   !> with Coulomb friction (same pair, either order, or another pair), a record under a PAIR that is not a method, mud > mus and a missing
    !> coefficient; an unused field elsewhere is a warning with file:line.
    subroutine deck_records(s)
       type(suite_t), intent(inout) :: s
@@ -439,8 +439,17 @@ contains
                'PAIR,1,NTOS,1,2,FRIC', '"FRIC" is not used')
       call bad('fr_lagrfric', base//contact('  LAGRange,FRICtion,0.3'//nl)//batch('1e-4', '0.1', ''), &
                'LAGRange,FRIC', '"FRICtion" is not used')
-      call bad('fr_energy', base//contact('  LAGRange,ENERgy'//nl)//batch('1e-4', '0.1', ''), 'LAGRange,ENER', &
-               'LAGRange,ENERgy')
+      call bad('fr_energy', base//contact('  LAGRange,ENERgy'//nl//'  FRICtion,COULomb,0.3'//nl)// &
+               batch('1e-4', '0.1', ''), 'FRICtion', 'with LAGRange,ENERgy on the same pair: not supported')
+      call bad('fr_energy2', base//contact('  FRICtion,COULomb,0.3'//nl//'  LAGRange,ENERgy'//nl)// &
+               batch('1e-4', '0.1', ''), 'LAGRange,ENER', 'with Coulomb friction')
+      call bad('fr_energy3', base//contact('  LAGRange,ENERgy'//nl//'  PAIR,2,NTOS,2,1'//nl// &
+                                           '  FRICtion,COULomb,0.3'//nl)//batch('1e-4', '0.1', ''), &
+               'PAIR,2', 'PAIR 2 has Coulomb friction in a model with LAGRange,ENERgy')
+      call write_text(run_dir//'/fr_energy0.inp', base//contact('  LAGRange,ENERgy'//nl// &
+                                                               '  FRICtion,COULomb,0'//nl)//batch('1e-4', '0.1', ''))
+      call read_deck(run_dir//'/fr_energy0.inp', m, err)
+      call check(s, .not. allocated(err), 'LAGRange,ENERgy with FRICtion,COULomb,0 (frictionless) is read', msg(err))
       call bad('fr_mud', base//contact('  FRICtion,COULomb,0.3,0.5'//nl)//batch('1e-4', '0.1', ''), 'FRICtion', &
                'expected mud <= mus')
       call bad('fr_nomu', base//contact('  FRICtion,COULomb'//nl)//batch('1e-4', '0.1', ''), 'FRICtion', &

@@ -35,6 +35,18 @@ contains
       call bars_deck(s, 'two_bars', rho0, rho0)
       call bars_deck(s, 'two_pass', rho0, rho0)
       call bars_deck(s, 'unlike_bars', 0.5_wp, 1.0_wp)
+      call section(s, 'inputs/verify: contact work and drift (doc/impact.md, section 2)')
+      call booked_loss(s, 'wall_30x6', 30)
+      call booked_loss(s, 'wall_60x12', 60)
+      call booked_loss(s, 'two_bars', 30)
+      call small_drift(s, ['wall_30x6  ', 'wall_60x12 ', 'wall_gap   ', 'fixed_tip  ', 'two_bars   ', &
+                           'two_pass   ', 'unlike_bars'])
+      call section(s, 'inputs/verify: LAGRange,ENERgy (massless contact face, doc/impact.md)')
+      call energy_wall(s)
+      call bars_deck(s, 'two_bars_energy', rho0, rho0)
+      call bars_deck(s, 'unlike_energy', 0.5_wp, 1.0_wp)
+      call energy_bars(s, 'two_bars_energy')
+      call energy_bars(s, 'unlike_energy')
       call section(s, 'inputs: contact faults found by the seed''s examples')
       call compliant_corner(s)
       call unlike_tips(s)
@@ -145,6 +157,96 @@ contains
                  name//': tip velocity and acceleration zero from two steps after contact', &
                  '|v|/v0 '//rtoa(vmax)//', |a| dt/v0 '//rtoa(amax))
    end subroutine wall_deck
+
+   !> The default scheme's contact work (.ene column contact_work) is the kinetic energy the
+   !> capture removes: 1/(2N) of the initial energy per struck bar end (N elements along the bar).
+   subroutine booked_loss(s, name, n)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name
+      integer, intent(in) :: n
+      character(len=64), allocatable :: enames(:)
+      real(wp), allocatable :: e(:, :)
+      real(wp) :: e0, w
+      call read_table(run_dir//'/inputs_'//name//'.ene', enames, e)
+      e0 = e(4, 1) + e(5, 1)
+      w = e(7, size(e, 2))
+      call check_close(s, w, -e0/(2.0_wp*n), 0.01_wp*e0/(2.0_wp*n), &
+                       name//': contact work = -1/(2N) of the initial energy within 1 %')
+   end subroutine booked_loss
+
+   !> The drift column of decks already run stays below 0.2 % at every row.
+   subroutine small_drift(s, names)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: names(:)
+      character(len=64), allocatable :: enames(:)
+      real(wp), allocatable :: e(:, :)
+      integer :: k
+      do k = 1, size(names)
+         call read_table(run_dir//'/inputs_'//trim(names(k))//'.ene', enames, e)
+         call check(s, maxval(abs(e(9, :))) < 2.0e-3_wp, trim(names(k))//': |drift| < 0.2 % at every row', &
+                    'largest '//rtoa(maxval(abs(e(9, :)))))
+      end do
+   end subroutine small_drift
+
+   !> wall_energy.inp (wall_30x6 with LAGRange,ENERgy on the struck face): no contact work, the
+   !> final energy within the integrator's own error (fixed_tip.inp's drift on the same mesh and
+   !> step, no contact), penetration at round-off, one contact interval, the step of wall_30x6,
+   !> rebound -m v0 within 2 %.
+   subroutine energy_wall(s)
+      type(suite_t), intent(inout) :: s
+      character(len=64), allocatable :: names(:), enames(:), fnames(:), wnames(:)
+      real(wp), allocatable :: d(:, :), e(:, :), f(:, :), w(:, :)
+      real(wp) :: e0, efin, own, m
+      integer :: kn, kp, kpen, k, intervals
+      if (.not. run_input(s, 'wall_energy')) return
+      call read_table(run_dir//'/inputs_wall_energy.his', names, d)
+      call read_table(run_dir//'/inputs_wall_energy.ene', enames, e)
+      call read_table(run_dir//'/inputs_fixed_tip.ene', fnames, f)
+      call read_table(run_dir//'/inputs_wall_30x6.ene', wnames, w)
+      e0 = e(4, 1) + e(5, 1)
+      efin = (e(4, size(e, 2)) + e(5, size(e, 2)))/e0 - 1.0_wp
+      own = abs(f(9, size(f, 2)))
+      call check(s, abs(e(7, size(e, 2))) <= 1.0e-10_wp*e0, 'wall_energy: contact work at round-off', &
+                 rtoa(e(7, size(e, 2))))
+      call check(s, abs(efin) <= own, 'wall_energy: final energy within the integrator''s own error '// &
+                 '(fixed_tip''s drift)', 'final '//rtoa(efin)//', fixed_tip '//rtoa(own))
+      kn = column(names, 'cont(p1,4)')
+      kp = column(names, 'mome(r1,1)')
+      kpen = column(names, 'cont(p1,5)')
+      call check(s, maxval(d(kpen, :)) <= 1.0e-12_wp*blen, 'wall_energy: penetration at round-off', &
+                 rtoa(maxval(d(kpen, :))))
+      intervals = merge(1, 0, d(kn, 1) > 0.0_wp)
+      do k = 2, size(d, 2)
+         if (d(kn, k) > 0.0_wp .and. d(kn, k - 1) <= 0.0_wp) intervals = intervals + 1
+      end do
+      call check(s, intervals == 1, 'wall_energy: one contact interval', itoa(intervals))
+      call check_close(s, e(3, 2), w(3, 2), 0.01_wp*w(3, 2), 'wall_energy: the step of the default scheme within 1 %')
+      m = rho0*blen*bhgt
+      call check_close(s, d(kp, size(d, 2)), -m*v0, 0.02_wp*m*v0, 'wall_energy: rebound -m v0 within 2 %')
+   end subroutine energy_wall
+
+   !> Bars with LAGRange,ENERgy (decks already run by bars_deck): contact work at round-off,
+   !> final energy within the integrator's own error (fixed_tip.inp's drift, same mesh and
+   !> step) and within 0.15 %, total momentum kept to 1e-10 of m1 v0.
+   subroutine energy_bars(s, name)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name
+      character(len=64), allocatable :: enames(:), fnames(:)
+      real(wp), allocatable :: e(:, :), f(:, :)
+      real(wp) :: e0, efin, own
+      integer :: n
+      call read_table(run_dir//'/inputs_'//name//'.ene', enames, e)
+      call read_table(run_dir//'/inputs_fixed_tip.ene', fnames, f)
+      n = size(e, 2)
+      e0 = e(4, 1) + e(5, 1)
+      efin = (e(4, n) + e(5, n))/e0 - 1.0_wp
+      own = abs(f(9, size(f, 2)))
+      call check(s, abs(e(7, n)) <= 1.0e-10_wp*e0, name//': contact work at round-off', rtoa(e(7, n)))
+      call check(s, abs(efin) <= min(own, 1.5e-3_wp), name//': final energy within the integrator''s own '// &
+                 'error (fixed_tip''s drift)', 'final '//rtoa(efin)//', fixed_tip '//rtoa(own))
+      call check(s, abs(e(10, n) - e(10, 1)) <= 1.0e-10_wp*rho0*blen*bhgt*v0, name//': momentum kept', &
+                 rtoa(e(10, n) - e(10, 1)))
+   end subroutine energy_bars
 
    !> fixed_tip.inp equals wall_30x6.inp while every end node touches the wall.
    subroutine fixed_tip_deck(s)

@@ -799,7 +799,7 @@ contains
       character(len=*), intent(in) :: name
       type(model_t), intent(in) :: model
       real(wp), allocatable :: rows(:, :), dts(:)
-      real(wp) :: wcon, penmax
+      real(wp) :: wcon, penmax, e_all
       logical :: ok
       integer :: n
       call write_host_input(run_dir//'/'//name//'_lin.dat', model, 2, -0.8_wp, 2)
@@ -816,7 +816,12 @@ contains
                  name//': largest penetration at t(n+1) below 1e-10 L', rtoa(max(maxval(rows(7, :)), penmax)))
       call check(s, minval(rows(9, :)) > -1.0e-10_wp*blen, name//': every corrected gap at t(n+2) closed', &
                  'smallest '//rtoa(minval(rows(9, :))))
-      call check(s, abs(wcon) < 0.01_wp*energy0, name//': contact does next to no work (< 1 % of the energy)', rtoa(wcon))
+      ! the contact work books the kinetic energy the corrector's capture removes (doc/impact.md,
+      ! eq. I.12): negative, about 1/(2N) of the energy per struck end, never a gain
+      e_all = energy0
+      if (name == 'legacy_bars') e_all = 2.0_wp*energy0   ! two bars, each with energy0
+      call check(s, wcon <= 0.0_wp .and. -wcon < 0.05_wp*e_all, name//': contact only removes energy, '// &
+                 'less than 5 % of it (the capture of the struck columns)', rtoa(wcon/e_all))
    end subroutine host_simple_test
 
    !> The C host: one step, the gap closes, an unknown handle gives a message.

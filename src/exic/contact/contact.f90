@@ -32,6 +32,7 @@ module exic_contact_contact
    use exic_contact_friction, only: friction_t, coulomb_mu
    use exic_contact_penalty, only: penalty_forces, penalty_history_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
+   use exic_contact_massless_face, only: massless_face_t
    implicit none
    private
 
@@ -68,6 +69,7 @@ module exic_contact_contact
       integer :: pair = 0                      !< index into pair results
       integer :: slave = 0, master = 0         !< surface indices
       integer :: method = METHOD_LAGRANGE
+      logical :: energy = .false.              !< LAGRange,ENERgy: massless faces (doc/impact.md)
       integer :: detection = DETECT_SWEPT
       real(wp) :: k = 0.0_wp                   !< penalty stiffness
       logical :: friction = .false.            !< Coulomb friction with law(1) = mus > 0
@@ -119,6 +121,9 @@ module exic_contact_contact
       type(pair_result_t), allocatable :: results(:)
       type(constraints_t) :: cs
       type(corrector_t) :: corr
+      logical :: energy = .false.              !< some pass asks for LAGRange,ENERgy
+      type(massless_face_t) :: face            !< the massless faces (set up by the caller: face_nodes, face%init)
+      real(wp), allocatable :: fres(:, :)      !< (2, nnode) f_ext - f_int for the face's free solve
       real(wp) :: lref = 1.0_wp                !< mean segment length
       real(wp) :: depth = 0.0_wp               !< penetration accepted at the start of a step (DEPTH_SHARE x lref)
       real(wp), allocatable :: xp(:, :)           !< (2, nnode) predicted positions x~(n+2)
@@ -141,6 +146,7 @@ module exic_contact_contact
       procedure :: pair_value => contact_pair_value
       procedure :: summary => contact_summary
       procedure :: edges => contact_edges
+      procedure :: face_nodes => contact_face_nodes
    end type contact_t
 
 contains
@@ -188,6 +194,13 @@ contains
       end do
       call penalty_stiffness(self, modulus)
       call friction_arrays(self, nnode, x)
+      if (self%energy .and. self%friction) then
+         ! the massless faces enter the normal problem only (doc/impact.md, section 3.3)
+         call make_error(err, 'LAGRange,ENERgy (massless contact faces) together with Coulomb friction '// &
+                         'in one model is not supported: expected friction only on LAGRange pairs of a '// &
+                         'model without ENERgy')
+         return
+      end if
       call check_overlap(self, nnode, x, err)
    end subroutine contact_init
 
@@ -343,6 +356,8 @@ contains
          call add_pass(p, np, npair + 1, 0, 0, spec%auto_options)
          self%auto_pass = p(np)
          self%auto_pass%auto = .true.
+         self%auto_pass%energy = self%auto_pass%energy .and. self%auto_pass%method == METHOD_LAGRANGE
+         if (self%auto_pass%energy) self%energy = .true.
          np = np - 1
          self%auto_first = ns
          do i = ns + 1, ns + nauto
@@ -358,6 +373,8 @@ contains
          self%passes(k)%slave = p(k)%slave
          self%passes(k)%master = p(k)%master
          self%passes(k)%method = p(k)%method
+         self%passes(k)%energy = p(k)%energy .and. p(k)%method == METHOD_LAGRANGE
+         if (self%passes(k)%energy) self%energy = .true.
          self%passes(k)%detection = p(k)%detection
          self%passes(k)%k = p(k)%k
          self%passes(k)%law = p(k)%law
@@ -375,6 +392,7 @@ contains
       p(np)%slave = slave
       p(np)%master = master
       p(np)%method = ps%method
+      p(np)%energy = ps%energy
       p(np)%detection = ps%detection
       p(np)%k = ps%penalty
       if (ps%penalty_scaled) p(np)%k = -ps%penalty   ! scale factor, resolved in penalty_stiffness
@@ -447,7 +465,9 @@ contains
    !> `rb`: the free rigid bodies, three-dof bodies in the corrector (doc/loads.md, section 5);
    !> the caller moves them with the contact forces on their nodes. With friction
    !> (doc/friction.md) fcon carries the friction forces too; they are also in self%ffric.
-   subroutine contact_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err, rb)
+   !> fext, fint: the external and internal forces at t(n+1), needed by massless faces
+   !> (LAGRange,ENERgy, doc/impact.md eq. I.5) once `face` is set up.
+   subroutine contact_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err, rb, fext, fint)
       class(contact_t), intent(inout) :: self
       integer, intent(in) :: nnode
       real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode), dt_prev, dt
@@ -456,6 +476,7 @@ contains
       integer, intent(out) :: nactive
       type(error_t), allocatable, intent(out) :: err
       type(rigid_dofs_t), intent(inout), optional :: rb
+      real(wp), intent(in), optional :: fext(2, nnode), fint(2, nnode)
       integer :: k, j, i, node
       real(wp) :: c, gnow, pen, t0, t1, mu
       logical :: touched
@@ -467,6 +488,19 @@ contains
       self%fcon_clean = .false.
       touched = .false.
       call predicted_positions(self, nnode, x, vt, a, dt)
+      ! c = dt(n+1) (dt(n) + dt(n+1)) / 2, eq. 4.7
+      c = 0.5_wp*dt*(dt_prev + dt)
+      if (self%face%active) then
+         ! massless faces: the free solve places them at their trial positions (eq. I.5, I.7)
+         if (.not. (present(fext) .and. present(fint))) then
+            call make_error(err, 'LAGRange,ENERgy needs the forces of the step (contact_t%correct: fext, fint)')
+            return
+         end if
+         if (.not. allocated(self%fres)) allocate (self%fres(2, nnode))
+         self%fres = fext - fint
+         call self%face%trial(nnode, x, self%fres, c, self%xp, a, err)
+         if (allocated(err)) return
+      end if
       do k = 1, size(self%results)
          self%results(k)%fnormal = 0.0_wp
          self%results(k)%force = 0.0_wp
@@ -513,10 +547,10 @@ contains
       t1 = wall_time()
       self%time_search = self%time_search + (t1 - t0)
       if (self%cs%n > 0) then
-         ! c = dt(n+1) (dt(n) + dt(n+1)) / 2, eq. 4.7
-         c = 0.5_wp*dt*(dt_prev + dt)
          if (self%friction) then
             call self%fr%solve(self%corr, self%cs, nnode, minv, c, x, self%xp, a, fcon, self%ffric, err, rb)
+         else if (self%face%active) then
+            call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb, self%face)
          else
             call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb)
          end if
@@ -574,6 +608,7 @@ contains
             ps%k = self%auto_pass%k
             ps%law = self%auto_pass%law
             ps%friction = self%auto_pass%friction
+            ps%energy = self%auto_pass%energy
             ps%auto = .true.
             ps%slave = self%auto_first + self%auto%gslave(g)
             ps%master = self%auto_first + self%auto%gmaster(g)
@@ -608,7 +643,8 @@ contains
    end subroutine contact_nodes
 
    !> Predicted positions x~(n+2) = x + dt vt + dt^2/2 a (eq. 4.4) of the contact nodes, the
-   !> only ones the search and the corrector read.
+   !> only ones the search and the corrector read; with massless faces of every node, since the
+   !> face's free solve (eq. I.5) reads the predicted motion of the interior nodes next to it.
    subroutine predicted_positions(self, nnode, x, vt, a, dt)
       type(contact_t), intent(inout) :: self
       integer, intent(in) :: nnode
@@ -616,6 +652,10 @@ contains
       integer :: k, node
       real(wp) :: h
       h = 0.5_wp*dt*dt
+      if (self%face%active) then
+         self%xp = x + dt*vt + h*a
+         return
+      end if
       do k = 1, size(self%cnodes)
          node = self%cnodes(k)
          self%xp(:, node) = x(:, node) + dt*vt(:, node) + h*a(:, node)
@@ -822,6 +862,7 @@ contains
             text = text//'contact pass '//itoa(k)//' of pair '//itoa(self%results(ps%pair)%id)// &
                    ': nodes of surface '//itoa(ps%slave)//' against segments of surface '// &
                    itoa(ps%master)//', '//trim(methods(ps%method))//', '//trim(detections(ps%detection))
+            if (ps%energy) text = text//', massless faces (ENERgy)'
             if (ps%friction) text = text//', Coulomb friction mus '//rtoa(ps%law(1))//' mud '// &
                                     rtoa(ps%law(2))//' decay '//rtoa(ps%law(3))
             if (k < self%nfixed) text = text//nl
@@ -834,6 +875,7 @@ contains
                    'each of surfaces '//itoa(self%auto_first + 1)//'-'//itoa(self%auto_first + self%auto%nsurf)// &
                    ' against segments of each other one near it (one search over all of them per step), '// &
                    trim(methods(ps%method))//', '//trim(detections(ps%detection))
+            if (ps%energy) text = text//', massless faces (ENERgy)'
             if (ps%friction) text = text//', Coulomb friction mus '//rtoa(ps%law(1))//' mud '// &
                                     rtoa(ps%law(2))//' decay '//rtoa(ps%law(3))
          end associate
@@ -855,6 +897,29 @@ contains
          n = n + self%surfaces(k)%nseg
       end do
    end function contact_edges
+
+   !> Nodes of the surfaces (slave and master) of the passes that ask for LAGRange,ENERgy: the
+   !> candidates for massless faces (doc/impact.md, section 3.1; the caller removes rigid and
+   !> prescribed nodes and those of elements that would keep no mass).
+   function contact_face_nodes(self, nnode) result(on)
+      class(contact_t), intent(in) :: self
+      integer, intent(in) :: nnode
+      logical :: on(nnode)
+      integer :: k
+      on = .false.
+      if (.not. self%active) return
+      do k = 1, self%nfixed
+         if (.not. self%passes(k)%energy) cycle
+         on(self%surfaces(self%passes(k)%slave)%nodes) = .true.
+         on(self%surfaces(self%passes(k)%master)%nodes) = .true.
+      end do
+      ! AUTOmatic: every one of its surfaces can meet another one
+      if (self%auto_pass%auto .and. self%auto_pass%energy) then
+         do k = self%auto_first + 1, self%auto_first + self%auto%nsurf
+            on(self%surfaces(k)%nodes) = .true.
+         end do
+      end if
+   end function contact_face_nodes
 
    !> Sorted unique values.
    function unique(a) result(u)

@@ -28,12 +28,18 @@
 !> their `rigid_dofs_t`: S gains g_i^b . M_b^-1 g_j^b for every body two constraints touch, and
 !> the corrected gaps of a pass count the bodies' accelerations. The caller applies the bodies'
 !> share of G p (the nodal contact forces on their nodes) to the bodies.
+!>
+!> Massless contact faces (`LAGRange,ENERgy`, doc/impact.md) join through their compliance
+!> `face`: their dofs have minv = 0, S gains (1/c) G_F^T K_FF^-1 G_F (eq. I.6, in system_t's
+!> assembly), the corrected gaps count the face's motion and the face's accelerations follow
+!> eq. I.7. They join the normal problem only (a model with friction has no massless faces).
 module exic_contact_corrector
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
    use exic_base_grow, only: grow
    use exic_contact_rigid_dofs, only: rigid_dofs_t
    use exic_contact_system, only: system_t
+   use exic_contact_massless_face, only: massless_face_t
    implicit none
    private
 
@@ -149,8 +155,9 @@ contains
    !> for three more passes), then only the last one in candidate order (Murty's rule, finite
    !> for the positive definite S of independent constraints). Constraints the factorization
    !> finds redundant carry p = 0 and are never infeasible.
-   !> `rb`: the free rigid bodies (their nodes have minv = 0), when the model has any.
-   subroutine corrector_solve(self, cs, nnode, minv, c, a, fcon, err, rb)
+   !> `rb`: the free rigid bodies (their nodes have minv = 0), when the model has any;
+   !> `face`: the massless contact faces (their nodes have minv = 0), when any pair asks for them.
+   subroutine corrector_solve(self, cs, nnode, minv, c, a, fcon, err, rb, face)
       class(corrector_t), intent(inout) :: self
       type(constraints_t), intent(inout) :: cs
       integer, intent(in) :: nnode
@@ -160,6 +167,7 @@ contains
       real(wp), intent(inout) :: fcon(2, nnode)
       type(error_t), allocatable, intent(out) :: err
       type(rigid_dofs_t), intent(inout), optional :: rb
+      type(massless_face_t), intent(inout), optional :: face
       integer :: m
 
       m = cs%n
@@ -169,11 +177,18 @@ contains
       cs%p(1:m) = 0.0_wp
       cs%active(1:m) = cs%gap(1:m) < 0.0_wp
       if (.not. any(cs%active(1:m))) return
-      call self%prepare(cs, nnode, minv, rb)
-      call self%pivot(cs, nnode, minv, c, cs%gap(1:m), err, rb)
+      if (present(face)) then
+         ! z_j = K_FF^-1 G_F,j of the candidates on the face (eq. I.6)
+         call face%prepare(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m), err)
+         if (allocated(err)) return
+      end if
+      call self%prepare(cs, nnode, minv, rb, face)
+      call self%pivot(cs, nnode, minv, c, cs%gap(1:m), err, rb, face)
       if (allocated(err)) return
       ! a(n+1) = a~(n+1) + M^-1 G p  (eq. 4.5 with p = -lambda)
       a = a + minv*self%fwork
+      ! the face: a_F += K_FF^-1 G_F p / c (eq. I.7)
+      if (present(face)) call face%accelerate(nnode, a)
       fcon = fcon + self%fwork
    end subroutine corrector_solve
 
@@ -181,12 +196,14 @@ contains
    !> free bodies' columns and S = G_N^T M^-1 G_N over every candidate, assembled once: the
    !> pivoting passes only change which constraints are dropped, so the pattern (and the sparse
    !> symbolic analysis) stays the same within the step, and across steps while the candidates do.
-   subroutine corrector_prepare(self, cs, nnode, minv, rb)
+   !> `face`: the massless faces, already prepared for these candidates (face%prepare).
+   subroutine corrector_prepare(self, cs, nnode, minv, rb, face)
       class(corrector_t), intent(inout) :: self
       type(constraints_t), intent(in) :: cs
       integer, intent(in) :: nnode
       real(wp), intent(in) :: minv(2, nnode)
       type(rigid_dofs_t), intent(inout), optional :: rb
+      type(massless_face_t), intent(in), optional :: face
       integer :: m
       m = cs%n
       call grow(self%infeasible, m)
@@ -201,14 +218,15 @@ contains
       call grow(self%psafe, m)
       if (present(rb)) call rb%prepare(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m))
       call self%assemble(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m), nnode, minv, &
-                         self%nstart, self%nlist, rb)
+                         self%nstart, self%nlist, rb, face=face)
    end subroutine corrector_prepare
 
    !> The normal problem of `prepare`d candidates for the predicted gaps gap0(m) (cs%gap, or
    !> with friction the gaps shifted by the tangential forces, doc/friction.md eq. F13), from
    !> the active set cs%active: on return cs%p holds the multipliers, cs%active the candidates
-   !> in force and self%fwork = G_N p (see corrector_solve for the pivoting rule).
-   subroutine corrector_pivot(self, cs, nnode, minv, c, gap0, err, rb)
+   !> in force and self%fwork = G_N p (see corrector_solve for the pivoting rule); with massless
+   !> faces `face` (prepared), face%dx = K_FF^-1 G_F p of the multipliers returned.
+   subroutine corrector_pivot(self, cs, nnode, minv, c, gap0, err, rb, face)
       class(corrector_t), intent(inout) :: self
       type(constraints_t), intent(inout) :: cs
       integer, intent(in) :: nnode
@@ -217,6 +235,7 @@ contains
       real(wp), intent(in) :: gap0(:)
       type(error_t), allocatable, intent(out) :: err
       type(rigid_dofs_t), intent(inout), optional :: rb
+      type(massless_face_t), intent(inout), optional :: face
       integer :: m, nact, pass, k, i, nbad, ninf, best, budget, last
       real(wp) :: g
       logical :: have_safe
@@ -251,11 +270,18 @@ contains
          end if
          call apply(cs, nnode, self%fwork)
          if (present(rb)) call rb%accelerations(m, cs%p(1:m))
+         if (present(face)) call face%respond(m, cs%p(1:m))
          ninf = 0
          last = 0
          do i = 1, m
             if (cs%active(i)) then
                self%infeasible(i) = cs%p(i) < 0.0_wp
+            else if (present(face)) then
+               ! the face's motion K_FF^-1 G_F p counts in the corrected gap (eq. I.6)
+               g = gap_change(cs, i, nnode, minv, self%fwork)
+               if (present(rb)) g = g + rb%gap_part(i)
+               g = gap0(i) + c*(g + face%gap_part(cs%node(:, i), cs%w(:, i), cs%nrm(:, i)))
+               self%infeasible(i) = g < -self%gap_tol
             else if (present(rb)) then
                g = gap0(i) + c*(gap_change(cs, i, nnode, minv, self%fwork) + rb%gap_part(i))
                self%infeasible(i) = g < -self%gap_tol
@@ -281,6 +307,7 @@ contains
                cs%p(1:m) = 0.0_wp
             end if
             call apply(cs, nnode, self%fwork)
+            if (present(face)) call face%respond(m, cs%p(1:m))
             exit
          end if
          if (ninf < best) then

@@ -32,6 +32,7 @@ module exic_contact_spec
       integer :: kind = PAIR_NTOS
       integer :: slave = 0, master = 0       !< surface ids (master = slave for SELF)
       integer :: method = METHOD_LAGRANGE
+      logical :: energy = .false.            !< LAGRange,ENERgy: massless contact faces (doc/impact.md)
       real(wp) :: penalty = 0.0_wp           !< penalty stiffness k (per unit thickness)
       logical :: penalty_scaled = .false.    !< PENAlty,SCALe,f: k = f x element stiffness scale
       integer :: detection = DETECT_SWEPT

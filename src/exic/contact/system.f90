@@ -17,6 +17,10 @@
 !> which carry a zero solution. A factorisation of the same assembly with the same mask as the
 !> last one is not repeated (a solve reuses it).
 !>
+!> Massless contact faces (`LAGRange,ENERgy`, doc/impact.md eq. I.6) add their compliance
+!> (1/c) G_F,i^T K_FF^-1 G_F,j to the normal problem's S for every two candidates on the face
+!> (`massless_face_t`, prepared for the step's candidates).
+!>
 !> `corrector_t` (the normal problem) extends this type; `friction_t` owns a second one for the
 !> tangential problem.
 module exic_contact_system
@@ -26,6 +30,7 @@ module exic_contact_system
    use exic_linalg_sparse_ldl, only: sparse_ldl_t
    use exic_linalg_dense_spd, only: dense_spd_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
+   use exic_contact_massless_face, only: massless_face_t
    implicit none
    private
 
@@ -58,14 +63,16 @@ contains
    !> dir(2, m)): dense (m <= dense_limit) or in compressed columns with the full pattern.
    !> nstart(nnode + 1), nlist: node -> candidates incidence (compressed rows). With free rigid
    !> bodies `rb`, each column gains the coupling of the bodies its candidate touches, through
-   !> the body columns `rb%sgt` when `tangent`, else `rb%sg`.
-   subroutine system_assemble(self, m, node, w, dir, nnode, minv, nstart, nlist, rb, tangent)
+   !> the body columns `rb%sgt` when `tangent`, else `rb%sg`. With massless faces `face` (normal
+   !> problem only), each column of a candidate on the face gains the face's compliance (eq. I.6).
+   subroutine system_assemble(self, m, node, w, dir, nnode, minv, nstart, nlist, rb, tangent, face)
       class(system_t), intent(inout) :: self
       integer, intent(in) :: m, nnode
       integer, intent(in) :: node(3, m), nstart(nnode + 1), nlist(:)
       real(wp), intent(in) :: w(3, m), dir(2, m), minv(2, nnode)
       type(rigid_dofs_t), intent(in), optional :: rb
       logical, intent(in), optional :: tangent
+      type(massless_face_t), intent(in), optional :: face
       integer :: j, k, nd, q, i, nnz, first, l
       real(wp) :: v
       logical :: along_t
@@ -103,6 +110,15 @@ contains
                call body_entries(rb%sgt)
             else
                call body_entries(rb%sg)
+            end if
+         end if
+         if (present(face)) then
+            ! every candidate i on the face when j is: S(i, j) += (1/c) G_F,i^T K_FF^-1 G_F,j (eq. I.6)
+            if (face%slot(j) > 0) then
+               do i = 1, m
+                  v = face%coupling(i, j, node(:, i), w(:, i), dir(:, i))
+                  if (v /= 0.0_wp) call add_entry(i, v)
+               end do
             end if
          end if
          if (m > self%dense_limit) call sort_column(self%ai(first:nnz), self%ax(first:nnz))

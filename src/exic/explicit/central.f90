@@ -118,27 +118,30 @@ contains
    end subroutine acceleration_range
 
    !> Last part of a step: v = v + dt/2 (a_old + a) with the corrected a, the work of the
-   !> external forces (F . du) and, when `with_contact`, of the contact forces by the
-   !> trapezoid rule (1/2 (fcon_old + fcon) . du), each summed per chunk of CHUNK nodes in
-   !> array order and the chunks in order.
-   subroutine cd_velocity(n, dt, a_old, a, fext, du, with_contact, fcon_old, fcon, v, wext, wcon)
+   !> external forces (F . du) and, when `with_contact`, of the contact forces (doc/impact.md,
+   !> eq. I.12): on a dof with mass (minv > 0) the work of the velocity update's two half kicks,
+   !> so that an impulsive capture is booked as the kinetic energy it removes; on a dof without (rigid, prescribed, massless face) the
+   !> trapezoid rule on the displacement, 1/2 (fcon_old + fcon) . du. Each sum runs per chunk
+   !> of CHUNK nodes in array order and the chunks in order.
+   subroutine cd_velocity(n, dt, a_old, a, fext, du, with_contact, fcon_old, fcon, minv, v, wext, wcon)
       integer, intent(in) :: n
       real(wp), intent(in) :: dt
       real(wp), intent(in) :: a_old(2, n), a(2, n), fext(2, n), du(2, n)
       logical, intent(in) :: with_contact
-      real(wp), intent(in) :: fcon_old(2, n), fcon(2, n)
+      real(wp), intent(in) :: fcon_old(2, n), fcon(2, n), minv(2, n)
       real(wp), intent(inout) :: v(2, n), wext, wcon
       real(wp) :: se, sc, pe((n + CHUNK - 1)/CHUNK), pc((n + CHUNK - 1)/CHUNK)
       integer :: c, i0, m
       !$omp parallel do if (n >= PAR_MIN_NODES) default(none) &
-      !$omp shared(n, dt, a_old, a, fext, du, with_contact, fcon_old, fcon, v, pe, pc) &
+      !$omp shared(n, dt, a_old, a, fext, du, with_contact, fcon_old, fcon, minv, v, pe, pc) &
       !$omp private(c, i0, m) schedule(dynamic)
       do c = 1, (n + CHUNK - 1)/CHUNK
          i0 = (c - 1)*CHUNK + 1
          m = min(CHUNK, n - i0 + 1)
-         call velocity_range(2*m, dt, a_old(1, i0), a(1, i0), fext(1, i0), du(1, i0), v(1, i0), pe(c))
          pc(c) = 0.0_wp
-         if (with_contact) call work_range(2*m, fcon_old(1, i0), fcon(1, i0), du(1, i0), pc(c))
+         if (with_contact) call work_range(2*m, dt, fcon_old(1, i0), fcon(1, i0), du(1, i0), minv(1, i0), &
+                                           v(1, i0), a_old(1, i0), a(1, i0), pc(c))
+         call velocity_range(2*m, dt, a_old(1, i0), a(1, i0), fext(1, i0), du(1, i0), v(1, i0), pe(c))
       end do
       !$omp end parallel do
       se = 0.0_wp
@@ -167,15 +170,23 @@ contains
       se = lane_sum(m, p)
    end subroutine velocity_range
 
-   !> sc = sum (fcon_old + fcon) . du on m values.
-   pure subroutine work_range(m, fcon_old, fcon, du, sc)
+   !> sc = twice the work of the contact forces on m values (cd_velocity): where minv > 0 the
+   !> two half kicks, dt/2 (fcon_old . (v + vh) + fcon . (vh + v_new)) with vh = v + dt/2 a_old and
+   !> v_new = vh + dt/2 a; elsewhere (fcon_old + fcon) . du.
+   pure subroutine work_range(m, dt, fcon_old, fcon, du, minv, v, a_old, a, sc)
       integer, intent(in) :: m
-      real(wp), intent(in) :: fcon_old(m), fcon(m), du(m)
+      real(wp), intent(in) :: dt, fcon_old(m), fcon(m), du(m), minv(m), v(m), a_old(m), a(m)
       real(wp), intent(out) :: sc
-      real(wp) :: p(2*CHUNK)
+      real(wp) :: p(2*CHUNK), h, vh
       integer :: j
+      h = 0.5_wp*dt
       do j = 1, m
-         p(j) = (fcon_old(j) + fcon(j))*du(j)
+         if (minv(j) > 0.0_wp) then
+            vh = v(j) + h*a_old(j)
+            p(j) = h*(fcon_old(j)*(v(j) + vh) + fcon(j)*(2.0_wp*vh + h*a(j)))
+         else
+            p(j) = (fcon_old(j) + fcon(j))*du(j)
+         end if
       end do
       sc = lane_sum(m, p)
    end subroutine work_range

@@ -40,6 +40,7 @@ module exic_explicit_step
                                     predictor_velocity_at
    use exic_explicit_loads, only: load_spec_t
    use exic_explicit_loading, only: loading_t
+   use exic_explicit_face, only: face_setup
    implicit none
    private
 
@@ -126,7 +127,7 @@ contains
       type(contact_spec_t), intent(in) :: spec
       type(error_t), allocatable, intent(out) :: err
       type(load_spec_t), intent(in), optional :: loads
-      integer :: n, k
+      integer :: n, k, nface, nkept
       real(wp) :: modulus
 
       call assembly_init(mesh, materials, self%st, self%sets, err)
@@ -144,6 +145,15 @@ contains
       end do
       call self%contact%init(spec, n, self%st%x0, self%x, mesh%nelem, mesh%conn, mesh%region, mesh%mat, &
                              modulus, err)
+      if (allocated(err)) return
+      if (self%contact%energy) then
+         ! LAGRange,ENERgy: massless contact faces (doc/impact.md, section 3)
+         call face_setup(self%st, self%sets, self%contact, nface, nkept, err)
+         if (allocated(err)) return
+         call self%messages%add('LAGRange,ENERgy: '//itoa(nface)//' massless face nodes, '//itoa(nkept)// &
+                                ' surface nodes keep their mass (rigid, prescribed, or in elements '// &
+                                'with every node on the face)')
+      end if
       ! st%fcon is written by the contact only, so it need not be zeroed where it is zero
       self%contact%keep_fcon = .true.
    end subroutine stepper_init
@@ -236,10 +246,10 @@ contains
          if (self%ld%varying) then
             ! loads that vary in time: the trapezoid rule 1/2 (F(n) + F(n+1)) . du
             call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, self%ld%favg, self%du, work_con, &
-                             self%fcon_old, st%fcon, st%v, st%wext, st%wcon)
+                             self%fcon_old, st%fcon, st%minv, st%v, st%wext, st%wcon)
          else
             call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, st%fext, self%du, work_con, &
-                             self%fcon_old, st%fcon, st%v, st%wext, st%wcon)
+                             self%fcon_old, st%fcon, st%minv, st%v, st%wext, st%wcon)
          end if
          if (self%ld%active) call self%ld%finish(st, self%du, 0.5_wp*st%dt_prev, .false.)
       end associate
@@ -274,10 +284,12 @@ contains
    end subroutine forces_and_dt
 
    !> True when the step needs x and v~ at the contact surfaces' nodes only: exic's own contact
-   !> (it reads no other node) and no loads, prescribed motion or rigid bodies (which read all).
+   !> (it reads no other node) and no loads, prescribed motion or rigid bodies (which read all),
+   !> nor massless contact faces (their free solve reads the nodes next to them, doc/impact.md).
    pure logical function surface_only(self) result(yes)
       type(stepper_t), intent(in) :: self
-      yes = self%contact%active .and. .not. associated(self%hook) .and. .not. self%ld%active
+      yes = self%contact%active .and. .not. associated(self%hook) .and. .not. self%ld%active .and. &
+            .not. self%contact%face%active
    end function surface_only
 
    !> True when exic's own contact left st%fcon zero everywhere at its last call (a host's hook:
@@ -302,10 +314,10 @@ contains
                                    st%nactive, err)
          else if (self%contact%active .and. self%ld%has_free) then
             call self%contact%correct(st%nnode, self%x, vt, st%a, st%minv, st%dt_prev, st%dt, st%fcon, &
-                                      st%nactive, err, self%ld%rb)
+                                      st%nactive, err, self%ld%rb, st%fext, st%fint)
          else if (self%contact%active) then
             call self%contact%correct(st%nnode, self%x, vt, st%a, st%minv, st%dt_prev, st%dt, st%fcon, &
-                                      st%nactive, err)
+                                      st%nactive, err, fext=st%fext, fint=st%fint)
          end if
          if (self%contact%corr%pass_limit_hits > hits) then
             self%pass_limit_warnings = self%pass_limit_warnings + 1

@@ -29,7 +29,7 @@ module exic_io_deck
    use exic_io_deck_gmsh, only: cmd_gmsh, cmd_pbound
    use exic_io_deck_material, only: cmd_material
    use exic_io_deck_contact, only: cmd_contact
-   use exic_io_deck_finish, only: finish_mesh, check_contact, cmd_tie, physical_surfaces
+   use exic_io_deck_finish, only: finish_mesh, check_contact, energy_warnings, cmd_tie, physical_surfaces
    use exic_io_deck_batch, only: read_batch, read_batch_data
    use exic_io_deck_loads, only: loads_builder_t, cmd_fpro, cmd_gravity, cmd_motion, cmd_csurface, &
                                  finish_loads, check_functions
@@ -106,6 +106,7 @@ contains
       if (allocated(err)) return
       call check_contact(model%contact, model%mesh, err)
       if (allocated(err)) return
+      if (allocated(model%materials)) call energy_warnings(rd, model%contact, model%mesh, model%materials)
       map = [(n, n=1, model%mesh%nnode)]
       do
          call next_nonblank(rd, i)

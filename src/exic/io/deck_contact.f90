@@ -6,12 +6,15 @@
 !> (gaps generated as for ELEMents: copies of the previous facet with non-zero nodes + ng) |
 !> **[ext]** `PHYSical,c` (the edges of edge set c, a Gmsh physical curve, resolved after END);
 !> `PAIR,id,NTOS|SYMMetric,s,m` | `PAIR,id,SELF,s`; `AUTOmatic`; method records after a PAIR
-!> or AUTOmatic: `LAGRange`, `PENAlty,k`, `PENAlty,SCALe,f` (f defaults to 0.1),
-!> `DETEction,SWEPt|STATic`, `FRICtion,COULomb,mu` | `FRICtion,COULomb,mus,mud[,decay]`
-!> (doc/friction.md). `END CONTact` (or `END`) closes the block.
+!> or AUTOmatic: `LAGRange`, `LAGRange,ENERgy` (massless contact faces, doc/impact.md),
+!> `PENAlty,k`, `PENAlty,SCALe,f` (f defaults to 0.1), `DETEction,SWEPt|STATic`,
+!> `FRICtion,COULomb,mu` | `FRICtion,COULomb,mus,mud[,decay]` (doc/friction.md). `END CONTact`
+!> (or `END`) closes the block.
 !>
 !> A field that a PAIR or method record does not use is an error (`PAIR,1,NTOS,1,2,FRIC,0.3`
-!> would otherwise run without friction); `LAGRange,ENERgy` is refused as not implemented yet.
+!> would otherwise run without friction); `LAGRange,ENERgy` together with Coulomb friction
+!> (mus > 0) on the same pair is refused (the massless faces are not coupled to the tangential
+!> problem).
 module exic_io_deck_contact
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
@@ -246,18 +249,30 @@ contains
          end if
          w = word(rd, i, k0)
          if (keyword_is(w, 'lagr')) then
-            if (keyword_is(word(rd, i, k0 + 1), 'ener')) then
-               call fail(rd, i, 'LAGRange,ENERgy (the energy-consistent impact) is not yet implemented: '// &
-                         'expected LAGRange alone (the seed''s corrector)', err)
+            p%method = METHOD_LAGRANGE
+            p%energy = keyword_is(word(rd, i, k0 + 1), 'ener')
+            if (p%energy) then
+               call no_more_fields(rd, i, k0 + 1, 'LAGRange,ENERgy', err)
+            else
+               call no_more_fields(rd, i, k0, 'LAGRange or LAGRange,ENERgy (friction is a record of '// &
+                                   'its own, FRICtion,COULomb,mu)', err)
+            end if
+            if (allocated(err)) return
+            if (p%energy .and. p%mus > 0.0_wp) then
+               call fail(rd, i, 'LAGRange,ENERgy with Coulomb friction (FRICtion,COULomb,'//rtoa(p%mus)// &
+                         ') on the same pair: not supported (the massless faces are not coupled to '// &
+                         'the tangential problem); expected LAGRange with friction, or ENERgy without', err)
                return
             end if
-            call no_more_fields(rd, i, k0, 'LAGRange (friction is a record of its own, '// &
-                                'FRICtion,COULomb,mu)', err)
-            if (allocated(err)) return
-            p%method = METHOD_LAGRANGE
          else if (keyword_is(w, 'fric')) then
             call friction(i, k0, p, err)
             if (allocated(err)) return
+            if (p%energy .and. p%method == METHOD_LAGRANGE .and. p%mus > 0.0_wp) then
+               call fail(rd, i, 'FRICtion,COULomb,'//rtoa(p%mus)//' with LAGRange,ENERgy on the same pair: '// &
+                         'not supported (the massless faces are not coupled to the tangential '// &
+                         'problem); expected LAGRange with friction, or ENERgy without', err)
+               return
+            end if
          else if (keyword_is(w, 'pena')) then
             p%method = METHOD_PENALTY
             if (keyword_is(word(rd, i, k0 + 1), 'scal')) then
@@ -378,8 +393,39 @@ contains
          end do
          if (npair == 0 .and. .not. spec%automatic) then
             call fail(rd, icmd, 'CONTact block without PAIR or AUTOmatic: expected at least one', err)
+            return
          end if
+         call energy_with_friction(err)
       end subroutine close_block
+
+      !> LAGRange,ENERgy on one pair and Coulomb friction on another: refused at the pair (or
+      !> AUTOmatic) with friction, since the massless faces enter the normal problem only.
+      subroutine energy_with_friction(err)
+         type(error_t), allocatable, intent(out) :: err
+         integer :: k
+         logical :: energy
+         character(len=*), parameter :: why = ' in a model with LAGRange,ENERgy (massless contact '// &
+                                              'faces, which the frictional corrector does not couple): '// &
+                                              'not supported; expected no friction, or LAGRange without ENERgy'
+         energy = .false.
+         do k = 1, npair
+            if (pair(k)%energy .and. pair(k)%method == METHOD_LAGRANGE) energy = .true.
+         end do
+         if (spec%automatic) then
+            if (spec%auto_options%energy .and. spec%auto_options%method == METHOD_LAGRANGE) energy = .true.
+         end if
+         if (.not. energy) return
+         do k = 1, npair
+            if (pair(k)%mus > 0.0_wp) then
+               call make_error(err, pair(k)%where//': PAIR '//itoa(pair(k)%id)//' has Coulomb friction'//why)
+               return
+            end if
+         end do
+         if (spec%automatic) then
+            if (spec%auto_options%mus > 0.0_wp) &
+               call make_error(err, spec%auto_options%where//': AUTOmatic has Coulomb friction'//why)
+         end if
+      end subroutine energy_with_friction
 
       !> A NTOS or SYMMetric pair whose two surfaces describe the same region or material is
       !> self contact in disguise: an error pointing to SELF.

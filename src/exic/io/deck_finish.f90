@@ -17,18 +17,18 @@ module exic_io_deck_finish
    use exic_base_error, only: error_t, make_error
    use exic_mesh_mesh, only: mesh_t
    use exic_mesh_tie, only: tie_map, apply_tie
-   use exic_material_material, only: MAT_UNDEFINED, MAT_RIGID
+   use exic_material_material, only: MAT_UNDEFINED, MAT_RIGID, material_t
    use exic_contact_spec, only: contact_spec_t, SURF_REGION, SURF_MATERIAL, SURF_FACETS
    use exic_mesh_edge_set, only: find_edge_set, edge_set_nodes, edge_set_ids
    use exic_io_model, only: model_t
    use exic_io_records, only: keyword_is
-   use exic_io_reader, only: reader_t, fail, warn, where, itoa, rtoa, word, field, int_field, &
+   use exic_io_reader, only: reader_t, fail, warn, warn_at, where, itoa, rtoa, word, field, int_field, &
                              unknown_keyword, has_field
    use exic_io_deck_mesh, only: builder_t, CB_NODE, CB_LINE, INIT_NODE, INIT_REGION, INIT_MATERIAL
    implicit none
    private
 
-   public :: finish_mesh, check_contact, cmd_tie, used_nodes, mesh_size, nearest_node
+   public :: finish_mesh, check_contact, energy_warnings, cmd_tie, used_nodes, mesh_size, nearest_node
    public :: physical_surfaces
 
 contains
@@ -546,6 +546,59 @@ contains
          end associate
       end do
    end subroutine check_contact
+
+   !> `LAGRange,ENERgy` on a whole-boundary surface (REGIon, MATErial or AUTOmatic) of a
+   !> deformable body makes every boundary row of that body massless, not only the struck face:
+   !> measured less accurate on equal bars and wrong on unequal bars and on the seed's 2-D
+   !> examples (doc/impact.md, section 4). A warning at the pair names the surface.
+   subroutine energy_warnings(rd, spec, mesh, materials)
+      type(reader_t), intent(inout) :: rd
+      type(contact_spec_t), intent(in) :: spec
+      type(mesh_t), intent(in) :: mesh
+      type(material_t), intent(in) :: materials(:)
+      character(len=*), parameter :: why = ' makes the whole boundary of its bodies massless, '// &
+         'not only the struck face; it is verified only with the struck faces declared (FACEts or '// &
+         'PHYSical) and small strains (doc/impact.md, section 4)'
+      integer :: k, j, id
+      if (.not. spec%active) return
+      if (spec%automatic .and. spec%auto_options%energy) &
+         call warn_at(rd, spec%auto_options%where, 'AUTOmatic with LAGRange,ENERgy'//why)
+      if (.not. allocated(spec%pairs)) return
+      do k = 1, size(spec%pairs)
+         if (.not. spec%pairs(k)%energy) cycle
+         do j = 1, 2
+            id = merge(spec%pairs(k)%slave, spec%pairs(k)%master, j == 1)
+            if (deformable_whole_boundary(id)) then
+               call warn_at(rd, spec%pairs(k)%where, 'PAIR '//itoa(spec%pairs(k)%id)//' with '// &
+                            'LAGRange,ENERgy on SURFace '//itoa(id)//' (REGIon or MATErial)'//why)
+               exit
+            end if
+         end do
+      end do
+   contains
+      !> Surface `id` is a REGIon or MATErial surface with an element of a non-rigid material.
+      logical function deformable_whole_boundary(id)
+         integer, intent(in) :: id
+         integer :: s, e, m
+         deformable_whole_boundary = .false.
+         do s = 1, size(spec%surfaces)
+            if (spec%surfaces(s)%id /= id) cycle
+            do e = 1, mesh%nelem
+               if (spec%surfaces(s)%by == SURF_REGION) then
+                  if (mesh%region(e) /= spec%surfaces(s)%ref) cycle
+               else if (spec%surfaces(s)%by == SURF_MATERIAL) then
+                  if (mesh%mat(e) /= spec%surfaces(s)%ref) cycle
+               else
+                  cycle
+               end if
+               m = mesh%mat(e)
+               if (m < 1 .or. m > size(materials)) cycle
+               if (materials(m)%kind /= MAT_RIGID) deformable_whole_boundary = .true.
+               if (deformable_whole_boundary) return
+            end do
+         end do
+      end function deformable_whole_boundary
+   end subroutine energy_warnings
 
    !> TIE record `i` (after END): `TIE` merges all coincident element nodes; `TIE,REGIon,r1,r2`
    !> and `TIE,MATErial,m1,m2` the nodes of elements of those regions/materials (r1 may equal

@@ -19,7 +19,7 @@ module exic_io_reader
    private
 
    public :: reader_t, next_record, next_in_set, next_nonblank, back_one, nfields, field, word, has_field
-   public :: real_field, int_field, fail, warn, where, end_set, looks_like_data, check_command
+   public :: real_field, int_field, fail, warn, warn_at, where, end_set, looks_like_data, check_command
    public :: read_parameters, unknown_keyword, itoa, rtoa, check_data_record, is_command
    public :: no_more_fields, unused_fields, use_all, track_fields
 
@@ -165,8 +165,15 @@ contains
       type(reader_t), intent(inout) :: rd
       integer, intent(in) :: i
       character(len=*), intent(in) :: msg
+      call warn_at(rd, where(rd, i), msg)
+   end subroutine warn
+
+   !> Add 'loc: warning: msg' (loc: a file:line kept from an earlier record).
+   subroutine warn_at(rd, loc, msg)
+      type(reader_t), intent(inout) :: rd
+      character(len=*), intent(in) :: loc, msg
       character(len=:), allocatable :: line
-      line = where(rd, i)//': warning: '//msg
+      line = loc//': warning: '//msg
       if (.not. allocated(rd%warnings)) then
          rd%warnings = line
       else if (len(rd%warnings) == 0) then
@@ -174,7 +181,7 @@ contains
       else
          rd%warnings = rd%warnings//new_line('a')//line
       end if
-   end subroutine warn
+   end subroutine warn_at
 
    !> Record that the blank record `i` ended a data set.
    subroutine end_set(rd, i)

@@ -288,7 +288,8 @@ contains
          p%spos(p%snodes(s)) = s
       end do
       if (.not. allocated(p%xprev)) then
-         allocate (p%xprev(2, size(p%snodes)), p%fprev(2, size(p%snodes)), source=0.0_wp)
+         allocate (p%xprev(2, size(p%snodes)), p%fprev(2, size(p%snodes)), p%vprev(2, size(p%snodes)), &
+                   p%vhalf(2, size(p%snodes)), source=0.0_wp)
       end if
       ierr = IERR_OK
    end subroutine rebuild
@@ -484,6 +485,15 @@ contains
          fcon = 0.0_wp
          return
       end if
+      ! v(n+1/2) of the surface nodes, for the contact work (after_step)
+      do k = 1, size(p%snodes)
+         i = p%snodes(k)
+         if (p%velocity_form == VEL_HALF_STEP) then
+            p%vhalf(:, k) = v(:, i)
+         else
+            p%vhalf(:, k) = v(:, i) - (0.5_wp*dtprev)*a(:, i)
+         end if
+      end do
       if (p%velocity_form == VEL_HALF_STEP) then
          ! v~(n+1) = v(n+1/2) + dt(n)/2 a~(n+1) (only surface nodes are read)
          do k = 1, size(p%snodes)
@@ -499,7 +509,7 @@ contains
          ierr = IERR_SOLVE
          return
       end if
-      call after_step(p, nnode, x, fcon)
+      call after_step(p, nnode, x, a, dtprev, fcon)
       p%c = 0.5_wp*dt*(dtprev + dt)
       p%nsteps = p%nsteps + 1
       do k = 1, size(p%contact%results)
@@ -508,19 +518,28 @@ contains
    end subroutine problem_step
 
    !> What the queries need of the surface nodes: the contact forces (the correction of the
-   !> accelerations is minv fcon) and the contact work W += 1/2 (f(n) + f(n+1)) . (x(n+1) - x(n))
-   !> (trapezoid rule, as the driver).
-   subroutine after_step(p, nnode, x, fcon)
+   !> accelerations is minv fcon) and the contact work as the driver books it (doc/impact.md,
+   !> eq. I.12): on a dof with mass the two half kicks dt(n)/2 (f(n) . (v(n) + v(n+1/2))/2 +
+   !> f(n+1) . (v(n+1/2) + v(n+1))/2), elsewhere 1/2 (f(n) + f(n+1)) . (x(n+1) - x(n)).
+   subroutine after_step(p, nnode, x, a, dtprev, fcon)
       type(problem_t), intent(inout) :: p
       integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode), fcon(2, nnode)
-      integer :: k, i
-      real(wp) :: w
+      real(wp), intent(in) :: x(2, nnode), a(2, nnode), dtprev, fcon(2, nnode)
+      integer :: k, i, d
+      real(wp) :: w, h, vnew
       w = 0.0_wp
+      h = 0.5_wp*dtprev
       do k = 1, size(p%snodes)
          i = p%snodes(k)
-         w = w + (p%fprev(1, k) + fcon(1, i))*(x(1, i) - p%xprev(1, k)) &
-             + (p%fprev(2, k) + fcon(2, i))*(x(2, i) - p%xprev(2, k))
+         do d = 1, 2
+            vnew = p%vhalf(d, k) + h*a(d, i)
+            if (p%minv(d, i) > 0.0_wp) then
+               w = w + h*(p%fprev(d, k)*(p%vprev(d, k) + p%vhalf(d, k)) + fcon(d, i)*(p%vhalf(d, k) + vnew))
+            else
+               w = w + (p%fprev(d, k) + fcon(d, i))*(x(d, i) - p%xprev(d, k))
+            end if
+            p%vprev(d, k) = vnew
+         end do
          p%xprev(:, k) = x(:, i)
          p%fprev(:, k) = fcon(:, i)
       end do

@@ -54,6 +54,8 @@ module exic_legacy_registry
       real(wp), allocatable :: vt(:, :)       !< (2, nnode) predictor velocity (half-step form)
       real(wp), allocatable :: xprev(:, :)    !< (2, ns) positions at the previous step
       real(wp), allocatable :: fprev(:, :)    !< (2, ns) contact forces of the previous step
+      real(wp), allocatable :: vprev(:, :)    !< (2, ns) velocities v(n) (for the contact work)
+      real(wp), allocatable :: vhalf(:, :)    !< (2, ns) v(n+1/2) of the current step
       real(wp) :: c = 0.0_wp                  !< dt(n+1) (dt(n) + dt(n+1))/2 of the last step
       real(wp) :: wcon = 0.0_wp               !< work of the contact forces since creation
       real(wp) :: max_pen = 0.0_wp            !< largest penetration at t(n+1) since creation

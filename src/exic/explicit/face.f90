@@ -1,0 +1,211 @@
+!> Set-up of the massless contact faces of `LAGRange,ENERgy` (doc/impact.md, section 3.1-3.2):
+!> which nodes lose their mass, the mass transfer of eq. I.3 and the rows of the initial
+!> stiffness K0 for the face dofs, handed to the contact's `massless_face_t`, which factorizes
+!> their face block.
+module exic_explicit_face
+   use exic_base_kinds, only: wp
+   use exic_base_error, only: error_t
+   use exic_base_grow, only: grow
+   use exic_material_material, only: MAT_SOLID
+   use exic_element_quad4, only: q4_force_2x2, q4_force_1pt, q4_lumped_mass
+   use exic_contact_contact, only: contact_t
+   use exic_explicit_state, only: state_t, element_set_t
+   implicit none
+   private
+
+   public :: face_setup
+
+   !> Central-difference step of the stiffness columns, as a share of the element's size.
+   real(wp), parameter :: FD_SHARE = 1.0e-6_wp
+
+contains
+
+   !> Face nodes of the ENERgy pairs of `contact`: mass moved (eq. I.3), st%mass and st%minv
+   !> updated, K0's face rows assembled and contact%face set up. nface: face nodes; nkept:
+   !> surface nodes that keep their mass (elements that would keep no mass, rigid or prescribed).
+   subroutine face_setup(st, sets, contact, nface, nkept, err)
+      type(state_t), intent(inout) :: st
+      type(element_set_t), intent(in) :: sets(:)
+      type(contact_t), intent(inout) :: contact
+      integer, intent(out) :: nface, nkept
+      type(error_t), allocatable, intent(out) :: err
+      logical, allocatable :: cand(:), face(:)
+      integer, allocatable :: fidx(:), node(:), rows(:, :), rp(:), ci(:)
+      real(wp), allocatable :: val(:), vals(:), mass(:)
+      integer :: k, e, i, nn, ncoo, a, b, d, dd, r, f
+      integer :: conn_l(4, 1)
+      real(wp) :: xe(2, 4), me(4), ke(8, 8), moved, keep
+
+      nn = st%nnode
+      cand = contact%face_nodes(nn)
+      cand = cand .and. st%active .and. .not. st%rigid .and. st%minv(1, :) > 0.0_wp .and. &
+             st%minv(2, :) > 0.0_wp
+      ! an element with all its nodes on the face keeps them massive (bodies one element thick)
+      face = cand
+      do k = 1, size(sets)
+         if (sets(k)%kind /= MAT_SOLID) cycle
+         do e = 1, sets(k)%nel
+            if (all(cand(sets(k)%conn(:, e)))) face(sets(k)%conn(:, e)) = .false.
+         end do
+      end do
+      nkept = count(contact%face_nodes(nn)) - count(face)
+      nface = count(face)
+      allocate (fidx(nn), source=0)
+      node = pack([(i, i=1, nn)], face)
+      do i = 1, nface
+         fidx(node(i)) = i
+      end do
+      conn_l(:, 1) = [1, 2, 3, 4]
+      ! mass transfer (eq. I.3) and K0's face rows as triplets (row, global dof, value)
+      mass = st%mass
+      ncoo = 0
+      do k = 1, size(sets)
+         if (sets(k)%kind /= MAT_SOLID) cycle
+         associate (s => sets(k))
+            do e = 1, s%nel
+               if (.not. any(face(s%conn(:, e)))) cycle
+               xe = st%x0(:, s%conn(:, e))
+               me = 0.0_wp
+               call q4_lumped_mass(1, 4, conn_l, xe, s%rho, me)
+               moved = sum(me, mask=face(s%conn(:, e)))
+               keep = sum(me, mask=.not. face(s%conn(:, e)))
+               do a = 1, 4
+                  i = s%conn(a, e)
+                  if (face(i)) then
+                     mass(i) = mass(i) - me(a)
+                  else
+                     mass(i) = mass(i) + moved*me(a)/keep
+                  end if
+               end do
+               call element_stiffness(s, xe, ke)
+               call grow(rows, ncoo + 64, 2)
+               call grow(vals, ncoo + 64)
+               do a = 1, 4
+                  f = fidx(s%conn(a, e))
+                  if (f == 0) cycle
+                  do d = 1, 2
+                     r = 2*(f - 1) + d
+                     do b = 1, 4
+                        do dd = 1, 2
+                           ncoo = ncoo + 1
+                           rows(:, ncoo) = [r, 2*(s%conn(b, e) - 1) + dd]
+                           vals(ncoo) = ke(2*(a - 1) + d, 2*(b - 1) + dd)
+                        end do
+                     end do
+                  end do
+               end do
+            end do
+         end associate
+      end do
+      call to_csr(2*nface, ncoo, rows, vals, rp, ci, val)
+      do i = 1, nn
+         if (face(i)) then
+            st%mass(i) = 0.0_wp
+            st%minv(:, i) = 0.0_wp
+         else if (mass(i) /= st%mass(i)) then
+            st%mass(i) = mass(i)
+            where (st%minv(:, i) > 0.0_wp) st%minv(:, i) = 1.0_wp/mass(i)
+         end if
+      end do
+      call contact%face%init(nn, nface, node, rp, ci, val, err)
+   end subroutine face_setup
+
+   !> The initial stiffness of one element (reference coordinates xe) by central differences of
+   !> its own force kernel (doc/impact.md, section 3.2), symmetrized.
+   subroutine element_stiffness(s, xe, ke)
+      type(element_set_t), intent(in) :: s
+      real(wp), intent(in) :: xe(2, 4)
+      real(wp), intent(out) :: ke(8, 8)
+      real(wp) :: u(2, 4), fp(2, 4), fm(2, 4), h, w, whg, jmin, dt2
+      integer :: j, conn_l(4, 1), eb, em, ef
+      conn_l(:, 1) = [1, 2, 3, 4]
+      h = FD_SHARE*max(maxval(xe(1, :)) - minval(xe(1, :)), maxval(xe(2, :)) - minval(xe(2, :)))
+      do j = 1, 8
+         u = 0.0_wp
+         u(mod(j - 1, 2) + 1, (j + 1)/2) = h
+         fp = 0.0_wp
+         fm = 0.0_wp
+         if (s%nq == 2) then
+            call q4_force_2x2(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, fp, w, jmin, eb, dt2, em, ef)
+            u = -u
+            call q4_force_2x2(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, fm, w, jmin, eb, dt2, em, ef)
+         else
+            call q4_force_1pt(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, s%hourglass, fp, w, whg, jmin, &
+                              eb, dt2, em, ef)
+            u = -u
+            call q4_force_1pt(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, s%hourglass, fm, w, whg, jmin, &
+                              eb, dt2, em, ef)
+         end if
+         ke(:, j) = reshape(fp - fm, [8])/(2.0_wp*h)
+      end do
+      ke = 0.5_wp*(ke + transpose(ke))
+   end subroutine element_stiffness
+
+   !> Triplets (rows(1, :) row, rows(2, :) column, vals) into CSR with sorted, merged columns.
+   subroutine to_csr(nrow, n, rows, vals, rp, ci, val)
+      integer, intent(in) :: nrow, n, rows(:, :)
+      real(wp), intent(in) :: vals(:)
+      integer, allocatable, intent(out) :: rp(:), ci(:)
+      real(wp), allocatable, intent(out) :: val(:)
+      integer, allocatable :: cnt(:), pos(:), tc(:)
+      real(wp), allocatable :: tv(:)
+      integer :: k, r, j, l, q, nnz
+      allocate (cnt(nrow + 1), source=0)
+      do k = 1, n
+         cnt(rows(1, k) + 1) = cnt(rows(1, k) + 1) + 1
+      end do
+      cnt(1) = 1
+      do r = 1, nrow
+         cnt(r + 1) = cnt(r + 1) + cnt(r)
+      end do
+      pos = cnt
+      allocate (tc(n), tv(n))
+      do k = 1, n
+         r = rows(1, k)
+         tc(pos(r)) = rows(2, k)
+         tv(pos(r)) = vals(k)
+         pos(r) = pos(r) + 1
+      end do
+      allocate (rp(nrow + 1), ci(n), val(n))
+      nnz = 0
+      rp(1) = 1
+      do r = 1, nrow
+         ! insertion sort of the row by column, then merge equal columns
+         do j = cnt(r) + 1, cnt(r + 1) - 1
+            l = j
+            do while (l > cnt(r))
+               if (tc(l - 1) <= tc(l)) exit
+               call swap(l - 1, l)
+               l = l - 1
+            end do
+         end do
+         do q = cnt(r), cnt(r + 1) - 1
+            if (nnz >= rp(r)) then
+               if (ci(nnz) == tc(q)) then
+                  val(nnz) = val(nnz) + tv(q)
+                  cycle
+               end if
+            end if
+            nnz = nnz + 1
+            ci(nnz) = tc(q)
+            val(nnz) = tv(q)
+         end do
+         rp(r + 1) = nnz + 1
+      end do
+      ci = ci(1:nnz)
+      val = val(1:nnz)
+   contains
+      subroutine swap(i, j)
+         integer, intent(in) :: i, j
+         integer :: ti
+         real(wp) :: tr
+         ti = tc(i)
+         tc(i) = tc(j)
+         tc(j) = ti
+         tr = tv(i)
+         tv(i) = tv(j)
+         tv(j) = tr
+      end subroutine swap
+   end subroutine to_csr
+
+end module exic_explicit_face
