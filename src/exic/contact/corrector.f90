@@ -43,7 +43,7 @@ module exic_contact_corrector
    implicit none
    private
 
-   public :: constraints_t, corrector_t, apply
+   public :: constraints_t, corrector_t, apply, gap_change
 
    !> Candidate constraints of one step, in a deterministic order.
    type :: constraints_t

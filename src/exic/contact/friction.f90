@@ -22,7 +22,7 @@ module exic_contact_friction
    use exic_base_grow, only: grow
    use exic_contact_rigid_dofs, only: rigid_dofs_t
    use exic_contact_system, only: system_t
-   use exic_contact_corrector, only: constraints_t, corrector_t, apply
+   use exic_contact_corrector, only: constraints_t, corrector_t, apply, gap_change
    implicit none
    private
 
@@ -151,7 +151,7 @@ contains
          call apply_tangent(cs, self%tng, cs%q, nnode, self%ft)
          if (present(rb)) call rb%accelerations_nt(m, self%zero(1:m), cs%q(1:m))
          do i = 1, m
-            self%geff(i) = cs%gap(i) + c*normal_change(cs, i, nnode, minv, self%ft)
+            self%geff(i) = cs%gap(i) + c*gap_change(cs, i, nnode, minv, self%ft)
             if (present(rb)) self%geff(i) = self%geff(i) + c*rb%gap_part(i)
          end do
       end do
@@ -344,19 +344,5 @@ contains
          ds = ds + cs%w(k, i)*(tng(1, i)*minv(1, nd)*f(1, nd) + tng(2, i)*minv(2, nd)*f(2, nd))
       end do
    end function slide_change
-
-   !> G_N,i^T M^-1 f for candidate i: the change of its gap per unit c.
-   pure real(wp) function normal_change(cs, i, nnode, minv, f) result(dg)
-      type(constraints_t), intent(in) :: cs
-      integer, intent(in) :: i, nnode
-      real(wp), intent(in) :: minv(2, nnode), f(2, nnode)
-      integer :: k, nd
-      dg = 0.0_wp
-      do k = 1, 3
-         if (cs%w(k, i) == 0.0_wp) cycle
-         nd = cs%node(k, i)
-         dg = dg + cs%w(k, i)*(cs%nrm(1, i)*minv(1, nd)*f(1, nd) + cs%nrm(2, i)*minv(2, nd)*f(2, nd))
-      end do
-   end function normal_change
 
 end module exic_contact_friction
