@@ -38,6 +38,8 @@ contains
       call continued(s, exic, 'punch', punch_deck())
       call continued(s, exic, 'free_body', free_body_deck())
       call continued(s, exic, 'one_point', one_point_deck())
+      call section(s, 'restart: plastic history and Coulomb friction across the restart point')
+      call continued(s, exic, 'friction_plastic', friction_plastic_deck())
       call section(s, 'restart: a restart file of another deck is refused')
       call mismatch(s, exic)
       call section(s, 'restart: a write failure (file size limit) ends the run cleanly')
@@ -321,5 +323,72 @@ contains
              '  LOOP,,60'//nl//'    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
              '  disp,13,1'//nl//'  velo,13,1'//nl//'  stre,5,1'//nl//'  cont,1,1'//nl//nl//'STOP'
    end function one_point_deck
+
+   !> A plastic block (J2, history per point) that lands on a rigid floor and slides on it with
+   !> Coulomb friction under gravity: it yields and slides both before and after the restart
+   !> point (t = 0.03 of 0.06).
+   function friction_plastic_deck() result(deck)
+      character(len=:), allocatable :: deck
+      deck = 'FEAP * * plastic block sliding with friction, restart files'//nl // &
+             '0 0 0 2 2 4'//nl // &
+             'MATErial,1'//nl // &
+             '  SOLId'//nl // &
+             '    ELAStic NEOHookean 1000 0.3'//nl // &
+             '    DENSity 1'//nl // &
+             '    PLAStic MISEs 5'//nl // &
+             '    PLAStic HARDening 10 0'//nl // &
+             ''//nl // &
+             'MATErial,2'//nl // &
+             '  RIGId'//nl // &
+             '    DENSity 1'//nl // &
+             ''//nl // &
+             'REGIon,1'//nl // &
+             'BLOCk'//nl // &
+             '  CARTesian,4,2,0,0,1'//nl // &
+             '    1,0,0.01'//nl // &
+             '    2,2,0.01'//nl // &
+             '    3,2,1.01'//nl // &
+             '    4,0,1.01'//nl // &
+             ''//nl // &
+             'REGIon,2'//nl // &
+             'BLOCk'//nl // &
+             '  CARTesian,1,1,0,0,2'//nl // &
+             '    1,-1,-0.5'//nl // &
+             '    2,8,-0.5'//nl // &
+             '    3,8,0'//nl // &
+             '    4,-1,0'//nl // &
+             ''//nl // &
+             'INITial,VELOcity'//nl // &
+             '  REGIon,1,2,-1'//nl // &
+             ''//nl // &
+             'GRAVity,0,-10'//nl // &
+             ''//nl // &
+             'CONTact'//nl // &
+             '  SURFace,1'//nl // &
+             '    REGIon,1'//nl // &
+             '  SURFace,2'//nl // &
+             '    REGIon,2'//nl // &
+             '  PAIR,1,NTOS,1,2'//nl // &
+             '  FRICtion,COULomb,0.3'//nl // &
+             'END CONTact'//nl // &
+             ''//nl // &
+             'END'//nl // &
+             'BATCh'//nl // &
+             '  DT,,1e-3'//nl // &
+             '  TPLOt,,1'//nl // &
+             '  OUTPut,HDF5,2e-3'//nl // &
+             '  SAVE,,0.03'//nl // &
+             '  LOOP,,60'//nl // &
+             '    TIME'//nl // &
+             '    FORM,EXPLicit'//nl // &
+             '  NEXT'//nl // &
+             'END'//nl // &
+             '  disp,1,1'//nl // &
+             '  velo,1,1'//nl // &
+             '  stre,1,8'//nl // &
+             '  cont,1,8'//nl // &
+             ''//nl // &
+             'STOP'//nl
+   end function friction_plastic_deck
 
 end module test_restart
