@@ -12,14 +12,16 @@ import pathlib
 import re
 import sys
 
-#: layer of each folder of src/exic (the top-level driver.f90 is the folder 'driver')
+#: layer of each folder of src/exic (the top-level driver.f90 is the folder 'driver', above the
+#: run it drives, session/)
 LAYERS = {
     "base": 0,
     "linalg": 1, "mesh": 1, "material": 1,
     "element": 2, "contact": 2,
     "explicit": 3,
     "io": 4,
-    "driver": 5, "legacy": 5,
+    "session": 5, "legacy": 5,
+    "driver": 6,
 }
 MAX_LINES = 1000
 

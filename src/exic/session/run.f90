@@ -1,0 +1,242 @@
+!> A run of the BATCh interpreter (src/exic/driver.f90): its state (`run_t`: the stepper, the
+!> outputs, the console, the program position, restart files, signals, the geometric penetration
+!> check) and what the interpreter does around a step: the first use of the state, one step with
+!> its messages and progress line, the SAVE schedule and the signals after it, restart files
+!> written and read, the penetration check. The interpreter decides what to call; this module
+!> does it.
+module exic_session_run
+   use, intrinsic :: iso_fortran_env, only: error_unit
+   use exic_base_kinds, only: wp, i8
+   use exic_base_constants, only: TIME_TOL, PENETRATION_WARN
+   use exic_base_error, only: error_t, make_error
+   use exic_base_clock, only: wall_time
+   use exic_base_progress, only: progress_t, clock_text
+   use exic_base_strings, only: itoa, rtoa
+   use exic_base_signals, only: signals_take, SIG_BIT_INT, SIG_BIT_TERM, SIG_BIT_USR1, SIG_BIT_USR2
+   use exic_io_model, only: model_t
+   use exic_io_restart, only: run_position_t, write_restart, read_restart
+   use exic_io_output, only: output_t
+   use exic_io_report, only: energy_balance
+   use exic_explicit_step, only: stepper_t
+   use exic_contact_inside, only: inside_t
+   implicit none
+   private
+
+   public :: fields_observer, run_t, INSIDE_STEPS
+   public :: resume, save_restart, init_inside, check_inside, start, step, after_step, &
+             finish_progress, pass_messages
+
+   !> Steps between two geometric penetration checks besides the field output times and the end.
+   integer, parameter :: INSIDE_STEPS = 1000
+
+   abstract interface
+      !> Told after each field output time is written and flushed: how many there are and t.
+      subroutine fields_observer(count, t)
+         import :: wp
+         integer, intent(in) :: count
+         real(wp), intent(in) :: t
+      end subroutine fields_observer
+   end interface
+
+   !> A run: the step, its outputs and the console.
+   type :: run_t
+      type(stepper_t) :: stp
+      type(output_t) :: out
+      type(progress_t) :: progress
+      type(run_position_t) :: pos              !< program position and schedules (saved in restarts)
+      character(len=:), allocatable :: rst     !< <stem>.rst
+      logical :: signals = .false.
+      logical :: interrupted = .false.         !< SIGINT or SIGTERM came: stop after this step
+      real(wp) :: wall_start = 0.0_wp
+      real(wp) :: t_start = 0.0_wp             !< simulated time when this process began stepping
+      integer(i8) :: saved_step = -1           !< step of the last restart file written
+      type(inside_t) :: inside                 !< geometric penetration check (with contact)
+      integer(i8) :: inside_step = -1          !< step of its last check
+      procedure(fields_observer), pointer, nopass :: on_fields => null()
+   end type run_t
+
+contains
+
+   !> Set the run up from the restart file `path`: the stepper made from the model, then its
+   !> state, the output schedules and the program position read; the outputs continued.
+   subroutine resume(r, model, base, path, err)
+      type(run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      character(len=*), intent(in) :: base, path
+      type(error_t), allocatable, intent(out) :: err
+      call r%stp%init(model%mesh, model%materials, model%contact, err, model%loads)
+      if (allocated(err)) return
+      call read_restart(path, model, r%stp, r%out, r%pos, err)
+      if (allocated(err)) return
+      call r%out%resume(base, model, r%stp, err)
+      if (allocated(err)) return
+      r%pos%pc = r%pos%pc + 1
+      call r%out%files%say('')
+      call r%out%files%say('restarted from '//path//' at t = '//rtoa(r%stp%st%t)//', step '// &
+                           itoa(int(r%stp%st%step)))
+   end subroutine resume
+
+   !> Write the restart file of the state now (the files flushed and measured first).
+   subroutine save_restart(r, model, err)
+      type(run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: err
+      call r%out%checkpoint()
+      call write_restart(r%rst, model, r%stp, r%out, r%pos, err)
+      if (allocated(err)) return
+      r%saved_step = r%stp%st%step
+      call r%out%files%say('restart file '//r%rst//' written at t = '//rtoa(r%stp%st%t)//', step '// &
+                           itoa(int(r%stp%st%step)))
+   end subroutine save_restart
+
+   !> The geometric penetration check (src/exic/contact/inside.f90) over the regions, for the
+   !> pairs of regions that the contact passes cover; nothing without contact.
+   subroutine init_inside(r, model, err)
+      type(run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: err
+      integer :: k, j
+      if (.not. r%stp%contact%active) return
+      call r%inside%init(r%stp%st%nnode, size(model%mesh%conn, 2), model%mesh%conn, model%mesh%region, &
+                         PENETRATION_WARN, err)
+      if (allocated(err)) return
+      associate (c => r%stp%contact)
+         ! the passes of the PAIRs, and every pair of AUTOmatic surfaces (whose passes are made
+         ! per step for the surfaces found near)
+         do k = 1, c%nfixed
+            call r%inside%allow(c%surfaces(c%passes(k)%slave)%nodes, c%surfaces(c%passes(k)%master)%nodes)
+         end do
+         if (c%auto_pass%auto) then
+            do k = c%auto_first + 1, size(c%surfaces)
+               do j = c%auto_first + 1, size(c%surfaces)
+                  if (j /= k) call r%inside%allow(c%surfaces(k)%nodes, c%surfaces(j)%nodes)
+               end do
+            end do
+         end if
+      end associate
+   end subroutine init_inside
+
+   !> Check the positions now for nodes inside other bodies; warnings go to <stem>.out and the
+   !> console.
+   subroutine check_inside(r)
+      type(run_t), intent(inout) :: r
+      character(len=:), allocatable :: warn
+      if (.not. r%inside%active) return
+      if (r%inside_step == r%stp%st%step) return
+      r%inside_step = r%stp%st%step
+      call r%inside%check(r%stp%st%x0 + r%stp%st%u, r%stp%st%t, warn)
+      if (len(warn) > 0) call r%stp%messages%add(warn)
+      call pass_messages(r)
+   end subroutine check_inside
+
+   !> First use of the state: the history header, then the state at t = 0.
+   subroutine start(r, model, err)
+      type(run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: err
+      if (r%stp%started) return
+      call r%out%begin(model)
+      call r%stp%start(err)
+   end subroutine start
+
+   !> FORM,EXPLicit: one step, then its messages, the energy line and the progress line.
+   subroutine step(r, err)
+      type(run_t), intent(inout) :: r
+      type(error_t), allocatable, intent(out) :: err
+      real(wp) :: total, drift
+      call r%stp%advance(err)
+      call pass_messages(r)
+      if (allocated(err)) return
+      associate (st => r%stp%st)
+         if (r%pos%print_inc > 0) then
+            if (mod(st%step, int(r%pos%print_inc, i8)) == 0) then
+               call r%progress%clear()
+               print '(a,es12.5,a,i0,a,es12.5,a,es12.5,a,es12.5,a,es12.5)', ' t=', st%t, ' step ', st%step, &
+                  ' K=', st%kinetic, ' U=', st%strain + st%hourglass, ' Wext=', st%wext, ' Wc=', st%wcon
+            end if
+         end if
+         if (r%progress%due()) then
+            call energy_balance(st, total, drift)
+            call r%progress%show(st%t, r%stp%tmax, st%dt, st%step, drift)
+         end if
+      end associate
+   end subroutine step
+
+   !> After a step: a write failure of the text files stops the run; the SAVE interval; the
+   !> signals that came during the step (once per step: the handlers only record them).
+   subroutine after_step(r, model, err)
+      type(run_t), intent(inout) :: r
+      type(model_t), intent(in) :: model
+      type(error_t), allocatable, intent(out) :: err
+      integer :: bits
+      logical :: due
+      if (allocated(r%out%files%io_error)) then
+         call make_error(err, r%out%files%io_error)
+         return
+      end if
+      due = .false.
+      if (r%pos%save_on .and. r%pos%save_dt > 0.0_wp) then
+         if (r%stp%st%t >= r%pos%save_next*(1.0_wp - TIME_TOL)) then
+            due = .true.
+            do while (r%pos%save_next <= r%stp%st%t*(1.0_wp + TIME_TOL))
+               r%pos%save_next = r%pos%save_next + r%pos%save_dt
+            end do
+         end if
+      end if
+      bits = 0
+      if (r%signals) bits = signals_take()
+      if (iand(bits, SIG_BIT_USR2) /= 0) call status_line(r)
+      if (iand(bits, SIG_BIT_USR1) /= 0) due = .true.
+      if (iand(bits, SIG_BIT_INT + SIG_BIT_TERM) /= 0) then
+         r%interrupted = .true.
+         due = .true.
+         call r%progress%clear()
+         write (error_unit, '(a)') 'exic: '//trim(merge('SIGINT ', 'SIGTERM', iand(bits, SIG_BIT_INT) /= 0))// &
+            ' at t = '//rtoa(r%stp%st%t)//', step '//itoa(int(r%stp%st%step))// &
+            ': writing the final state and the restart file '//r%rst
+         call r%out%files%say('interrupted by a signal at t = '//rtoa(r%stp%st%t)//', step '// &
+                              itoa(int(r%stp%st%step)))
+      end if
+      if (due) call save_restart(r, model, err)
+   end subroutine after_step
+
+   !> SIGUSR2: one line on standard error: time, step, dt, energy balance, wall time, ETA.
+   subroutine status_line(r)
+      type(run_t), intent(inout) :: r
+      real(wp) :: total, drift, wall, eta
+      character(len=:), allocatable :: eta_text
+      call energy_balance(r%stp%st, total, drift)
+      wall = wall_time() - r%wall_start
+      eta_text = 'unknown'
+      if (r%stp%tmax > r%stp%st%t .and. r%stp%st%t > r%t_start) then
+         eta = wall*(r%stp%tmax - r%stp%st%t)/(r%stp%st%t - r%t_start)
+         eta_text = trim(clock_text(eta))
+      end if
+      call r%progress%clear()
+      write (error_unit, '(a)') 'exic: status: t = '//rtoa(r%stp%st%t)//' of '//rtoa(r%stp%tmax)// &
+         ', step '//itoa(int(r%stp%st%step))//', dt = '//rtoa(r%stp%st%dt)//', energy balance '// &
+         rtoa(total)//' (drift '//rtoa(drift)//'), wall '//trim(clock_text(wall))//', ETA '//eta_text
+      flush (error_unit)
+   end subroutine status_line
+
+   !> The progress line of the state the run ended in.
+   subroutine finish_progress(r)
+      type(run_t), intent(inout) :: r
+      real(wp) :: total, drift
+      call energy_balance(r%stp%st, total, drift)
+      call r%progress%finish(r%stp%st%t, r%stp%tmax, r%stp%st%dt, r%stp%st%step, drift)
+   end subroutine finish_progress
+
+   !> Move what the stepper has to report into <stem>.out, and its warnings to the console.
+   subroutine pass_messages(r)
+      type(run_t), intent(inout) :: r
+      character(len=:), allocatable :: text
+      if (r%stp%messages%count == 0) return
+      text = r%stp%messages%take()
+      call r%progress%clear()
+      call r%out%files%say(text)
+      write (error_unit, '(a)') 'exic: '//text
+      flush (error_unit)
+   end subroutine pass_messages
+
+end module exic_session_run
