@@ -8,7 +8,7 @@
 module test_console
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
-   use testing, only: suite_t, check, section, skip, have_command
+   use testing, only: suite_t, check, section, skip, have_command, file_text
    use deck_runner, only: run_dir, write_text, read_table, column
    implicit none
    private
@@ -220,26 +220,5 @@ contains
          if (i > len(text)) exit
       end do
    end function count_text
-
-   !> The whole content of a file ('' when it cannot be read).
-   function file_text(path) result(text)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable :: text
-      integer :: u, ios, n
-      inquire (file=path, size=n)
-      if (n <= 0) then
-         text = ''
-         return
-      end if
-      open (newunit=u, file=path, access='stream', form='unformatted', status='old', action='read', &
-            iostat=ios)
-      if (ios /= 0) then
-         text = ''
-         return
-      end if
-      allocate (character(len=n) :: text)
-      read (u, iostat=ios) text
-      close (u)
-   end function file_text
 
 end module test_console

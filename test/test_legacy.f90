@@ -23,7 +23,7 @@ module test_legacy
                                      exic_contact_step, exic_contact_pair_results, exic_contact_ncon, &
                                      exic_contact_constraints, exic_contact_work, exic_contact_free, &
                                      exic_contact_error_message
-   use testing, only: suite_t, check, check_close, section, skip, fpm_command
+   use testing, only: suite_t, check, check_close, section, skip, fpm_command, file_text
    use deck_runner, only: run_dir, run_deck, read_table, column
    implicit none
    private
@@ -99,7 +99,7 @@ contains
       integer :: stat, cstat, k, ios, nstick
       real(wp) :: dist, rel, creep
       call execute_command_line(bindir//'/slide > '//bindir//'/slide.txt 2>&1', exitstat=stat, cmdstat=cstat)
-      out = text_of(bindir//'/slide.txt')
+      out = file_text(bindir//'/slide.txt')
       call check(s, stat == 0 .and. cstat == 0, 'the F77 host with friction runs', out)
       dist = 0.0_wp
       rel = huge(1.0_wp)
@@ -566,15 +566,15 @@ contains
       integer :: stat, cstat
       real(wp) :: pen, vx
       integer :: ncon, ios, k
-      doc = text_of('doc/api.md')
-      file = text_of('examples/legacy_host/skeleton.f')
+      doc = file_text('doc/api.md')
+      file = file_text('examples/legacy_host/skeleton.f')
       block = between(doc, '<!-- skeleton.f: begin -->'//nl//'```fortran'//nl, '```'//nl//'<!-- skeleton.f: end -->')
       call check(s, len(file) > 0 .and. block == file, 'doc/api.md shows examples/legacy_host/skeleton.f whole')
       f77 = line_starting(doc, 'gfortran -O2 host.f ')
       cline = line_starting(doc, 'cc -O2 -I$PREFIX/include host.c ')
       full = line_starting(doc, 'gfortran -O2 -fopenmp -I$PREFIX/include prog.f90 ')
       call check(s, len(f77) > 0 .and. len(cline) > 0 .and. len(full) > 0, 'doc/api.md states the three link lines')
-      call check(s, len(cline) > 0 .and. index(text_of('include/exic_contact.h'), ' * '//cline//nl) > 0, &
+      call check(s, len(cline) > 0 .and. index(file_text('include/exic_contact.h'), ' * '//cline//nl) > 0, &
                  'include/exic_contact.h states the C link line of doc/api.md', cline)
       call check(s, index(f77, 'hdf5') == 0 .and. index(f77, 'gmsh') == 0 .and. index(cline, 'hdf5') == 0, &
                  'a host of the contact API links neither HDF5 nor Gmsh')
@@ -585,7 +585,7 @@ contains
       call check(s, stat == 0 .and. cstat == 0, 'the skeleton builds with the doc''s F77 line: '//f77)
       if (stat /= 0 .or. cstat /= 0) return
       call execute_command_line(bindir//'/skeleton_doc > '//bindir//'/skeleton.txt 2>&1', exitstat=stat, cmdstat=cstat)
-      out = text_of(bindir//'/skeleton.txt')
+      out = file_text(bindir//'/skeleton.txt')
       k = index(out, 'LARGEST PENETRATION')
       pen = huge(1.0_wp)
       ncon = 0
@@ -649,27 +649,6 @@ contains
          i = i + 1
       end do
    end function replaced
-
-   !> The whole content of a file ('' when it cannot be read).
-   function text_of(path) result(text)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable :: text
-      integer :: u, ios, n
-      inquire (file=path, size=n)
-      if (n <= 0) then
-         text = ''
-         return
-      end if
-      open (newunit=u, file=path, access='stream', form='unformatted', status='old', action='read', &
-            iostat=ios)
-      if (ios /= 0) then
-         text = ''
-         return
-      end if
-      allocate (character(len=n) :: text)
-      read (u, iostat=ios) text
-      close (u)
-   end function text_of
 
    !> Write the host's input file for `model`: material kinds 1 (neo-Hookean) or 2 (linear) for
    !> solids and 0 for rigid bodies, step dt (< 0: CFL factor), velocity form ivf.

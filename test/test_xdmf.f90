@@ -11,7 +11,8 @@ module test_xdmf
    use exic_base_error, only: error_t
    use exic_mesh_smoothing, only: nodal_average
    use exic_io_xdmf, only: xdmf_series_t, xdmf_write_t, append_writes, write_whole_file
-   use testing, only: suite_t, check, check_close, section, skip, have_python_modules, python_command
+   use testing, only: suite_t, check, check_close, section, skip, have_python_modules, python_command, &
+                      file_text
    implicit none
    private
 
@@ -218,28 +219,6 @@ contains
       write (u) text
       close (u)
    end subroutine write_state
-
-   !> The whole content of a file ('' when it cannot be read).
-   function file_text(path) result(text)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable :: text
-      integer(i8) :: n
-      integer :: u, ios
-      inquire (file=path, size=n)
-      if (n <= 0) then
-         text = ''
-         return
-      end if
-      open (newunit=u, file=path, access='stream', form='unformatted', status='old', action='read', &
-            iostat=ios)
-      if (ios /= 0) then
-         text = ''
-         return
-      end if
-      allocate (character(len=n) :: text)
-      read (u, iostat=ios) text
-      close (u)
-   end function file_text
 
    !> True when err is set and its message contains `text`.
    logical function has(err, text)

@@ -13,7 +13,7 @@ module testing
    private
 
    public :: suite_t, runner_t, suite_procedure, check, check_close, section, skip
-   public :: have_command, have_python_modules, python_command, fpm_command
+   public :: have_command, have_python_modules, python_command, fpm_command, file_text
 
    !> Running totals of one test run.
    type :: suite_t
@@ -205,5 +205,26 @@ contains
          cmd = ''
       end if
    end function fpm_command
+
+   !> The whole content of a file ('' when it cannot be read).
+   function file_text(path) result(text)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: text
+      integer :: u, ios, n
+      inquire (file=path, size=n)
+      if (n <= 0) then
+         text = ''
+         return
+      end if
+      open (newunit=u, file=path, access='stream', form='unformatted', status='old', action='read', &
+            iostat=ios)
+      if (ios /= 0) then
+         text = ''
+         return
+      end if
+      allocate (character(len=n) :: text)
+      read (u, iostat=ios) text
+      close (u)
+   end function file_text
 
 end module testing
