@@ -1,13 +1,14 @@
-!> Small deterministic sorting kernels used by set-up code (edge keys, node lists).
+!> Small deterministic sorting kernels (edge keys, node lists, candidate lists).
 !>
-!> All sorts are stable merge sorts returning a permutation, so equal keys keep their
-!> input order and results never depend on the platform.
+!> The permutation sorts are stable merge sorts, so equal keys keep their input order and
+!> results never depend on the platform; `sort_short_int` sorts a short list in place without
+!> allocating (insertion sort), for per-step lists of a few entries.
 module exic_base_sort
    use exic_base_kinds, only: i8
    implicit none
    private
 
-   public :: sort_perm_i8, sort_perm_int
+   public :: sort_perm_i8, sort_perm_int, sort_short_int
 
 contains
 
@@ -58,5 +59,21 @@ contains
       integer, intent(out) :: perm(n)
       call sort_perm_i8(n, int(key, i8), perm)
    end subroutine sort_perm_int
+
+   !> Sort `a` ascending in place (insertion sort: for short lists).
+   pure subroutine sort_short_int(a)
+      integer, intent(inout) :: a(:)
+      integer :: i, j, v
+      do i = 2, size(a)
+         v = a(i)
+         j = i - 1
+         do while (j >= 1)
+            if (a(j) <= v) exit
+            a(j + 1) = a(j)
+            j = j - 1
+         end do
+         a(j + 1) = v
+      end do
+   end subroutine sort_short_int
 
 end module exic_base_sort

@@ -21,6 +21,7 @@
 !> contains it. Work arrays live in `broad_t` and are only grown, never shrunk.
 module exic_contact_broad
    use exic_base_kinds, only: wp, i8
+   use exic_base_sort, only: sort_short_int
    use exic_base_grow, only: grow
    implicit none
    private
@@ -221,27 +222,10 @@ contains
             end do
          end do
          if (nfound == 0) cycle
-         call insertion_sort(nfound, bw%buf)
+         call sort_short_int(bw%buf(1:nfound))
          call append(bw, s, nfound, bw%buf)
       end do
    end subroutine query_slaves
-
-   !> Sort a short integer list in place.
-   pure subroutine insertion_sort(n, a)
-      integer, intent(in) :: n
-      integer, intent(inout) :: a(:)
-      integer :: i, j, v
-      do i = 2, n
-         v = a(i)
-         j = i - 1
-         do while (j >= 1)
-            if (a(j) <= v) exit
-            a(j + 1) = a(j)
-            j = j - 1
-         end do
-         a(j + 1) = v
-      end do
-   end subroutine insertion_sort
 
    !> Append the pairs (s, list(1:n)) to the candidate list, growing it when full.
    subroutine append(bw, s, n, list)

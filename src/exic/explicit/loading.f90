@@ -15,6 +15,7 @@
 !> exactly as before (the same operations in the same order).
 module exic_explicit_loading
    use exic_base_kinds, only: wp
+   use exic_base_sort, only: sort_short_int
    use exic_base_error, only: error_t, make_error
    use exic_base_strings, only: itoa
    use exic_mesh_mesh, only: mesh_t
@@ -412,24 +413,8 @@ contains
          if (any(u == region(e))) cycle
          u = [u, region(e)]
       end do
-      call sort_int(u)
+      call sort_short_int(u)
    end function unique_regions
-
-   !> Insertion sort (a few regions).
-   pure subroutine sort_int(a)
-      integer, intent(inout) :: a(:)
-      integer :: i, j, v
-      do i = 2, size(a)
-         v = a(i)
-         j = i - 1
-         do while (j >= 1)
-            if (a(j) <= v) exit
-            a(j + 1) = a(j)
-            j = j - 1
-         end do
-         a(j + 1) = v
-      end do
-   end subroutine sort_int
 
    !> Index of the body of region `region` (0: none).
    pure integer function loading_body_index(self, region) result(ib)
