@@ -348,7 +348,7 @@ contains
       call f%his_row(1.0e-300_wp, [tiny_value, -tiny_value], err)
       call check(s, .not. allocated(err), 'a row of tiny values is written')
       call f%ene_row(2.0_wp, 7_i8, 1.0e-301_wp, tiny_value, 3.0e300_wp, 0.0_wp, -tiny_value, &
-                     1.0_wp, 0.0_wp, [1.0e-310_wp, -2.0e-320_wp], 3, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, err)
+                     1.0_wp, 0.0_wp, [1.0e-310_wp, -2.0e-320_wp], 3, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, err)
       call check(s, .not. allocated(err), 'an energy row of tiny values is written')
       call f%close()
       open (newunit=u, file=tmp//'fmt.his', status='old', action='read')
@@ -459,7 +459,7 @@ contains
                                      'naming the column', err%message)
       call check(s, f%nonfinite, 'and sets the nonfinite flag')
       call f%ene_row(0.5_wp, 1_i8, 0.1_wp, inf, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, &
-                     [0.0_wp, 0.0_wp], 0, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, err)
+                     [0.0_wp, 0.0_wp], 0, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, err)
       call check(s, allocated(err), 'a .ene row with an infinity returns an error')
       if (allocated(err)) call check(s, has(err%message, 'infinite value in column kinetic'), &
                                      'naming the column', err%message)

@@ -142,8 +142,9 @@ contains
 
    !> A block released at height h = 0.05 above a rigid floor (g = 10) first touches it at
    !> t = sqrt(2h/g) = 0.1 within one step; over ten contact episodes (the corrector's impacts are
-   !> inelastic: the struck nodes are stopped) the balance kinetic + strain - W_ext - W_con is
-   !> reported against the energy put in.
+   !> inelastic: the struck nodes are stopped) the balance kinetic + strain - W_ext - W_con (with
+   !> the kinetic correction, doc/decisions.md "Energy balance") holds within 0.5 % of the energy
+   !> put in at every row.
    subroutine first_touch(s)
       type(suite_t), intent(inout) :: s
       character(len=:), allocatable :: msg, deck
@@ -179,7 +180,8 @@ contains
       ! the balance kinetic + strain - W_ext - W_con against the energy put in (W_ext = m g x fall)
       n = size(e, 2)
       drift = maxval(abs(e(column(en, 'total'), :) - e(column(en, 'total'), 1)))/e(column(en, 'external_work'), n)
-      ! reported, not checked: the issue asks for 0.5 %, the corrector's impacts give about 2 %
+      call check(s, drift <= 5.0e-3_wp, 'dropped block: energy balance within 0.5 % of the energy put in '// &
+                 'through ten bounces', 'largest '//rtoa(drift))
       print '(a,i0,a,es10.3,a,f6.1,a)', '   info  dropped block: ', nb, ' contact episodes, balance within ', &
          100.0_wp*drift, ' % of the energy put in (largest over the run); the impacts took ', &
          -100.0_wp*e(column(en, 'contact_work'), n)/e(column(en, 'external_work'), n), ' % of it'

@@ -18,7 +18,7 @@ module exic_explicit_assembly
    use exic_mesh_mesh, only: mesh_t
    use exic_material_material, only: material_t, MAT_SOLID, MAT_RIGID
    use exic_explicit_state, only: state_t, element_set_t
-   use exic_explicit_central, only: cd_kinetic, cd_zero
+   use exic_explicit_central, only: cd_kinetic, cd_kinetic_power, cd_zero
    use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
                                  q4_stable_dt, q4_stress, NBLOCK
    use exic_element_q4_general, only: q4g_init, q4g_force, q4g_stable_dt, q4g_stress, q4g_hist_init, &
@@ -26,7 +26,8 @@ module exic_explicit_assembly
    implicit none
    private
 
-   public :: assembly_init, internal_forces, stable_step, kinetic_energy, element_stress, all_stresses
+   public :: assembly_init, internal_forces, stable_step, kinetic_energy, kinetic_correction, element_stress, &
+             book_step_change, all_stresses
    public :: set_ranges, NSIG
 
    !> Smallest set whose force pass runs on several threads (a parallel region costs a few
@@ -357,6 +358,30 @@ contains
       type(state_t), intent(inout) :: st
       call cd_kinetic(st%nnode, st%mass, st%v, st%kinetic, st%momentum)
    end subroutine kinetic_energy
+
+   !> The change since t = 0 of the correction that turns the kinetic energy of integer-time
+   !> velocities into the one the central-difference step conserves (doc/decisions.md, "Energy
+   !> balance", eq. E.3-E.4): -dt(n+1)^2/8 Q(n) + the sum booked at the changes of the step - its
+   !> value at t = 0.
+   real(wp) function kinetic_correction(st) result(c)
+      type(state_t), intent(in) :: st
+      c = -0.125_wp*st%dt*st%dt*kinetic_power(st) + st%dt_residual - st%correction0
+   end function kinetic_correction
+
+   !> When the step to come differs from the one the correction was booked for: the sum of
+   !> eq. E.4 takes (dt_new^2 - dt_old^2)/8 Q(n) (called at t(n) with the state of t(n)).
+   subroutine book_step_change(st)
+      type(state_t), intent(inout) :: st
+      if (st%dt == st%dt_booked) return
+      st%dt_residual = st%dt_residual + 0.125_wp*(st%dt*st%dt - st%dt_booked*st%dt_booked)*kinetic_power(st)
+      st%dt_booked = st%dt
+   end subroutine book_step_change
+
+   !> Q of eq. E.3 over the nodes and the free bodies.
+   real(wp) function kinetic_power(st) result(q)
+      type(state_t), intent(in) :: st
+      q = cd_kinetic_power(st%nnode, st%mass, st%minv, st%fext, st%fint, st%a) + st%body_power
+   end function kinetic_power
 
    !> Stress components (sxx, syy, szz, sxy, pressure, von Mises, J; ep, temperature, yield
    !> stress: zero for an elastic set) of global element `e`.

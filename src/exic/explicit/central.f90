@@ -22,6 +22,7 @@ module exic_explicit_central
    private
 
    public :: cd_displacement, cd_predictor, cd_velocity, positions, cd_zero, cd_kinetic
+   public :: cd_kinetic_power
    public :: positions_at, predictor_velocity_at
 
    !> Nodes per chunk (fixed: the order of the additions of a sum must not depend on threads).
@@ -236,6 +237,47 @@ contains
       p1 = lane_sum(m, px)
       p2 = lane_sum(m, py)
    end subroutine kinetic_range
+
+   !> Q = sum_j r_j a_j over the dofs of n nodes, the rate of the correction of the kinetic
+   !> energy (doc/decisions.md, "Energy balance", eq. E.3: c = -dt^2/8 Q), with r = F - P where the
+   !> dof has mass and is free (minv > 0; the contact force is booked by half kicks, work_range)
+   !> and r = m a elsewhere (prescribed dofs; rigid and fixed dofs have a = 0, massless ones
+   !> m = 0). Summed per chunk of CHUNK nodes and the chunks in order (the same bits for every
+   !> number of threads).
+   function cd_kinetic_power(n, mass, minv, fext, fint, a) result(q)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: mass(n)
+      real(wp), intent(in), dimension(2, n) :: minv, fext, fint, a
+      real(wp) :: q, pr((n + CHUNK - 1)/CHUNK)
+      integer :: k, i0, m
+      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) shared(n, mass, minv, fext, fint, a, pr) &
+      !$omp private(k, i0, m) schedule(dynamic)
+      do k = 1, (n + CHUNK - 1)/CHUNK
+         i0 = (k - 1)*CHUNK + 1
+         m = min(CHUNK, n - i0 + 1)
+         call power_range(m, mass(i0), minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), pr(k))
+      end do
+      !$omp end parallel do
+      q = 0.0_wp
+      do k = 1, (n + CHUNK - 1)/CHUNK
+         q = q + pr(k)
+      end do
+   end function cd_kinetic_power
+
+   !> Q of cd_kinetic_power over m nodes (lane_sum).
+   pure subroutine power_range(m, mass, minv, fext, fint, a, s)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: mass(m)
+      real(wp), intent(in), dimension(2, m) :: minv, fext, fint, a
+      real(wp), intent(out) :: s
+      real(wp) :: p(CHUNK)
+      integer :: i
+      do i = 1, m
+         p(i) = merge(fext(1, i) - fint(1, i), mass(i)*a(1, i), minv(1, i) > 0.0_wp)*a(1, i) + &
+                merge(fext(2, i) - fint(2, i), mass(i)*a(2, i), minv(2, i) > 0.0_wp)*a(2, i)
+      end do
+      s = lane_sum(m, p)
+   end subroutine power_range
 
    !> x = x0 + u over nnode nodes.
    subroutine positions(nnode, x0, u, x)

@@ -687,19 +687,25 @@ contains
    end function loading_work_in
 
    !> After the nodes' kinetic energy and momentum: add the free bodies'
-   !> 1/2 m |V|^2 + 1/2 I omega^2 and m V (their nodes carry no mass).
+   !> 1/2 m |V|^2 + 1/2 I omega^2 and m V (their nodes carry no mass), and set their part of the
+   !> rate of the kinetic correction, m |A|^2 + I alpha^2 (doc/decisions.md, "Energy balance",
+   !> eq. E.3: every force on a body is booked by the trapezoid rule, so r = m A).
    subroutine loading_energy(self, st)
       class(loading_t), intent(in) :: self
       type(state_t), intent(inout) :: st
       integer :: ib
+      real(wp) :: s
       if (.not. self%has_free) return
+      s = 0.0_wp
       do ib = 1, size(self%bodies)
          associate (b => self%bodies(ib))
             if (b%kind /= RB_FREE) cycle
             st%kinetic = st%kinetic + 0.5_wp*(b%mass*(b%v(1)**2 + b%v(2)**2) + b%inertia*b%om**2)
             st%momentum = st%momentum + b%mass*b%v
+            s = s + b%mass*(b%a(1)**2 + b%a(2)**2) + b%inertia*b%al**2
          end associate
       end do
+      st%body_power = s
    end subroutine loading_energy
 
    !> The force the support (or the driver) exerts on dof k of node i (doc/loads.md, section 3):

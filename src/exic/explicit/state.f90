@@ -60,6 +60,11 @@ module exic_explicit_state
       real(wp) :: wext = 0.0_wp, wcon = 0.0_wp, total0 = 0.0_wp
       real(wp) :: wpm = 0.0_wp                  !< work of the prescribed motion (doc/loads.md, section 3)
       real(wp) :: plastic = 0.0_wp              !< plastic work dissipated so far (doc/axisymmetry.md, (A13))
+      ! the kinetic correction of the energy balance (doc/decisions.md, "Energy balance", eq. E.3-E.4)
+      real(wp) :: body_power = 0.0_wp           !< the free bodies' m |A|^2 + I alpha^2
+      real(wp) :: correction0 = 0.0_wp          !< the correction at t = 0
+      real(wp) :: dt_residual = 0.0_wp          !< its sum over the changes of the step (E.4)
+      real(wp) :: dt_booked = 0.0_wp            !< the step that sum is made for
       logical :: axisymmetric = .false.         !< GLOBal AXISymmetric: quantities per radian
       logical :: has_plastic = .false.          !< a set is plastic (outputs name ep, T, Y)
       real(wp) :: momentum(2) = 0.0_wp

@@ -35,7 +35,8 @@ module exic_explicit_step
    use exic_contact_spec, only: contact_spec_t
    use exic_contact_contact, only: contact_t
    use exic_explicit_state, only: state_t, element_set_t
-   use exic_explicit_assembly, only: assembly_init, internal_forces, stable_step, kinetic_energy
+   use exic_explicit_assembly, only: assembly_init, internal_forces, stable_step, kinetic_energy, &
+                                     kinetic_correction, book_step_change
    use exic_explicit_central, only: cd_displacement, cd_predictor, cd_velocity, positions, positions_at, &
                                     predictor_velocity_at
    use exic_explicit_loads, only: load_spec_t
@@ -198,6 +199,11 @@ contains
          call kinetic_energy(st)
          if (self%ld%active) call self%ld%energy(st)
          st%total0 = st%kinetic + st%strain + st%hourglass
+         ! the kinetic correction at t = 0, for the step dt(0) (doc/decisions.md, eq. E.3-E.4)
+         st%dt_residual = 0.0_wp
+         st%correction0 = 0.0_wp
+         st%dt_booked = st%dt
+         st%correction0 = kinetic_correction(st)
       end associate
       call check_health(self, err)
    end subroutine stepper_start
@@ -212,6 +218,8 @@ contains
       t0 = wall_time()
       contact_on = self%has_contact()
       associate (st => self%st)
+         ! a step set between steps (BATCh DT) enters the kinetic correction (eq. E.4)
+         call book_step_change(st)
          ! 1. x(n+1) = x(n) + dt(n) v(n) + dt(n)^2/2 a(n)
          call cd_displacement(st%nnode, st%dt, st%v, st%a, st%u, self%du, self%a_old)
          st%t = st%t + st%dt
@@ -253,9 +261,10 @@ contains
          end if
          if (self%ld%active) call self%ld%finish(st, self%du, 0.5_wp*st%dt_prev, .false.)
       end associate
-      ! 7. energies and health
+      ! 7. energies and health; the step dt(n+1) enters the kinetic correction (eq. E.4)
       call kinetic_energy(self%st)
       if (self%ld%active) call self%ld%energy(self%st)
+      call book_step_change(self%st)
       self%time_steps = self%time_steps + (wall_time() - t0)
       call check_health(self, err)
    end subroutine stepper_advance

@@ -33,11 +33,11 @@ module exic_io_history
 
    !> Column names of <stem>.ene, in order (prescribed_work [ext], doc/loads.md section 3, and
    !> friction_dissipation [ext], doc/friction.md section 5, and plastic_work [ext],
-   !> doc/axisymmetry.md section 8, appended after the older columns so that they keep their
-   !> positions).
+   !> doc/axisymmetry.md section 8, and kinetic_correction [ext], doc/decisions.md "Energy
+   !> balance", appended after the older columns so that they keep their positions).
    character(len=*), parameter :: ENERGY_COLUMNS = &
       't step dt kinetic strain external_work contact_work total drift momentum_x momentum_y '// &
-      'active hourglass prescribed_work friction_dissipation plastic_work'
+      'active hourglass prescribed_work friction_dissipation plastic_work kinetic_correction'
 
    !> The three text files of one run.
    type :: history_files_t
@@ -205,32 +205,33 @@ contains
    !> One row of <stem>.ene. A row with a non-finite value is not written (see the module
    !> header); `err` then says which.
    subroutine files_ene_row(self, t, step, dt, kinetic, strain, wext, wcon, total, drift, &
-                            momentum, nactive, hourglass, wpm, dfric, wpl, err)
+                            momentum, nactive, hourglass, wpm, dfric, wpl, kc, err)
       class(history_files_t), intent(inout) :: self
       real(wp), intent(in) :: t, dt, kinetic, strain, wext, wcon, total, drift, momentum(2), hourglass
       real(wp), intent(in) :: wpm      !< work of the prescribed motion
       real(wp), intent(in) :: dfric    !< frictional dissipation
       real(wp), intent(in) :: wpl      !< plastic work dissipated
+      real(wp), intent(in) :: kc       !< kinetic correction (part of total)
       integer(i8), intent(in) :: step
       integer, intent(in) :: nactive
       type(error_t), allocatable, intent(out), optional :: err
-      character(len=20), parameter :: names(14) = [character(len=20) :: 't', 'dt', 'kinetic', &
+      character(len=20), parameter :: names(15) = [character(len=20) :: 't', 'dt', 'kinetic', &
          'strain', 'external_work', 'contact_work', 'total', 'drift', 'momentum_x', 'momentum_y', &
-         'hourglass', 'prescribed_work', 'friction_dissipation', 'plastic_work']
-      real(wp) :: v(14)
+         'hourglass', 'prescribed_work', 'friction_dissipation', 'plastic_work', 'kinetic_correction']
+      real(wp) :: v(15)
       integer :: k, n, ios
       character(len=256) :: msg
-      v = [t, dt, kinetic, strain, wext, wcon, total, drift, momentum, hourglass, wpm, dfric, wpl]
+      v = [t, dt, kinetic, strain, wext, wcon, total, drift, momentum, hourglass, wpm, dfric, wpl, kc]
       do k = 1, size(v)
          if (.not. ieee_is_finite(v(k))) then
             call refuse(self, 'ene', trim(names(k)), v(k), t, err)
             return
          end if
       end do
-      ! the text of write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,4('// &
+      ! the text of write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,5('// &
       ! NUMBER_FORMAT//'))') t, step, dt, kinetic, strain, wext, wcon, total, drift, momentum, &
-      ! nactive, hourglass, wpm, dfric, wpl
-      call reserve(self, 14*REAL_WIDTH + 22)
+      ! nactive, hourglass, wpm, dfric, wpl, kc
+      call reserve(self, 15*REAL_WIDTH + 22)
       n = 0
       call put_real(self%row, n, t)
       call put_int(self%row, n, step, 12)
@@ -242,6 +243,7 @@ contains
       call put_real(self%row, n, wpm)
       call put_real(self%row, n, dfric)
       call put_real(self%row, n, wpl)
+      call put_real(self%row, n, kc)
       write (self%ene, '(a)', iostat=ios, iomsg=msg) self%row(1:n)
       call check_io(self, ios, msg, self%ene_path)
       call self%maybe_flush()

@@ -190,7 +190,7 @@ contains
       type(model_t), intent(in) :: model
       type(stepper_t), intent(in) :: stp
       integer :: k
-      real(wp) :: sig(NSIG), total, drift
+      real(wp) :: sig(NSIG), total, drift, kc
 
       do k = 1, size(self%values)
          associate (q => model%requests(k), st => stp%st)
@@ -220,10 +220,10 @@ contains
       end do
       associate (st => stp%st)
          call self%files%his_row(st%t, self%values)
-         call energy_balance(st, total, drift)
+         call energy_balance(st, total, drift, kc)
          call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
                                  st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm, &
-                                 stp%contact%dissipation, st%plastic)
+                                 stp%contact%dissipation, st%plastic, kc)
       end associate
       self%last_row_step = stp%st%step
    end subroutine write_rows

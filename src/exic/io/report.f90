@@ -11,6 +11,7 @@ module exic_io_report
    use exic_explicit_rigid, only: RB_FREE, RB_DRIVEN
    use exic_explicit_loads, only: FN_UNDEFINED
    use exic_explicit_state, only: state_t
+   use exic_explicit_assembly, only: kinetic_correction
    use exic_contact_inside, only: inside_t
    !$ use omp_lib, only: omp_get_max_threads
    implicit none
@@ -155,17 +156,21 @@ contains
                      field_files)
    end subroutine report_final
 
-   !> The energy balance of <stem>.ene: total = kinetic + strain + hourglass + plastic work
-   !> (doc/axisymmetry.md, (A13)) - external work -
-   !> contact work - prescribed work, and its drift from the initial total relative to the largest of |initial
-   !> total| and the physical energy now.
-   pure subroutine energy_balance(st, total, drift)
+   !> The energy balance of <stem>.ene: total = kinetic + the change of the kinetic correction
+   !> since t = 0 (doc/decisions.md, "Energy balance", eq. E.3) + strain + hourglass + plastic work (doc/axisymmetry.md, (A13))
+   !> - external work - contact work - prescribed work, and its drift from the initial total
+   !> relative to the largest of |initial total| and the physical energy now; `correction`, that
+   !> change of the kinetic correction, for its column.
+   subroutine energy_balance(st, total, drift, correction)
       type(state_t), intent(in) :: st
       real(wp), intent(out) :: total, drift
-      real(wp) :: denom
-      total = st%kinetic + st%strain + st%hourglass + st%plastic - st%wext - st%wcon - st%wpm
+      real(wp), intent(out), optional :: correction
+      real(wp) :: denom, c
+      c = kinetic_correction(st)
+      total = st%kinetic + c + st%strain + st%hourglass + st%plastic - st%wext - st%wcon - st%wpm
       denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass + st%plastic, tiny(1.0_wp))
       drift = (total - st%total0)/denom
+      if (present(correction)) correction = c
    end subroutine energy_balance
 
    !> The lines printed on the console at the end of a run: steps, wall time and rates (the

@@ -303,6 +303,10 @@ contains
          call ar%item('state.jmin', st%jmin)
          call ar%item('state.nactive', st%nactive)
          call ar%item('state.plastic', st%plastic)
+         call ar%item('state.body_power', st%body_power)
+         call ar%item('state.correction0', st%correction0)
+         call ar%item('state.dt_residual', st%dt_residual)
+         call ar%item('state.dt_booked', st%dt_booked)
       end associate
       call ar%item('stepper.started', stp%started)
       call ar%item('stepper.cfl_mode', stp%cfl_mode)
