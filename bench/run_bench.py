@@ -788,8 +788,8 @@ def impact_measures(his, ene, ex):
     """Errors of one 1-D impact run against the exact values `ex` (decks.impact_exact): duration
     and mean force (contact_measures), RMS of the force history against the exact step F on
     [0, T] and 0 after, over the whole run, relative to F; bar 1's momentum at the end against
-    the exact p1 (relative to |p1|); K + U after separation (mean over the steps after the last
-    active one, the last step if none) against the initial energy."""
+    the exact p1 (relative to |p1|); K + U + kinetic correction after separation (mean over the
+    steps after the last active one, the last step if none) against the initial energy."""
     t, f = his["t"], his["cont(p1,1)"]
     impulse, duration, fmean = contact_measures(t, f, ex["force"])
     sq = 0.0
@@ -798,7 +798,9 @@ def impact_measures(his, ene, ex):
         fe = ex["force"] if t[k] < ex["duration"] else 0.0
         sq += w*(f[k] - fe)**2
     rms = math.sqrt(sq/(t[-1] - t[0]))/ex["force"]
-    e = [k + u for k, u in zip(ene["kinetic"], ene["strain"])]
+    # the energy the step conserves (doc/decisions.md, "Energy balance"): K + U + kinetic_correction
+    kc = ene.get("kinetic_correction", [0.0]*len(ene["kinetic"]))
+    e = [k + u + c for k, u, c in zip(ene["kinetic"], ene["strain"], kc)]
     act = ene["active"]
     last = max([i for i, a in enumerate(act) if a > 0], default=len(act) - 1)
     after = e[last + 1:] or e[-1:]
