@@ -252,7 +252,7 @@ contains
    !> is epdot = gammadot/(sqrt(3) (1 + H/(3 mu))), the elastic part taking qdot/(3 mu) with
    !> H = dY/dep = (1 + C ln(...)) n B ep^(n-1) the slope at the fixed rate. The rate factor
    !> q/Y_static is then 1 + C ln(epdot/epsdot0): checked to 2e-6 past ep = 0.05 (measured
-   !> 1.3e-6: the discrete rate dep/dt of a step lags the rate at its end by half a step, which
+   !> 1.4e-6: the discrete rate dep/dt of a step lags the rate at its end by half a step, which
    !> with d(epdot)/dt here is 4e-5 of epdot, times C). Without the elastic part (H = 0) the
    !> factor would be off by C H/(3 mu) = 1.5e-4 at ep = 0.05. At every step the factor equals
    !> 1 + C ln(dep/dt/epsdot0) of the step's own rate to 1e-12, and T stays Troom.
