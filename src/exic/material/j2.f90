@@ -21,7 +21,7 @@
 !> gets stress, energy and dissipation times the weight.
 module exic_material_j2
    use exic_base_kinds, only: wp
-   use exic_base_logarithm, only: ln
+   use exic_base_logarithm, only: ln, ln_block
    use exic_material_j2_hardening, only: j2_param_t, j2_strain_part, j2_rate_factor, &
                                          j2_thermal_factor, j2_static_yield, j2_has_temperature, &
                                          j2_is_linear, J2_JOHNSON_COOK
@@ -68,9 +68,10 @@ contains
    !> temp is read and written only when `j2_has_temperature(prm)`; otherwise any array of
    !> length n may be passed. dt is the step (Johnson-Cook's rate dep/dt; dt <= 0: rate factor 1).
    !>
-   !> Points go in chunks of CHUNK: (A) ln J and Y(n) with its slope, scalar (transcendental
-   !> functions stay scalar, as in nh_piola: glibc's vector log differs from the scalar one in
-   !> the last bits); (B) the trial state of every point, without branches; (C) the return at
+   !> Points go in chunks of CHUNK: (A) ln J by ln_block as in nh_piola (exic's logarithm: the
+   !> same bits vectorized or not), Y(n) with its slope, scalar for exp and pow (glibc's vector
+   !> functions differ from the scalar ones in the last bits); (B) the trial state of every
+   !> point, without branches; (C) the return at
    !> the points that yield, updating their history; (D) stress and energy of every point from
    !> F and the history of t(n+1), without branches (the one formula of (J7)/(J8)).
    pure subroutine j2_piola(n, lambda, mu, prm, dt, f11, f12, f21, f22, f33, jac, wt, a11, a12, &
@@ -91,7 +92,7 @@ contains
       real(wp), intent(out) :: we(n)                              !< wt x elastic energy (J8)
       real(wp), intent(out) :: dwp(n)                             !< wt x dissipation of the step (J27)
       real(wp), intent(out) :: ys(n)                              !< yield stress
-      real(wp), dimension(CHUNK) :: lnj, hn, th, x, d11, d22, d33, d12, qtr
+      real(wp), dimension(CHUNK) :: jj, lnj, hn, th, x, d11, d22, d33, d12, qtr
       real(wp) :: g11, g12, g21, g22, g33, b11, b22, b33, c, chirc
       logical :: jc, heat, linear
       integer :: q0, m, i, q
@@ -106,9 +107,9 @@ contains
          m = min(CHUNK, n - q0 + 1)
          ! (A) ln J, Y(n) (J19) and its slope H(n)
          do i = 1, m
-            q = q0 + i - 1
-            lnj(i) = ln(jac(q)*f33(q))       ! exic's logarithm, the neo-Hookean kernels' (base/logarithm)
+            jj(i) = jac(q0 + i - 1)*f33(q0 + i - 1)
          end do
+         call ln_block(m, jj, lnj)            ! exic's logarithm, the neo-Hookean kernels' (base/logarithm)
          if (linear) then
             do i = 1, m
                ys(q0 + i - 1) = prm%y0 + prm%hiso*ep(q0 + i - 1)      ! as j2_strain_part
