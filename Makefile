@@ -11,7 +11,7 @@ RELEASE := --profile release --flag "-O3 -march=native -funroll-loops -ffp-contr
 EXAMPLE ?= inputs/examples/impact.inp
 OUTDIR  ?= out
 
-.PHONY: all setup deps venv build run test test-viewers verify stress bench baseline plots install legacy-host clean help
+.PHONY: all setup deps venv build run test test-viewers verify stress bench bench-peers baseline plots install legacy-host clean help
 
 all: build
 
@@ -23,6 +23,7 @@ help:
 	@echo "make verify   run the decks of inputs/ and regenerate doc/verification.md"
 	@echo "make bench    run the benchmarks (against the baseline commit BASELINE, built once) and"
 	@echo "              regenerate doc/performance figures"
+	@echo "make bench-peers  install CalculiX (Debian) and run it on the bar on a rigid wall"
 	@echo "make plots DECK=path.inp [OUTDIR=out]   run a deck, draw its histories and contours"
 	@echo "              into OUTDIR/plots"
 	@echo "make test-viewers  install ParaView (Debian packages) and check it reads the field output"
@@ -121,6 +122,15 @@ bench: setup baseline
 	$(FPM) build $(RELEASE)
 	$(PYTHON) bench/run_bench.py --fpm $(FPM) --release '$(RELEASE)' --only $(BENCH_ONLY) \
 	  --baseline-bindir "$$(cat $(BASE_DIR)/bindir)" $(BENCH_ARGS)
+
+# Optional: CalculiX (Debian's calculix-ccx, installed only by this target) on the bar on a rigid
+# wall of section impact (bench/peers.py; doc/performance.md section 4, "CalculiX"); its exic
+# curves come from bench/results/impact.json (make bench BENCH_ONLY=impact). About 5 minutes.
+PEER_PACKAGES := calculix-ccx
+PEERS_ARGS ?=
+bench-peers: setup
+	@$(call apt_install,$(PEER_PACKAGES))
+	$(PYTHON) bench/peers.py $(PEERS_ARGS)
 
 # the release binaries of BASELINE; $(BASE_DIR)/bindir names their folder
 baseline: setup
