@@ -28,6 +28,7 @@ extern "C" {
 /* ipair[6*(k-1) + ...] entries and values */
 #define EXIC_METHOD_LAGRANGE 1
 #define EXIC_METHOD_PENALTY 2
+#define EXIC_METHOD_ENERGY 3  /* Lagrange with massless contact faces (LAGRange,ENERgy) */
 #define EXIC_DETECT_SWEPT 1
 #define EXIC_DETECT_STATIC 2
 #define EXIC_ONE_PASS 1
@@ -49,6 +50,15 @@ void exic_c_contact_set_pair(int ih, int ipair, const int *iopt, double pen, int
 void exic_c_contact_set_option(int ih, int iopt, int ival, int *ierr);
 void exic_c_contact_step(int ih, int nnode, const double *x, const double *v, double *a,
                          double dtprev, double dt, double *fcon, int *nactive, int *ierr);
+/* massless contact faces of method-3 pairs (doc/api.md, doc/impact.md section 3): amass the
+ * host's masses after the face transfer, iface[nf] face nodes, irp[2 nf + 1], ici, val the
+ * face dofs' rows of the initial stiffness (1-based CSR) */
+void exic_c_contact_set_face(int ih, int nnode, const double *amass, int nf, const int *iface,
+                             const int *irp, const int *ici, const double *val, int *ierr);
+/* the step of a handle with massless faces: r = f_ext - f_int at t(n+1) */
+void exic_c_contact_step_face(int ih, int nnode, const double *x, const double *v, double *a,
+                              const double *r, double dtprev, double dt, double *fcon,
+                              int *nactive, int *ierr);
 void exic_c_contact_pair_results(int ih, int ipair, double *res, int *ierr);
 /* Coulomb friction of pair ipair: static amus, dynamic amud <= amus, decay with slip speed
  * (0: amus at rest, amud sliding); amus = 0: frictionless (doc/friction.md) */

@@ -40,6 +40,11 @@ contains
       call continued(s, exic, 'one_point', one_point_deck())
       call section(s, 'restart: plastic history and Coulomb friction across the restart point')
       call continued(s, exic, 'friction_plastic', friction_plastic_deck())
+      call section(s, 'restart: massless contact faces (LAGRange,ENERgy) pressed across the restart point')
+      call continued(s, exic, 'energy_face', energy_face_deck())
+      call check(s, shell('grep -q "stiffness rows formed again at large strain [1-9]" '//dir// &
+                          '/energy_face/energy_face.out') == 0, 'energy_face: the face''s stiffness '// &
+                 'is formed again during the run (its state crosses the restart point)')
       call section(s, 'restart: a restart file of another deck is refused')
       call mismatch(s, exic)
       call section(s, 'restart: a write failure (file size limit) ends the run cleanly')
@@ -323,6 +328,29 @@ contains
              '  LOOP,,60'//nl//'    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
              '  disp,13,1'//nl//'  velo,13,1'//nl//'  stre,5,1'//nl//'  cont,1,1'//nl//nl//'STOP'
    end function one_point_deck
+
+   !> A bar (12 x 2, neo-Hookean) at 1 against a rigid wall 0.01 away, its struck end a
+   !> massless contact face (LAGRange,ENERgy, doc/impact.md section 3): contact from t = 0.01
+   !> lasts past the end (2 L/c = 0.33), so the face is pressed before and after the restart
+   !> point (t = 0.03 of 0.06).
+   function energy_face_deck() result(deck)
+      character(len=:), allocatable :: deck
+      deck = 'FEAP * * bar on a wall with a massless contact face, restart files'//nl//'0 0 0 2 2 4'//nl// &
+             'PARAmeters'//nl//'  nx = 12'//nl//'  ny = 2'//nl//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'MATErial,2'//nl//'  RIGId'//nl//'    DENSity 1'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,nx,ny,0,0,1'//nl//'    1,0,0'//nl//'    2,6,0'//nl// &
+             '    3,6,1'//nl//'    4,0,1'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,1,2,0,0,2'//nl//'    1,6.01,-1'//nl//'    2,7,-1'//nl// &
+             '    3,7,2'//nl//'    4,6.01,2'//nl//nl// &
+             'INITial,VELOcity'//nl//'  REGIon,1,1,0'//nl//nl// &
+             'CONTact'//nl//'  SURFace,1'//nl//'    FACEts'//nl//'      1,nx+1,nx+1,2*(nx+1)'//nl// &
+             '      ny,nx+1,ny*(nx+1),(ny+1)*(nx+1)'//nl//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
+             '  PAIR,1,NTOS,1,2'//nl//'    LAGRange,ENERgy'//nl//'END CONTact'//nl//nl//'END'//nl// &
+             'BATCh'//nl//'  DT,,1e-3'//nl//'  TPLOt,,1'//nl//'  OUTPut,HDF5,2e-3'//nl//'  SAVE,,0.03'//nl// &
+             '  LOOP,,60'//nl//'    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
+             '  disp,26,1'//nl//'  velo,26,1'//nl//'  acce,26,1'//nl//'  cont,1,1'//nl//'  cont,1,4'//nl//nl//'STOP'
+   end function energy_face_deck
 
    !> A plastic block (J2, history per point) that lands on a rigid floor and slides on it with
    !> Coulomb friction under gravity: it yields and slides both before and after the restart

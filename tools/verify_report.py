@@ -10,6 +10,7 @@ import numpy as np
 import exic_results as xr
 import verify_figures as vf
 import verify_plastic as vp
+import verify_energy as ve
 
 V0 = 50.0                    # initial speed of the seed's examples
 LAM, MU = 33333.0, 5000.0    # Lame constants of the seed (section 7)
@@ -833,7 +834,7 @@ def report(ctx, run_seconds, date, failed):
     body = [section_71(ctx), section_72(ctx),
             section_bars(ctx, "7.3", "ex73_like_bars", "Bar striking a like bar", 0.1, 0.1),
             section_bars(ctx, "7.4", "ex74_unlike_bars", "Bar striking a dissimilar bar", 0.5, 1.0),
-            section_75(ctx), section_1d(ctx), vp.section_plastic(ctx)]
+            section_75(ctx), ve.section_energy(ctx), section_1d(ctx), vp.section_plastic(ctx)]
     try:
         summ = summary(ctx)
     except AttributeError:

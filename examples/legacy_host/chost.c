@@ -8,6 +8,10 @@
  * The same node then falls again on a fresh handle with mu = 0.5 (exic_c_contact_set_friction)
  * while moving at 3 along the ground: it slides, the friction force is mu times the normal
  * force and opposes the motion (exic_c_contact_pair_friction), and mud > mus is refused.
+ * Last, method 3 (massless contact faces, doc/impact.md): node 3 is a massless face node tied by
+ * springs k to a node 4 one above it (exic_c_contact_set_face); both fall at w, so the free
+ * solve carries node 3 to h - w dt < 0 and the face block places it on the ground with the
+ * spring force k (w dt - h) (exic_c_contact_step_face).
  * Prints its lines and exits 0 when all holds.
  */
 #include <math.h>
@@ -82,6 +86,29 @@ int main(void) {
         if (nf != 1 || rf[2] != 1.0 || rf[1] != 0.0 || fabs(rf[0] - 0.5 * rp[0]) > 1e-12 * rp[0] ||
             !(ff[4] < 0.0) || fabs(fabs(ff[4]) - 0.5 * ff[5]) > 1e-12 * ff[5])
             return 5;
+    }
+    /* massless contact face through the C names */
+    {
+        const double k = 100.0;
+        double x4[8] = {1.0, 0.0, -1.0, 0.0, 0.0, h, 0.0, h + 1.0};
+        double m4[4] = {4.0, 4.0, m, m}, mf[4] = {4.0, 4.0, 0.0, 2.0 * m};
+        double v4[8] = {0.0, 0.0, 0.0, 0.0, 0.0, -w, 0.0, -w}, a4[8] = {0}, r4[8] = {0}, f4[8];
+        int ipe[6] = {2, 1, EXIC_METHOD_ENERGY, EXIC_DETECT_SWEPT, EXIC_ONE_PASS, 1};
+        int iface[1] = {3}, irp[3] = {1, 3, 5}, ici[4] = {5, 7, 6, 8};
+        double kval[4] = {k, -k, k, -k};
+        int ihe, ne;
+        double y3;
+        exic_c_contact_create_segments(4, x4, m4, 1, iseg, 1, isn, 1, ipe, ppair, &ihe, &ierr);
+        if (ierr != EXIC_OK) return 6;
+        exic_c_contact_set_face(ihe, 4, mf, 1, iface, irp, ici, kval, &ierr);
+        if (ierr != EXIC_OK) return 6;
+        exic_c_contact_step_face(ihe, 4, x4, v4, a4, r4, 0.0, dt, f4, &ne, &ierr);
+        if (ierr != EXIC_OK) return 6;
+        y3 = h + dt * v4[5] + 0.5 * dt * dt * a4[5];
+        printf("chost: massless face: nactive %d y(n+2) %.3e contact force %.6e k (w dt - h) %.6e\n",
+               ne, y3, f4[5], k * (w * dt - h));
+        exic_c_contact_free(ihe, &ierr);
+        if (ne != 1 || fabs(y3) > 1e-14 || fabs(f4[5] - k * (w * dt - h)) > 1e-12 * k) return 7;
     }
     return 0;
 }

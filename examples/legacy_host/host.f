@@ -15,9 +15,16 @@ C       N1 N2 N3 N4 IBODY IMAT                 (NELEM LINES)
 C       IKIND E NU RHO                         (NMAT LINES)
 C       ISLAVE IMASTER METHOD DETECT NPASS IRIGID PENALTY (NPAIR LINES)
 C       DT TMAX ITIP IVFORM
+C       NF, THEN NF NODE NUMBERS          (ONLY WHEN A PAIR HAS METHOD 3)
 C     DT > 0 IS A FIXED STEP; DT < 0 ASKS FOR -DT TIMES THE HOST'S OWN
 C     STABLE STEP, RECOMPUTED EVERY STEP. IVFORM 1: FULL-STEP VELOCITIES
 C     V(N) (EXIC'S SCHEME); 2: HALF-STEP VELOCITIES V(N+1/2) (DYNA'S).
+C     METHOD 3 (LAGRANGE WITH MASSLESS CONTACT FACES, EXIC'S
+C     LAGRANGE,ENERGY): THE NF NODES GIVEN ARE THE CANDIDATE FACE; LHOST
+C     DROPS RIGID AND FIXED NODES AND THOSE OF ELEMENTS WITH EVERY NODE
+C     ON THE FACE, MOVES THE FACE NODES' MASS TO THE OTHER NODES OF
+C     THEIR ELEMENTS, HANDS EXIC THE FACE ROWS OF ITS INITIAL (LINEAR)
+C     STIFFNESS AND STEPS WITH EXIC_CONTACT_STEP_FACE (R = -FINT).
 C     OUTPUT ON UNIT 6: ONE ROW PER STEP,
 C       T  UX VX AX (NODE ITIP)  FN NACT PEN PMAX (PAIR 1)  GMIN
 C     GMIN IS THE SMALLEST CORRECTED GAP AT T(N+2) OF THE CONSTRAINTS
@@ -35,6 +42,12 @@ C
       CALL LMASS
       CALL MKPAIR(IH, IERR)
       IF (IERR .NE. 0) GOTO 900
+      IF (NFACE .GT. 0) THEN
+         CALL FACESU
+         CALL EXIC_CONTACT_SET_FACE(IH, NNODE, AMASS, NFACE, IFACE, KRP,
+     &                              KCI, KVAL, IERR)
+         IF (IERR .NE. 0) GOTO 900
+      END IF
       IF (IVF .EQ. 2) THEN
          CALL EXIC_CONTACT_SET_OPTION(IH, 1, 2, IERR)
          IF (IERR .NE. 0) GOTO 900
@@ -51,8 +64,7 @@ C     T = 0: FORCES, STEP, PREDICTED AND CORRECTED A(0) (DT(N) = 0)
       CALL PREDCT
       DTPREV = 0.0D0
       CALL POSIT
-      CALL EXIC_CONTACT_STEP(IH, NNODE, X, V, A, DTPREV, DT, FCON,
-     &                       NACT, IERR)
+      CALL CSTEP(IH, V, DTPREV, DT, NACT, IERR)
       IF (IERR .NE. 0) GOTO 900
       CALL OUTROW(IH, T)
 C
@@ -79,13 +91,11 @@ C        + DT(N) V(N+1/2); AT N = 0 V(1/2) = V(0) + DT(0)/2 A(0)
       IF (IVF .EQ. 1) THEN
 C        PREDICTOR VELOCITY V~(N+1) = V(N) + DT(N)/2 (A(N) + A~(N+1))
          CALL VTILDE(DTPREV)
-         CALL EXIC_CONTACT_STEP(IH, NNODE, X, VT, A, DTPREV, DT, FCON,
-     &                          NACT, IERR)
+         CALL CSTEP(IH, VT, DTPREV, DT, NACT, IERR)
          IF (IERR .NE. 0) GOTO 900
          CALL VUPD(DTPREV)
       ELSE
-         CALL EXIC_CONTACT_STEP(IH, NNODE, X, V, A, DTPREV, DT, FCON,
-     &                          NACT, IERR)
+         CALL CSTEP(IH, V, DTPREV, DT, NACT, IERR)
          IF (IERR .NE. 0) GOTO 900
       END IF
       CALL OUTROW(IH, T)
@@ -138,6 +148,18 @@ C        LAME CONSTANTS FROM E AND NU
          READ (5, *) (IPAIR(I,K), I = 1, 6), PPAIR(K)
    40 CONTINUE
       READ (5, *) DT, TMAX, ITIP, IVF
+      NFACE = 0
+      DO 45 K = 1, NPAIR
+         IF (IPAIR(3,K) .EQ. 3) NFACE = -1
+   45 CONTINUE
+      IF (NFACE .LT. 0) THEN
+         READ (5, *) NFACE
+         IF (NFACE .GT. MXFACE) THEN
+            WRITE (6, '(A)') '# ERROR: TOO MANY FACE NODES FOR LHOST'
+            STOP 1
+         END IF
+         READ (5, *) (IFACE(K), K = 1, NFACE)
+      END IF
       DO 50 I = 1, NNODE
          U(1,I) = 0.0D0
          U(2,I) = 0.0D0
@@ -146,6 +168,214 @@ C        LAME CONSTANTS FROM E AND NU
    50 CONTINUE
       WRITE (6, '(A,A)') '# ', TITLE
       WRITE (6, '(A)') '# T UX VX AX FN NACT PEN PMAX GMIN'
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE CSTEP(IH, VV, DTPREV, DT, NACT, IERR)
+C     THE CONTACT CALL OF THE STEP: EXIC_CONTACT_STEP, OR WITH MASSLESS
+C     FACES EXIC_CONTACT_STEP_FACE WITH R = F_EXT - F_INT = -FINT
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      INTEGER IH, NACT, IERR, I
+      DOUBLE PRECISION VV(2,MXNODE), DTPREV, DT
+      IF (NFACE .EQ. 0) THEN
+         CALL EXIC_CONTACT_STEP(IH, NNODE, X, VV, A, DTPREV, DT, FCON,
+     &                          NACT, IERR)
+         RETURN
+      END IF
+      DO 10 I = 1, NNODE
+         RFACE(1,I) = -FINT(1,I)
+         RFACE(2,I) = -FINT(2,I)
+   10 CONTINUE
+      CALL EXIC_CONTACT_STEP_FACE(IH, NNODE, X, VV, A, RFACE, DTPREV,
+     &                            DT, FCON, NACT, IERR)
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE FACESU
+C     MASSLESS FACES (DOC/IMPACT.MD 3.1-3.2): KEEP THE CANDIDATES THAT
+C     ARE NEITHER RIGID NOR FIXED AND NOT IN AN ELEMENT WITH EVERY NODE
+C     ON THE FACE; MOVE THEIR LUMPED MASS TO THE OTHER NODES OF EACH
+C     ELEMENT IN PROPORTION TO THEIR OWN (EQ. I.3); THE FACE ROWS OF THE
+C     INITIAL STIFFNESS (THE LINEAR ONE, ALSO THE NEO-HOOKEAN TANGENT AT
+C     F = 1) IN CSR, ROW 2(K-1)+D FOR DOF D OF FACE NODE K.
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      LOGICAL CAND(MXNODE)
+      INTEGER I, K, E, N, NC, L, D, R, B, DD, POS(2*MXFACE)
+      DOUBLE PRECISION ME(4), MOVED, KEEP, KE(8,8)
+      DO 10 I = 1, NNODE
+         CAND(I) = .FALSE.
+         IFR(I) = 0
+   10 CONTINUE
+      DO 20 K = 1, NFACE
+         I = IFACE(K)
+         IF (.NOT. RIGID(I) .AND. IFIX(1,I) .EQ. 0 .AND.
+     &       IFIX(2,I) .EQ. 0) CAND(I) = .TRUE.
+   20 CONTINUE
+      DO 30 E = 1, NELEM
+         IF (KIND(IMAT(E)) .EQ. 0) GOTO 30
+         IF (CAND(IX(1,E)) .AND. CAND(IX(2,E)) .AND. CAND(IX(3,E))
+     &       .AND. CAND(IX(4,E))) THEN
+            DO 25 K = 1, 4
+               IFR(IX(K,E)) = -1
+   25       CONTINUE
+         END IF
+   30 CONTINUE
+      NFACE = 0
+      DO 40 I = 1, NNODE
+         IF (CAND(I) .AND. IFR(I) .EQ. 0) THEN
+            NFACE = NFACE + 1
+            IFACE(NFACE) = I
+            IFR(I) = NFACE
+         ELSE
+            IFR(I) = 0
+         END IF
+   40 CONTINUE
+C     MASS TRANSFER AND ROW LENGTHS (8 ENTRIES PER ELEMENT AND FACE DOF)
+      DO 50 R = 1, 2*NFACE
+         POS(R) = 0
+   50 CONTINUE
+      DO 70 E = 1, NELEM
+         IF (KIND(IMAT(E)) .EQ. 0) GOTO 70
+         NC = 0
+         DO 55 K = 1, 4
+            IF (IFR(IX(K,E)) .GT. 0) NC = NC + 1
+   55    CONTINUE
+         IF (NC .EQ. 0) GOTO 70
+         CALL EMASS(E, ME)
+         MOVED = 0.0D0
+         KEEP = 0.0D0
+         DO 60 K = 1, 4
+            IF (IFR(IX(K,E)) .GT. 0) THEN
+               MOVED = MOVED + ME(K)
+            ELSE
+               KEEP = KEEP + ME(K)
+            END IF
+   60    CONTINUE
+         DO 65 K = 1, 4
+            I = IX(K,E)
+            IF (IFR(I) .GT. 0) THEN
+               AMASS(I) = AMASS(I) - ME(K)
+               POS(2*IFR(I)-1) = POS(2*IFR(I)-1) + 8
+               POS(2*IFR(I)) = POS(2*IFR(I)) + 8
+            ELSE
+               AMASS(I) = AMASS(I) + MOVED*ME(K)/KEEP
+            END IF
+   65    CONTINUE
+   70 CONTINUE
+      KRP(1) = 1
+      DO 75 R = 1, 2*NFACE
+         KRP(R+1) = KRP(R) + POS(R)
+         POS(R) = KRP(R)
+   75 CONTINUE
+      IF (KRP(2*NFACE+1) - 1 .GT. MXNNZ) THEN
+         WRITE (6, '(A)') '# ERROR: FACE STIFFNESS TOO LARGE FOR LHOST'
+         STOP 1
+      END IF
+      DO 95 E = 1, NELEM
+         IF (KIND(IMAT(E)) .EQ. 0) GOTO 95
+         N = 0
+         DO 80 K = 1, 4
+            IF (IFR(IX(K,E)) .GT. 0) N = N + 1
+   80    CONTINUE
+         IF (N .EQ. 0) GOTO 95
+         CALL ESTIF(E, KE)
+         DO 90 K = 1, 4
+            IF (IFR(IX(K,E)) .EQ. 0) GOTO 90
+            DO 89 D = 1, 2
+               R = 2*(IFR(IX(K,E)) - 1) + D
+               DO 88 B = 1, 4
+                  DO 87 DD = 1, 2
+                     L = POS(R)
+                     KCI(L) = 2*(IX(B,E) - 1) + DD
+                     KVAL(L) = KE(2*(K-1)+D, 2*(B-1)+DD)
+                     POS(R) = L + 1
+   87             CONTINUE
+   88          CONTINUE
+   89       CONTINUE
+   90    CONTINUE
+   95 CONTINUE
+C     THE FACE NODES CARRY NO MASS: NO PREDICTED ACCELERATION
+      DO 99 K = 1, NFACE
+         I = IFACE(K)
+         AMASS(I) = 0.0D0
+         AMINV(1,I) = 0.0D0
+         AMINV(2,I) = 0.0D0
+   99 CONTINUE
+      DO 100 I = 1, NNODE
+         IF (IFR(I) .EQ. 0 .AND. AMINV(1,I) .GT. 0.0D0)
+     &      AMINV(1,I) = 1.0D0/AMASS(I)
+         IF (IFR(I) .EQ. 0 .AND. AMINV(2,I) .GT. 0.0D0)
+     &      AMINV(2,I) = 1.0D0/AMASS(I)
+  100 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE EMASS(E, ME)
+C     ROW-SUM LUMPED MASS OF ELEMENT E (2X2 GAUSS), AS IN LMASS
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      INTEGER E, G, K
+      DOUBLE PRECISION ME(4), XE(4), YE(4), DNX(4), DNY(4), DJ, GQ
+      DOUBLE PRECISION XI, ETA, XIN(4), ETN(4)
+      DATA XIN /-1.0D0, 1.0D0, 1.0D0, -1.0D0/
+      DATA ETN /-1.0D0, -1.0D0, 1.0D0, 1.0D0/
+      GQ = 0.57735026918962576451D0
+      DO 10 K = 1, 4
+         XE(K) = X0(1,IX(K,E))
+         YE(K) = X0(2,IX(K,E))
+         ME(K) = 0.0D0
+   10 CONTINUE
+      DO 20 G = 1, 4
+         XI = GQ*XIN(G)
+         ETA = GQ*ETN(G)
+         CALL GRAD(XE, YE, XI, ETA, DNX, DNY, DJ)
+         DO 15 K = 1, 4
+            ME(K) = ME(K) + (RHO(IMAT(E))*DJ*0.25D0)
+     &            *(1.0D0 + XIN(K)*XI)*(1.0D0 + ETN(K)*ETA)
+   15    CONTINUE
+   20 CONTINUE
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE ESTIF(E, KE)
+C     PLANE-STRAIN LINEAR STIFFNESS OF ELEMENT E, 2X2 GAUSS:
+C     KE = SUM W B**T D B, D FROM LAMBDA AND MU (DOFS X1 Y1 X2 ...)
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      INTEGER E, G, IA, IB
+      DOUBLE PRECISION KE(8,8), RL, RM, W, GXA, GYA, GXB, GYB
+      RL = RLAM(IMAT(E))
+      RM = RMU(IMAT(E))
+      DO 10 IA = 1, 8
+         DO 9 IB = 1, 8
+            KE(IA,IB) = 0.0D0
+    9    CONTINUE
+   10 CONTINUE
+      DO 30 G = 1, 4
+         W = WDJ(G,E)
+         DO 25 IA = 1, 4
+            GXA = GDN(IA,G,E)
+            GYA = GDN(IA+4,G,E)
+            DO 20 IB = 1, 4
+               GXB = GDN(IB,G,E)
+               GYB = GDN(IB+4,G,E)
+               KE(2*IA-1,2*IB-1) = KE(2*IA-1,2*IB-1)
+     &            + W*((RL + 2.0D0*RM)*GXA*GXB + RM*GYA*GYB)
+               KE(2*IA-1,2*IB) = KE(2*IA-1,2*IB)
+     &            + W*(RL*GXA*GYB + RM*GYA*GXB)
+               KE(2*IA,2*IB-1) = KE(2*IA,2*IB-1)
+     &            + W*(RL*GYA*GXB + RM*GXA*GYB)
+               KE(2*IA,2*IB) = KE(2*IA,2*IB)
+     &            + W*((RL + 2.0D0*RM)*GYA*GYB + RM*GXA*GXB)
+   20       CONTINUE
+   25    CONTINUE
+   30 CONTINUE
       RETURN
       END
 C
@@ -526,10 +756,62 @@ C     CLOSING LINES: STEPS, CONTACT WORK, LARGEST PENETRATION
       IMPLICIT NONE
       INCLUDE 'host.inc'
       INTEGER IH, ISTEP, IERR
-      DOUBLE PRECISION WCON, PENMAX
+      DOUBLE PRECISION WCON, PENMAX, EKIN, ESTR
       CALL EXIC_CONTACT_WORK(IH, WCON, PENMAX, IERR)
+      CALL ENERGY(EKIN, ESTR)
       WRITE (6, '(A,I8)') '# STEPS ', ISTEP
+      WRITE (6, '(A,1P,2E24.16)') '# KINETIC AND STRAIN ENERGY ', EKIN,
+     &   ESTR
       WRITE (6, '(A,1P,E24.16)') '# CONTACT WORK ', WCON
       WRITE (6, '(A,1P,E24.16)') '# LARGEST PENETRATION ', PENMAX
+      RETURN
+      END
+C
+C=======================================================================
+      SUBROUTINE ENERGY(EKIN, ESTR)
+C     KINETIC ENERGY 1/2 M V**2 AND STRAIN ENERGY: NEO-HOOKEAN
+C     W = LAMBDA/2 (LN J)**2 + MU/2 (I1 - 3) - MU LN J (I1 = TR C + 1),
+C     LINEAR W = 1/2 EPS : D : EPS, AT THE 2X2 GAUSS POINTS
+      IMPLICIT NONE
+      INCLUDE 'host.inc'
+      DOUBLE PRECISION EKIN, ESTR, F11, F12, F21, F22, JG, LNJ, RL, RM
+      DOUBLE PRECISION GX, GY
+      INTEGER I, E, G, K
+      EKIN = 0.0D0
+      DO 10 I = 1, NNODE
+         EKIN = EKIN + 0.5D0*AMASS(I)*(V(1,I)**2 + V(2,I)**2)
+   10 CONTINUE
+      ESTR = 0.0D0
+      DO 40 E = 1, NELEM
+         IF (KIND(IMAT(E)) .EQ. 0) GOTO 40
+         RL = RLAM(IMAT(E))
+         RM = RMU(IMAT(E))
+         DO 30 G = 1, 4
+            F11 = 0.0D0
+            F12 = 0.0D0
+            F21 = 0.0D0
+            F22 = 0.0D0
+            DO 20 K = 1, 4
+               GX = GDN(K,G,E)
+               GY = GDN(K+4,G,E)
+               F11 = F11 + U(1,IX(K,E))*GX
+               F12 = F12 + U(1,IX(K,E))*GY
+               F21 = F21 + U(2,IX(K,E))*GX
+               F22 = F22 + U(2,IX(K,E))*GY
+   20       CONTINUE
+            IF (KIND(IMAT(E)) .EQ. 1) THEN
+               F11 = F11 + 1.0D0
+               F22 = F22 + 1.0D0
+               JG = F11*F22 - F12*F21
+               LNJ = LOG(MAX(JG, 1.0D-300))
+               ESTR = ESTR + WDJ(G,E)*(0.5D0*RL*LNJ**2 + 0.5D0*RM*
+     &            (F11**2 + F12**2 + F21**2 + F22**2 - 2.0D0) - RM*LNJ)
+            ELSE
+               ESTR = ESTR + WDJ(G,E)*(0.5D0*(RL + 2.0D0*RM)*
+     &            (F11**2 + F22**2) + RL*F11*F22
+     &            + 0.5D0*RM*(F12 + F21)**2)
+            END IF
+   30    CONTINUE
+   40 CONTINUE
       RETURN
       END

@@ -42,8 +42,14 @@ module exic_contact_massless_face
       real(wp), allocatable :: z(:, :)           !< (2 nf, nfc) K_FF^-1 G_F,j
       real(wp), allocatable :: dx(:)             !< (2 nf) K_FF^-1 G_F p of the current pass
       integer :: nsolves = 0                     !< back-substitutions over the run
+      ! the stiffness's refresh at large strain (doc/impact.md, section 3.2): displacements
+      ! at which val was last formed, and the refreshes made
+      real(wp), allocatable :: uref(:, :)        !< (2, nnode)
+      integer :: nrefresh = 0
    contains
       procedure :: init => face_init
+      procedure :: update => face_update
+      procedure :: refactor => face_refactor
       procedure :: trial => face_trial
       procedure :: prepare => face_prepare
       procedure :: coupling => face_coupling
@@ -62,8 +68,8 @@ contains
       integer, intent(in) :: node(nf), rp(:), ci(:)
       real(wp), intent(in) :: val(:)
       type(error_t), allocatable, intent(out) :: err
-      integer :: k, r, q, nd, d, col, nnz, nbad
-      integer, allocatable :: ap(:), ai(:), bad(:)
+      integer :: k, nnz
+      integer, allocatable :: ap(:), ai(:)
       real(wp), allocatable :: ax(:)
 
       self%active = nf > 0
@@ -76,34 +82,78 @@ contains
       self%rp = rp
       self%ci = ci
       self%val = val
+      allocate (self%uref(2, nnode), source=0.0_wp)
       if (nf == 0) return
-      ! K_FF in compressed columns (symmetric: row r of K0 restricted to face columns is column r)
-      allocate (ap(2*nf + 1), ai(size(ci)), ax(size(ci)), bad(2*nf))
+      call face_block(self, ap, ai, ax, nnz)
+      call self%ldl%analyze(2*nf, ap, ai(1:nnz), err)
+      if (allocated(err)) return
+      call factor(self, ax(1:nnz), err)
+      if (allocated(err)) return
+      allocate (self%rhs(2*nf), self%du(2*nf), self%dx(2*nf))
+   end subroutine face_init
+
+   !> New values val of the face rows (the same pattern rp, ci), formed at the displacements
+   !> u(2, nnode); K_FF factorized again.
+   subroutine face_update(self, val, u, err)
+      class(massless_face_t), intent(inout) :: self
+      real(wp), intent(in) :: val(:), u(:, :)
+      type(error_t), allocatable, intent(out) :: err
+      if (.not. self%active) return
+      self%val = val
+      self%uref = u
+      self%nrefresh = self%nrefresh + 1
+      call self%refactor(err)
+   end subroutine face_update
+
+   !> K_FF factorized again from the face rows val as they are (after a restart loaded them).
+   subroutine face_refactor(self, err)
+      class(massless_face_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      integer, allocatable :: ap(:), ai(:)
+      real(wp), allocatable :: ax(:)
+      integer :: nnz
+      if (.not. self%active) return
+      call face_block(self, ap, ai, ax, nnz)
+      call factor(self, ax(1:nnz), err)
+   end subroutine face_refactor
+
+   !> K_FF in compressed columns (symmetric: row r of the stiffness restricted to the face
+   !> columns is column r).
+   subroutine face_block(self, ap, ai, ax, nnz)
+      type(massless_face_t), intent(in) :: self
+      integer, allocatable, intent(out) :: ap(:), ai(:)
+      real(wp), allocatable, intent(out) :: ax(:)
+      integer, intent(out) :: nnz
+      integer :: r, q, nd, d
+      allocate (ap(2*self%nf + 1), ai(size(self%ci)), ax(size(self%ci)))
       nnz = 0
       ap(1) = 1
-      do r = 1, 2*nf
-         do q = rp(r), rp(r + 1) - 1
-            nd = (ci(q) + 1)/2
-            d = ci(q) - 2*(nd - 1)
+      do r = 1, 2*self%nf
+         do q = self%rp(r), self%rp(r + 1) - 1
+            nd = (self%ci(q) + 1)/2
+            d = self%ci(q) - 2*(nd - 1)
             if (self%fidx(nd) == 0) cycle
-            col = 2*(self%fidx(nd) - 1) + d
             nnz = nnz + 1
-            ai(nnz) = col
-            ax(nnz) = val(q)
+            ai(nnz) = 2*(self%fidx(nd) - 1) + d
+            ax(nnz) = self%val(q)
          end do
          ap(r + 1) = nnz + 1
       end do
-      call self%ldl%analyze(2*nf, ap, ai(1:nnz), err)
+   end subroutine face_block
+
+   !> Numeric LDL of K_FF (values ax in the analyzed pattern); a zero pivot names its node.
+   subroutine factor(self, ax, err)
+      type(massless_face_t), intent(inout) :: self
+      real(wp), intent(in) :: ax(:)
+      type(error_t), allocatable, intent(out) :: err
+      integer :: nbad
+      integer :: bad(2*self%nf)
+      call self%ldl%factorize(ax, nbad, bad, err)
       if (allocated(err)) return
-      call self%ldl%factorize(ax(1:nnz), nbad, bad, err)
-      if (allocated(err)) return
-      if (nbad > 0) then
-         call make_error(err, 'LAGRange,ENERgy: the face block of the stiffness is singular at node '// &
-                         itoa(node((bad(1) + 1)/2))//' (a face node not tied to the interior of its body)')
-         return
-      end if
-      allocate (self%rhs(2*nf), self%du(2*nf), self%dx(2*nf))
-   end subroutine face_init
+      if (nbad > 0) call make_error(err, 'LAGRange,ENERgy: the face block of the stiffness is singular at node '// &
+                                    itoa(self%node((bad(1) + 1)/2))//' (a face node not tied to the interior of '// &
+                                    'its body)')
+   end subroutine factor
 
    !> The free solve (eq. I.5 with p = 0) and eq. I.7: fres = f_ext - f_int at t(n+1), x = x(n+1),
    !> xp = predicted x~(n+2) (x* on the face, whose a~ is 0); on exit the face's xp is its trial

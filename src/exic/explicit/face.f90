@@ -13,10 +13,14 @@ module exic_explicit_face
    implicit none
    private
 
-   public :: face_setup
+   public :: face_setup, face_refresh, to_csr
 
    !> Central-difference step of the stiffness columns, as a share of the element's size.
    real(wp), parameter :: FD_SHARE = 1.0e-6_wp
+   !> The face rows are formed again, at the current displacements, when the displacement
+   !> gradient of a face element has changed by more than this since they were last formed
+   !> (doc/impact.md, section 3.2).
+   real(wp), parameter :: REFRESH_STRAIN = 0.02_wp
 
 contains
 
@@ -30,11 +34,11 @@ contains
       integer, intent(out) :: nface, nkept
       type(error_t), allocatable, intent(out) :: err
       logical, allocatable :: cand(:), face(:)
-      integer, allocatable :: fidx(:), node(:), rows(:, :), rp(:), ci(:)
-      real(wp), allocatable :: val(:), vals(:), mass(:)
-      integer :: k, e, i, nn, ncoo, a, b, d, dd, r, f
+      integer, allocatable :: fidx(:), node(:), rp(:), ci(:)
+      real(wp), allocatable :: val(:), mass(:), u0(:, :)
+      integer :: k, e, i, nn, a
       integer :: conn_l(4, 1)
-      real(wp) :: xe(2, 4), me(4), ke(8, 8), moved, keep
+      real(wp) :: xe(2, 4), me(4), moved, keep
 
       nn = st%nnode
       cand = contact%face_nodes(nn)
@@ -56,9 +60,8 @@ contains
          fidx(node(i)) = i
       end do
       conn_l(:, 1) = [1, 2, 3, 4]
-      ! mass transfer (eq. I.3) and K0's face rows as triplets (row, global dof, value)
+      ! mass transfer (eq. I.3)
       mass = st%mass
-      ncoo = 0
       do k = 1, size(sets)
          if (sets(k)%kind /= MAT_SOLID) cycle
          associate (s => sets(k))
@@ -77,7 +80,44 @@ contains
                      mass(i) = mass(i) + moved*me(a)/keep
                   end if
                end do
-               call element_stiffness(s, xe, ke)
+            end do
+         end associate
+      end do
+      ! K0's face rows: the stiffness at the reference state
+      u0 = 0.0_wp*st%x0
+      call face_rows(st, sets, fidx, nface, u0, rp, ci, val)
+      do i = 1, nn
+         if (face(i)) then
+            st%mass(i) = 0.0_wp
+            st%minv(:, i) = 0.0_wp
+         else if (mass(i) /= st%mass(i)) then
+            st%mass(i) = mass(i)
+            where (st%minv(:, i) > 0.0_wp) st%minv(:, i) = 1.0_wp/mass(i)
+         end if
+      end do
+      call contact%face%init(nn, nface, node, rp, ci, val, err)
+   end subroutine face_setup
+
+   !> The face rows (row 2 (f-1) + d for dof d of face node f = fidx(i) > 0, columns the global
+   !> dofs, CSR) of the stiffness of the elements with a face node, at the displacements u.
+   subroutine face_rows(st, sets, fidx, nface, u, rp, ci, val)
+      type(state_t), intent(in) :: st
+      type(element_set_t), intent(in) :: sets(:)
+      integer, intent(in) :: fidx(:), nface
+      real(wp), intent(in) :: u(:, :)
+      integer, allocatable, intent(out) :: rp(:), ci(:)
+      real(wp), allocatable, intent(out) :: val(:)
+      integer, allocatable :: rows(:, :)
+      real(wp), allocatable :: vals(:)
+      integer :: k, e, ncoo, a, b, d, dd, r, f
+      real(wp) :: ke(8, 8)
+      ncoo = 0
+      do k = 1, size(sets)
+         if (sets(k)%kind /= MAT_SOLID) cycle
+         associate (s => sets(k))
+            do e = 1, s%nel
+               if (all(fidx(s%conn(:, e)) == 0)) cycle
+               call element_stiffness(s, st%x0(:, s%conn(:, e)), u(:, s%conn(:, e)), ke)
                call grow(rows, ncoo + 64, 2)
                call grow(vals, ncoo + 64)
                do a = 1, 4
@@ -98,41 +138,85 @@ contains
          end associate
       end do
       call to_csr(2*nface, ncoo, rows, vals, rp, ci, val)
-      do i = 1, nn
-         if (face(i)) then
-            st%mass(i) = 0.0_wp
-            st%minv(:, i) = 0.0_wp
-         else if (mass(i) /= st%mass(i)) then
-            st%mass(i) = mass(i)
-            where (st%minv(:, i) > 0.0_wp) st%minv(:, i) = 1.0_wp/mass(i)
-         end if
-      end do
-      call contact%face%init(nn, nface, node, rp, ci, val, err)
-   end subroutine face_setup
+   end subroutine face_rows
 
-   !> The initial stiffness of one element (reference coordinates xe) by central differences of
-   !> its own force kernel (doc/impact.md, section 3.2), symmetrized.
-   subroutine element_stiffness(s, xe, ke)
+   !> Before the contact step of a run with massless faces: when the displacement gradient of a
+   !> face element (at its centre) has changed by more than REFRESH_STRAIN since the face rows
+   !> were formed, form them again at the current displacements st%u (the tangent stiffness)
+   !> and factorize K_FF again (doc/impact.md, section 3.2). Small-strain runs never refresh.
+   subroutine face_refresh(st, sets, contact, err)
+      type(state_t), intent(in) :: st
+      type(element_set_t), intent(in) :: sets(:)
+      type(contact_t), intent(inout) :: contact
+      type(error_t), allocatable, intent(out) :: err
+      integer, allocatable :: rp(:), ci(:)
+      real(wp), allocatable :: val(:)
+      if (.not. contact%face%active) return
+      if (.not. strained(st, sets, contact%face%fidx, contact%face%uref)) return
+      call face_rows(st, sets, contact%face%fidx, contact%face%nf, st%u, rp, ci, val)
+      call contact%face%update(val, st%u, err)
+   end subroutine face_refresh
+
+   !> Some face element's displacement gradient at its centre, of u - uref, has an entry above
+   !> REFRESH_STRAIN.
+   logical function strained(st, sets, fidx, uref) result(yes)
+      type(state_t), intent(in) :: st
+      type(element_set_t), intent(in) :: sets(:)
+      integer, intent(in) :: fidx(:)
+      real(wp), intent(in) :: uref(:, :)
+      real(wp), parameter :: dxi(4) = [-0.25_wp, 0.25_wp, 0.25_wp, -0.25_wp], &
+                             deta(4) = [-0.25_wp, -0.25_wp, 0.25_wp, 0.25_wp]
+      real(wp) :: xe(2, 4), du(2, 4), jac(2, 2), gxi(2, 2), g(2, 2), det
+      integer :: k, e
+      yes = .false.
+      do k = 1, size(sets)
+         if (sets(k)%kind /= MAT_SOLID) cycle
+         associate (s => sets(k))
+            do e = 1, s%nel
+               if (all(fidx(s%conn(:, e)) == 0)) cycle
+               xe = st%x0(:, s%conn(:, e))
+               du = st%u(:, s%conn(:, e)) - uref(:, s%conn(:, e))
+               ! columns d/dxi, d/deta of x and of u at the centre; grad u = gxi jac^-1
+               jac(:, 1) = matmul(xe, dxi)
+               jac(:, 2) = matmul(xe, deta)
+               gxi(:, 1) = matmul(du, dxi)
+               gxi(:, 2) = matmul(du, deta)
+               det = jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1)
+               g(:, 1) = (gxi(:, 1)*jac(2, 2) - gxi(:, 2)*jac(2, 1))/det
+               g(:, 2) = (gxi(:, 2)*jac(1, 1) - gxi(:, 1)*jac(1, 2))/det
+               if (maxval(abs(g)) > REFRESH_STRAIN) then
+                  yes = .true.
+                  return
+               end if
+            end do
+         end associate
+      end do
+   end function strained
+
+   !> The stiffness of one element (reference coordinates xe) at the displacements ue by central
+   !> differences of its own force kernel (doc/impact.md, section 3.2), symmetrized: at ue = 0
+   !> the initial stiffness K0, elsewhere the tangent.
+   subroutine element_stiffness(s, xe, ue, ke)
       type(element_set_t), intent(in) :: s
-      real(wp), intent(in) :: xe(2, 4)
+      real(wp), intent(in) :: xe(2, 4), ue(2, 4)
       real(wp), intent(out) :: ke(8, 8)
       real(wp) :: u(2, 4), fp(2, 4), fm(2, 4), h, w, whg, jmin, dt2
       integer :: j, conn_l(4, 1), eb, em, ef
       conn_l(:, 1) = [1, 2, 3, 4]
       h = FD_SHARE*max(maxval(xe(1, :)) - minval(xe(1, :)), maxval(xe(2, :)) - minval(xe(2, :)))
       do j = 1, 8
-         u = 0.0_wp
-         u(mod(j - 1, 2) + 1, (j + 1)/2) = h
+         u = ue
+         u(mod(j - 1, 2) + 1, (j + 1)/2) = ue(mod(j - 1, 2) + 1, (j + 1)/2) + h
          fp = 0.0_wp
          fm = 0.0_wp
          if (s%nq == 2) then
             call q4_force_2x2(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, fp, w, jmin, eb, dt2, em, ef)
-            u = -u
+            u(mod(j - 1, 2) + 1, (j + 1)/2) = ue(mod(j - 1, 2) + 1, (j + 1)/2) - h
             call q4_force_2x2(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, fm, w, jmin, eb, dt2, em, ef)
          else
             call q4_force_1pt(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, s%hourglass, fp, w, whg, jmin, &
                               eb, dt2, em, ef)
-            u = -u
+            u(mod(j - 1, 2) + 1, (j + 1)/2) = ue(mod(j - 1, 2) + 1, (j + 1)/2) - h
             call q4_force_1pt(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, s%hourglass, fm, w, whg, jmin, &
                               eb, dt2, em, ef)
          end if

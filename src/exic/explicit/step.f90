@@ -41,7 +41,7 @@ module exic_explicit_step
                                     predictor_velocity_at
    use exic_explicit_loads, only: load_spec_t
    use exic_explicit_loading, only: loading_t
-   use exic_explicit_face, only: face_setup
+   use exic_explicit_face, only: face_setup, face_refresh
    implicit none
    private
 
@@ -318,6 +318,10 @@ contains
       fhits = self%contact%fr%sweep_limit_hits + self%contact%fr%pass_limit_hits
       associate (st => self%st)
          st%nactive = 0
+         ! massless contact faces: the face rows at the current strains when they moved far
+         ! from those the face block was factorized at (doc/impact.md, section 3.2)
+         call face_refresh(st, self%sets, self%contact, err)
+         if (allocated(err)) return
          if (associated(self%hook)) then
             call self%hook%correct(st%nnode, self%x, vt, st%a, st%minv, st%dt_prev, st%dt, st%fcon, &
                                    st%nactive, err)

@@ -149,6 +149,10 @@ contains
                                            'limit '//itoa(c%fr%pass_limit_hits)//', tangential factorizations '// &
                                            itoa(c%fr%tt%nsolves)//' (reused '//itoa(c%fr%tt%nreused)// &
                                            '), frictional dissipation '//rtoa(c%dissipation))
+            ! the massless contact faces (doc/impact.md, section 3.2)
+            if (c%face%active) call files%say('massless contact faces: back-substitutions '// &
+                                              itoa(c%face%nsolves)//', stiffness rows formed again '// &
+                                              'at large strain '//itoa(c%face%nrefresh)//' times')
             if (inside%active) call files%say(inside%report())
          end if
       end associate

@@ -350,8 +350,9 @@ contains
    end subroutine visit
 
    !> The contact's state that lasts from step to step: the pairs' accumulated work and last
-   !> results, the run's statistics and the corrector's counters. (Everything else is rebuilt
-   !> at every step: candidates, normals, the factorization.) A contact law with a state of its
+   !> results, the run's statistics, the corrector's counters and the massless faces' stiffness
+   !> rows. (Everything else is rebuilt at every step: candidates, normals, the corrector's
+   !> factorization.) A contact law with a state of its
    !> own (friction) adds its items here.
    subroutine visit_contact(ar, c)
       type(archive_t), intent(inout) :: ar
@@ -410,6 +411,15 @@ contains
       call ar%item('contact.corrector.nsolves', c%corr%nsolves)
       call ar%item('contact.corrector.ndense', c%corr%ndense)
       call ar%item('contact.corrector.nsparse', c%corr%nsparse)
+      if (c%face%active) then
+         ! massless contact faces (doc/impact.md, section 3.2): the face rows as last formed
+         ! (the initial stiffness or a refreshed tangent), where they were formed, K_FF of them
+         call ar%item('contact.face.val', c%face%val)
+         call ar%item('contact.face.uref', c%face%uref)
+         call ar%item('contact.face.nrefresh', c%face%nrefresh)
+         call ar%item('contact.face.nsolves', c%face%nsolves)
+         if (.not. ar%saving .and. .not. allocated(ar%err)) call c%face%refactor(ar%err)
+      end if
    end subroutine visit_contact
 
    !> Loads, prescribed motion and rigid bodies (doc/loads.md): what changes during the run.

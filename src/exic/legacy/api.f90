@@ -10,7 +10,7 @@
 !> Create a contact problem from element connectivity: one surface per body (its free
 !> boundary edges), pairs IPAIR(6, NPAIR) = slave body, master body, method (1 Lagrange,
 !> 2 penalty), detection (1 swept, 2 static), passes (1 one pass, 2 two passes), rigid
-!> master (0, 1); PPAIR = penalty stiffness. Returns the handle IH (0 on failure).
+!> master (0, 1); PPAIR = penalty stiffness. Method 3: Lagrange with massless contact faces. Returns the handle IH (0 on failure).
 subroutine exic_contact_create_mesh(nnode, x0, amass, nelem, ix, ibody, npair, ipair, ppair, ih, ierr)
    use exic_legacy_problem, only: problem_create_mesh
    implicit none
@@ -82,6 +82,34 @@ subroutine exic_contact_step(ih, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr
    integer, intent(out) :: nactive, ierr
    call problem_step('EXIC_CONTACT_STEP', ih, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr)
 end subroutine exic_contact_step
+
+!> Massless contact faces of the method-3 pairs (doc/impact.md section 3, doc/api.md): AMASS
+!> the host's lumped masses after moving the face nodes' mass (eq. I.3), IFACE(NF) the face
+!> nodes, IRP(2 NF + 1), ICI, VAL the rows of the initial stiffness for the face dofs (CSR).
+subroutine exic_contact_set_face(ih, nnode, amass, nf, iface, irp, ici, val, ierr)
+   use exic_legacy_problem, only: problem_set_face
+   implicit none
+   integer, intent(in) :: ih, nnode, nf
+   double precision, intent(in) :: amass(nnode)
+   integer, intent(in) :: iface(nf), irp(2*nf + 1), ici(*)
+   double precision, intent(in) :: val(*)
+   integer, intent(out) :: ierr
+   call problem_set_face('EXIC_CONTACT_SET_FACE', ih, nnode, amass, nf, iface, irp, ici, val, ierr)
+end subroutine exic_contact_set_face
+
+!> EXIC_CONTACT_STEP of a handle with massless faces: R = f_ext - f_int at t(n+1) (read on the
+!> face dofs); on return A holds on the face dofs the acceleration that places them (eq. I.7).
+subroutine exic_contact_step_face(ih, nnode, x, v, a, r, dtprev, dt, fcon, nactive, ierr)
+   use exic_legacy_problem, only: problem_step_face
+   implicit none
+   integer, intent(in) :: ih, nnode
+   double precision, intent(in) :: x(2, nnode), v(2, nnode), r(2, nnode)
+   double precision, intent(inout) :: a(2, nnode)
+   double precision, intent(in) :: dtprev, dt
+   double precision, intent(out) :: fcon(2, nnode)
+   integer, intent(out) :: nactive, ierr
+   call problem_step_face('EXIC_CONTACT_STEP_FACE', ih, nnode, x, v, a, r, dtprev, dt, fcon, nactive, ierr)
+end subroutine exic_contact_step_face
 
 !> RES(6) of pair IPAIR in the last step: normal force, force x, y on the slave side (normal
 !> and friction), active constraints, largest penetration at t(n+1), largest multiplier.

@@ -181,3 +181,32 @@ subroutine exic_c_contact_error_message(ih, msg, msglen, lmsg, ierr) bind(C, nam
    end do
    msg(n + 1) = c_null_char
 end subroutine exic_c_contact_error_message
+
+!> C twin of exic_contact_set_face.
+subroutine exic_c_contact_set_face(ih, nnode, amass, nf, iface, irp, ici, val, ierr) &
+   bind(C, name='exic_c_contact_set_face')
+   use, intrinsic :: iso_c_binding, only: c_int, c_double
+   use exic_legacy_problem, only: problem_set_face
+   implicit none
+   integer(c_int), value :: ih, nnode, nf
+   real(c_double), intent(in) :: amass(nnode)
+   integer(c_int), intent(in) :: iface(nf), irp(2*nf + 1), ici(*)
+   real(c_double), intent(in) :: val(*)
+   integer(c_int), intent(out) :: ierr
+   call problem_set_face('exic_c_contact_set_face', ih, nnode, amass, nf, iface, irp, ici, val, ierr)
+end subroutine exic_c_contact_set_face
+
+!> C twin of exic_contact_step_face.
+subroutine exic_c_contact_step_face(ih, nnode, x, v, a, r, dtprev, dt, fcon, nactive, ierr) &
+   bind(C, name='exic_c_contact_step_face')
+   use, intrinsic :: iso_c_binding, only: c_int, c_double
+   use exic_legacy_problem, only: problem_step_face
+   implicit none
+   integer(c_int), value :: ih, nnode
+   real(c_double), intent(in) :: x(2, nnode), v(2, nnode), r(2, nnode)
+   real(c_double), intent(inout) :: a(2, nnode)
+   real(c_double), value :: dtprev, dt
+   real(c_double), intent(out) :: fcon(2, nnode)
+   integer(c_int), intent(out) :: nactive, ierr
+   call problem_step_face('exic_c_contact_step_face', ih, nnode, x, v, a, r, dtprev, dt, fcon, nactive, ierr)
+end subroutine exic_c_contact_step_face

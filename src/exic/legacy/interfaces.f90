@@ -10,6 +10,7 @@ module exic_legacy_interfaces
    public :: exic_contact_pair_results, exic_contact_ncon, exic_contact_constraints
    public :: exic_contact_work, exic_contact_free, exic_contact_error_message
    public :: exic_contact_set_friction, exic_contact_pair_friction
+   public :: exic_contact_set_face, exic_contact_step_face
 
    interface
       !> See api.f90 and doc/api.md.
@@ -67,6 +68,27 @@ module exic_legacy_interfaces
          double precision, intent(out) :: fcon(2, nnode)
          integer, intent(out) :: nactive, ierr
       end subroutine exic_contact_step
+
+      !> See api.f90 and doc/api.md.
+      subroutine exic_contact_set_face(ih, nnode, amass, nf, iface, irp, ici, val, ierr)
+         implicit none
+         integer, intent(in) :: ih, nnode, nf
+         double precision, intent(in) :: amass(nnode)
+         integer, intent(in) :: iface(nf), irp(2*nf + 1), ici(*)
+         double precision, intent(in) :: val(*)
+         integer, intent(out) :: ierr
+      end subroutine exic_contact_set_face
+
+      !> See api.f90 and doc/api.md.
+      subroutine exic_contact_step_face(ih, nnode, x, v, a, r, dtprev, dt, fcon, nactive, ierr)
+         implicit none
+         integer, intent(in) :: ih, nnode
+         double precision, intent(in) :: x(2, nnode), v(2, nnode), r(2, nnode)
+         double precision, intent(inout) :: a(2, nnode)
+         double precision, intent(in) :: dtprev, dt
+         double precision, intent(out) :: fcon(2, nnode)
+         integer, intent(out) :: nactive, ierr
+      end subroutine exic_contact_step_face
 
       !> See api.f90 and doc/api.md.
       subroutine exic_contact_pair_results(ih, ipair, res, ierr)

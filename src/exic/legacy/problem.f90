@@ -24,6 +24,7 @@ module exic_legacy_problem
    use exic_contact_contact, only: contact_t
    use exic_contact_spec, only: SURF_REGION, SURF_FACETS, SURF_NODES, PAIR_NTOS, PAIR_SYMMETRIC, &
                                 PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, DETECT_SWEPT, DETECT_STATIC
+   use exic_legacy_face, only: check_face, face_step_ok, face_motion, face_gap
    use exic_legacy_registry, only: problem_t, registry_add, registry_get, registry_free, set_error, &
                                    last_message, IERR_OK, IERR_ARGUMENT, IERR_HANDLE, IERR_SETUP, &
                                    IERR_SOLVE, VEL_FULL_STEP, VEL_HALF_STEP
@@ -33,7 +34,7 @@ module exic_legacy_problem
    public :: problem_create_mesh, problem_create_segments, problem_set_fixed, problem_set_pair
    public :: problem_set_option, problem_step, problem_pair_results, problem_ncon
    public :: problem_constraints, problem_work, problem_free, problem_message
-   public :: problem_set_friction, problem_pair_friction
+   public :: problem_set_friction, problem_pair_friction, problem_set_face, problem_step_face
 
    !> Option codes of problem_set_option.
    integer, parameter, public :: OPT_VELOCITY_FORM = 1
@@ -241,7 +242,9 @@ contains
       integer, intent(in) :: k, iopt(4)
       real(wp), intent(in) :: pen
       associate (ps => p%spec%pairs(k))
-         ps%method = merge(METHOD_LAGRANGE, METHOD_PENALTY, iopt(1) == 1)
+         ! 1 Lagrange, 2 penalty, 3 Lagrange with massless contact faces (LAGRange,ENERgy)
+         ps%method = merge(METHOD_PENALTY, METHOD_LAGRANGE, iopt(1) == 2)
+         ps%energy = iopt(1) == 3
          ps%detection = merge(DETECT_SWEPT, DETECT_STATIC, iopt(2) == 1)
          if (ps%slave == ps%master) then
             ps%kind = PAIR_SELF
@@ -282,6 +285,13 @@ contains
          mark(p%contact%surfaces(k)%nodes) = .true.
       end do
       p%snodes = pack([(k, k=1, p%nnode)], mark)
+      ! the massless faces of method-3 pairs (doc/impact.md, section 3): K_FF factorized again
+      if (p%face_set) call p%contact%face%init(p%nnode, size(p%face), p%face, p%frp, p%fci, p%fval, err)
+      if (allocated(err)) then
+         ierr = IERR_SETUP
+         call fail(0, who//': '//err%message)
+         return
+      end if
       if (allocated(p%spos)) deallocate (p%spos)
       allocate (p%spos(p%nnode), source=0)
       do s = 1, size(p%snodes)
@@ -289,7 +299,7 @@ contains
       end do
       if (.not. allocated(p%xprev)) then
          allocate (p%xprev(2, size(p%snodes)), p%fprev(2, size(p%snodes)), p%vprev(2, size(p%snodes)), &
-                   p%vhalf(2, size(p%snodes)), source=0.0_wp)
+                   p%vhalf(2, size(p%snodes)), p%xcor(2, size(p%snodes)), source=0.0_wp)
       end if
       ierr = IERR_OK
    end subroutine rebuild
@@ -325,10 +335,13 @@ contains
       type(problem_t), intent(inout) :: p
       integer :: i
       do i = 1, p%nnode
-         p%minv(:, i) = 1.0_wp/p%mass(i)
+         p%minv(:, i) = 0.0_wp
+         if (p%mass(i) > 0.0_wp) p%minv(:, i) = 1.0_wp/p%mass(i)
          if (p%rigid(i)) p%minv(:, i) = 0.0_wp
          where (p%fixed(:, i) /= 0) p%minv(:, i) = 0.0_wp
       end do
+      ! massless face nodes carry no mass: the face block places them (doc/impact.md, eq. I.5)
+      if (p%face_set) p%minv(:, p%face) = 0.0_wp
    end subroutine inverse_masses
 
    ! ------------------------------------------------------------------ options
@@ -444,6 +457,58 @@ contains
       ierr = IERR_OK
    end subroutine problem_set_option
 
+   !> The massless contact faces of method-3 pairs (doc/impact.md, section 3; doc/api.md):
+   !> mass(nnode) the host's lumped masses after it moved the face nodes' mass to their
+   !> elements' other nodes (eq. I.3; > 0 off the face, ignored on it), iface(nf) the face
+   !> nodes (surface nodes, neither rigid nor prescribed), irp(2 nf + 1), ici, val the rows of
+   !> the host's initial stiffness for the face dofs in 1-based CSR (row 2 (k-1) + d for dof d of
+   !> iface(k), columns the global dofs 2 (i-1) + d). The face block must be symmetric; it is
+   !> factorized (SuiteSparse LDL) when the contact object is rebuilt here.
+   subroutine problem_set_face(who, h, nnode, mass, nf, iface, irp, ici, val, ierr)
+      character(len=*), intent(in) :: who
+      integer, intent(in) :: h, nnode, nf
+      real(wp), intent(in) :: mass(nnode)
+      integer, intent(in) :: iface(max(nf, 0)), irp(2*max(nf, 0) + 1)
+      integer, intent(in) :: ici(*)
+      real(wp), intent(in) :: val(*)
+      integer, intent(out) :: ierr
+      type(problem_t), pointer :: p
+      integer, allocatable :: rp(:), ci(:)
+      real(wp), allocatable :: v(:), mass_old(:)
+      character(len=:), allocatable :: msg
+      integer :: k
+      p => lookup(who, h, ierr)
+      if (.not. associated(p)) return
+      ierr = IERR_ARGUMENT
+      if (nnode /= p%nnode) then
+         call fail(h, who//': NNODE = '//itoa(nnode)//' differs from the '//itoa(p%nnode)//' of the handle')
+         return
+      end if
+      call check_face(nnode, p%spos, p%rigid, p%fixed, mass, nf, iface, irp, ici, val, rp, ci, v, msg)
+      if (len(msg) > 0) then
+         call fail(h, who//': '//msg)
+         return
+      end if
+      mass_old = p%mass
+      p%mass = mass
+      p%mass(iface) = 0.0_wp
+      p%face = iface
+      p%frp = rp
+      p%fci = ci
+      p%fval = v
+      p%face_set = .true.
+      if (.not. allocated(p%zero)) allocate (p%zero(2, nnode), source=0.0_wp)
+      call rebuild(who, p, ierr)
+      if (ierr /= IERR_OK) then
+         ! a singular face block: the handle stays as it was
+         p%message = last_message(0)
+         p%face_set = .false.
+         p%mass = mass_old
+         call rebuild(who, p, k)
+         ierr = IERR_SETUP
+      end if
+   end subroutine problem_set_face
+
    ! ------------------------------------------------------------------ the step
 
    !> One contact step: x = x(n+1), v = v~(n+1) (or v(n+1/2), option 1), a = a~(n+1) on entry
@@ -458,9 +523,36 @@ contains
       real(wp), intent(in) :: dtprev, dt
       real(wp), intent(out) :: fcon(2, nnode)
       integer, intent(out) :: nactive, ierr
+      call step_common(who, h, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr)
+   end subroutine problem_step
+
+   !> The step of a handle with massless contact faces (method 3, doc/impact.md section 3): r =
+   !> f_ext - f_int at t(n+1) on the face dofs (eq. I.5); a holds there on exit eq. I.7's.
+   subroutine problem_step_face(who, h, nnode, x, v, a, r, dtprev, dt, fcon, nactive, ierr)
+      character(len=*), intent(in) :: who
+      integer, intent(in) :: h, nnode
+      real(wp), intent(in) :: x(2, nnode), v(2, nnode), r(2, nnode)
+      real(wp), intent(inout) :: a(2, nnode)
+      real(wp), intent(in) :: dtprev, dt
+      real(wp), intent(out) :: fcon(2, nnode)
+      integer, intent(out) :: nactive, ierr
+      call step_common(who, h, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr, r)
+   end subroutine problem_step_face
+
+   !> Both steps; r present: the face step.
+   subroutine step_common(who, h, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr, r)
+      character(len=*), intent(in) :: who
+      integer, intent(in) :: h, nnode
+      real(wp), intent(in) :: x(2, nnode), v(2, nnode)
+      real(wp), intent(inout) :: a(2, nnode)
+      real(wp), intent(in) :: dtprev, dt
+      real(wp), intent(out) :: fcon(2, nnode)
+      integer, intent(out) :: nactive, ierr
+      real(wp), intent(in), optional :: r(2, nnode)
       type(problem_t), pointer :: p
       type(error_t), allocatable :: err
       integer :: k, i, nbad
+      real(wp) :: c
 
       nactive = 0
       p => lookup(who, h, ierr)
@@ -472,6 +564,25 @@ contains
          ierr = IERR_ARGUMENT
          fcon = 0.0_wp
          return
+      end if
+      if (.not. face_step_ok(who, h, p, present(r))) then
+         ierr = IERR_SETUP
+         fcon = 0.0_wp
+         return
+      end if
+      if (present(r)) then
+         ! the residual is read on the face dofs; the host's a~ there means nothing (no mass):
+         ! the face's x~(n+2) is x*, eq. I.7
+         do k = 1, size(p%face)
+            i = p%face(k)
+            if (nonfinite(r(1, i)) + nonfinite(r(2, i)) > 0) then
+               call fail(h, who//': residual R of face node '//itoa(i)//' is not finite')
+               ierr = IERR_ARGUMENT
+               fcon = 0.0_wp
+               return
+            end if
+            a(:, i) = 0.0_wp
+         end do
       end if
       ! the velocities and accelerations the corrector reads: those of the surface nodes
       nbad = 0
@@ -495,14 +606,20 @@ contains
          end if
       end do
       if (p%velocity_form == VEL_HALF_STEP) then
-         ! v~(n+1) = v(n+1/2) + dt(n)/2 a~(n+1) (only surface nodes are read)
-         do k = 1, size(p%snodes)
-            i = p%snodes(k)
-            p%vt(:, i) = v(:, i) + (0.5_wp*dtprev)*a(:, i)
-         end do
-         call p%contact%correct(nnode, x, p%vt, a, p%minv, dtprev, dt, fcon, nactive, err)
+         ! v~(n+1) = v(n+1/2) + dt(n)/2 a~(n+1) (only surface nodes are read, every node with
+         ! a massless face: its free solve reads the predicted motion of the nodes next to it)
+         if (present(r)) then
+            p%vt = v + (0.5_wp*dtprev)*a
+         else
+            do k = 1, size(p%snodes)
+               i = p%snodes(k)
+               p%vt(:, i) = v(:, i) + (0.5_wp*dtprev)*a(:, i)
+            end do
+         end if
+         ! (r absent and p%zero unallocated without a face: fext and fint are absent)
+         call p%contact%correct(nnode, x, p%vt, a, p%minv, dtprev, dt, fcon, nactive, err, fext=r, fint=p%zero)
       else
-         call p%contact%correct(nnode, x, v, a, p%minv, dtprev, dt, fcon, nactive, err)
+         call p%contact%correct(nnode, x, v, a, p%minv, dtprev, dt, fcon, nactive, err, fext=r, fint=p%zero)
       end if
       if (allocated(err)) then
          call fail(h, who//': '//err%message)
@@ -510,12 +627,14 @@ contains
          return
       end if
       call after_step(p, nnode, x, a, dtprev, fcon)
-      p%c = 0.5_wp*dt*(dtprev + dt)
+      c = 0.5_wp*dt*(dtprev + dt)
+      p%c = c
+      if (present(r)) call face_motion(p, nnode, x, v, a, dt, c)
       p%nsteps = p%nsteps + 1
       do k = 1, size(p%contact%results)
          p%max_pen = max(p%max_pen, p%contact%results(k)%penetration)
       end do
-   end subroutine problem_step
+   end subroutine step_common
 
    !> What the queries need of the surface nodes: the contact forces (the correction of the
    !> accelerations is minv fcon) and the contact work as the driver books it (doc/impact.md,
@@ -717,6 +836,7 @@ contains
                dg = dg + cs%w(j, i)*dot_product(cs%nrm(:, i), p%minv(:, nd)*p%fprev(:, s))
             end do
             rcon(6, i) = cs%gap(i) + p%c*dg
+            if (p%face_set) rcon(6, i) = rcon(6, i) + face_gap(p, i)
          end do
       end associate
    end subroutine problem_constraints
@@ -840,9 +960,9 @@ contains
             call fail(0, at//'a slave node set can only be the slave side of a one-pass pair')
             return
          end if
-         if (ipair(3, k) < 1 .or. ipair(3, k) > 2 .or. ipair(4, k) < 1 .or. ipair(4, k) > 2 .or. &
+         if (ipair(3, k) < 1 .or. ipair(3, k) > 3 .or. ipair(4, k) < 1 .or. ipair(4, k) > 2 .or. &
              ipair(5, k) < 1 .or. ipair(5, k) > 2 .or. ipair(6, k) < 0 .or. ipair(6, k) > 1) then
-            call fail(0, at//'method, detection, passes (1 or 2) or rigid flag (0 or 1) out of range')
+            call fail(0, at//'method (1 to 3), detection, passes (1 or 2) or rigid flag (0 or 1) out of range')
             return
          end if
          if (ipair(3, k) == 2 .and. .not. (ppair(k) > 0.0_wp .and. ieee_is_finite(ppair(k)))) then

@@ -61,6 +61,15 @@ module exic_legacy_registry
       real(wp) :: max_pen = 0.0_wp            !< largest penetration at t(n+1) since creation
       integer :: nsteps = 0                   !< step calls made
       integer :: velocity_form = VEL_FULL_STEP
+      ! massless contact faces (method 3, doc/impact.md section 3): the host's face nodes and
+      ! the rows of its initial stiffness for their dofs (CSR, sorted), kept to set the face up
+      ! again when the contact object is rebuilt
+      logical :: face_set = .false.
+      integer, allocatable :: face(:)         !< (nf) face nodes
+      integer, allocatable :: frp(:), fci(:)  !< (2 nf + 1), (nnz) rows and global dof columns
+      real(wp), allocatable :: fval(:)        !< (nnz) values
+      real(wp), allocatable :: zero(:, :)     !< (2, nnode) zeros: the internal force argument
+      real(wp), allocatable :: xcor(:, :)     !< (2, ns) x(n+2) - x~(n+2) after the correction
       character(len=:), allocatable :: message !< message of the last failed call on this handle
    end type problem_t
 
