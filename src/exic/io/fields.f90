@@ -13,12 +13,16 @@
 !> also written as plain arrays into one of two buffers `/last/a`, `/last/b` (alternately, so
 !> that the buffer the `<stem>.xdmf` names is never the one being written).
 !>
-!> Kill safety: the file is created whole (mesh, empty series, buffers) under a temporary name,
-!> closed and renamed before anything else; after every output time it is flushed (H5Fflush) and only then are
-!> the XDMF files updated: the series is appended to in place by writes each of which leaves a
-!> well-formed document (exic_io_xdmf), the last-state file is written to a temporary name and
-!> renamed. A run killed at any moment leaves an HDF5 file readable up to its last flushed
-!> output time and XDMF files that parse and name only flushed times.
+!> Kill safety (doc/fields.md): no metadata byte of the .h5 changes while the run goes on. The
+!> file is created whole under a temporary name (mesh, every series with room for the expected
+!> output times, chunks allocated early and filled with NaN / -1, the buffers, the count
+!> `/n_times`), renamed, and opened write-through; an output time writes raw data only, through
+!> dataset handles held open (exic_io_hdf5_held), the count last, then flushes. Growth, restart
+!> and the final cut to the times written are a copy of the file changed and renamed over it.
+!> Only then are the XDMF files updated: the series is appended to in place by writes each of
+!> which leaves a well-formed document (exic_io_xdmf), the last-state file is written to a
+!> temporary name and renamed. A run killed at any moment leaves an HDF5 file whose count names
+!> its complete output times and XDMF files that parse and name only those.
 module exic_io_fields
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa
