@@ -12,6 +12,12 @@ import h5py  # noqa: E402
 import numpy as np  # noqa: E402
 
 
+
+def complete_times(f):
+    """Complete output times of an open exic field file: its count /n_times while a run writes
+    it (or after a kill: the series have room for more), else the length of /time."""
+    return int(f["n_times"][0]) if "n_times" in f else len(f["time"])
+
 def read_table(path):
     """A whitespace table with a '#' header: dict name -> column (numpy array)."""
     with open(path) as f:
@@ -189,7 +195,7 @@ def step_ratios(run, cfl):
     output times: (t, ratio). Uses <stem>.h5 (geometry) and <stem>.ene (dt of that step)."""
     mats = run.materials()
     with h5py.File(run.h5, "r") as f:
-        nt = len(f["time"])
+        nt = complete_times(f)
         x0 = f["mesh/coordinates"][()]
         conn = f["mesh/connectivity"][()]
         mat = f["mesh/material"][()]
@@ -226,7 +232,7 @@ def penetration_history(h5path):
     output time, measured from the deformed mesh alone (independent of the contact search):
     (t, depth, (node 1-based, its region, region entered) of the deepest at each time)."""
     with h5py.File(h5path, "r") as f:
-        nt = len(f["time"])
+        nt = complete_times(f)
         x0 = f["mesh/coordinates"][()]
         conn = f["mesh/connectivity"][()]
         reg = f["mesh/region"][()]
@@ -276,4 +282,4 @@ def penetration_history(h5path):
 
 def field_times(h5path):
     with h5py.File(h5path, "r") as f:
-        return f["time"][: len(f["time"])]
+        return f["time"][: complete_times(f)]

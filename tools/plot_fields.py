@@ -83,8 +83,10 @@ def outside(times, wanted):
 def load(path):
     """Mesh and complete output times of an exic field file."""
     with h5py.File(path, "r") as f:
-        times = f["time"][()]
-        n = len(times)  # /time is written last: its length counts complete output times
+        # complete output times: the count /n_times of a file being written or killed (its
+        # series have room for more), else every time of a finished file (doc/fields.md)
+        n = int(f["n_times"][0]) if "n_times" in f else len(f["time"])
+        times = f["time"][:n]
         data = {
             "x0": f["mesh/coordinates"][()],
             "conn": f["mesh/connectivity"][()],

@@ -62,7 +62,7 @@ def contour(path, h5, component, t, scale=1.0, title=None):
     drawn by tools/plot_fields.py."""
     names = ["sxx", "syy", "szz", "sxy", "pressure", "von_mises", "J"]
     with h5py.File(h5, "r") as f:
-        nt = len(f["time"])
+        nt = int(f["n_times"][0]) if "n_times" in f else len(f["time"])
         k = int(np.argmin(np.abs(f["time"][:nt] - t)))
         top = float(np.abs(f["fields/stress"][k, :, names.index(component)]).max())
     top = top if top > 0 else 1.0

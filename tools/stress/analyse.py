@@ -183,7 +183,7 @@ def penetration(h5_path):
     except OSError:
         return None
     with f:
-        nt = len(f["time"])
+        nt = int(f["n_times"][0]) if "n_times" in f else len(f["time"])
         if nt == 0:
             return None
         x0 = f["mesh/coordinates"][()]

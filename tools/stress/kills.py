@@ -1,13 +1,19 @@
 """Kills at random moments (section "kills" of the stress suite, doc/stability.md).
 
 The seed's example 7.2 with fields every 0.002 and a restart file every 0.05 (SAVE,,0.05) is
-run to the end once (the reference), then N times killed by SIGKILL, SIGTERM or SIGINT in turn,
-a random delay (uniform over the reference's run time) after the run has created its
-.out (so that the delays fall on the run, not on loading the program's libraries, which takes a
-varying part of a second on a loaded machine). After each kill:
+run to the end once (the reference), then N times killed by SIGKILL, SIGTERM or SIGINT in turn
+at a random point of its progress: each kill draws a fraction f (uniform in [0, 1)) and waits
+until the run's .his has reached f times the reference's .his length (so that the kills fall
+uniformly over the run whatever the machine's load does to its speed), then a random extra
+delay, uniform over the reference's wall time of one field output interval (the .his is
+flushed just before every field output time: without it the kills would all fall there).
+After each kill:
 
-- the .h5 opens with h5dump (-H) and with h5py, and its /time is the reference's first output
-  times (a SIGTERM/SIGINT run adds the state it stopped in as its last);
+- the .h5 opens with h5dump (-H) and with h5py, and its complete output times are the
+  reference's first ones (a SIGTERM/SIGINT run adds the state it stopped in as its last). A
+  file left open (SIGKILL) has the count /n_times: /time is finite in its first n_times slots
+  and NaN beyond the slot after them (that one may hold a half-written output time), and every
+  series has as many slots as /time; a file closed normally has no count and no NaN;
 - the series XDMF file parses and names only times the .h5 holds, and so does the last-state
   XDMF file (an output time is complete when the XDMF files name it: they are written after
   the .h5 is flushed); so every output time completed before the kill is in the .h5;
@@ -65,15 +71,33 @@ def make_dir(d):
                 "INCLude,common/batch.inc\nSTOP\n")
 
 
-def h5_times(path):
-    """(ok, times, message): the file opens with h5dump -H and h5py; its /time."""
+def h5_times(path, info=None):
+    """(ok, times, message): the file opens with h5dump -H and h5py; its complete output times
+    (the first /n_times of /time in a file left open, all of /time in a closed one), with the
+    invariant of the count checked (doc/fields.md, "Kill safety"). `info` (a dict) gets
+    "open_file": whether the file has the count."""
     import h5py
+    import numpy as np
     r = subprocess.run(["h5dump", "-H", path], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, timeout=60)
     if r.returncode != 0:
         return False, None, "h5dump: " + r.stderr.decode(errors="replace").strip()[:200]
     try:
         with h5py.File(path, "r") as f:
-            return True, [float(x) for x in f["time"][()]], ""
+            t = f["time"][()]
+            series = [f[n] for n in ("step", "fields/displacement", "fields/stress")] + \
+                [f["energies"][n] for n in f["energies"]]
+            if any(d.shape[0] != t.size for d in series):
+                return False, None, "a series has not as many slots as /time"
+            if "n_times" in f:
+                n = int(f["n_times"][0])
+                if info is not None:
+                    info["open_file"] = True
+                if not (0 <= n <= t.size and np.all(np.isfinite(t[:n])) and np.all(np.isnan(t[n + 1:]))):
+                    return False, None, f"/time is not finite up to /n_times = {n} and NaN after the next slot"
+                return True, [float(x) for x in t[:n]], ""
+            if not np.all(np.isfinite(t)):
+                return False, None, "a closed file (no /n_times) has unwritten times"
+            return True, [float(x) for x in t], ""
     except Exception as e:  # noqa: BLE001 - any failure to read is the finding
         return False, None, "h5py: " + str(e)[:200]
 
@@ -110,13 +134,15 @@ def same_time(a, b):
     return abs(a - b) <= 1e-12 * max(1.0, abs(b))
 
 
-def one_kill(exic, work, k, delay, signame, signo, ref):
+def one_kill(exic, work, k, progress, delay, signame, signo, ref):
     d = os.path.join(work, f"kill_{k:04d}")
     make_dir(d)
-    res = {"index": k, "signal": signame, "delay": round(delay, 4), "failures": []}
+    res = {"index": k, "signal": signame, "progress": round(progress, 4), "delay": round(delay, 4),
+           "failures": []}
     fail = res["failures"].append
     p = subprocess.Popen([exic, "-q", "k.inp"], cwd=d, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     wait_started(p, d)
+    wait_progress(p, os.path.join(d, "k.his"), progress * len(ref["his"]))
     time.sleep(delay)
     finished_before = p.poll() is not None
     if not finished_before:
@@ -139,9 +165,11 @@ def one_kill(exic, work, k, delay, signame, signo, ref):
     ref_times = ref["times"]
     n5 = 0
     if os.path.exists(stem + ".h5"):
-        ok, times, msg = h5_times(stem + ".h5")
+        info = {}
+        ok, times, msg = h5_times(stem + ".h5", info)
+        res["h5_open_file"] = info.get("open_file", False)
         if not ok:
-            fail("h5 unreadable: " + msg)
+            fail(("h5 unreadable: " if msg.startswith(("h5dump", "h5py")) else "h5 count: ") + msg)
         else:
             n5 = len(times)
             res["h5_times"] = n5
@@ -199,6 +227,18 @@ def wait_started(p, d, limit=60.0):
     return time.time() - t0
 
 
+def wait_progress(p, his, size, limit=120.0):
+    """Wait until the file `his` has at least `size` bytes (or the run ended)."""
+    t0 = time.time()
+    while p.poll() is None and time.time() - t0 < limit:
+        try:
+            if os.path.getsize(his) >= size:
+                return
+        except OSError:
+            pass
+        time.sleep(0.001)
+
+
 def run_kills(exic, seed, n, jobs, work, save, log):
     work = os.path.join(work, "kills")
     os.makedirs(work, exist_ok=True)
@@ -217,16 +257,19 @@ def run_kills(exic, seed, n, jobs, work, save, log):
         ref = {"times": times, "his": f.read()}
     log(f"kills: {n} kills of seed 7.2 (reference {wall:.2f} s, {len(times)} output times), seed {seed}")
     rng = random.Random(seed)
-    plan = [(k, rng.uniform(0.0, wall), *SIGNALS[k % 3]) for k in range(n)]
+    interval = wall / max(1, len(times) - 1)
+    plan = [(k, rng.random(), rng.uniform(0.0, interval), *SIGNALS[k % 3]) for k in range(n)]
     t1 = time.time()
     results = []
     with cf.ThreadPoolExecutor(max_workers=jobs) as ex:
-        futs = [ex.submit(one_kill, exic, work, k, delay, name, signo, ref) for k, delay, name, signo in plan]
+        futs = [ex.submit(one_kill, exic, work, k, progress, delay, name, signo, ref)
+                for k, progress, delay, name, signo in plan]
         for j, fut in enumerate(cf.as_completed(futs), 1):
             r = fut.result()
             results.append(r)
             if r["failures"]:
-                log(f"  kill {r['index']} ({r['signal']} after {r['delay']} s): {'; '.join(r['failures'])}")
+                log(f"  kill {r['index']} ({r['signal']} at {r['progress']} of the .his + {r['delay']} s): "
+                    f"{'; '.join(r['failures'])}")
             if j % 50 == 0:
                 log(f"  {j}/{n} kills, {time.time() - t1:.0f} s")
     results.sort(key=lambda r: r["index"])

@@ -94,21 +94,23 @@ def _kills(data, w):
       "on two cores; `tools/stress/kills.py`). The seed's example 7.2 with fields every 0.002 "
       f"({data['reference_times']} output times) and a restart file every 0.05 (SAVE,,0.05) runs once "
       f"to the end ({data['reference_seconds']:.2f} s from the creation of its .out to its end), then is "
-      "killed by SIGKILL, SIGTERM and SIGINT in turn after a random delay (uniform over that time) "
-      "counted from the creation of its .out (runs that vary in speed with the machine's load end "
-      "before some signals: counted apart). Checked after each kill: the .h5 "
-      "opens with h5dump and h5py and its /time is the reference's first output times (a SIGTERM or "
-      "SIGINT run adds the state it stopped in); both XDMF files parse and name only times the .h5 "
-      "holds (they name an output time only once the .h5 holding it is flushed, so every output time "
-      "completed before the kill is there); the .his reaches the last time of the .h5; every "
-      "restart file present opens, and the run continued from the newest ends with the reference's "
-      ".his byte for byte.\n")
+      "killed by SIGKILL, SIGTERM and SIGINT in turn at a random point of its progress: when its .his "
+      "reaches a fraction of the reference's .his length drawn uniformly, plus a random delay uniform "
+      "over the reference's wall time of one output interval (runs that end before the signal are "
+      "counted apart). Checked after each kill: the .h5 opens with h5dump and h5py; a file left open "
+      "(SIGKILL) has its count /n_times, /time finite in that many slots and NaN beyond the next, "
+      "every series as many slots as /time, and a closed file no count and no NaN (*count right*); "
+      "its complete output times are the reference's first ones (a SIGTERM or SIGINT run adds the "
+      "state it stopped in); both XDMF files parse and name only times the .h5 holds; the .his "
+      "reaches the last time of the .h5; every restart file present opens, and the run continued "
+      "from the newest ends with the reference's .his byte for byte.\n")
     w("A signal that comes while the program is still being loaded (its shared libraries, before "
       "its first statement; over a second on the loaded test machine) ends it by the signal's "
       "default action before it has written anything: counted apart as *before start*.\n")
-    w("| signal | kills | before start | ended before the signal | exit as documented | .h5 readable | .h5 times right "
+    w("| signal | kills | before start | ended before the signal | exit as documented | .h5 readable "
+      "| .h5 left open | count right | .h5 times right "
       "| XDMF right | .his not behind | restart files present | continued runs identical | failures |")
-    w("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    w("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name in ("SIGKILL", "SIGTERM", "SIGINT"):
         rs = [r for r in res if r["signal"] == name]
         if not rs:
@@ -122,19 +124,20 @@ def _kills(data, w):
         bad = sum(1 for r in rs if r["failures"])
         w(f"| {name} | {len(rs)} | {sum(1 for r in rs if r.get('before_start'))} | "
           f"{sum(1 for r in rs if r['finished_before'])} | {count('exit code')} | "
-          f"{count('h5 unreadable')} | {count('/time')} | {count('xdmf')} | {count('.his behind')} | "
+          f"{count('h5 unreadable')} | {sum(1 for r in rs if r.get('h5_open_file'))} | {count('h5 count')} | "
+          f"{count('/time is not the')} | {count('xdmf')} | {count('.his behind')} | "
           f"{present} | {cont} of {present} | {bad} |")
     w("")
     reached = sorted(r.get("h5_times") or 0 for r in res if not r["finished_before"])
     if reached:
         w(f"Output times in the .h5 at the signal (of {data['reference_times']}): smallest {reached[0]}, "
-          f"median {reached[len(reached) // 2]}, largest {reached[-1]}; the kills fall early in the run when "
-          "the machine is busier than during the reference run (its time sets the delays).\n")
+          f"median {reached[len(reached) // 2]}, largest {reached[-1]}.\n")
     fails = [r for r in res if r["failures"]]
     if fails:
         w("Failures:\n")
         for r in fails[:20]:
-            w(f"- kill {r['index']} ({r['signal']} after {r['delay']} s): {'; '.join(r['failures'])}")
+            w(f"- kill {r['index']} ({r['signal']} at {r.get('progress')} of the .his + {r['delay']} s): "
+              f"{'; '.join(r['failures'])}")
         w("")
 
 

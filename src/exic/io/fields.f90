@@ -13,19 +13,25 @@
 !> also written as plain arrays into one of two buffers `/last/a`, `/last/b` (alternately, so
 !> that the buffer the `<stem>.xdmf` names is never the one being written).
 !>
-!> Kill safety: the file is created whole (mesh, empty series, buffers) under a temporary name,
-!> closed and renamed before anything else; after every output time it is flushed (H5Fflush) and only then are
-!> the XDMF files updated: the series is appended to in place by writes each of which leaves a
-!> well-formed document (exic_io_xdmf), the last-state file is written to a temporary name and
-!> renamed. A run killed at any moment leaves an HDF5 file readable up to its last flushed
-!> output time and XDMF files that parse and name only flushed times.
+!> Kill safety (doc/fields.md): no metadata byte of the .h5 changes while the run goes on. The
+!> file is created whole under a temporary name (mesh, every series with room for the expected
+!> output times, chunks allocated early and filled with NaN / -1, the buffers, the count
+!> `/n_times`), renamed, and opened write-through; an output time writes raw data only, through
+!> dataset handles held open (exic_io_hdf5_held), the count last, then flushes. Growth, restart
+!> and the final cut to the times written are a copy of the file changed and renamed over it.
+!> Only then are the XDMF files updated: the series is appended to in place by writes each of
+!> which leaves a well-formed document (exic_io_xdmf), the last-state file is written to a
+!> temporary name and renamed. A run killed at any moment leaves an HDF5 file whose count names
+!> its complete output times and XDMF files that parse and name only those.
 module exic_io_fields
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa
    use exic_base_error, only: error_t, make_error
    use exic_mesh_smoothing, only: nodal_average
    use exic_io_hdf5_file, only: hdf5_file_t, DTYPE_REAL, DTYPE_INT, DTYPE_INT64
-   use exic_io_posix, only: rename_file
+   use exic_io_hdf5_held, only: hdf5_held_t
+   use exic_io_fields_checks, only: check_mesh, check_names
+   use exic_io_posix, only: rename_file, copy_file, remove_file
    use exic_io_xdmf, only: xdmf_series_t, write_whole_file, xml_escape, real_text, data_item, &
                            attribute
    implicit none
@@ -47,10 +53,18 @@ module exic_io_fields
 
    character(len=*), parameter :: NL = achar(10)
 
+   !> Output times preallocated when the caller gives no estimate, and the most bytes a
+   !> preallocation made from an estimate may take (growth takes over beyond it).
+   integer, parameter :: START_CAPACITY = 16
+   integer(i8), parameter :: ESTIMATE_BYTES_MAX = 256_i8*1024*1024
+   !> The count of complete output times while the run goes on (removed at `close`).
+   character(len=*), parameter :: COUNT_NAME = '/n_times'
+
    !> Writer of one field output (`.h5`, `.xdmf`, `_series.xdmf`).
    type :: field_writer_t
       private
       type(hdf5_file_t) :: h5
+      type(hdf5_held_t) :: held                     !< the datasets an output time writes
       type(xdmf_series_t) :: series                 !< <stem>_series.xdmf
       character(len=:), allocatable :: last_path    !< <stem>.xdmf
       character(len=:), allocatable :: h5_ref       !< the .h5 file as the XDMF files name it
@@ -62,6 +76,15 @@ module exic_io_fields
       integer, allocatable :: conn(:, :)            !< connectivity (4, nelem), 1-based
       real(wp), allocatable :: x(:, :), vec3(:, :), nodal(:, :), col_cell(:), col_node(:)
       integer :: ntime = 0                          !< output times written so far
+      integer :: capacity = 0                       !< output times the series have room for
+      character(len=:), allocatable :: path_h5
+      character(len=:), allocatable :: failed       !< message of a failed run, stored at close
+      !> handles of the held datasets (hdf5_file_t%hold): the count, the series, the buffers
+      integer :: id_count = 0, id_active = 0, id_stress = 0, id_nodal = 0, id_time = 0, id_step = 0
+      integer :: id_vec(5) = 0
+      integer, allocatable :: id_energy(:)
+      !> per buffer (0:1): vectors 1..nvec, contact_active, cell_<c>, node_<c>, output
+      integer, allocatable :: id_last(:, :)
       real(wp) :: t_last = 0.0_wp
       integer :: nenergy = -1                       !< -1 until the first write_step
       character(len=:), allocatable :: energy_names(:)
@@ -84,11 +107,13 @@ contains
    !> (node pairs, 1-based; may be empty). `cell_names` names the element values of each output
    !> time (default STRESS_NAMES; letters, digits and '_'). `energy_names`, when given, creates the
    !> energy series now instead of at the first output time (then every object of the file exists
-   !> after `open`, as HDF5's single-writer/multiple-reader mode requires). The files must share
+   !> after `open`; otherwise the first output time copies the file once to add them). The files must share
    !> one directory unless `path_h5` is absolute. `friction`: the run has friction; every output
-   !> time then also holds the nodal friction force.
+   !> time then also holds the nodal friction force. `capacity`: the number of output times the
+   !> run expects (room is made for them at once; more are possible, at the cost of a copy of
+   !> the file each time the room doubles).
    subroutine writer_open(self, path_h5, path_xdmf, nnode, nelem, x0, conn, region, mat, &
-                          surf_edges, err, cell_names, energy_names, friction)
+                          surf_edges, err, cell_names, energy_names, friction, capacity)
       class(field_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path_h5, path_xdmf
       integer, intent(in) :: nnode, nelem
@@ -98,6 +123,7 @@ contains
       character(len=*), intent(in), optional :: cell_names(:)
       character(len=*), intent(in), optional :: energy_names(:)
       logical, intent(in), optional :: friction
+      integer, intent(in), optional :: capacity
       type(error_t), allocatable :: err2
 
       if (self%h5%is_open()) then
@@ -117,24 +143,29 @@ contains
       call prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err, friction)
       if (allocated(err)) return
 
+      self%capacity = initial_capacity(self, capacity, energy_names)
       ! made whole under a temporary name, closed and renamed: a run killed while the file is
-      ! being created leaves no .h5 rather than a broken one
+      ! being created leaves no .h5 rather than a broken one. Every dataset the run writes
+      ! exists after this, with room for `capacity` output times (doc/fields.md, "Kill safety")
       call self%h5%create(path_h5//'.tmp', err)
       if (allocated(err)) return
       call write_mesh(self%h5, x0, conn, region, mat, surf_edges, err)
       if (.not. allocated(err)) call create_field_series(self, err)
       if (.not. allocated(err)) call create_last_buffers(self, err)
-      if (.not. allocated(err) .and. present(energy_names)) call create_energy_series(self, energy_names, err)
-      if (.not. allocated(err)) call self%h5%close(err)
+      if (.not. allocated(err) .and. present(energy_names)) &
+         call create_energy_series(self, self%h5, energy_names, err)
+      if (.not. allocated(err)) call self%h5%write(COUNT_NAME, [0], err)
+      if (.not. allocated(err)) call close_live(self, err)
       if (.not. allocated(err)) call rename_file(path_h5//'.tmp', path_h5, err)
-      if (.not. allocated(err)) call self%h5%open(path_h5, .true., err)
+      if (.not. allocated(err)) call open_live(self, err)
       if (.not. allocated(err)) call self%series%create(series_path(path_xdmf), series_head(), &
                                                         series_tail(), err)
       if (.not. allocated(err)) call write_whole_file(self%last_path, last_document(self, -1, 0.0_wp, &
                                                                                     0_i8), err)
       if (allocated(err)) then
          call self%series%abandon()
-         call self%h5%close(err2)
+         call close_live(self, err2)
+         call remove_file(path_h5//'.tmp')     ! a file that could not be made whole
       end if
    end subroutine writer_open
 
@@ -152,6 +183,8 @@ contains
       if (allocated(err)) return
       self%h5_ref = xml_escape(ref, dash=.true.)
       self%last_path = path_xdmf
+      self%path_h5 = path_h5
+      if (allocated(self%failed)) deallocate (self%failed)
       self%nnode = nnode
       self%nelem = nelem
       self%nvec = 4
@@ -171,12 +204,14 @@ contains
       if (allocated(self%energy_names)) deallocate (self%energy_names)
    end subroutine prepare
 
-   !> Continue the field output of a restarted run: open the existing `path_h5` (written by
-   !> `open` for the same mesh with the same `cell_names`, `energy_names` and `friction`), keep
-   !> its first `ntime` output times (those written before the restart point) and write the
-   !> series file anew for them. The last-state file is rewritten at the next output time.
+   !> Continue the field output of a restarted run: take the existing `path_h5` (written by
+   !> `open` for the same mesh with the same `cell_names`, `energy_names` and `friction`, finished
+   !> or left by a killed run), keep its first `ntime` output times (those written before the
+   !> restart point), make room for `capacity` more (default START_CAPACITY) by a copy of the
+   !> file renamed over it, and write the series file anew for the times kept. The last-state
+   !> file is rewritten at the next output time.
    subroutine writer_reopen(self, path_h5, path_xdmf, nnode, nelem, x0, conn, ntime, energy_names, err, &
-                            cell_names, friction)
+                            cell_names, friction, capacity)
       class(field_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path_h5, path_xdmf
       integer, intent(in) :: nnode, nelem, ntime
@@ -186,10 +221,11 @@ contains
       type(error_t), allocatable, intent(out) :: err
       character(len=*), intent(in), optional :: cell_names(:)
       logical, intent(in), optional :: friction
+      integer, intent(in), optional :: capacity
       type(error_t), allocatable :: err2
       real(wp), allocatable :: times(:)
       integer(i8), allocatable :: steps(:)
-      integer :: i
+      integer :: i, held
 
       if (present(cell_names)) then
          self%comp_names = cell_names
@@ -198,28 +234,25 @@ contains
       end if
       call prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err, friction)
       if (allocated(err)) return
-      call self%h5%open(path_h5, .true., err)
-      if (allocated(err)) return
-      do i = 1, self%nvec
-         if (.not. allocated(err)) call self%h5%shorten_series('/fields/'//trim(NODE_VECTORS(i)), ntime, err)
-      end do
-      if (.not. allocated(err)) call self%h5%shorten_series('/fields/contact_active', ntime, err)
-      if (.not. allocated(err)) call self%h5%shorten_series('/fields/stress', ntime, err)
-      if (.not. allocated(err)) call self%h5%shorten_series('/fields/nodal_stress', ntime, err)
-      do i = 1, size(energy_names)
-         if (.not. allocated(err)) call self%h5%shorten_series('/energies/'//trim(energy_names(i)), ntime, err)
-      end do
-      if (.not. allocated(err)) call self%h5%shorten_series('/time', ntime, err)
-      if (.not. allocated(err)) call self%h5%shorten_series('/step', ntime, err)
-      allocate (times(ntime), steps(ntime))
-      if (.not. allocated(err)) call self%h5%read('/time', times, err)
-      if (.not. allocated(err)) call self%h5%read('/step', steps, err)
-      if (.not. allocated(err)) call self%h5%flush(err)
-      if (.not. allocated(err)) then
-         self%energy_names = energy_names
-         self%nenergy = size(energy_names)
-         call self%series%create(series_path(path_xdmf), series_head(), series_tail(), err)
+      self%energy_names = energy_names
+      self%nenergy = size(energy_names)
+      call complete_times(path_h5, held, err)
+      if (.not. allocated(err) .and. held < ntime) &
+         call make_error(err, "field output: '"//path_h5//"' holds "//itoa(held)// &
+                         ' output times, fewer than the '//itoa(ntime)//' the restart file recorded')
+      if (allocated(err)) then
+         err%message = 'field output (restart): '//err%message
+         return
       end if
+      self%capacity = ntime + initial_capacity(self, capacity, energy_names)
+      call rebuild(self, ntime, self%capacity, .false., err)
+      if (.not. allocated(err)) then
+         allocate (times(self%capacity), steps(self%capacity))
+         call self%h5%read('/time', times, err)
+      end if
+      if (.not. allocated(err)) call self%h5%read('/step', steps, err)
+      if (.not. allocated(err)) call self%series%create(series_path(path_xdmf), series_head(), &
+                                                        series_tail(), err)
       do i = 1, ntime
          if (allocated(err)) exit
          self%ntime = i
@@ -228,7 +261,7 @@ contains
       end do
       if (allocated(err)) then
          call self%series%abandon()
-         call self%h5%close(err2)
+         call close_live(self, err2)
          err%message = 'field output (restart): '//err%message
       end if
    end subroutine writer_reopen
@@ -251,7 +284,7 @@ contains
       character(len=*), intent(in) :: energy_names(:)
       type(error_t), allocatable, intent(out) :: err
       real(wp), intent(in), contiguous, optional :: ffric(:, :)
-      integer :: i, b
+      integer :: i, b, k
 
       call check_step(self, t, u, v, a, sig, fcont, active, energies, energy_names, err)
       if (allocated(err)) return
@@ -264,34 +297,51 @@ contains
          if (allocated(err)) return
       end if
       if (self%nenergy < 0) then
-         call create_energy_series(self, energy_names, err)
-         if (allocated(err)) return
+         ! the energy series are added by a copy of the file, like a growth
+         self%energy_names = energy_names
+         call rebuild(self, self%ntime, self%capacity, .false., err, new_energies=.true.)
+         if (allocated(err)) then
+            self%broken = .true.
+            return
+         end if
+         self%nenergy = size(energy_names)
+      end if
+      if (self%ntime == self%capacity) then
+         call rebuild(self, self%ntime, 2*max(self%capacity, 1), .false., err)
+         if (allocated(err)) then
+            self%broken = .true.
+            err%message = 'field output at t = '//real_text(t)//': '//err%message
+            return
+         end if
       end if
       ! element values averaged to the nodes over the current configuration
       self%x = self%x0 + u
       call nodal_average(self%ncomp, self%nnode, self%nelem, self%conn, self%x, sig, self%nodal)
 
-      call self%h5%append('/fields/displacement', u, err)
-      if (.not. allocated(err)) call self%h5%append('/fields/velocity', v, err)
-      if (.not. allocated(err)) call self%h5%append('/fields/acceleration', a, err)
-      if (.not. allocated(err)) call self%h5%append('/fields/contact_force', fcont, err)
-      if (.not. allocated(err) .and. self%nvec == 5) call self%h5%append('/fields/friction_force', ffric, err)
-      if (.not. allocated(err)) call self%h5%append('/fields/contact_active', active, err)
-      if (.not. allocated(err)) call self%h5%append('/fields/stress', sig, err)
-      if (.not. allocated(err)) call self%h5%append('/fields/nodal_stress', self%nodal, err)
+      ! raw data only, into the slab k allocated at creation, through the held handles
+      k = self%ntime
+      call self%held%write_slab(self%id_vec(1), k, u, err)
+      if (.not. allocated(err)) call self%held%write_slab(self%id_vec(2), k, v, err)
+      if (.not. allocated(err)) call self%held%write_slab(self%id_vec(3), k, a, err)
+      if (.not. allocated(err)) call self%held%write_slab(self%id_vec(4), k, fcont, err)
+      if (.not. allocated(err) .and. self%nvec == 5) call self%held%write_slab(self%id_vec(5), k, ffric, err)
+      if (.not. allocated(err)) call self%held%write_slab(self%id_active, k, active, err)
+      if (.not. allocated(err)) call self%held%write_slab(self%id_stress, k, sig, err)
+      if (.not. allocated(err)) call self%held%write_slab(self%id_nodal, k, self%nodal, err)
       do i = 1, size(energies)
          if (allocated(err)) exit
-         call self%h5%append('/energies/'//trim(self%energy_names(i)), energies(i), err)
+         call self%held%write_slab(self%id_energy(i), k, energies(i), err)
       end do
-      ! /time and /step last: their length is the number of complete output times
-      if (.not. allocated(err)) call self%h5%append('/time', t, err)
-      if (.not. allocated(err)) call self%h5%append('/step', step, err)
+      if (.not. allocated(err)) call self%held%write_slab(self%id_time, k, t, err)
+      if (.not. allocated(err)) call self%held%write_slab(self%id_step, k, step, err)
       b = mod(self%ntime, 2)
       if (.not. allocated(err)) call write_last_buffer(self, b, u, v, a, fcont, active, sig, err)
       if (.not. allocated(err) .and. self%nvec == 5) then
          self%vec3(1:2, :) = ffric
-         call self%h5%rewrite('/last/'//BUFFER(b)//'/friction_force', self%vec3, err)
+         call self%held%write_whole(self%id_last(5, b), self%vec3, err)
       end if
+      ! the count last: it says how many slabs hold a complete output time
+      if (.not. allocated(err)) call self%held%write_whole(self%id_count, self%ntime + 1, err)
       if (.not. allocated(err)) call self%h5%flush(err)
       if (.not. allocated(err)) then
          self%ntime = self%ntime + 1
@@ -307,31 +357,210 @@ contains
       end if
    end subroutine writer_write_step
 
-   !> Flush and close the .h5 file and write the series file once more without its reserve (the
-   !> last-state file is complete already). Every file is closed even when one step fails; the
-   !> first failure is returned. No-op when not open.
+   !> Close the .h5 file and cut it to the output times written (a copy renamed over it, which
+   !> also drops the count `/n_times` and stores the message of `mark_failed`), then write the
+   !> series file once more without its reserve (the last-state file is complete already).
+   !> Every file is closed even when one step fails; the first failure is returned (the .h5 is
+   !> then left as a killed run leaves it). No-op when not open.
    subroutine writer_close(self, err)
       class(field_writer_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
       type(error_t), allocatable :: err2
       if (.not. self%h5%is_open()) return
-      call self%h5%flush(err)
-      call self%h5%close(err2)
+      call rebuild(self, self%ntime, self%ntime, .true., err)
+      call close_live(self, err2)
       if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
       call self%series%finish(err2)
       if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
       call self%series%abandon()
    end subroutine writer_close
 
-   !> Record that the run failed: the root attribute `failed` of the .h5 file holds `message`
-   !> (the last output time is then the state the run stopped in), flushed at once.
+   !> Record that the run failed: the root attribute `failed` of the .h5 file will hold `message`
+   !> (the last output time is then the state the run stopped in). It is stored by `close`, in
+   !> the copy that cuts the file to its output times: during the run no metadata changes.
    subroutine writer_mark_failed(self, message, err)
       class(field_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: message
       type(error_t), allocatable, intent(out) :: err
-      call self%h5%write_attr('/', 'failed', message, err)
-      if (.not. allocated(err)) call self%h5%flush(err)
+      if (.not. self%h5%is_open()) then
+         call make_error(err, 'field output: cannot mark the run failed: the writer is not open')
+         return
+      end if
+      self%failed = message
    end subroutine writer_mark_failed
+
+   !> Room for how many output times at `open`: the caller's estimate (when given and positive),
+   !> at most what ESTIMATE_BYTES_MAX holds, else START_CAPACITY.
+   integer function initial_capacity(self, capacity, energy_names) result(k)
+      type(field_writer_t), intent(in) :: self
+      integer, intent(in), optional :: capacity
+      character(len=*), intent(in), optional :: energy_names(:)
+      integer(i8) :: per_time
+      integer :: ne
+      k = START_CAPACITY
+      if (.not. present(capacity)) return
+      if (capacity <= 0) return
+      ne = 0
+      if (present(energy_names)) ne = size(energy_names)
+      per_time = 8_i8*(2_i8*self%nvec*self%nnode + int(self%ncomp, i8)*(self%nelem + self%nnode) + ne + 2) + &
+                 4_i8*self%nnode
+      k = int(max(1_i8, min(int(capacity, i8), ESTIMATE_BYTES_MAX/per_time)))
+   end function initial_capacity
+
+   !> Release the held datasets and close the live file (nothing to do when it is closed).
+   subroutine close_live(self, err)
+      type(field_writer_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      type(error_t), allocatable :: err2
+      call self%held%release(err)
+      call self%h5%close(err2)
+      if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
+   end subroutine close_live
+
+   !> Open the live file for writing, write-through, and hold every dataset an output time writes.
+   subroutine open_live(self, err)
+      type(field_writer_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      character(len=:), allocatable :: g
+      integer :: i, b, j
+      call self%h5%open(self%path_h5, .true., err, write_through=.true.)
+      if (allocated(err)) return
+      call self%held%hold(self%h5, COUNT_NAME, self%id_count, err)
+      do i = 1, self%nvec
+         if (.not. allocated(err)) call self%held%hold(self%h5, '/fields/'//trim(NODE_VECTORS(i)), self%id_vec(i), err)
+      end do
+      if (.not. allocated(err)) call self%held%hold(self%h5, '/fields/contact_active', self%id_active, err)
+      if (.not. allocated(err)) call self%held%hold(self%h5, '/fields/stress', self%id_stress, err)
+      if (.not. allocated(err)) call self%held%hold(self%h5, '/fields/nodal_stress', self%id_nodal, err)
+      if (.not. allocated(err)) call self%held%hold(self%h5, '/time', self%id_time, err)
+      if (.not. allocated(err)) call self%held%hold(self%h5, '/step', self%id_step, err)
+      if (allocated(self%id_energy)) deallocate (self%id_energy)
+      allocate (self%id_energy(max(self%nenergy, 0)))
+      do i = 1, self%nenergy
+         if (.not. allocated(err)) call self%held%hold(self%h5, '/energies/'//trim(self%energy_names(i)), &
+                                                     self%id_energy(i), err)
+      end do
+      if (allocated(self%id_last)) deallocate (self%id_last)
+      allocate (self%id_last(self%nvec + 2 + 2*self%ncomp, 0:1))
+      do b = 0, 1
+         g = '/last/'//BUFFER(b)//'/'
+            do i = 1, self%nvec
+               if (.not. allocated(err)) call self%held%hold(self%h5, g//trim(NODE_VECTORS(i)), self%id_last(i, b), err)
+            end do
+            j = self%nvec + 1
+            if (.not. allocated(err)) call self%held%hold(self%h5, g//'contact_active', self%id_last(j, b), err)
+            do i = 1, self%ncomp
+               if (.not. allocated(err)) call self%held%hold(self%h5, g//'cell_'//trim(self%comp_names(i)), &
+                                                           self%id_last(j + i, b), err)
+               if (.not. allocated(err)) call self%held%hold(self%h5, g//'node_'//trim(self%comp_names(i)), &
+                                                           self%id_last(j + self%ncomp + i, b), err)
+            end do
+            if (.not. allocated(err)) call self%held%hold(self%h5, g//'output', self%id_last(j + 2*self%ncomp + 1, b), err)
+      end do
+   end subroutine open_live
+
+   !> Change the file's metadata the only way that is safe while a run may be killed: close it,
+   !> copy it to <path>.tmp, change the copy, rename the copy over it. Every series is cut to
+   !> `nkeep` output times (the slabs beyond become unwritten again) and, unless `final`, given
+   !> room for `capacity`; the count is set to `nkeep` (made when missing: a finished file).
+   !> `final`: the finished file instead (no count, no room, the `failed` attribute when the run
+   !> failed), not opened again. `new_energies`: also create the energy series of
+   !> self%energy_names. Otherwise the live file is opened again and its datasets held. The file
+   !> at <path> is at every moment either the old whole file or the new whole file.
+   subroutine rebuild(self, nkeep, capacity, final, err, new_energies)
+      type(field_writer_t), intent(inout) :: self
+      integer, intent(in) :: nkeep, capacity
+      logical, intent(in) :: final
+      type(error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: new_energies
+      type(hdf5_file_t) :: tmp
+      type(error_t), allocatable :: err2
+      character(len=:), allocatable :: path
+      integer :: i
+
+      path = self%path_h5//'.tmp'
+      call close_live(self, err)
+      if (allocated(err)) return
+      call copy_file(self%path_h5, path, err)
+      if (.not. allocated(err)) call tmp%open(path, .true., err)
+      if (allocated(err)) then
+         call remove_file(path)
+         return
+      end if
+      if (present(new_energies)) then
+         if (new_energies) call create_energy_series(self, tmp, self%energy_names, err)
+      end if
+      associate (names => series_names(self))
+         do i = 1, size(names)
+            if (allocated(err)) exit
+            call tmp%resize_series(trim(names(i)), nkeep, err)
+            if (.not. allocated(err) .and. .not. final) call tmp%resize_series(trim(names(i)), capacity, err)
+         end do
+      end associate
+      if (.not. allocated(err)) then
+         if (final .and. tmp%exists(COUNT_NAME(2:))) then
+            call tmp%delete(COUNT_NAME, err)
+         else if (.not. final .and. tmp%exists(COUNT_NAME(2:))) then
+            call tmp%rewrite(COUNT_NAME, [nkeep], err)
+         else if (.not. final) then
+            call tmp%write(COUNT_NAME, [nkeep], err)
+         end if
+      end if
+      if (.not. allocated(err) .and. final .and. allocated(self%failed)) &
+         call tmp%write_attr('/', 'failed', self%failed, err)
+      call tmp%close(err2)
+      if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
+      if (.not. allocated(err)) call rename_file(path, self%path_h5, err)
+      if (allocated(err)) then
+         call remove_file(path)
+      else if (.not. final) then
+         self%capacity = capacity
+      end if
+      ! the live file again (the old one when the copy failed), unless the run is over
+      if (.not. final) then
+         call open_live(self, err2)
+         if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
+      end if
+   end subroutine rebuild
+
+   !> Every series of the file: nodal vectors, contact flag, element values and their nodal
+   !> averages, energies, /time and /step.
+   function series_names(self) result(names)
+      type(field_writer_t), intent(in) :: self
+      character(len=64), allocatable :: names(:)
+      integer :: i
+      allocate (names(0))
+      do i = 1, self%nvec
+         names = [character(len=64) :: names, '/fields/'//trim(NODE_VECTORS(i))]
+      end do
+      names = [character(len=64) :: names, '/fields/contact_active', '/fields/stress', '/fields/nodal_stress']
+      do i = 1, max(self%nenergy, 0)
+         names = [character(len=64) :: names, '/energies/'//trim(self%energy_names(i))]
+      end do
+      names = [character(len=64) :: names, '/time', '/step']
+   end function series_names
+
+   !> The number of complete output times of the field file `path`: its count `/n_times` while a
+   !> run writes it (or after a kill), else the length of `/time` (a finished file).
+   subroutine complete_times(path, n, err)
+      character(len=*), intent(in) :: path
+      integer, intent(out) :: n
+      type(error_t), allocatable, intent(out) :: err
+      type(hdf5_file_t) :: f
+      type(error_t), allocatable :: err2
+      integer :: c(1)
+      n = 0
+      call f%open(path, .false., err)
+      if (allocated(err)) return
+      if (f%exists(COUNT_NAME(2:))) then
+         call f%read(COUNT_NAME, c, err)
+         n = c(1)
+      else
+         call f%series_length('/time', n, err)
+      end if
+      call f%close(err2)
+      if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
+   end subroutine complete_times
 
    !> True between a successful `open` and `close`.
    logical function writer_is_open(self)
@@ -362,38 +591,6 @@ contains
 
    ! ---------------------------------------------------------------------------- checks
 
-   !> Check the shapes and index ranges of the mesh arrays.
-   subroutine check_mesh(nnode, nelem, x0, conn, region, mat, surf_edges, path, err)
-      integer, intent(in) :: nnode, nelem
-      real(wp), intent(in) :: x0(:, :)
-      integer, intent(in) :: conn(:, :), region(:), mat(:), surf_edges(:, :)
-      character(len=*), intent(in) :: path
-      type(error_t), allocatable, intent(out) :: err
-      character(len=:), allocatable :: pre
-      integer :: e
-
-      pre = "field output '"//path//"': "
-      if (nnode < 1 .or. nelem < 1) then
-         call make_error(err, pre//'the mesh needs at least one node and one element')
-      else if (any(shape(x0) /= [2, nnode])) then
-         call make_error(err, pre//'coordinates must have shape (2, nnode)')
-      else if (any(shape(conn) /= [4, nelem])) then
-         call make_error(err, pre//'connectivity must have shape (4, nelem)')
-      else if (size(region) /= nelem .or. size(mat) /= nelem) then
-         call make_error(err, pre//'region and material must have nelem entries')
-      else if (size(surf_edges, 1) /= 2) then
-         call make_error(err, pre//'contact edges must have shape (2, nedge)')
-      else if (any(surf_edges < 1 .or. surf_edges > nnode)) then
-         call make_error(err, pre//'a contact edge names a node outside 1..nnode')
-      else
-         do e = 1, nelem
-            if (any(conn(:, e) < 1 .or. conn(:, e) > nnode)) then
-               call make_error(err, pre//'element '//itoa(e)//' names a node outside 1..nnode')
-               return
-            end if
-         end do
-      end if
-   end subroutine check_mesh
 
    !> Check one output time's arguments against the mesh and the earlier output times.
    subroutine check_step(self, t, u, v, a, sig, fcont, active, energies, energy_names, err)
@@ -442,30 +639,6 @@ contains
       end if
    end subroutine check_step
 
-   !> Names of datasets and XDMF attributes: non-empty, letters, digits and '_' only, distinct.
-   subroutine check_names(names, what, err)
-      character(len=*), intent(in) :: names(:), what
-      type(error_t), allocatable, intent(out) :: err
-      character(len=*), parameter :: allowed = 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_'
-      integer :: i, j
-      if (size(names) == 0) then
-         call make_error(err, 'field output: no '//what//' names given')
-         return
-      end if
-      do i = 1, size(names)
-         if (len_trim(names(i)) == 0 .or. verify(trim(names(i)), allowed) /= 0 .or. len_trim(names(i)) > 16) then
-            call make_error(err, "field output: "//what//" name '"//trim(names(i))// &
-                            "' must be 1 to 16 letters, digits or '_'")
-            return
-         end if
-         do j = 1, i - 1
-            if (trim(names(j)) == trim(names(i))) then
-               call make_error(err, "field output: "//what//" name '"//trim(names(i))//"' given twice")
-               return
-            end if
-         end do
-      end do
-   end subroutine check_names
 
    ! ---------------------------------------------------------------------------- HDF5 content
 
@@ -513,26 +686,27 @@ contains
       nn = self%nnode
       ne = self%nelem
       associate (h5 => self%h5)
-         call h5%create_series('/time', DTYPE_REAL, none, err)
-         if (.not. allocated(err)) call h5%create_series('/step', DTYPE_INT64, none, err)
+         call h5%create_series('/time', DTYPE_REAL, none, err, self%capacity)
+         if (.not. allocated(err)) call h5%create_series('/step', DTYPE_INT64, none, err, self%capacity)
          if (.not. allocated(err)) call h5%create_group('/fields', err)
          if (.not. allocated(err)) call h5%create_group('/xdmf', err)
          do i = 1, self%nvec
             if (allocated(err)) return
             f = trim(NODE_VECTORS(i))
-            call h5%create_series('/fields/'//f, DTYPE_REAL, [2, nn], err)
+            call h5%create_series('/fields/'//f, DTYPE_REAL, [2, nn], err, self%capacity)
             if (.not. allocated(err)) call h5%write_attr('/fields/'//f, 'center', 'node', err)
             if (.not. allocated(err)) call h5%create_series_view('/xdmf/'//f, '/fields/'//f, DTYPE_REAL, &
                                                                   [3, nn], [0, 0], [2, nn], [0, 0], [2, nn], err)
             if (.not. allocated(err)) call h5%write_attr('/xdmf/'//f, 'description', '/fields/'//f// &
                                                          ' with a third (z) component 0, for XDMF readers', err)
          end do
-         if (.not. allocated(err)) call h5%create_series('/fields/contact_active', DTYPE_INT, [nn], err)
+         if (.not. allocated(err)) call h5%create_series('/fields/contact_active', DTYPE_INT, [nn], err, self%capacity)
          if (.not. allocated(err)) call h5%write_attr('/fields/contact_active', 'center', 'node', err)
-         if (.not. allocated(err)) call h5%create_series('/fields/stress', DTYPE_REAL, [self%ncomp, ne], err)
+         if (.not. allocated(err)) call h5%create_series('/fields/stress', DTYPE_REAL, [self%ncomp, ne], err, self%capacity)
          if (.not. allocated(err)) call h5%write_attr('/fields/stress', 'center', 'cell', err)
          if (.not. allocated(err)) call h5%write_attr('/fields/stress', 'components', join(self%comp_names), err)
-         if (.not. allocated(err)) call h5%create_series('/fields/nodal_stress', DTYPE_REAL, [self%ncomp, nn], err)
+         if (.not. allocated(err)) call h5%create_series('/fields/nodal_stress', DTYPE_REAL, [self%ncomp, nn], err, &
+                                                                 self%capacity)
          if (.not. allocated(err)) call h5%write_attr('/fields/nodal_stress', 'center', 'node', err)
          if (.not. allocated(err)) call h5%write_attr('/fields/nodal_stress', 'components', &
                                                       join(self%comp_names), err)
@@ -579,34 +753,34 @@ contains
       real(wp), intent(in) :: u(:, :), v(:, :), a(:, :), fcont(:, :), sig(:, :)
       integer, intent(in), contiguous :: active(:)
       type(error_t), allocatable, intent(out) :: err
-      character(len=:), allocatable :: g
-      integer :: i
+      integer :: i, j
 
-      g = '/last/'//BUFFER(b)
+      j = self%nvec + 1
       self%vec3(3, :) = 0.0_wp
       self%vec3(1:2, :) = u
-      call self%h5%rewrite(g//'/displacement', self%vec3, err)
+      call self%held%write_whole(self%id_last(1, b), self%vec3, err)
       self%vec3(1:2, :) = v
-      if (.not. allocated(err)) call self%h5%rewrite(g//'/velocity', self%vec3, err)
+      if (.not. allocated(err)) call self%held%write_whole(self%id_last(2, b), self%vec3, err)
       self%vec3(1:2, :) = a
-      if (.not. allocated(err)) call self%h5%rewrite(g//'/acceleration', self%vec3, err)
+      if (.not. allocated(err)) call self%held%write_whole(self%id_last(3, b), self%vec3, err)
       self%vec3(1:2, :) = fcont
-      if (.not. allocated(err)) call self%h5%rewrite(g//'/contact_force', self%vec3, err)
-      if (.not. allocated(err)) call self%h5%rewrite(g//'/contact_active', active, err)
+      if (.not. allocated(err)) call self%held%write_whole(self%id_last(4, b), self%vec3, err)
+      if (.not. allocated(err)) call self%held%write_whole(self%id_last(j, b), active, err)
       do i = 1, self%ncomp
          if (allocated(err)) return
          self%col_cell = sig(i, :)
-         call self%h5%rewrite(g//'/cell_'//trim(self%comp_names(i)), self%col_cell, err)
+         call self%held%write_whole(self%id_last(j + i, b), self%col_cell, err)
          self%col_node = self%nodal(i, :)
-         if (.not. allocated(err)) call self%h5%rewrite(g//'/node_'//trim(self%comp_names(i)), &
-                                                        self%col_node, err)
+         if (.not. allocated(err)) call self%held%write_whole(self%id_last(j + self%ncomp + i, b), self%col_node, err)
       end do
-      if (.not. allocated(err)) call self%h5%rewrite(g//'/output', [self%ntime], err)
+      if (.not. allocated(err)) call self%held%write_whole(self%id_last(j + 2*self%ncomp + 1, b), self%ntime, err)
    end subroutine write_last_buffer
 
-   !> Create one series /energies/<name> per energy (at the first output time).
-   subroutine create_energy_series(self, names, err)
+   !> Create one series /energies/<name> per energy in the file `h5` (the one being made, or a
+   !> copy of the live file), with room for self%capacity output times.
+   subroutine create_energy_series(self, h5, names, err)
       class(field_writer_t), intent(inout) :: self
+      type(hdf5_file_t), intent(inout) :: h5
       character(len=*), intent(in) :: names(:)
       type(error_t), allocatable, intent(out) :: err
       integer :: i, j
@@ -627,19 +801,13 @@ contains
          end do
       end do
       do i = 1, size(names)
-         call self%h5%create_series('/energies/'//trim(names(i)), DTYPE_REAL, none, err)
+         call h5%create_series('/energies/'//trim(names(i)), DTYPE_REAL, none, err, self%capacity)
          if (.not. allocated(err) .and. i == size(names)) &
-            call self%h5%write_attr('/energies', 'names', join(names), err)
-         if (allocated(err)) then
-            self%broken = .true.
-            return
-         end if
+            call h5%write_attr('/energies', 'names', join(names), err)
+         if (allocated(err)) return
       end do
-      if (size(names) == 0) call self%h5%write_attr('/energies', 'names', '', err)
-      if (allocated(err)) then
-         self%broken = .true.
-         return
-      end if
+      if (size(names) == 0) call h5%write_attr('/energies', 'names', '', err)
+      if (allocated(err)) return
       self%energy_names = names
       self%nenergy = size(names)
    end subroutine create_energy_series

@@ -13,6 +13,8 @@ module exic_io_hdf5_file
    use exic_base_kinds, only: wp, i8
    use exic_base_error, only: error_t, make_error
    use exic_base_strings, only: itoa
+   use exic_io_hdf5_types, only: DTYPE_REAL, DTYPE_INT, DTYPE_INT64, file_type, mem_type, elem_bytes, &
+                                 set_zero_fill, set_unwritten_fill
    use hdf5, only: hid_t, hsize_t, h5open_f, h5eset_auto_f, h5fcreate_f, h5fopen_f, h5fclose_f, &
                    h5fflush_f, h5gcreate_f, h5gclose_f, h5screate_simple_f, h5screate_f, &
                    h5sclose_f, h5sselect_hyperslab_f, h5sget_simple_extent_ndims_f, &
@@ -24,15 +26,16 @@ module exic_io_hdf5_file
                    H5_REAL_KIND, H5_INTEGER_KIND, H5F_ACC_TRUNC_F, H5F_ACC_RDWR_F, &
                    H5F_ACC_RDONLY_F, H5F_SCOPE_GLOBAL_F, H5S_UNLIMITED_F, H5S_SCALAR_F, &
                    H5S_SELECT_SET_F, H5P_DATASET_CREATE_F, H5T_IEEE_F64LE, H5T_STD_I32LE, &
-                   H5T_STD_I64LE, H5T_FORTRAN_S1, H5T_STR_NULLPAD_F
+                   H5T_STD_I64LE, H5T_FORTRAN_S1, H5T_STR_NULLPAD_F, h5pset_alloc_time_f, &
+                   h5pset_fill_time_f, h5pset_obj_track_times_f, h5pset_cache_f, &
+                   h5pset_sieve_buf_size_f, h5ldelete_f, H5D_ALLOC_TIME_EARLY_F, &
+                   H5D_FILL_TIME_ALLOC_F, H5P_FILE_ACCESS_F, SIZE_T
    implicit none
    private
 
    public :: hdf5_file_t
-   public :: DTYPE_REAL, DTYPE_INT, DTYPE_INT64
+   public :: DTYPE_REAL, DTYPE_INT, DTYPE_INT64   ! (of exic_io_hdf5_types)
 
-   !> Element types of datasets: real(wp) (IEEE 64-bit), default integer (32-bit), integer(i8).
-   integer, parameter :: DTYPE_REAL = 1, DTYPE_INT = 2, DTYPE_INT64 = 3
 
    !> Target size of one chunk of a series, bytes (several slabs share a chunk when slabs are
    !> small). The file is flushed after every output time, and a flush writes every chunk that
@@ -49,6 +52,9 @@ module exic_io_hdf5_file
       integer(hid_t) :: fid = -1
       character(len=:), allocatable :: path
    contains
+      procedure :: handle => file_handle
+      procedure :: resize_series => file_resize_series
+      procedure :: delete => file_delete
       procedure :: create => file_create
       procedure :: open => file_open
       procedure :: is_open => file_is_open
@@ -59,7 +65,6 @@ module exic_io_hdf5_file
       procedure :: create_series_view => file_create_series_view
       procedure :: size_of => file_size_of
       procedure :: exists => file_exists
-      procedure :: shorten_series => file_shorten_series
       procedure :: flush => file_flush
       procedure :: close => file_close
       procedure, private :: write_real1, write_real2, write_int1, write_int2
@@ -122,13 +127,18 @@ contains
       self%path = path
    end subroutine file_create
 
-   !> Open the existing file `path`, for writing when `writable`.
-   subroutine file_open(self, path, writable, err)
+   !> Open the existing file `path`, for writing when `writable`. `write_through`: no chunk
+   !> cache and no sieve buffer, so that every H5Dwrite is written to the file at once, in the
+   !> order of the calls, and a flush has no raw data left to write (doc/fields.md, "Kill safety").
+   subroutine file_open(self, path, writable, err, write_through)
       class(hdf5_file_t), intent(inout) :: self
       character(len=*), intent(in) :: path
       logical, intent(in) :: writable
       type(error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: write_through
+      integer(hid_t) :: fapl
       integer :: st
+      logical :: direct
 
       if (self%fid >= 0) then
          call make_error(err, "HDF5: cannot open '"//path//"': this handle already has '"// &
@@ -137,10 +147,33 @@ contains
       end if
       call library_init(err)
       if (allocated(err)) return
-      if (writable) then
+      direct = .false.
+      if (present(write_through)) direct = write_through
+      fapl = -1
+      st = 0
+      if (direct) then
+         call h5pcreate_f(H5P_FILE_ACCESS_F, fapl, st)
+         ! chunk cache of 0 bytes (chunks are written directly), no sieve buffer
+         if (st >= 0) call h5pset_cache_f(fapl, 0, 1_SIZE_T, 0_SIZE_T, 1.0, st)
+         if (st >= 0) call h5pset_sieve_buf_size_f(fapl, 0_SIZE_T, st)
+         if (st < 0) then
+            call make_error(err, "HDF5: cannot set the write-through access of file '"//path//"'")
+            if (fapl >= 0) call h5pclose_f(fapl, st)
+            return
+         end if
+      end if
+      if (writable .and. direct) then
+         call h5fopen_f(path, H5F_ACC_RDWR_F, self%fid, st, access_prp=fapl)
+      else if (writable) then
          call h5fopen_f(path, H5F_ACC_RDWR_F, self%fid, st)
       else
          call h5fopen_f(path, H5F_ACC_RDONLY_F, self%fid, st)
+      end if
+      if (fapl >= 0) then
+         block
+            integer :: st2
+            call h5pclose_f(fapl, st2)
+         end block
       end if
       if (st < 0) then
          self%fid = -1
@@ -155,6 +188,12 @@ contains
       class(hdf5_file_t), intent(in) :: self
       file_is_open = self%fid >= 0
    end function file_is_open
+
+   !> The HDF5 identifier of the open file (-1 when closed), for exic_io_hdf5_held.
+   pure integer(hid_t) function file_handle(self)
+      class(hdf5_file_t), intent(in) :: self
+      file_handle = self%fid
+   end function file_handle
 
    !> The path of the open file ('' when closed).
    function file_name(self) result(path)
@@ -178,7 +217,9 @@ contains
       if (st < 0) call make_error(err, "HDF5: cannot flush file '"//self%path//"'")
    end subroutine file_flush
 
-   !> Close the file (nothing to do when none is open).
+   !> Close the file (nothing to do when none is open). Datasets held open on it
+   !> (exic_io_hdf5_held) must be released first: HDF5 keeps a file open while one of its
+   !> objects is.
    subroutine file_close(self, err)
       class(hdf5_file_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
@@ -363,12 +404,16 @@ contains
 
    !> Create the extendible dataset `name` of Fortran shape (lead..., 0), unlimited in its last
    !> dimension, chunked so that a chunk holds whole slabs (about CHUNK_BYTES, no compression).
-   subroutine file_create_series(self, name, dtype, lead, err)
+   !> With `capacity`, the dataset is created with `capacity` slabs at once, its chunks allocated
+   !> and filled at creation (NaN for reals, -1 for integers: what an unwritten slab reads as),
+   !> and no object times: writing slabs into it later changes no metadata.
+   subroutine file_create_series(self, name, dtype, lead, err, capacity)
       class(hdf5_file_t), intent(inout) :: self
       character(len=*), intent(in) :: name
       integer, intent(in) :: dtype
       integer, intent(in) :: lead(:)   !< leading (fixed) dimensions, may be empty
       type(error_t), allocatable, intent(out) :: err
+      integer, intent(in), optional :: capacity
       integer(hsize_t) :: dims(size(lead) + 1), maxdims(size(lead) + 1), chunk(size(lead) + 1)
       integer(hid_t) :: space, dcpl, did
       integer :: st, rank
@@ -378,6 +423,7 @@ contains
       rank = size(lead) + 1
       dims(1:rank - 1) = int(lead, hsize_t)
       dims(rank) = 0
+      if (present(capacity)) dims(rank) = int(max(capacity, 0), hsize_t)
       maxdims = dims
       maxdims(rank) = H5S_UNLIMITED_F
       chunk(1:rank - 1) = int(max(lead, 1), hsize_t)
@@ -394,6 +440,12 @@ contains
          end if
          call h5pcreate_f(H5P_DATASET_CREATE_F, dcpl, st)
          if (st >= 0) call h5pset_chunk_f(dcpl, rank, chunk, st)
+         if (st >= 0 .and. present(capacity)) then
+            call h5pset_alloc_time_f(dcpl, H5D_ALLOC_TIME_EARLY_F, st)
+            if (st >= 0) call h5pset_fill_time_f(dcpl, H5D_FILL_TIME_ALLOC_F, st)
+            if (st >= 0) call set_unwritten_fill(dcpl, dtype, st)
+            if (st >= 0) call h5pset_obj_track_times_f(dcpl, .false., st)
+         end if
          if (st < 0) then
             call fail(self, err, 'set the chunking of series', name)
             exit steps
@@ -588,9 +640,9 @@ contains
       if (st < 0) yes = .false.
    end function file_exists
 
-   !> Cut the series `name` to its first `n` slabs (a restarted run drops the output times
-   !> written after its restart point).
-   subroutine file_shorten_series(self, name, n, err)
+   !> Set the number of slabs of the series `name` to `n` (fewer: the slabs beyond are dropped;
+   !> more: new slabs, allocated and filled at once when the series was made with a capacity).
+   subroutine file_resize_series(self, name, n, err)
       class(hdf5_file_t), intent(inout) :: self
       character(len=*), intent(in) :: name
       integer, intent(in) :: n
@@ -600,16 +652,25 @@ contains
       integer :: st
       call series_dims(self, name, did, dims, err)
       if (allocated(err)) return
-      if (dims(size(dims)) < int(n, hsize_t)) then
-         call fail(self, err, 'restart: the file holds fewer output times than the restart '// &
-                   'file recorded in', name)
-      else if (dims(size(dims)) > int(n, hsize_t)) then
-         dims(size(dims)) = int(n, hsize_t)
+      if (dims(size(dims)) /= int(n, hsize_t)) then
+         dims(size(dims)) = int(max(n, 0), hsize_t)
          call h5dset_extent_f(did, dims, st)
-         if (st < 0) call fail(self, err, 'shorten', name)
+         if (st < 0) call fail(self, err, 'resize to '//itoa(n)//' slabs', name)
       end if
       call close_handles(err, self, name, dset=did)
-   end subroutine file_shorten_series
+   end subroutine file_resize_series
+
+   !> Remove the link `name` (a dataset or group).
+   subroutine file_delete(self, name, err)
+      class(hdf5_file_t), intent(inout) :: self
+      character(len=*), intent(in) :: name
+      type(error_t), allocatable, intent(out) :: err
+      integer :: st
+      if (.not. check_open(self, 'delete '//name, err)) return
+      call h5ldelete_f(self%fid, name, st)
+      if (st < 0) call fail(self, err, 'delete', name)
+   end subroutine file_delete
+
 
    !> Read the real dataset `name` whole into x (size(x) elements exactly).
    subroutine read_real(self, name, x, err)
@@ -736,18 +797,6 @@ contains
       call close_handles(err, self, name, dset=did, space=vspace, space2=sspace, plist=dcpl)
    end subroutine file_create_series_view
 
-   !> Set the fill value of the dataset creation list `dcpl` to zero of type `dtype`.
-   subroutine set_zero_fill(dcpl, dtype, st)
-      integer(hid_t), intent(in) :: dcpl
-      integer, intent(in) :: dtype
-      integer, intent(out) :: st
-      select case (dtype)
-      case (DTYPE_REAL)
-         call h5pset_fill_value_f(dcpl, mem_type(dtype), 0.0_wp, st)
-      case default
-         call h5pset_fill_value_f(dcpl, mem_type(DTYPE_INT), 0, st)
-      end select
-   end subroutine set_zero_fill
 
    ! ---------------------------------------------------------------------------- attributes
 
@@ -884,44 +933,6 @@ contains
 
    ! ---------------------------------------------------------------------------- helpers
 
-   !> HDF5 type stored in the file for `dtype` (little-endian IEEE / two's complement).
-   function file_type(dtype) result(t)
-      integer, intent(in) :: dtype
-      integer(hid_t) :: t
-      select case (dtype)
-      case (DTYPE_REAL)
-         t = H5T_IEEE_F64LE
-      case (DTYPE_INT64)
-         t = H5T_STD_I64LE
-      case default
-         t = H5T_STD_I32LE
-      end select
-   end function file_type
-
-   !> HDF5 memory type of `dtype` as Fortran holds it.
-   function mem_type(dtype) result(t)
-      integer, intent(in) :: dtype
-      integer(hid_t) :: t
-      select case (dtype)
-      case (DTYPE_REAL)
-         t = h5kind_to_type(wp, H5_REAL_KIND)
-      case (DTYPE_INT64)
-         t = h5kind_to_type(i8, H5_INTEGER_KIND)
-      case default
-         t = h5kind_to_type(kind(0), H5_INTEGER_KIND)
-      end select
-   end function mem_type
-
-   !> Bytes of one element of `dtype` in the file.
-   pure integer(i8) function elem_bytes(dtype)
-      integer, intent(in) :: dtype
-      select case (dtype)
-      case (DTYPE_INT)
-         elem_bytes = 4
-      case default
-         elem_bytes = 8
-      end select
-   end function elem_bytes
 
    !> True when a file is open; otherwise set `err` saying what could not be done.
    logical function check_open(self, what, err)

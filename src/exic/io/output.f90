@@ -106,11 +106,13 @@ contains
             call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                     model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
                                     pack(ENERGY_NAMES, energy_mask(stp)), err, cell_names=PLASTIC_CELL_NAMES, &
-                                    friction=stp%contact%friction)
+                                    friction=stp%contact%friction, &
+                                    capacity=expected_field_times(model, stp%st%t, self%field_dt))
          else
             call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                     model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
-                                    pack(ENERGY_NAMES, energy_mask(stp)), err, friction=stp%contact%friction)
+                                    pack(ENERGY_NAMES, energy_mask(stp)), err, friction=stp%contact%friction, &
+                                    capacity=expected_field_times(model, stp%st%t, self%field_dt))
          end if
          if (allocated(err)) return
       end if
@@ -339,15 +341,33 @@ contains
                                model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
                                model%mesh%mat, stp%contact%edges(), err, cell_names=PLASTIC_CELL_NAMES, &
                                energy_names=pack(ENERGY_NAMES, energy_mask(stp)), &
-                               friction=stp%contact%friction)
+                               friction=stp%contact%friction, capacity=expected_field_times(model, stp%st%t, dt_out))
       else
          call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
                                model%mesh%mat, stp%contact%edges(), err, &
                                energy_names=pack(ENERGY_NAMES, energy_mask(stp)), &
-                               friction=stp%contact%friction)
+                               friction=stp%contact%friction, capacity=expected_field_times(model, stp%st%t, dt_out))
       end if
    end subroutine output_open_fields
+
+   !> The number of field output times a run writes from t on, every dt_out, up to the end time
+   !> of its BATCh program (its largest TIME), plus the final state: the room the field file is
+   !> made with (doc/fields.md, "Kill safety"). 0 when the program has no end time after t.
+   integer function expected_field_times(model, t, dt_out) result(k)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: t, dt_out
+      real(wp) :: t_end, n
+      integer :: i
+      k = 0
+      t_end = t
+      do i = 1, size(model%program)
+         if (model%program(i)%name == 'time') t_end = max(t_end, model%program(i)%v(1))
+      end do
+      if (.not. (t_end > t .and. dt_out > 0.0_wp)) return
+      n = (t_end - t)/dt_out
+      if (n < 1.0e8_wp) k = int(n) + 2
+   end function expected_field_times
 
    !> Which of ENERGY_NAMES the run's field output has: the frictional dissipation with friction
    !> only, the plastic work with a plastic set only.

@@ -13,7 +13,7 @@ module exic_io_posix
    private
 
    public :: rename_file, c_string, file_kind, make_directories, address_space_limit, truncate_file, &
-             file_size, exit_now
+             file_size, exit_now, copy_file, remove_file
 
    !> file_kind results.
    integer, parameter, public :: FILE_MISSING = 0, FILE_REGULAR = 1, FILE_DIRECTORY = 2, &
@@ -73,6 +73,15 @@ module exic_io_posix
          integer(c_long_long) :: size
       end function c_file_size
 
+      !> int exic_c_copy_file(const char *from, const char *to, char *msg, int msglen);  (posix_c.c)
+      function c_copy_file(from, to, msg, msglen) bind(C, name='exic_c_copy_file') result(errnum)
+         import :: c_char, c_int
+         character(kind=c_char), dimension(*), intent(in) :: from, to
+         character(kind=c_char), dimension(*), intent(inout) :: msg
+         integer(c_int), value :: msglen
+         integer(c_int) :: errnum
+      end function c_copy_file
+
       !> void exic_c_exit_now(int code);  (posix_c.c)
       subroutine c_exit_now(code) bind(C, name='exic_c_exit_now')
          import :: c_int
@@ -106,6 +115,29 @@ contains
       character(len=*), intent(in) :: path
       file_size = int(c_file_size(path//c_null_char), i8)
    end function file_size
+
+   !> Copy the bytes of the file `from` to `to` (created, or truncated when it exists); every
+   !> read, write and close is checked.
+   subroutine copy_file(from, to, err)
+      character(len=*), intent(in) :: from, to
+      type(error_t), allocatable, intent(out) :: err
+      character(kind=c_char, len=512) :: msg
+      integer :: nul
+      msg = ''
+      if (c_copy_file(from//c_null_char, to//c_null_char, msg, int(len(msg), c_int)) == 0_c_int) return
+      nul = index(msg, c_null_char)
+      if (nul == 0) nul = len_trim(msg) + 1
+      call make_error(err, msg(1:nul - 1))
+   end subroutine copy_file
+
+   !> Remove the file `path` if it exists (a temporary file left by a failed copy); failures are ignored.
+   subroutine remove_file(path)
+      character(len=*), intent(in) :: path
+      integer :: u, ios
+      if (file_kind(path) == FILE_MISSING) return
+      open (newunit=u, file=path, status='old', iostat=ios)
+      if (ios == 0) close (u, status='delete', iostat=ios)
+   end subroutine remove_file
 
    !> Rename `from` to `to`, replacing `to` atomically when both are on one file system.
    subroutine rename_file(from, to, err)

@@ -3,6 +3,7 @@
  * errno and strerror), behind plain int / long long / char* interfaces that Fortran binds
  * with bind(C). Nothing here allocates or keeps state. */
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/resource.h>
@@ -60,6 +61,62 @@ long long exic_c_file_size(const char *path)
     struct stat st;
     if (stat(path, &st) != 0) return -1;
     return (long long)st.st_size;
+}
+
+/* Copy the bytes of the file `from` to `to` (created or truncated, mode 0666 less the umask)
+ * with read(2) and write(2) in 1 MiB blocks, short writes and EINTR handled, and close both.
+ * Returns 0, or errno with the system's text and the failing step in msg (at most msglen
+ * bytes, NUL-terminated). */
+int exic_c_copy_file(const char *from, const char *to, char *msg, int msglen)
+{
+    enum { BLOCK = 1 << 20 };
+    static char buf[BLOCK];
+    const char *what = "open";
+    const char *which = from;
+    int in, out, e = 0;
+    in = open(from, O_RDONLY);
+    if (in < 0) {
+        e = errno;
+        goto done;
+    }
+    which = to;
+    out = open(to, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+    if (out < 0) {
+        e = errno;
+        close(in);
+        goto done;
+    }
+    for (;;) {
+        ssize_t n = read(in, buf, BLOCK);
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            e = errno;
+            what = "read";
+            which = from;
+            break;
+        }
+        if (n == 0) break;
+        for (ssize_t done = 0; done < n;) {
+            ssize_t w = write(out, buf + done, (size_t)(n - done));
+            if (w < 0 && errno == EINTR) continue;
+            if (w < 0) {
+                e = errno;
+                what = "write";
+                break;
+            }
+            done += w;
+        }
+        if (e != 0) break;
+    }
+    close(in);
+    if (close(out) != 0 && e == 0) {
+        e = errno;
+        what = "close";
+        which = to;
+    }
+done:
+    if (e != 0 && msglen > 0) snprintf(msg, (size_t)msglen, "cannot %s '%s': %s", what, which, strerror(e));
+    return e;
 }
 
 /* Flush the C streams and end the process with `code` without running the exit handlers
