@@ -322,7 +322,7 @@ def run_fuzz(exic, seed, n, jobs, work, save, log):
             if j % 250 == 0:
                 log(f"  {j}/{n} mutants, {time.time() - t0:.0f} s")
     results.sort(key=lambda r: r["k"])
-    data = {"seed": seed, "count": n, "timeout": timeout, "seconds": round(time.time() - t0, 1),
+    data = {"seed": seed, "count": n, "decks": len(decks()), "timeout": timeout, "seconds": round(time.time() - t0, 1),
             "mutants": results}
     save("fuzz", data)
     saved = os.path.join(ROOT, "test", "data", "stress")

@@ -536,6 +536,8 @@ contains
       real(wp), intent(in) :: lambda, mu, rho0
       real(wp), intent(out), dimension(NBLOCK) :: dt2, good
       real(wp), parameter :: s3 = 0.57735026918962576451_wp
+      !> a corner triangle within FLAT of the area is flat (three nodes on a line to round-off), not folded
+      real(wp), parameter :: FLAT = 1.0e-10_wp
       real(wp), dimension(NBLOCK) :: num, den, jr, c2, ok
       real(wp) :: c0, c1, d1x, d1y, d2x, d2y, a2, a02, t2, pa, ph, ex(4), ey(4)
       integer :: k, a
@@ -563,7 +565,7 @@ contains
          t2 = min(min(ex(4)*ey(1) - ey(4)*ex(1), ex(1)*ey(2) - ey(1)*ex(2)), &
                   min(ex(2)*ey(3) - ey(2)*ex(3), ex(3)*ey(4) - ey(3)*ex(4)))
          pa = merge(1.0_wp, 0.0_wp, a2 > 0.0_wp)
-         good(k) = pa*merge(1.0_wp, 0.0_wp, t2 > 0.0_wp)
+         good(k) = pa*merge(1.0_wp, 0.0_wp, t2 > -FLAT*a2)
          ph = c0*a2 + c1*t2
          ok(k) = pa*merge(1.0_wp, 0.0_wp, ph > 0.0_wp)
          num(k) = ph*a2
