@@ -524,8 +524,9 @@ contains
    end subroutine check_points
 
    !> Squared stable steps dt2(k) of a block with reference corners (xr, yr) and current corners
-   !> (xc, yc) (q4_stable_dt), and good(k) = 1 where the element is not folded at a corner (every
-   !> corner triangle and the area positive), 0 where it is. With A the area, T the smallest
+   !> (xc, yc) (q4_stable_dt), and good(k) = 1 where the element is not folded at a corner (the
+   !> area positive, every corner triangle above -FLAT of it: a corner flat to round-off is a
+   !> triangle, doc/decisions.md), 0 where it is. With A the area, T the smallest
    !> corner triangle and D the longest diagonal squared, phi^2 A^2 = (c0 A + c1 T) A, so
    !>     dt^2 = phi^2 A^2/(D c^2) = (c0 A + c1 T) A/(D c^2)
    !> takes one division, and phi^2 > 0 is c0 A + c1 T > 0 (A > 0). Areas are formed doubled
@@ -656,7 +657,7 @@ contains
    !> 0.995 of the limit; L/c alone exceeds it by up to 2% for tapers of 1.6:1 and by 45% for
    !> wedge-like quads. An element with A <= 0 or phi^2 <= 0 gives dt_e = 0.
    !> dtmin: the smallest dt_e; emin: the first element that gives it; efold: the first element
-   !> folded at a corner (a corner triangle of non-positive area, i.e. det J <= 0 at that node,
+   !> folded at a corner (a corner triangle of negative area beyond round-off, i.e. det J < 0 at that node,
    !> which the Gauss points of either rule need not see), 0 if none.
    pure subroutine q4_stable_dt(nq, nel, nnode, conn, x0, x, lambda, mu, rho0, dtmin, emin, efold)
       integer, intent(in) :: nq                    !< 1 or 2
