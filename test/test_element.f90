@@ -698,6 +698,26 @@ contains
          call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad, dtmin, emin, efold)
          call check(s, efold == 4, trim(qname(nq))//': the force pass flags the re-entrant corner too')
       end do
+      ! a flat corner: node 9 on the line through nodes 6 and 8 (a corner node pressed onto a flat
+      ! rigid face with both neighbours, exactly or to round-off) is a triangle, not a fold; folded
+      ! by 1e-6 of the edge it is a fold
+      xb = x0
+      xb(:, 6) = [2.0_wp, 2.0_wp]
+      xb(:, 8) = [1.15_wp, 2.0_wp]
+      xb(:, 9) = [1.5_wp, 2.0_wp]
+      u = xb - x0
+      do nq = 2, 1, -1
+         call make_setup(nq, x0, conn, st, ebad)
+         call q4_stable_dt(nq, 4, 9, conn, x0, xb, lam0, mu0, 1.0_wp, dtmin, emin, efold)
+         call check(s, efold == 0 .and. dtmin > 0.0_wp, trim(qname(nq))//': a corner flat to the bit is not folded')
+         call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad, dtmin, emin, efold)
+         call check(s, efold == 0 .and. dtmin > 0.0_wp .and. ebad == 0, &
+                    trim(qname(nq))//': nor in the force pass (x0 + u flat to round-off)')
+         xb(2, 9) = 2.0_wp - 0.85e-6_wp
+         call q4_stable_dt(nq, 4, 9, conn, x0, xb, lam0, mu0, 1.0_wp, dtmin, emin, efold)
+         call check(s, efold == 4, trim(qname(nq))//': the same corner folded by 1e-6 of its edge flags element 4')
+         xb(2, 9) = 2.0_wp
+      end do
       call section(s, 'inversion flags, reference geometry')
       ! a re-entrant (positive area) element 4: corner det J0 < 0
       xb = x0

@@ -11,7 +11,9 @@
 !> - the output directory made with mkdir(2) from text that a shell would run;
 !> - numbers with three-digit exponents in .his/.ene read back by Fortran, and rows with a NaN or
 !>   an infinity refused by the writers;
-!> - fields a record has but no command uses.
+!> - fields a record has but no command uses;
+!> - a LOOP of FORMs with no TIME (a fuzzed deck that lost its TIME record ran 10^7 steps without
+!>   a row of output and looked hung): a warning at the LOOP.
 module test_hostile
    use, intrinsic :: iso_c_binding, only: c_int, c_long
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, ieee_is_finite
@@ -89,6 +91,8 @@ contains
       call nonfinite_rows(s)
       call section(s, 'hostile: fields that no command uses')
       call unused_fields(s)
+      call section(s, 'hostile: a LOOP of FORMs without TIME')
+      call loop_without_time(s)
    end subroutine run_hostile_tests
 
    pure logical function has(str, sub)
@@ -499,5 +503,26 @@ contains
       type(suite_t), intent(inout) :: s
       call expect_ok(s, 'the base deck reads', 'base.inp', head//tail)
    end subroutine unused_fields
+
+   !> LOOP,,n with FORM and no TIME runs all n steps and writes nothing while it runs: a warning
+   !> naming the LOOP's file:line; none when TIME is in the loop or in a loop inside it.
+   subroutine loop_without_time(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: w
+      character(len=*), parameter :: batch = 'END'//nl//'BATCh'//nl
+      call expect_ok(s, 'a LOOP of FORMs without TIME is read', 'notime.inp', &
+                     head//batch//'LOOP,,10000000'//nl//'  FORM,EXPLicit'//nl//'NEXT'//nl// &
+                     'END'//nl//'STOP', w)
+      call check(s, has(w, tmp//'notime.inp:17: warning: LOOP,,10000000 steps FORM with no TIME'), &
+                 'warning at the LOOP (line 17)', w)
+      call expect_ok(s, 'a LOOP with TIME and FORM is read', 'time.inp', &
+                     head//batch//'LOOP,,10'//nl//'  TIME,,1'//nl//'  FORM,EXPLicit'//nl//'NEXT'//nl// &
+                     'END'//nl//'STOP', w)
+      call check(s, .not. has(w, 'no TIME'), 'no warning when TIME is in the loop', w)
+      call expect_ok(s, 'an outer LOOP around a LOOP with TIME is read', 'nested.inp', &
+                     head//batch//'LOOP,,2'//nl//'LOOP,,10'//nl//'  TIME,,1'//nl//'  FORM,EXPLicit'//nl// &
+                     'NEXT'//nl//'NEXT'//nl//'END'//nl//'STOP', w)
+      call check(s, .not. has(w, 'no TIME'), 'no warning when TIME is in an inner loop', w)
+   end subroutine loop_without_time
 
 end module test_hostile

@@ -11,6 +11,11 @@
 !>   physical energy grew by 8.8 %. Now the growth stays below the warning limit (1 %).
 !> - scene 98: a light block (density 0.06) sliding over a heavy disk (23): the same cause,
 !>   growth 6.2 %; now below 1 %.
+!> - scene 101 of seed 20261123: a one-point block landing corner-first on a rigid block; its
+!>   corner node and both neighbours lie on the rigid face, the corner's det J is 0 to round-off
+!>   and the run stopped as "folded" at step 57. A flat corner is a triangle, not a fold
+!>   (doc/decisions.md, "Inverted and folded elements"): it runs to the end. (Saved under its own
+!>   name: a stress run of that seed replaces the scene_<seed>_*.inp files.)
 module test_stress_decks
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
@@ -47,6 +52,11 @@ contains
       v = number_after(out, 'largest growth of the physical energy over the energy put in ')
       call check(s, v >= 0.0_wp .and. v < 1.0_wp, 'energy growth below the warning limit of 1 % (was 6.2 %)', &
                  line_with(out, 'energy guard'))
+      call section(s, 'stress decks: scene 101 of seed 20261123, a corner flattened on a rigid face')
+      call run_saved(s, 'flat_corner_20261123_0101', out)
+      v = number_after(out, 'final time ')
+      call check(s, abs(v - 12.384075_wp) < 1.0e-5_wp, 'final time 12.384 (stopped at 0.646 as folded)', &
+                 line_with(out, 'final time'))
    end subroutine run_stress_decks_tests
 
    !> Run test/data/stress/<name>.inp into run_dir and return its <stem>.out.

@@ -49,6 +49,31 @@ def _head_tail(path, n=1 << 16):
     return data.decode(errors="replace")
 
 
+STATUS = re.compile(r"^exic: status: t = (\S+)", re.M)
+
+
+def probe_status(p, stderr_path, probes=2, wait=1.0):
+    """Ask a run that reached its timeout for its status line (SIGUSR2, src/exic/session/run.f90)
+    `probes` times, `wait` seconds apart; the simulated times it reported (empty when it never
+    answered: a run stuck outside the step loop)."""
+    for _ in range(probes):
+        if p.poll() is not None:
+            break
+        try:
+            os.kill(p.pid, signal.SIGUSR2)
+        except ProcessLookupError:
+            break
+        time.sleep(wait)
+    text = _head_tail(stderr_path)
+    times = []
+    for m in STATUS.finditer(text):
+        try:
+            times.append(float(m.group(1)))
+        except ValueError:
+            pass
+    return times
+
+
 def run(exic, deck, outdir, timeout, extra=()):
     """Run `exic deck -q -o outdir`; a dict with code, class, seconds, stderr, message. The
     console goes to files (a run may print without end), of which the ends are read."""
@@ -61,9 +86,11 @@ def run(exic, deck, outdir, timeout, extra=()):
             code = p.wait(timeout=timeout)
             hung = False
         except subprocess.TimeoutExpired:
-            os.killpg(p.pid, signal.SIGKILL)
-            p.wait()
             code, hung = None, True
+            status_times = probe_status(p, base + ".stderr")
+            if p.poll() is None:
+                os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
     secs = time.time() - t0
     out = _head_tail(base + ".stdout")
     err = _head_tail(base + ".stderr")
@@ -91,6 +118,11 @@ def run(exic, deck, outdir, timeout, extra=()):
          "stderr_tail": err[-600:], "warnings": [l for l in (err + out).splitlines() if "warning" in l][:5]}
     if code is not None and code < 0:
         r["signal"] = signal.Signals(-code).name if -code in signal.Signals._value2member_map_ else str(-code)
+    if hung:
+        # a run that steps with no history rows (a LOOP of FORMs without TIME) still answers
+        # SIGUSR2 with its time: advancing time is a long run, not a hang
+        r["status_times"] = status_times
+        r["advancing"] = len(status_times) >= 2 and status_times[-1] > status_times[0]
     if cls == "stopped":
         r["reason"] = next((name for name, pat in REASONS if pat.search(msg)), "other")
         r["named"] = bool(NAMED.search(msg))
@@ -298,7 +330,8 @@ def _nonfinite_h5(path):
 
 def nonfinite_in_outputs(stem):
     """Non-finite numbers in <stem>.his, .ene (any token with a letter other than E), .out
-    (outside the deck echo and the error and warning lines) and the datasets of <stem>.h5: a
+    (outside the deck echo, the title and deck lines that repeat the user's text, and the error
+    and warning lines) and the datasets of <stem>.h5: a
     list of 'file:line: token' or 'file:dataset'."""
     bad = []
     tok = re.compile(r"(?<![A-Za-z_])(nan|[+-]?inf(inity)?)(?![A-Za-z_])", re.I)
@@ -317,7 +350,7 @@ def nonfinite_in_outputs(stem):
                     echo = True
                 elif line.startswith("---- end of deck ----"):
                     echo = False
-                elif not echo and not re.match(r"\s*(error|warning|exic: error)", line) \
+                elif not echo and not re.match(r"\s*(error|warning|exic: error|title:|deck:)", line) \
                         and "warning:" not in line:
                     m = tok.search(line)
                     if m:

@@ -173,7 +173,7 @@ def op_include_target(rng, lines, ctx):
     if inc and rng.random() < 0.6:
         lines[rng.choice(inc)] = f"INCLude,{target}"
     else:
-        lines.insert(rng.randrange(2, len(lines) + 1), f"INCLude,{target}")
+        lines.insert(rng.randrange(min(2, len(lines)), len(lines) + 1), f"INCLude,{target}")
 
 
 def op_mutate_include(rng, lines, ctx):
@@ -189,6 +189,8 @@ def op_mutate_include(rng, lines, ctx):
     except OSError:
         return
     for _ in range(rng.randint(1, 3)):
+        if not sub or not _records(sub):
+            break
         rng.choice(SIMPLE)(rng, sub, ctx)
     new = os.path.join(os.path.dirname(name), f"{ctx['tag']}_mut.inc") if os.path.dirname(name) else f"{ctx['tag']}_mut.inc"
     with open(os.path.join(ctx["dir"], new), "w", errors="replace") as f:
@@ -249,7 +251,7 @@ def one_mutant(exic, seed, k, tree, outdir, timeout):
     stem = os.path.join(outdir, f"fuzz{k:05d}")
     r.update({"k": k, "deck": orig, "ops": ops})
     if r["class"] == "hang":
-        r["advancing"] = advancing(stem + ".ene")
+        r["advancing"] = r.get("advancing") or advancing(stem + ".ene")
         if r["advancing"]:
             r["class"] = "long run"
     r["nonfinite"] = analyse.nonfinite_in_outputs(stem)
@@ -320,7 +322,7 @@ def run_fuzz(exic, seed, n, jobs, work, save, log):
             if j % 250 == 0:
                 log(f"  {j}/{n} mutants, {time.time() - t0:.0f} s")
     results.sort(key=lambda r: r["k"])
-    data = {"seed": seed, "count": n, "timeout": timeout, "seconds": round(time.time() - t0, 1),
+    data = {"seed": seed, "count": n, "decks": len(decks()), "timeout": timeout, "seconds": round(time.time() - t0, 1),
             "mutants": results}
     save("fuzz", data)
     saved = os.path.join(ROOT, "test", "data", "stress")

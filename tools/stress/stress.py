@@ -12,6 +12,8 @@ and JSON results under doc/stability/.
 two cores); `make stress STRESS_ARGS=--long` runs the long cases for 10^6 steps. Each section
 saves its JSON as it ends, so `--only` reruns one section and the report is rebuilt from
 every saved result. Exit code 0 when the suite ran (whatever it found), 2 on a usage error.
+`tools/stress/inversions.py` classifies the scenes of a campaign that stopped on an inverted
+element (its JSON, doc/stability/inversions_<seed>.json, is section 1a of the report).
 """
 import argparse
 import concurrent.futures as cf

@@ -524,8 +524,9 @@ contains
    end subroutine check_points
 
    !> Squared stable steps dt2(k) of a block with reference corners (xr, yr) and current corners
-   !> (xc, yc) (q4_stable_dt), and good(k) = 1 where the element is not folded at a corner (every
-   !> corner triangle and the area positive), 0 where it is. With A the area, T the smallest
+   !> (xc, yc) (q4_stable_dt), and good(k) = 1 where the element is not folded at a corner (the
+   !> area positive, every corner triangle above -FLAT of it: a corner flat to round-off is a
+   !> triangle, doc/decisions.md), 0 where it is. With A the area, T the smallest
    !> corner triangle and D the longest diagonal squared, phi^2 A^2 = (c0 A + c1 T) A, so
    !>     dt^2 = phi^2 A^2/(D c^2) = (c0 A + c1 T) A/(D c^2)
    !> takes one division, and phi^2 > 0 is c0 A + c1 T > 0 (A > 0). Areas are formed doubled
@@ -536,6 +537,8 @@ contains
       real(wp), intent(in) :: lambda, mu, rho0
       real(wp), intent(out), dimension(NBLOCK) :: dt2, good
       real(wp), parameter :: s3 = 0.57735026918962576451_wp
+      !> a corner triangle within FLAT of the area is flat (three nodes on a line to round-off), not folded
+      real(wp), parameter :: FLAT = 1.0e-10_wp
       real(wp), dimension(NBLOCK) :: num, den, jr, c2, ok
       real(wp) :: c0, c1, d1x, d1y, d2x, d2y, a2, a02, t2, pa, ph, ex(4), ey(4)
       integer :: k, a
@@ -563,7 +566,7 @@ contains
          t2 = min(min(ex(4)*ey(1) - ey(4)*ex(1), ex(1)*ey(2) - ey(1)*ex(2)), &
                   min(ex(2)*ey(3) - ey(2)*ex(3), ex(3)*ey(4) - ey(3)*ex(4)))
          pa = merge(1.0_wp, 0.0_wp, a2 > 0.0_wp)
-         good(k) = pa*merge(1.0_wp, 0.0_wp, t2 > 0.0_wp)
+         good(k) = pa*merge(1.0_wp, 0.0_wp, t2 > -FLAT*a2)
          ph = c0*a2 + c1*t2
          ok(k) = pa*merge(1.0_wp, 0.0_wp, ph > 0.0_wp)
          num(k) = ph*a2
@@ -654,7 +657,7 @@ contains
    !> 0.995 of the limit; L/c alone exceeds it by up to 2% for tapers of 1.6:1 and by 45% for
    !> wedge-like quads. An element with A <= 0 or phi^2 <= 0 gives dt_e = 0.
    !> dtmin: the smallest dt_e; emin: the first element that gives it; efold: the first element
-   !> folded at a corner (a corner triangle of non-positive area, i.e. det J <= 0 at that node,
+   !> folded at a corner (a corner triangle of negative area beyond round-off, i.e. det J < 0 at that node,
    !> which the Gauss points of either rule need not see), 0 if none.
    pure subroutine q4_stable_dt(nq, nel, nnode, conn, x0, x, lambda, mu, rho0, dtmin, emin, efold)
       integer, intent(in) :: nq                    !< 1 or 2

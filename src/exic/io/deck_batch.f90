@@ -31,7 +31,7 @@ module exic_io_deck_batch
    use exic_io_records, only: keyword_is, keyword_key
    use exic_io_expression, only: evaluate
    use exic_io_reader, only: next_in_set, reader_t, next_nonblank, field, word, has_field, &
-                             real_field, int_field, fail, warn, where, unknown_keyword, &
+                             real_field, int_field, fail, warn, warn_at, where, unknown_keyword, &
                              itoa, rtoa, check_command, check_data_record, is_command
    use exic_io_deck_mesh, only: genvec_t, node_record
    use exic_io_deck_finish, only: used_nodes, nearest_node
@@ -108,6 +108,7 @@ contains
             end if
             prog(n)%jump = stack(depth)
             prog(stack(depth))%jump = n
+            call loop_without_time(rd, prog(stack(depth):n))
             depth = depth - 1
          end if
       end do
@@ -118,6 +119,18 @@ contains
       end if
       model%program = prog(1:n)
    end subroutine read_batch
+
+   !> A warning for a LOOP (body(1), closed by body(size)) that steps (FORM) with no TIME anywhere
+   !> in it: nothing ends it before its count, and only TIME writes history rows and fields, so
+   !> it runs all its steps silently (a run of 10^7 steps that looks like a hang).
+   subroutine loop_without_time(rd, body)
+      type(reader_t), intent(inout) :: rd
+      type(command_t), intent(in) :: body(:)
+      if (.not. any(body%name == 'form') .or. any(body%name == 'time')) return
+      call warn_at(rd, body(1)%where, 'LOOP,,'//itoa(nint(body(1)%v(1)))//' steps FORM with no TIME '// &
+                   'in it: it runs all its steps, with no end time, and writes no history rows or '// &
+                   'fields while it runs (TIME,,tmax writes them and leaves the loop at tmax)')
+   end subroutine loop_without_time
 
    !> One solution command.
    subroutine parse_command(rd, i, model, c, err)
