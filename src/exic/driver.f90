@@ -107,8 +107,11 @@ contains
       if (r%stp%started) call check_inside(r)
       if (r%stp%started) call finish_progress(r)
       field_files = ''
-      if (r%out%field_dt > 0.0_wp) field_files = ' '//opts%base//'.h5 '//opts%base//'.xdmf '// &
-                                                 opts%base//'_series.xdmf'
+      if (r%out%field_dt > 0.0_wp) then
+         call add_existing(field_files, opts%base//'.h5')
+         call add_existing(field_files, opts%base//'.xdmf')
+         call add_existing(field_files, opts%base//'_series.xdmf')
+      end if
       wall = wall_time() - wall_start
       call report_final(r%out%files, r%stp, err, wall, field_files, r%inside)
       call r%out%close()
@@ -224,5 +227,15 @@ contains
       end do
       k = size(model%program)
    end function find_next
+
+   !> Appends ' '//path to list when the file exists (the field files a run that stopped while
+   !> creating them has not got are not reported as written).
+   subroutine add_existing(list, path)
+      character(len=:), allocatable, intent(inout) :: list
+      character(len=*), intent(in) :: path
+      logical :: there
+      inquire (file=path, exist=there)
+      if (there) list = list//' '//path
+   end subroutine add_existing
 
 end module exic_driver
