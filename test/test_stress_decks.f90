@@ -16,19 +16,13 @@
 !>   and the run stopped as "folded" at step 57. A flat corner is a triangle, not a fold
 !>   (doc/decisions.md, "Inverted and folded elements"): it runs to the end. (Saved under its own
 !>   name: a stress run of that seed replaces the scene_<seed>_*.inp files.)
-!> - the long wall bounce (AUTOmatic, a block between two rigid walls, a node of the block and
-!>   one of each wall meeting head-on): the walls' nodes took the block's indented segment
-!>   normal and the frictionless walls pushed the block sideways (|p_y| 9.4e-3 after 10^5 steps
-!>   against p_x 1.83). A smooth rigid node takes its own face's normal (doc/contact-detection.md,
-!>   "A rigid node meeting a deformable face"): |p_y| stays at round-off.
 module test_stress_decks
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
-   use exic_base_strings, only: itoa, rtoa
-   use deck_runner, only: run_dir, read_table, column
+   use deck_runner, only: run_dir
    use testing, only: suite_t, check, section
    implicit none
    private
@@ -63,34 +57,7 @@ contains
       v = number_after(out, 'final time ')
       call check(s, abs(v - 12.384075_wp) < 1.0e-5_wp, 'final time 12.384 (stopped at 0.646 as folded)', &
                  line_with(out, 'final time'))
-      call section(s, 'stress decks: a block bouncing between rigid walls, nodes meeting head-on')
-      call head_on(s)
    end subroutine run_stress_decks_tests
-
-   !> bounce_head_on: over 20,000 steps (five impacts on the walls) the transverse momentum of
-   !> the model stays at round-off of the initial p_x (it reached 2e-3 of it before).
-   subroutine head_on(s)
-      type(suite_t), intent(inout) :: s
-      character(len=:), allocatable :: out
-      character(len=64), allocatable :: names(:), hn(:)
-      real(wp), allocatable :: e(:, :), h(:, :)
-      real(wp) :: py, px0
-      integer :: kc, impacts, k
-      call run_saved(s, 'bounce_head_on', out)
-      if (len(out) == 0) return
-      call read_table(run_dir//'/bounce_head_on.ene', names, e)
-      call read_table(run_dir//'/bounce_head_on.his', hn, h)
-      px0 = abs(e(column(names, 'momentum_x'), 1))
-      py = maxval(abs(e(column(names, 'momentum_y'), :)))
-      kc = column(hn, 'cont(p1,1)')
-      impacts = 0
-      do k = 2, size(h, 2)
-         if (h(kc, k) > 0.0_wp .and. h(kc, k - 1) <= 0.0_wp) impacts = impacts + 1
-      end do
-      call check(s, impacts >= 3, 'the block strikes the walls at least three times', itoa(impacts))
-      call check(s, py <= 1.0e-12_wp*px0, 'transverse momentum at round-off of p_x(0) (frictionless walls)', &
-                 'largest |p_y| / p_x(0) = '//rtoa(py/px0))
-   end subroutine head_on
 
    !> Run test/data/stress/<name>.inp into run_dir and return its <stem>.out.
    subroutine run_saved(s, name, out)

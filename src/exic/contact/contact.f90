@@ -28,7 +28,6 @@ module exic_contact_contact
    use exic_contact_broad, only: broad_t, broad_search
    use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: contact_set_t, detect_contacts
-   use exic_contact_rigid_normals, only: smooth_rigid, own_normals
    use exic_contact_corrector, only: constraints_t, corrector_t
    use exic_contact_friction, only: friction_t, coulomb_mu
    use exic_contact_penalty, only: penalty_forces, penalty_history_t
@@ -63,10 +62,6 @@ module exic_contact_contact
       integer, allocatable :: where(:, :)      !< (2, nseg) positions of seg nodes in `nodes`
       real(wp), allocatable :: nrm(:, :)       !< (2, nnode) node normals at t(n+1)
       integer :: nrm_stamp = -1                !< search whose positions nrm holds
-      !> (nnode) a node of a rigid body on a smooth stretch of its surface: as a slave against a
-      !> deformable segment its constraint takes its own surface's normal (doc/contact-detection.md,
-      !> "A rigid node meeting a deformable face"); not allocated when no node is
-      logical, allocatable :: own(:)
    end type surface_t
 
    !> One pass: the nodes of surface `slave` against the segments of surface `master`.
@@ -117,7 +112,6 @@ module exic_contact_contact
       type(pass_t) :: auto_pass                !< options of the Lagrange AUTOmatic passes
       type(broad_all_t) :: auto                !< the AUTOmatic surfaces and their search
       integer :: auto_first = 0                !< surfaces(auto_first + r) is AUTOmatic surface r
-      logical, allocatable :: rigid(:)         !< (nnode) node of a rigid body (when the caller says)
       integer, allocatable :: cnodes(:)        !< every node of every contact surface
       integer :: stamp = 0                     !< searches made (normals are formed once per search)
       !> the caller passes the same fcon to every call and leaves it alone in between (the
@@ -162,7 +156,7 @@ contains
    !> mesh); x(2, nnode): the positions now (checked for overlap); conn(4, nelem), region(nelem),
    !> mat(nelem): the elements whose free boundaries make REGIon, MATErial and AUTOmatic surfaces;
    !> modulus: the largest constrained modulus lambda + 2 mu of the solids (PENAlty,SCALe).
-   subroutine contact_init(self, spec, nnode, xref, x, nelem, conn, region, mat, modulus, err, rigid)
+   subroutine contact_init(self, spec, nnode, xref, x, nelem, conn, region, mat, modulus, err)
       class(contact_t), intent(inout) :: self
       type(contact_spec_t), intent(in) :: spec
       integer, intent(in) :: nnode, nelem
@@ -170,11 +164,9 @@ contains
       integer, intent(in) :: conn(4, nelem), region(nelem), mat(nelem)
       real(wp), intent(in) :: modulus
       type(error_t), allocatable, intent(out) :: err
-      logical, intent(in), optional :: rigid(nnode)   !< node of a rigid body
       integer :: k, np, nsurf
       real(wp) :: len_sum
       integer :: nlen
-      logical, allocatable :: own(:)
 
       self%active = spec%active
       if (.not. self%active) return
@@ -196,15 +188,6 @@ contains
       self%corr%gap_tol = 1.0e-13_wp*self%lref
       allocate (self%xp(2, nnode), source=0.0_wp)
       call contact_nodes(self, nnode)
-      if (present(rigid)) then
-         self%rigid = rigid
-         do k = 1, nsurf
-            associate (sf => self%surfaces(k))
-               if (smooth_rigid(sf%nseg, sf%seg, sf%where, sf%nnode, sf%nodes, nnode, x, rigid, own)) &
-                  call move_alloc(own, sf%own)
-            end associate
-         end do
-      end if
       np = size(self%passes)
       do k = 1, np
          if (self%passes(k)%method == METHOD_PENALTY) self%any_penalty = .true.
@@ -544,8 +527,6 @@ contains
             call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                  sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
                                  self%depth, FACING)
-            if (allocated(sl%own)) call own_normals(ps%hits, sl%nnode, sl%nodes, sl%own, sl%nrm, self%rigid, &
-                                                    nnode, self%xp)
             do j = 1, ps%hits%n
                node = ps%hits%slave(j)
                associate (m1 => ps%hits%master(1, j), m2 => ps%hits%master(2, j), &

@@ -145,7 +145,7 @@ contains
          if (materials(k)%kind == MAT_SOLID) modulus = max(modulus, materials(k)%lambda + 2.0_wp*materials(k)%mu)
       end do
       call self%contact%init(spec, n, self%st%x0, self%x, mesh%nelem, mesh%conn, mesh%region, mesh%mat, &
-                             modulus, err, self%st%rigid)
+                             modulus, err)
       if (allocated(err)) return
       if (self%contact%energy) then
          ! LAGRange,ENERgy: massless contact faces (doc/impact.md, section 3)
