@@ -316,7 +316,7 @@ C     THE FACE NODES CARRY NO MASS: NO PREDICTED ACCELERATION
 C
 C=======================================================================
       SUBROUTINE EMASS(E, ME)
-C     ROW-SUM LUMPED MASS OF ELEMENT E (2X2 GAUSS), AS IN LMASS
+C     ROW-SUM LUMPED MASS OF ELEMENT E (2X2 GAUSS)
       IMPLICIT NONE
       INCLUDE 'host.inc'
       INTEGER E, G, K
@@ -452,35 +452,20 @@ C     REFERENCE GRADIENTS AND WEIGHTS AT THE 2X2 GAUSS POINTS
 C
 C=======================================================================
       SUBROUTINE LMASS
-C     ROW-SUM LUMPED MASS (2X2 GAUSS) AND INVERSE MASS PER DOF
+C     ROW-SUM LUMPED MASS (2X2 GAUSS, EMASS) AND INVERSE MASS PER DOF
       IMPLICIT NONE
       INCLUDE 'host.inc'
-      DOUBLE PRECISION XE(4), YE(4), DNX(4), DNY(4), DJ, GQ, XI, ETA
-      DOUBLE PRECISION XIN(4), ETN(4), ME(4)
-      INTEGER E, G, K, I
-      DATA XIN /-1.0D0, 1.0D0, 1.0D0, -1.0D0/
-      DATA ETN /-1.0D0, -1.0D0, 1.0D0, 1.0D0/
-      GQ = 0.57735026918962576451D0
+      DOUBLE PRECISION ME(4)
+      INTEGER E, K, I
       DO 5 I = 1, NNODE
          AMASS(I) = 0.0D0
          RIGID(I) = .FALSE.
     5 CONTINUE
       DO 30 E = 1, NELEM
          DO 10 K = 1, 4
-            XE(K) = X0(1,IX(K,E))
-            YE(K) = X0(2,IX(K,E))
-            ME(K) = 0.0D0
             IF (KIND(IMAT(E)) .EQ. 0) RIGID(IX(K,E)) = .TRUE.
    10    CONTINUE
-         DO 20 G = 1, 4
-            XI = GQ*XIN(G)
-            ETA = GQ*ETN(G)
-            CALL GRAD(XE, YE, XI, ETA, DNX, DNY, DJ)
-            DO 15 K = 1, 4
-               ME(K) = ME(K) + (RHO(IMAT(E))*DJ*0.25D0)
-     &               *(1.0D0 + XIN(K)*XI)*(1.0D0 + ETN(K)*ETA)
-   15       CONTINUE
-   20    CONTINUE
+         CALL EMASS(E, ME)
          DO 25 K = 1, 4
             AMASS(IX(K,E)) = AMASS(IX(K,E)) + ME(K)
    25    CONTINUE
