@@ -161,8 +161,9 @@ contains
    end subroutine report_final
 
    !> The energy balance of <stem>.ene: total = kinetic + the change of the kinetic correction
-   !> since t = 0 (doc/decisions.md, "Energy balance", eq. E.3) + strain + hourglass + plastic work (doc/axisymmetry.md, (A13))
-   !> - external work - contact work - prescribed work, and its drift from the initial total
+   !> since t = 0 (doc/decisions.md, "Energy balance", eq. E.3) + strain + hourglass + plastic
+   !> work (doc/axisymmetry.md, (A13)) - external work - contact work - prescribed work, and its
+   !> drift from the initial total
    !> relative to the largest of |initial total| and the physical energy now; `correction`, that
    !> change of the kinetic correction, for its column.
    subroutine energy_balance(st, total, drift, correction)
