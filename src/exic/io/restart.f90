@@ -234,18 +234,11 @@ contains
       real(wp), intent(in) :: x(:)
       integer, intent(in) :: per
       real(wp), allocatable :: saved(:)
-      integer :: k
       if (allocated(ar%err)) return
       saved = x
       call ar%item(name, saved)
       if (allocated(ar%err) .or. ar%saving) return
-      do k = 1, size(x)
-         if (saved(k) /= x(k)) then
-            call make_error(ar%err, 'it was written for another deck: '//what//' differ (first at '// &
-                            'number '//itoa((k - 1)/per + 1)//')')
-            return
-         end if
-      end do
+      call differ(ar, what, findloc(saved /= x, .true., dim=1), per)
    end subroutine same_reals
 
    !> Integer version of same_reals.
@@ -255,19 +248,23 @@ contains
       integer, intent(in) :: x(:)
       integer, intent(in) :: per
       integer, allocatable :: saved(:)
-      integer :: k
       if (allocated(ar%err)) return
       saved = x
       call ar%item(name, saved)
       if (allocated(ar%err) .or. ar%saving) return
-      do k = 1, size(x)
-         if (saved(k) /= x(k)) then
-            call make_error(ar%err, 'it was written for another deck: '//what//' differ (first at '// &
-                            'number '//itoa((k - 1)/per + 1)//')')
-            return
-         end if
-      end do
+      call differ(ar, what, findloc(saved /= x, .true., dim=1), per)
    end subroutine same_ints
+
+   !> The refusal of same_reals and same_ints when entry k (> 0) of the saved values differs from
+   !> the deck's (entry k of `per` values is item (k - 1)/per + 1); nothing when k = 0.
+   subroutine differ(ar, what, k, per)
+      type(archive_t), intent(inout) :: ar
+      character(len=*), intent(in) :: what
+      integer, intent(in) :: k, per
+      if (k == 0) return
+      call make_error(ar%err, 'it was written for another deck: '//what//' differ (first at '// &
+                      'number '//itoa((k - 1)/per + 1)//')')
+   end subroutine differ
 
    ! ---------------------------------------------------------------------------- the state
 

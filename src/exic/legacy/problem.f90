@@ -746,19 +746,7 @@ contains
       integer, intent(in) :: h, ipair
       real(wp), intent(out) :: res(6)
       integer, intent(out) :: ierr
-      type(problem_t), pointer :: p
-      integer :: k
-      res = 0.0_wp
-      p => lookup(who, h, ierr)
-      if (.not. associated(p)) return
-      if (ipair < 1 .or. ipair > p%npair) then
-         call fail(h, who//': pair '//itoa(ipair)//' is outside 1..'//itoa(p%npair))
-         ierr = IERR_ARGUMENT
-         return
-      end if
-      do k = 1, 6
-         res(k) = p%contact%pair_value(ipair, k)
-      end do
+      call pair_values(who, h, ipair, 0, res, ierr)
    end subroutine problem_pair_results
 
    !> res(4) of pair ipair: friction force (sum of |q| over its constraints) in the last step,
@@ -770,6 +758,16 @@ contains
       integer, intent(in) :: h, ipair
       real(wp), intent(out) :: res(4)
       integer, intent(out) :: ierr
+      call pair_values(who, h, ipair, 7, res, ierr)
+   end subroutine problem_pair_friction
+
+   !> res(k) = value skip + k of pair ipair's results (contact_t%pair_value), k = 1..size(res),
+   !> after checking the handle and the pair number.
+   subroutine pair_values(who, h, ipair, skip, res, ierr)
+      character(len=*), intent(in) :: who
+      integer, intent(in) :: h, ipair, skip
+      real(wp), intent(out) :: res(:)
+      integer, intent(out) :: ierr
       type(problem_t), pointer :: p
       integer :: k
       res = 0.0_wp
@@ -780,10 +778,10 @@ contains
          ierr = IERR_ARGUMENT
          return
       end if
-      do k = 1, 4
-         res(k) = p%contact%pair_value(ipair, 7 + k)
+      do k = 1, size(res)
+         res(k) = p%contact%pair_value(ipair, skip + k)
       end do
-   end subroutine problem_pair_friction
+   end subroutine pair_values
 
    !> Number of candidate (Lagrange) constraints of the last step.
    subroutine problem_ncon(who, h, ncon, ierr)
