@@ -5,8 +5,9 @@ module test_contact_geom
    use exic_base_error, only: error_t
    use exic_contact_spec, only: DETECT_SWEPT, DETECT_STATIC
    use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, &
-                                 segment_normal, average_normal, node_normals
-   use exic_contact_broad, only: broad_t, broad_search, broad_brute, surfaces_apart
+                                 segment_normal, average_normal, node_normals, node_segments, &
+                                 some_node_normals
+   use exic_contact_broad, only: broad_t, broad_search, broad_search_kept, broad_brute, surfaces_apart
    use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: gap_coefficients, first_crossing, swept_pair, static_pair, &
                                   contact_set_t, detect_contacts, ALPHA_TOL, FACING_LIMIT
@@ -35,8 +36,10 @@ contains
       call test_thin_target(s)
       call test_corner(s)
       call test_broad_random(s)
+      call test_broad_kept(s)
       call test_broad_scaling(s)
       call test_broad_all(s)
+      call test_broad_all_kept(s)
    end subroutine run_contact_geom_tests
 
    ! ---------------------------------------------------------------- helpers
@@ -219,9 +222,9 @@ contains
 
    subroutine test_normals_links(s)
       type(suite_t), intent(inout) :: s
-      real(wp) :: x(2, 12), nrm(2, 10), r
+      real(wp) :: x(2, 12), nrm(2, 10), part(2, 10), r
       integer :: conn(4, 6), k, p
-      integer, allocatable :: edges(:, :), nodes(:), link(:, :), where(:, :)
+      integer, allocatable :: edges(:, :), nodes(:), link(:, :), where(:, :), head(:), segs(:)
       logical :: sel(6), ok
       type(error_t), allocatable :: err
 
@@ -252,6 +255,16 @@ contains
       call check(s, maxval(abs(nrm(:, p) - [r, r])) < 1.0e-15_wp, 'far corner node normal')
       call check(s, maxval(abs(segment_normal([0.0_wp, 0.0_wp], [2.0_wp, 0.0_wp]) - &
                                [0.0_wp, -1.0_wp])) == 0.0_wp, 'segment normal points right')
+      ! the normals of chosen nodes only: the same bits as node_normals, the others untouched
+      x(:, 6) = x(:, 6) + [0.3_wp, 0.1_wp]
+      x(:, 7) = x(:, 7) + [-0.1_wp, 0.2_wp]
+      call node_normals(12, x, 10, edges, 10, where, nrm)
+      call node_segments(10, where, 10, head, segs)
+      part = -7.0_wp
+      call some_node_normals(12, x, 10, edges, 10, head, segs, 4, [2, 5, 7, 10], part)
+      ok = all(part(:, [2, 5, 7, 10]) == nrm(:, [2, 5, 7, 10])) .and. &
+           all(part(:, [1, 3, 4, 6, 8, 9]) == -7.0_wp)
+      call check(s, ok, 'normals of chosen nodes: identical to node_normals, others untouched')
    end subroutine test_normals_links
 
    ! ----------------------------------------------------------- narrow phase
@@ -609,6 +622,47 @@ contains
                  bw%ncand == 0 .and. bw%ntests == 0, 'surfaces apart: skipped without tests')
    end subroutine test_broad_random
 
+   !> The kept list (broad_search_kept) against the grid search at every step of random
+   !> motions: small drifts (the list is reused) and jumps past the skin (it is built again).
+   subroutine test_broad_kept(s)
+      type(suite_t), intent(inout) :: s
+      type(lcg_t) :: g
+      type(broad_t) :: bk, bg
+      real(wp), allocatable :: x0(:, :), x1(:, :), v(:, :)
+      integer, allocatable :: seg(:, :), slaves(:)
+      integer :: step, n, k, nsame, nfound
+      logical :: same
+
+      call section(s, 'contact geometry: kept broad-phase list')
+      call random_scene(g, 200, 120, x0, x1, seg, slaves)
+      n = size(x0, 2)
+      allocate (v(2, n))
+      do k = 1, n
+         v(:, k) = [rnd(g, -1.0_wp, 1.0_wp), rnd(g, -1.0_wp, 1.0_wp)]*2.0e-3_wp
+      end do
+      nsame = 0
+      nfound = 0
+      do step = 1, 400
+         x0 = x0 + v
+         x1 = x0 + v*rnd(g, 0.5_wp, 1.5_wp)
+         ! every 50th step one node jumps by half the scene's segment length
+         if (mod(step, 50) == 0) then
+            x0(:, 1 + mod(7*step, n)) = x0(:, 1 + mod(7*step, n)) + 0.25_wp
+            x1(:, 1 + mod(7*step, n)) = x1(:, 1 + mod(7*step, n)) + 0.25_wp
+         end if
+         call broad_search(bg, n, x0, x1, 200, slaves, 120, seg, 0.05_wp)
+         call broad_search_kept(bk, n, x0, x1, 200, slaves, 120, seg, 0.05_wp)
+         same = bk%ncand == bg%ncand
+         if (same) same = all(bk%cand(:, 1:bk%ncand) == bg%cand(:, 1:bg%ncand))
+         if (same) nsame = nsame + 1
+         nfound = nfound + bg%ncand
+      end do
+      call check(s, nsame == 400 .and. nfound > 400, &
+                 'kept list: the pairs of the grid search, in its order, at each of 400 steps')
+      call check(s, bk%nbuilds >= 8 .and. bk%nkept_steps >= 200, &
+                 'kept list: reused between builds, built again past the skin')
+   end subroutine test_broad_kept
+
    !> n separated (slave, segment) pairs on a row; work must grow like n, not n^2.
    subroutine test_broad_scaling(s)
       type(suite_t), intent(inout) :: s
@@ -733,6 +787,57 @@ contains
                  'bodies apart: box tests grow like the number of bodies', &
                  'box tests '//trim(adjustl(i8str(tests(1))))//' -> '//trim(adjustl(i8str(tests(2)))))
    end subroutine test_broad_all
+
+   !> search_kept against search over 300 steps of 25 polygons drifting into each other, with
+   !> jumps past the skin: the same groups and candidates at every step.
+   subroutine test_broad_all_kept(s)
+      type(suite_t), intent(inout) :: s
+      type(lcg_t) :: g
+      type(broad_all_t) :: bk, bs
+      real(wp), allocatable :: x0(:, :), x1(:, :), v(:, :)
+      integer, allocatable :: seg(:, :)
+      integer :: i, k, step, nsame, ngroups, n
+      logical :: same
+
+      call section(s, 'contact geometry: kept list of the search over all surfaces')
+      call polygons(g, 25, 12, 1.1_wp, 0.0_wp, x0, x1, seg)
+      n = size(x0, 2)
+      do i = 1, 25
+         call bk%add_surface([((i - 1)*12 + k, k=1, 12)], seg(:, (i - 1)*12 + 1:i*12))
+         call bs%add_surface([((i - 1)*12 + k, k=1, 12)], seg(:, (i - 1)*12 + 1:i*12))
+      end do
+      allocate (v(2, n))
+      do i = 1, 25
+         ! one velocity per body: bodies drift into and past each other
+         v(:, (i - 1)*12 + 1:i*12) = spread([rnd(g, -1.0_wp, 1.0_wp), rnd(g, -1.0_wp, 1.0_wp)]*1.0e-3_wp, 2, 12)
+      end do
+      nsame = 0
+      ngroups = 0
+      do step = 1, 300
+         x0 = x0 + v
+         x1 = x0 + v*rnd(g, 0.5_wp, 1.5_wp)
+         if (mod(step, 40) == 0) then
+            x0(:, 1 + mod(11*step, n)) = x0(:, 1 + mod(11*step, n)) + 0.2_wp
+            x1(:, 1 + mod(11*step, n)) = x1(:, 1 + mod(11*step, n)) + 0.2_wp
+         end if
+         call bs%search(n, x0, x1, 0.02_wp)
+         call bk%search_kept(n, x0, x1, 0.02_wp)
+         same = bk%ngroup == bs%ngroup
+         if (same .and. bs%ngroup > 0) then
+            same = all(bk%gslave(1:bs%ngroup) == bs%gslave(1:bs%ngroup)) .and. &
+                   all(bk%gmaster(1:bs%ngroup) == bs%gmaster(1:bs%ngroup)) .and. &
+                   all(bk%gfirst(1:bs%ngroup + 1) == bs%gfirst(1:bs%ngroup + 1))
+            if (same) same = all(bk%gcand(:, 1:bs%gfirst(bs%ngroup + 1) - 1) == &
+                                 bs%gcand(:, 1:bs%gfirst(bs%ngroup + 1) - 1))
+         end if
+         if (same) nsame = nsame + 1
+         ngroups = ngroups + bs%ngroup
+      end do
+      call check(s, nsame == 300 .and. ngroups > 300, &
+                 'kept list: the groups and candidates of the search at each of 300 steps')
+      call check(s, bk%nbuilds >= 5 .and. bk%nkept_steps >= 150, &
+                 'kept list: reused between builds, built again past the skin')
+   end subroutine test_broad_all_kept
 
    function i8str(v) result(t)
       integer(i8), intent(in) :: v

@@ -26,7 +26,15 @@ module exic_contact_broad
    implicit none
    private
 
-   public :: broad_t, broad_search, broad_brute, swept_box, surfaces_apart, boxes_overlap
+   public :: broad_t, broad_search, broad_search_kept, broad_brute, swept_box, surfaces_apart, &
+             boxes_overlap
+
+   !> Skin of the kept list (broad_search_kept): SKIN_SHARE of the mean segment length, or
+   !> SKIN_STEPS times the largest motion of one step if that is larger.
+   real(wp), parameter :: SKIN_SHARE = 0.2_wp, SKIN_STEPS = 10.0_wp
+   !> A node may move up to SKIN_USE x skin from its positions at the build (the rest of the
+   !> skin absorbs the rounding of the box tests).
+   real(wp), parameter :: SKIN_USE = 0.75_wp
 
    !> Work space and result of the broad phase; reuse one per contact pair across steps.
    type :: broad_t
@@ -40,6 +48,17 @@ module exic_contact_broad
       integer, allocatable :: head(:)        !< (ncell + 1) CSR pointers of the grid
       integer, allocatable :: items(:)       !< segment indices by cell
       integer, allocatable :: buf(:)         !< per-slave list of found segments
+      ! kept list of broad_search_kept: the pairs within margin + 2 skin at the build
+      logical :: kept = .false.              !< the kept list exists
+      integer :: nkept = 0                   !< pairs in it
+      integer, allocatable :: keep(:, :)     !< (2, >= nkept) slave index, segment index, sorted
+      real(wp) :: skin = 0.0_wp              !< skin of the kept list
+      integer :: kslave = 0, kseg = 0        !< list sizes the kept list was built for
+      integer :: nwatch = 0                  !< distinct slave and segment nodes
+      integer, allocatable :: watch(:)       !< (nwatch) those nodes
+      real(wp), allocatable :: xw(:, :)      !< (4, nwatch) their x0, x1 at the build
+      integer(i8) :: nbuilds = 0             !< builds of the kept list
+      integer(i8) :: nkept_steps = 0         !< searches answered from the kept list
    end type broad_t
 
 contains
@@ -132,6 +151,111 @@ contains
       call query_slaves(bw, nslave, slaves, nseg, seg, dom, h)
       bw%ntests_total = bw%ntests_total + bw%ntests
    end subroutine broad_search
+
+   !> The result of broad_search (the same pairs in the same order, bit for bit) from a list
+   !> kept across steps, in the manner of a Verlet list. The kept list holds the pairs whose
+   !> boxes overlap with margin + 2 skin at the positions of its build; while every slave and
+   !> segment node stays within SKIN_USE x skin of those positions (at both x0 and x1), every
+   !> box of now lies within its box of then grown by the skin, so every pair of now is in
+   !> the kept list, and testing the kept pairs with broad_search's own test and margin gives
+   !> exactly broad_search's list (doc/contact-detection.md, "Kept broad-phase list"). A node
+   !> moving further, or a change of the lists' sizes, builds the list again.
+   subroutine broad_search_kept(bw, nnode, x0, x1, nslave, slaves, nseg, seg, margin)
+      type(broad_t), intent(inout) :: bw
+      integer, intent(in) :: nnode, nslave, nseg
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+      integer, intent(in) :: slaves(nslave), seg(2, nseg)
+      real(wp) :: sb(4), mb(4)
+      integer :: k, s, m
+
+      if (.not. kept_valid(bw, nnode, x0, x1, nslave, nseg)) then
+         call build_kept(bw, nnode, x0, x1, nslave, slaves, nseg, seg, margin)
+      else
+         bw%nkept_steps = bw%nkept_steps + 1
+      end if
+      bw%ncand = 0
+      bw%ntests = 0
+      call grow(bw%cand, max(bw%nkept, 1), 2)
+      do k = 1, bw%nkept
+         s = bw%keep(1, k)
+         m = bw%keep(2, k)
+         sb(1:2) = min(x0(:, slaves(s)), x1(:, slaves(s)))
+         sb(3:4) = max(x0(:, slaves(s)), x1(:, slaves(s)))
+         mb(1:2) = min(x0(:, seg(1, m)), x1(:, seg(1, m)), x0(:, seg(2, m)), x1(:, seg(2, m))) - margin
+         mb(3:4) = max(x0(:, seg(1, m)), x1(:, seg(1, m)), x0(:, seg(2, m)), x1(:, seg(2, m))) + margin
+         if (.not. boxes_overlap(mb, sb, 0.0_wp)) cycle
+         bw%ncand = bw%ncand + 1
+         bw%cand(:, bw%ncand) = bw%keep(:, k)
+      end do
+      bw%ntests = bw%nkept
+      bw%ntests_total = bw%ntests_total + bw%ntests
+   end subroutine broad_search_kept
+
+   !> True when the kept list of bw was built for these list sizes and no slave or segment
+   !> node has moved more than SKIN_USE x skin (in x or y, at x0 or at x1) since.
+   logical function kept_valid(bw, nnode, x0, x1, nslave, nseg) result(ok)
+      type(broad_t), intent(in) :: bw
+      integer, intent(in) :: nnode, nslave, nseg
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode)
+      real(wp) :: d
+      integer :: k, n
+
+      ok = bw%kept .and. bw%kslave == nslave .and. bw%kseg == nseg
+      if (.not. ok) return
+      d = 0.0_wp
+      do k = 1, bw%nwatch
+         n = bw%watch(k)
+         d = max(d, abs(x0(1, n) - bw%xw(1, k)), abs(x0(2, n) - bw%xw(2, k)), &
+                 abs(x1(1, n) - bw%xw(3, k)), abs(x1(2, n) - bw%xw(4, k)))
+      end do
+      ! a NaN position fails the test and builds again (broad_search then sees it)
+      ok = d <= SKIN_USE*bw%skin
+   end function kept_valid
+
+   !> Build the kept list at x0, x1: broad_search with margin + 2 skin, and the positions of
+   !> the distinct slave and segment nodes.
+   subroutine build_kept(bw, nnode, x0, x1, nslave, slaves, nseg, seg, margin)
+      type(broad_t), intent(inout) :: bw
+      integer, intent(in) :: nnode, nslave, nseg
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+      integer, intent(in) :: slaves(nslave), seg(2, nseg)
+      real(wp) :: lsum, mv
+      integer :: k, n
+      logical, allocatable :: mark(:)
+
+      if (.not. (bw%kept .and. bw%kslave == nslave .and. bw%kseg == nseg)) then
+         ! the distinct nodes, in node order (once per surface pair: the lists do not change)
+         allocate (mark(nnode), source=.false.)
+         mark(slaves) = .true.
+         mark(seg(1, 1:nseg)) = .true.
+         mark(seg(2, 1:nseg)) = .true.
+         n = count(mark)
+         call grow(bw%watch, n)
+         bw%watch(1:n) = pack([(k, k=1, nnode)], mark)
+         bw%nwatch = n
+         call grow(bw%xw, n, 4)
+      end if
+      lsum = 0.0_wp
+      do k = 1, nseg
+         lsum = lsum + hypot(x0(1, seg(2, k)) - x0(1, seg(1, k)), x0(2, seg(2, k)) - x0(2, seg(1, k)))
+      end do
+      mv = 0.0_wp
+      do k = 1, bw%nwatch
+         n = bw%watch(k)
+         mv = max(mv, abs(x1(1, n) - x0(1, n)), abs(x1(2, n) - x0(2, n)))
+         bw%xw(1:2, k) = x0(:, n)
+         bw%xw(3:4, k) = x1(:, n)
+      end do
+      bw%skin = max(SKIN_SHARE*lsum/real(max(nseg, 1), wp), SKIN_STEPS*mv)
+      call broad_search(bw, nnode, x0, x1, nslave, slaves, nseg, seg, margin + 2.0_wp*bw%skin)
+      call grow(bw%keep, max(bw%ncand, 1), 2)
+      bw%nkept = bw%ncand
+      if (bw%ncand > 0) bw%keep(:, 1:bw%ncand) = bw%cand(:, 1:bw%ncand)
+      bw%kslave = nslave
+      bw%kseg = nseg
+      bw%kept = .true.
+      bw%nbuilds = bw%nbuilds + 1
+   end subroutine build_kept
 
    !> Cell index (0-based) of coordinate v on an axis starting at lo with n cells of size h.
    pure integer function cell_of(v, lo, h, n) result(i)

@@ -22,7 +22,7 @@
 module exic_contact_broad_all
    use exic_base_kinds, only: wp, i8
    use exic_base_grow, only: grow
-   use exic_contact_broad, only: broad_t, broad_search
+   use exic_contact_broad, only: broad_t, broad_search, boxes_overlap
    implicit none
    private
 
@@ -51,9 +51,18 @@ module exic_contact_broad_all
       integer, allocatable :: lnode_surf(:), lnode_loc(:)    !< surface and index in it of each
       integer, allocatable :: lseg_surf(:), lseg_loc(:)      !< of lnodes, of lseg
       integer, allocatable :: count(:), slot(:), jlist(:)
+      ! kept list of search_kept: the fine candidates within margin + 2 skin at the build, with
+      ! lnodes, lseg and their surface indices of that search
+      logical :: kept = .false.
+      real(wp) :: skin = 0.0_wp
+      integer :: nkept = 0
+      integer, allocatable :: keep(:, :)      !< (2, nkept) indices into lnodes, lseg
+      real(wp), allocatable :: xw(:, :)       !< (4, size(nodes)) x0, x1 of every node at the build
+      integer(i8) :: nbuilds = 0, nkept_steps = 0
    contains
       procedure :: add_surface => broad_all_add_surface
       procedure :: search => broad_all_search
+      procedure :: search_kept => broad_all_search_kept
       procedure :: take => broad_all_take
    end type broad_all_t
 
@@ -96,6 +105,8 @@ contains
 
       self%ngroup = 0
       self%ntests = 0
+      self%kept = .false.
+      self%fine%ncand = 0
       n = self%nsurf
       if (n < 2) return
       ! 1. the swept box of each surface, as the two positions of a "node" 2r-1 and 2r
@@ -189,6 +200,82 @@ contains
       self%ntests = self%ntests + self%fine%ntests
       call regroup(self, n)
    end subroutine broad_all_search
+
+   !> The result of `search` (the same groups, candidates and order, bit for bit) from a list
+   !> kept across steps, as `broad_search_kept` does for one pair (doc/contact-detection.md,
+   !> "Kept broad-phase list"): the fine candidates of a search with margin + 2 skin, valid
+   !> while no surface node has moved more than SKIN_USE x skin from its positions at that
+   !> search; each step tests the kept candidates with `search`'s own test and margin and
+   !> regroups them. A candidate of now is in the kept list: its node and segment boxes lie
+   !> within their boxes of then grown by the skin, so at the build they overlapped with
+   !> margin + 2 skin, their surfaces' boxes too, and both passed the `reaches` tests.
+   subroutine broad_all_search_kept(self, nnode, x0, x1, margin)
+      class(broad_all_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+      real(wp), parameter :: SKIN_SHARE = 0.2_wp, SKIN_STEPS = 10.0_wp, SKIN_USE = 0.75_wp
+      real(wp) :: sb(4), mb(4), d, mv, lsum
+      integer :: k, l, m, node, nn
+
+      self%ngroup = 0
+      self%ntests = 0
+      if (self%nsurf < 2) return
+      nn = self%node_first(self%nsurf + 1) - 1
+      d = huge(1.0_wp)
+      if (self%kept) then
+         d = 0.0_wp
+         do k = 1, nn
+            node = self%nodes(k)
+            d = max(d, abs(x0(1, node) - self%xw(1, k)), abs(x0(2, node) - self%xw(2, k)), &
+                    abs(x1(1, node) - self%xw(3, k)), abs(x1(2, node) - self%xw(4, k)))
+         end do
+      end if
+      ! a NaN position fails the test and builds again
+      if (.not. (d <= SKIN_USE*self%skin)) then
+         lsum = 0.0_wp
+         mv = 0.0_wp
+         call grow(self%xw, max(nn, 1), 4)
+         do k = 1, nn
+            node = self%nodes(k)
+            mv = max(mv, abs(x1(1, node) - x0(1, node)), abs(x1(2, node) - x0(2, node)))
+            self%xw(1:2, k) = x0(:, node)
+            self%xw(3:4, k) = x1(:, node)
+         end do
+         do k = 1, self%seg_first(self%nsurf + 1) - 1
+            lsum = lsum + hypot(x0(1, self%seg(2, k)) - x0(1, self%seg(1, k)), &
+                                x0(2, self%seg(2, k)) - x0(2, self%seg(1, k)))
+         end do
+         self%skin = max(SKIN_SHARE*lsum/real(max(self%seg_first(self%nsurf + 1) - 1, 1), wp), &
+                         SKIN_STEPS*mv)
+         call broad_all_search(self, nnode, x0, x1, margin + 2.0_wp*self%skin)
+         self%nkept = self%fine%ncand
+         call grow(self%keep, max(self%nkept, 1), 2)
+         if (self%nkept > 0) self%keep(:, 1:self%nkept) = self%fine%cand(:, 1:self%nkept)
+         self%kept = .true.
+         self%nbuilds = self%nbuilds + 1
+      else
+         self%nkept_steps = self%nkept_steps + 1
+      end if
+      ! the kept candidates that pass the search's own test at this step, in their order
+      self%ngroup = 0
+      self%fine%ncand = 0
+      do k = 1, self%nkept
+         l = self%keep(1, k)
+         m = self%keep(2, k)
+         node = self%lnodes(l)
+         sb(1:2) = min(x0(:, node), x1(:, node))
+         sb(3:4) = max(x0(:, node), x1(:, node))
+         mb(1:2) = min(x0(:, self%lseg(1, m)), x1(:, self%lseg(1, m)), &
+                       x0(:, self%lseg(2, m)), x1(:, self%lseg(2, m))) - margin
+         mb(3:4) = max(x0(:, self%lseg(1, m)), x1(:, self%lseg(1, m)), &
+                       x0(:, self%lseg(2, m)), x1(:, self%lseg(2, m))) + margin
+         if (.not. boxes_overlap(mb, sb, 0.0_wp)) cycle
+         self%fine%ncand = self%fine%ncand + 1
+         self%fine%cand(:, self%fine%ncand) = self%keep(:, k)
+      end do
+      self%ntests = self%nkept
+      call regroup(self, self%nsurf)
+   end subroutine broad_all_search_kept
 
    !> True when `box` meets the box of a partner of surface r grown by `grow_by` on every side.
    pure logical function reaches(self, r, box, grow_by) result(yes)

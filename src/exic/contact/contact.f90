@@ -24,8 +24,9 @@ module exic_contact_contact
    use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, SURF_NODES, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
                                 DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t
-   use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, node_normals
-   use exic_contact_broad, only: broad_t, broad_search
+   use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, node_normals, &
+                                 node_segments, some_node_normals
+   use exic_contact_broad, only: broad_t, broad_search, broad_search_kept
    use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: contact_set_t, detect_contacts
    use exic_contact_corrector, only: constraints_t, corrector_t
@@ -61,7 +62,9 @@ module exic_contact_contact
       integer, allocatable :: nodes(:)         !< (nnode) sorted
       integer, allocatable :: where(:, :)      !< (2, nseg) positions of seg nodes in `nodes`
       real(wp), allocatable :: nrm(:, :)       !< (2, nnode) node normals at t(n+1)
-      integer :: nrm_stamp = -1                !< search whose positions nrm holds
+      integer :: nrm_stamp = -1                !< search whose positions nrm holds (all nodes)
+      integer, allocatable :: nhead(:), nsegs(:) !< segments of each node (node_segments)
+      integer, allocatable :: sel(:)           !< work: node positions whose normals are needed
    end type surface_t
 
    !> One pass: the nodes of surface `slave` against the segments of surface `master`.
@@ -294,6 +297,7 @@ contains
             sf%nnode = size(sf%nodes)
             call locate_nodes(sf%nseg, sf%seg, sf%nnode, sf%nodes, sf%where)
             allocate (sf%nrm(2, sf%nnode))
+            call node_segments(sf%nseg, sf%where, sf%nnode, sf%nhead, sf%nsegs)
          end associate
       end do
    end subroutine build_surfaces
@@ -511,19 +515,21 @@ contains
       if (self%friction) call friction_begin(self)
       self%cs%friction = self%friction
       call self%cs%reserve(64)
-      call auto_passes(self, nnode, x, self%xp, self%depth)
+      call auto_passes(self, nnode, x, self%xp, self%depth, kept=.true.)
       do k = 1, self%npass
          associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
                     ms => self%surfaces(self%passes(k)%master))
-            call surface_normals(self, sl, nnode, x)
             if (ps%method == METHOD_PENALTY) then
+               call surface_normals(self, sl, nnode, x)
                call penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, dt_prev, fcon, nactive)
                if (ps%broad%ncand > 0) touched = .true.
                cycle
             end if
-            if (.not. ps%auto) call broad_search(ps%broad, nnode, x, self%xp, sl%nnode, sl%nodes, ms%nseg, &
-                                                 ms%seg, self%depth)
+            if (.not. ps%auto) call broad_search_kept(ps%broad, nnode, x, self%xp, sl%nnode, sl%nodes, &
+                                                      ms%nseg, ms%seg, self%depth)
             if (ps%broad%ncand == 0) cycle
+            ! the normals of the candidate slaves only (the detection reads no others)
+            call candidate_normals(self, sl, nnode, x, ps%broad%ncand, ps%broad%cand)
             call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                  sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
                                  self%depth, FACING)
@@ -582,17 +588,25 @@ contains
    !> The passes of Lagrange AUTOmatic contact for this search: one search over every AUTOmatic
    !> surface (src/exic/contact/broad_all.f90) over x0 -> x1 with margin, then one pass per pair
    !> of surfaces with candidates, after the fixed passes, holding those candidates.
-   subroutine auto_passes(self, nnode, x0, x1, margin)
+   subroutine auto_passes(self, nnode, x0, x1, margin, kept)
       type(contact_t), intent(inout) :: self
       integer, intent(in) :: nnode
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+      logical, intent(in), optional :: kept    !< answer from the kept list (the step's search)
       integer :: g, need
       type(pass_t), allocatable :: tmp(:)
+      logical :: use_kept
 
+      use_kept = .false.
+      if (present(kept)) use_kept = kept
       self%stamp = self%stamp + 1
       self%npass = self%nfixed
       if (.not. self%auto_pass%auto) return
-      call self%auto%search(nnode, x0, x1, margin)
+      if (use_kept) then
+         call self%auto%search_kept(nnode, x0, x1, margin)
+      else
+         call self%auto%search(nnode, x0, x1, margin)
+      end if
       need = self%nfixed + self%auto%ngroup
       if (need > size(self%passes)) then
          allocate (tmp(max(need, 2*size(self%passes), 8)))
@@ -628,6 +642,29 @@ contains
       call node_normals(nnode, x, sf%nseg, sf%seg, sf%nnode, sf%where, sf%nrm)
       sf%nrm_stamp = self%stamp
    end subroutine surface_normals
+
+   !> Node normals of surface sf at positions x for the slaves of cand(1, 1:ncand) (sorted by
+   !> slave), the values node_normals gives them; nothing when the whole surface's normals of
+   !> this search are there already.
+   subroutine candidate_normals(self, sf, nnode, x, ncand, cand)
+      type(contact_t), intent(in) :: self
+      type(surface_t), intent(inout) :: sf
+      integer, intent(in) :: nnode, ncand
+      real(wp), intent(in) :: x(2, nnode)
+      integer, intent(in) :: cand(:, :)
+      integer :: k, nsel
+      if (sf%nrm_stamp == self%stamp) return
+      call grow(sf%sel, ncand)
+      nsel = 0
+      do k = 1, ncand
+         if (k > 1) then
+            if (cand(1, k) == cand(1, k - 1)) cycle
+         end if
+         nsel = nsel + 1
+         sf%sel(nsel) = cand(1, k)
+      end do
+      call some_node_normals(nnode, x, sf%nseg, sf%seg, sf%nnode, sf%nhead, sf%nsegs, nsel, sf%sel, sf%nrm)
+   end subroutine candidate_normals
 
    !> Every node of every contact surface, once (cnodes).
    subroutine contact_nodes(self, nnode)

@@ -19,7 +19,7 @@ module exic_mesh_boundary
    private
 
    public :: free_edges, order_chains, surface_nodes, segment_links, locate_nodes
-   public :: segment_normal, average_normal, node_normals
+   public :: segment_normal, average_normal, node_normals, node_segments, some_node_normals
 
 contains
 
@@ -336,5 +336,64 @@ contains
          end if
       end do
    end subroutine node_normals
+
+   !> Segments of each node of a surface, in increasing segment order (CSR): the segments of
+   !> node position p (as numbered by `where`, locate_nodes) are segs(head(p):head(p+1)-1).
+   subroutine node_segments(nseg, where, nlist, head, segs)
+      integer, intent(in) :: nseg, nlist
+      integer, intent(in) :: where(2, nseg)
+      integer, allocatable, intent(out) :: head(:), segs(:)
+      integer :: k, j, p
+      integer, allocatable :: fill(:)
+
+      allocate (head(nlist + 1), source=0)
+      do k = 1, nseg
+         do j = 1, 2
+            p = where(j, k)
+            if (p > 0) head(p + 1) = head(p + 1) + 1
+         end do
+      end do
+      head(1) = 1
+      do p = 1, nlist
+         head(p + 1) = head(p + 1) + head(p)
+      end do
+      allocate (segs(head(nlist + 1) - 1), fill(nlist))
+      fill = head(1:nlist)
+      do k = 1, nseg
+         do j = 1, 2
+            p = where(j, k)
+            if (p <= 0) cycle
+            segs(fill(p)) = k
+            fill(p) = fill(p) + 1
+         end do
+      end do
+   end subroutine node_segments
+
+   !> node_normals for the node positions sel(1:nsel) only, bit for bit the same values: the
+   !> segment normals are summed in increasing segment order as node_normals sums them. The
+   !> other columns of nrm are left as they are.
+   pure subroutine some_node_normals(nnode, x, nseg, seg, nlist, head, segs, nsel, sel, nrm)
+      integer, intent(in) :: nnode, nseg, nlist, nsel
+      real(wp), intent(in) :: x(2, nnode)
+      integer, intent(in) :: seg(2, nseg), head(nlist + 1), segs(:), sel(nsel)
+      real(wp), intent(inout) :: nrm(2, nlist)
+      real(wp) :: len
+      integer :: i, p, q, k
+
+      do i = 1, nsel
+         p = sel(i)
+         nrm(:, p) = 0.0_wp
+         do q = head(p), head(p + 1) - 1
+            k = segs(q)
+            nrm(:, p) = nrm(:, p) + segment_normal(x(:, seg(1, k)), x(:, seg(2, k)))
+         end do
+         len = hypot(nrm(1, p), nrm(2, p))
+         if (len > 1.0e-12_wp) then
+            nrm(:, p) = nrm(:, p)/len
+         else
+            nrm(:, p) = 0.0_wp
+         end if
+      end do
+   end subroutine some_node_normals
 
 end module exic_mesh_boundary
