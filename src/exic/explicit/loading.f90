@@ -44,12 +44,12 @@ module exic_explicit_loading
       logical :: any_body = .false., any_grav = .false.
       ! the nodal arrays below are allocated only for decks whose steps read them
       real(wp), allocatable :: fnode(:, :)       !< (2, nnode) FORCe values (varying loads)
-      real(wp), allocatable :: fbody(:, :)       !< (2, nnode) BODY forces (function 0; varying loads)
-      real(wp), allocatable :: fgrav(:, :)       !< (2, nnode) gravity forces (its function; varying loads)
+      real(wp), allocatable :: fbody(:, :)       !< (2, nnode) BODY forces (fn 0; varying loads)
+      real(wp), allocatable :: fgrav(:, :)       !< (2, nnode) gravity (its fn; varying loads)
       real(wp), allocatable :: fedge(:, :)       !< (2, nnode) edge loads of the step
       real(wp), allocatable :: fext_old(:, :)    !< (2, nnode) fext(n)
       real(wp), allocatable :: favg(:, :)        !< (2, nnode) 1/2 (fext(n) + fext(n+1)) for the work
-      real(wp), allocatable :: vold(:, :)        !< (2, nnode) v(n) through the step (varying loads, W_pm)
+      real(wp), allocatable :: vold(:, :)        !< (2, nnode) v(n) in the step (varying loads, W_pm)
       !> the works of the varying loads and of the prescribed motion by the trapezoid rule of the
       !> power, dt 1/2 (F(n) + F(n+1)) . 1/2 (v(n) + v(n+1)): the energy guard's second estimate
       real(wp) :: wext_p = 0.0_wp, wpm_p = 0.0_wp
@@ -65,7 +65,7 @@ module exic_explicit_loading
       ! rigid bodies
       type(rigid_body_t), allocatable :: bodies(:)
       integer, allocatable :: body_of(:)         !< (nnode) body of each node, 0: none
-      real(wp), allocatable :: wlump(:)          !< (nnode) lumped masses of free bodies' nodes (free bodies)
+      real(wp), allocatable :: wlump(:)          !< (nnode) lumped masses of free bodies' nodes
       type(rigid_dofs_t) :: rb                   !< free bodies for the corrector; rb%r: lever arms
                                                  !< (set up when a body is free or driven)
       ! the work of the prescribed motion: every prescribed dof and its last reaction

@@ -23,7 +23,8 @@ module exic_io_gmsh
    use exic_base_strings, only: itoa
    use exic_base_sort, only: sort_perm_i8
    use exic_io_posix, only: c_string
-   use exic_io_gmsh_c, only: GMSH_LIBRARIES, gmsh_library_load, gmshInitialize, gmshFinalize, gmshOpen, gmshFree, &
+   use exic_io_gmsh_c, only: GMSH_LIBRARIES, gmsh_library_load, gmshInitialize, gmshFinalize, &
+                             gmshOpen, gmshFree, &
                              gmshOptionSetNumber, gmshModelGetEntities, &
                              gmshModelGetPhysicalGroups, gmshModelGetPhysicalName, &
                              gmshModelGetEntitiesForPhysicalGroup, &

@@ -253,25 +253,44 @@ module exic_io_gmsh_c
 
    end interface
 
-   procedure(gmshInitialize_i), pointer, protected :: gmshInitialize => null()
-   procedure(gmshFinalize_i), pointer, protected :: gmshFinalize => null()
-   procedure(gmshOpen_i), pointer, protected :: gmshOpen => null()
-   procedure(gmshFree_i), pointer, protected :: gmshFree => null()
-   procedure(gmshOptionSetNumber_i), pointer, protected :: gmshOptionSetNumber => null()
-   procedure(gmshModelGetEntities_i), pointer, protected :: gmshModelGetEntities => null()
-   procedure(gmshModelGetPhysicalGroups_i), pointer, protected :: gmshModelGetPhysicalGroups => null()
-   procedure(gmshModelGetEntitiesForPhysicalGroup_i), pointer, protected :: gmshModelGetEntitiesForPhysicalGroup => null()
-   procedure(gmshModelGetPhysicalGroupsForEntity_i), pointer, protected :: gmshModelGetPhysicalGroupsForEntity => null()
-   procedure(gmshModelGetPhysicalName_i), pointer, protected :: gmshModelGetPhysicalName => null()
-   procedure(gmshModelMeshGenerate_i), pointer, protected :: gmshModelMeshGenerate => null()
-   procedure(gmshModelMeshGetNodes_i), pointer, protected :: gmshModelMeshGetNodes => null()
-   procedure(gmshModelMeshGetElementTypes_i), pointer, protected :: gmshModelMeshGetElementTypes => null()
-   procedure(gmshModelMeshGetElementsByType_i), pointer, protected :: gmshModelMeshGetElementsByType => null()
-   procedure(gmshModelMeshGetElementProperties_i), pointer, protected :: gmshModelMeshGetElementProperties => null()
-   procedure(gmshLoggerStart_i), pointer, protected :: gmshLoggerStart => null()
-   procedure(gmshLoggerStop_i), pointer, protected :: gmshLoggerStop => null()
-   procedure(gmshLoggerGet_i), pointer, protected :: gmshLoggerGet => null()
-   procedure(gmshLoggerGetLastError_i), pointer, protected :: gmshLoggerGetLastError => null()
+   procedure(gmshInitialize_i), pointer, protected :: &
+      gmshInitialize => null()
+   procedure(gmshFinalize_i), pointer, protected :: &
+      gmshFinalize => null()
+   procedure(gmshOpen_i), pointer, protected :: &
+      gmshOpen => null()
+   procedure(gmshFree_i), pointer, protected :: &
+      gmshFree => null()
+   procedure(gmshOptionSetNumber_i), pointer, protected :: &
+      gmshOptionSetNumber => null()
+   procedure(gmshModelGetEntities_i), pointer, protected :: &
+      gmshModelGetEntities => null()
+   procedure(gmshModelGetPhysicalGroups_i), pointer, protected :: &
+      gmshModelGetPhysicalGroups => null()
+   procedure(gmshModelGetEntitiesForPhysicalGroup_i), pointer, protected :: &
+      gmshModelGetEntitiesForPhysicalGroup => null()
+   procedure(gmshModelGetPhysicalGroupsForEntity_i), pointer, protected :: &
+      gmshModelGetPhysicalGroupsForEntity => null()
+   procedure(gmshModelGetPhysicalName_i), pointer, protected :: &
+      gmshModelGetPhysicalName => null()
+   procedure(gmshModelMeshGenerate_i), pointer, protected :: &
+      gmshModelMeshGenerate => null()
+   procedure(gmshModelMeshGetNodes_i), pointer, protected :: &
+      gmshModelMeshGetNodes => null()
+   procedure(gmshModelMeshGetElementTypes_i), pointer, protected :: &
+      gmshModelMeshGetElementTypes => null()
+   procedure(gmshModelMeshGetElementsByType_i), pointer, protected :: &
+      gmshModelMeshGetElementsByType => null()
+   procedure(gmshModelMeshGetElementProperties_i), pointer, protected :: &
+      gmshModelMeshGetElementProperties => null()
+   procedure(gmshLoggerStart_i), pointer, protected :: &
+      gmshLoggerStart => null()
+   procedure(gmshLoggerStop_i), pointer, protected :: &
+      gmshLoggerStop => null()
+   procedure(gmshLoggerGet_i), pointer, protected :: &
+      gmshLoggerGet => null()
+   procedure(gmshLoggerGetLastError_i), pointer, protected :: &
+      gmshLoggerGetLastError => null()
 
    !> The library's handle once loaded.
    type(c_ptr), save :: library
@@ -298,14 +317,17 @@ contains
       call c_f_procpointer(symbol('gmshOptionSetNumber'), gmshOptionSetNumber)
       call c_f_procpointer(symbol('gmshModelGetEntities'), gmshModelGetEntities)
       call c_f_procpointer(symbol('gmshModelGetPhysicalGroups'), gmshModelGetPhysicalGroups)
-      call c_f_procpointer(symbol('gmshModelGetEntitiesForPhysicalGroup'), gmshModelGetEntitiesForPhysicalGroup)
-      call c_f_procpointer(symbol('gmshModelGetPhysicalGroupsForEntity'), gmshModelGetPhysicalGroupsForEntity)
+      call c_f_procpointer(symbol('gmshModelGetEntitiesForPhysicalGroup'), &
+                           gmshModelGetEntitiesForPhysicalGroup)
+      call c_f_procpointer(symbol('gmshModelGetPhysicalGroupsForEntity'), &
+                           gmshModelGetPhysicalGroupsForEntity)
       call c_f_procpointer(symbol('gmshModelGetPhysicalName'), gmshModelGetPhysicalName)
       call c_f_procpointer(symbol('gmshModelMeshGenerate'), gmshModelMeshGenerate)
       call c_f_procpointer(symbol('gmshModelMeshGetNodes'), gmshModelMeshGetNodes)
       call c_f_procpointer(symbol('gmshModelMeshGetElementTypes'), gmshModelMeshGetElementTypes)
       call c_f_procpointer(symbol('gmshModelMeshGetElementsByType'), gmshModelMeshGetElementsByType)
-      call c_f_procpointer(symbol('gmshModelMeshGetElementProperties'), gmshModelMeshGetElementProperties)
+      call c_f_procpointer(symbol('gmshModelMeshGetElementProperties'), &
+                           gmshModelMeshGetElementProperties)
       call c_f_procpointer(symbol('gmshLoggerStart'), gmshLoggerStart)
       call c_f_procpointer(symbol('gmshLoggerStop'), gmshLoggerStop)
       call c_f_procpointer(symbol('gmshLoggerGet'), gmshLoggerGet)
