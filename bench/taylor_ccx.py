@@ -1,19 +1,17 @@
 #!/usr/bin/env python3
 """CalculiX (ccx, Debian package calculix-ccx) on exic's Taylor bar: an independent computation
-of the same model (doc/verification.md, "The Taylor bar"; doc/plasticity.md section 11).
+of the same model (doc/plasticity.md section 12; doc/verification.md, "The Taylor bar").
 
-The copper rod of inputs/verify/common/taylor.inc (length 32.4 mm, radius 3.2 mm, E 117 GPa,
+The copper rod of inputs/verify/common/taylor_rod.inc (length 32.4 mm, radius 3.2 mm, E 117 GPa,
 nu 0.35, rho 8930 kg/m^3, yield 400 MPa with linear hardening 100 MPa) moving at 227 m/s
-towards z = 0, axisymmetric (ccx: x = r, y = z), nr x 10 nr elements, to 80 us. The struck face
-(the nodes at z = 0) is held on the wall from t = 0 and is free in r (a frictionless wall that
-the face never leaves: checked on exic's contact run, doc/verification.md); it starts at the
-wall's velocity, every other node at the rod's (exic's BOUNdary run does the same: prescribed
-dofs start at rest, and its contact runs stop the struck nodes in the first step). Nodes on the
-axis: u_r = 0. ccx 2.20 ignores *INITIAL CONDITIONS, TYPE=VELOCITY on the nodes of expanded
-(axisymmetric) elements (the rod stays at rest), so the run is made in the rod's initial frame
-(Galilean invariance, no body forces): the rod starts at rest and the face nodes are driven at
-+227 m/s (u_z = 227 m/s t, *AMPLITUDE); every u_z is brought back to the wall's frame by
-subtracting 227 m/s t.
+towards z = 0, axisymmetric (ccx: x = r, y = z), nr x 10 nr elements, to 80 us, the problem of
+exic's inputs/verify/taylor_*_face.inp: the struck face (the nodes at z = 0) is held on the
+wall from t = 0 and is free in r; it starts at the wall's velocity, every other node at the
+rod's (exic: prescribed dofs start at rest). Nodes on the axis: u_r = 0. ccx 2.20 ignores
+*INITIAL CONDITIONS, TYPE=VELOCITY on the nodes of expanded (axisymmetric) elements (the rod
+stays at rest), so the run is made in the rod's initial frame (Galilean invariance, no body
+forces): the rod starts at rest and the face nodes are driven at +227 m/s (u_z = 227 m/s t,
+*AMPLITUDE); every u_z is brought back to the wall's frame by subtracting 227 m/s t.
 
 ccx's model (source incplas.f, its reference Simo 1988, CMAME 66 199-219 and 68 1-31):
 multiplicative split F = Fe Fp, stored energy K/2 ((J^2 - 1)/2 - ln J) + mu/2 (tr b̄_e - 3)
@@ -22,23 +20,26 @@ Cauchy stress times J, radial return (Simo & Hughes, Box 9.1). exic's law (doc/p
 (J5), (J10)) differs in the volumetric energy and the trace of b_e (its section 2) and in the
 yield stress being Kirchhoff: J Y against Y, with J within a fraction of a percent of 1.
 
-Elements: CAX8R (eight nodes, 2x2 reduced integration; ccx expands it to C3D20R), the element
-ccx recommends for isochoric plastic flow; CAX4 (ccx: C3D8, full 2x2x2, no mean dilatation)
-locks like exic's plain 2x2 element and is run for that comparison only. Time integration:
-ccx's implicit *DYNAMIC (alpha method, default alpha -0.05) with ccx's automatic increments
-capped at dt (a fixed increment diverges in the first microsecond, when the struck corner
-spreads); `--dt` lists the caps to run (the answer must not depend on them). ccx's explicit
-*DYNAMIC is no option here: its stable increment for the expanded elements is set by their
-small circumferential width near the axis (5.6e-10 s on 5 x 50, a hundred thousand increments).
+Elements (--elem): CAX8R (eight nodes, 2x2 reduced integration; ccx expands it to C3D20R), the
+element ccx offers for isochoric plastic flow, the reference; CAX4R (C3D8R with ccx's hourglass
+control). CAX4 (C3D8, full 2x2x2, no mean dilatation) locks like exic's plain 2x2 element.
+Time integration: --explicit, *DYNAMIC, EXPLICIT at ccx's own stable increment (about 1e-9 s,
+set by the 2-degree sector's narrow elements near the axis: 5 x 50 CAX8R takes about 1.3e5
+increments, an hour of one core); else implicit *DYNAMIC (alpha method, alpha -0.05) with ccx's
+automatic increments capped at --dt (fixed increments diverge in the first microsecond). The
+implicit runs lose half of the kinetic energy at either cap (doc/plasticity.md section 12): not
+a reference.
 
 Measures: final length = 32.4 mm + u_z of the top of the axis; foot radius = 3.2 mm + u_r of
 the foot's outer corner node (the node at r = R, z = 0), also the largest r of any node;
 largest equivalent plastic strain over the integration points (PEEQ) at 80 us; the deformed
-outline (nodes on the boundary) for the figure.
+outline (nodes on the boundary); the histories of the corner's u_r and the top's u_z (also of a
+run stopped before 80 us); internal (elastic + plastic) and kinetic energy, per radian.
 
-Usage: bench/taylor_ccx.py [--meshes 5,10,20] [--elem CAX8R] [--dt 1e-7] [--ccx /usr/bin/ccx]
-Results: bench/results/taylor_ccx.json (one entry per mesh, element and dt, merged with the
-file's earlier entries); working files in build/taylor-ccx/.
+Usage: bench/taylor_ccx.py [--meshes 5,10,20] [--elem CAX8R] [--explicit | --dt 1e-7,2.5e-8]
+       [--measure-only] [--ccx /usr/bin/ccx]         (make taylor-ccx: the reference run)
+Results: bench/results/taylor_ccx.json (one entry per mesh, element and scheme, merged with
+the file's earlier entries); working files in build/taylor-ccx/.
 """
 import argparse
 import json
