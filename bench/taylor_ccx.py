@@ -24,8 +24,8 @@ Elements (--elem): CAX8R (eight nodes, 2x2 reduced integration; ccx expands it t
 element ccx offers for isochoric plastic flow, the reference; CAX4R (C3D8R with ccx's hourglass
 control). CAX4 (C3D8, full 2x2x2, no mean dilatation) locks like exic's plain 2x2 element.
 Time integration: --explicit, *DYNAMIC, EXPLICIT at ccx's own stable increment (about 1e-9 s,
-set by the 2-degree sector's narrow elements near the axis: 5 x 50 CAX8R takes about 1.3e5
-increments, an hour of one core); else implicit *DYNAMIC (alpha method, alpha -0.05) with ccx's
+set by the 2-degree sector's narrow elements near the axis: 5 x 50 CAX8R takes 144 000
+increments, 3268 s of ccx's time); else implicit *DYNAMIC (alpha method, alpha -0.05) with ccx's
 automatic increments capped at --dt (fixed increments diverge in the first microsecond). The
 implicit runs lose half of the kinetic energy at either cap (doc/plasticity.md section 12): not
 a reference.
