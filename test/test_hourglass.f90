@@ -8,6 +8,8 @@ module test_hourglass
    use exic_base_kinds, only: wp
    use exic_material_material, only: lame_from_young, HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
    use exic_element_quad4, only: q4_force_1pt, q4_force_2x2, q4_lumped_mass, q4_stable_dt
+   use exic_element_q4_general, only: q4_solid_t, q4g_init, q4g_force
+   use exic_material_j2_hardening, only: j2_param_t
    use testing, only: suite_t, check, check_close, section
    use, intrinsic :: iso_fortran_env, only: output_unit, int64
    implicit none
@@ -43,6 +45,7 @@ contains
       call test_affine(s)
       call test_objective(s)
       call test_derivative(s)
+      call test_axisymmetric(s)
       call test_stable_step(s)
       call test_bending_energy(s)
       call test_cantilever(s)
@@ -224,6 +227,58 @@ contains
          call check(s, rel <= 1e-6_wp, 'f = dW/du, 18 dofs ('//trim(buf)//')')
       end do
    end subroutine test_derivative
+
+   !> The general path (q4_general.f90) in axisymmetry: the hourglass part of the plane element
+   !> times the centroid radius (doc/hourglass.md, end): f = dW/du by central differences at a
+   !> finite non-affine deformation of a patch off the axis, and no hourglass energy in an
+   !> affine one.
+   subroutine test_axisymmetric(s)
+      type(suite_t), intent(inout) :: s
+      real(wp), allocatable :: x0(:, :), u(:, :), f(:, :), g(:, :), fd(:, :), ft(:, :)
+      integer, allocatable :: conn(:, :)
+      real(wp) :: lam, mu, w, whg, wd, jmin, d2, wp_, wm, h, rel, hist(1, 1, 1)
+      type(q4_solid_t) :: o
+      type(j2_param_t) :: prm
+      integer :: i, j, eb, em, ef
+      integer(int64) :: seed
+      character(len=40) :: buf
+      call section(s, 'physical hourglass control: axisymmetric general path')
+      call make_patch(x0, conn)
+      x0(1, :) = x0(1, :) + 1.0_wp
+      call lame_from_young(1.0e4_wp, 0.3_wp, lam, mu)
+      o = q4g_init(1, .true., .false., .false., lam, mu, 1.0_wp, 1.0_wp, prm, HOURGLASS_PHYSICAL)
+      allocate (u(2, 9), f(2, 9), g(2, 9), fd(2, 9), ft(2, 9))
+      hist = 0.0_wp
+      u = matmul(reshape([1.1_wp, 0.05_wp, -0.1_wp, 0.95_wp], [2, 2]), x0) - x0
+      f = 0.0_wp
+      call q4g_force(o, 4, 9, conn, x0, u, 1.0_wp, hist, f, w, whg, wd, jmin, eb, d2, em, ef)
+      call check(s, abs(whg) <= 1e-20_wp*w, 'affine deformation: no hourglass energy')
+      seed = 99_int64
+      do i = 1, 9
+         u(:, i) = u(:, i) + 0.15_wp*[rnd(seed) - 0.5_wp, rnd(seed) - 0.5_wp]
+      end do
+      f = 0.0_wp
+      call q4g_force(o, 4, 9, conn, x0, u, 1.0_wp, hist, f, w, whg, wd, jmin, eb, d2, em, ef)
+      call check(s, eb == 0 .and. whg > 1e-3_wp*w, 'non-affine deformation, hourglass engaged')
+      h = 1e-6_wp
+      do j = 1, 9
+         do i = 1, 2
+            g = u
+            g(i, j) = u(i, j) + h
+            ft = 0.0_wp
+            call q4g_force(o, 4, 9, conn, x0, g, 1.0_wp, hist, ft, wp_, whg, wd, jmin, eb, d2, em, ef)
+            wp_ = wp_ + whg
+            g(i, j) = u(i, j) - h
+            ft = 0.0_wp
+            call q4g_force(o, 4, 9, conn, x0, g, 1.0_wp, hist, ft, wm, whg, wd, jmin, eb, d2, em, ef)
+            wm = wm + whg
+            fd(i, j) = (wp_ - wm)/(2.0_wp*h)
+         end do
+      end do
+      rel = maxval(abs(fd - f))/maxval(abs(f))
+      write (buf, '(a,es9.2)') 'max rel. error ', rel
+      call check(s, rel <= 1e-6_wp, 'f = dW/du, 18 dofs ('//trim(buf)//')')
+   end subroutine test_axisymmetric
 
    !> The element's stable step estimate (q4_stable_dt, one point) stays below the exact limit
    !> 2/omega_max of the element with the physical control, on random convex quads, nu to 0.49.

@@ -387,7 +387,7 @@ contains
          call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fx, fy, eh)
          if (o%hgkind == HOURGLASS_PHYSICAL) then
             call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, o%lambda, o%mu, o%hg, &
-                                    hx, hy, eh)
+                              hx, hy, eh)
          else
             call forces_1pt(xe, ye, uxe, uye, r0, zero, zero, zero, zero, kh, hx, hy, eh)
          end if
@@ -401,7 +401,7 @@ contains
       else if (o%hgkind == HOURGLASS_PHYSICAL) then
          call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fx, fy, eh)
          call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, o%lambda, o%mu, o%hg, hx, &
-                                 hy, eh)
+                           hy, eh)
          fx = fx + hx
          fy = fy + hy
       else

@@ -40,8 +40,8 @@ module exic_element_quad4
    ! the block steps for the general solid path (q4_general.f90), as wrappers: the steps stay
    ! private, so that the compiler inlines them into the block routines as before
    public :: q4b_gather, q4b_kinematics_2x2, q4b_kinematics_1pt, q4b_positive, q4b_forces_2x2, &
-             q4b_forces_1pt, q4b_asqbi_forces, q4b_check_points, q4b_current, q4b_stable_block, q4b_block_minimum, &
-             q4b_scatter
+             q4b_forces_1pt, q4b_asqbi_forces, q4b_check_points, q4b_current, q4b_stable_block, &
+             q4b_block_minimum, q4b_scatter
 
    real(wp), parameter :: xin(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]   !< xi_a
    real(wp), parameter :: etn(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]   !< eta_a
@@ -466,8 +466,7 @@ contains
    !> the mean F (H8), W = 1/2 q^.K^ q^ with K^ = s E' [H - (1 + nub) H~xy (e1 e2^T + e2 e1^T)]
    !> (H7, H9) from the reference element, and the forces the exact gradient of W (H10-H12).
    !> r0 = 1/A0; f11..f22 the mean deformation gradient; s the scale (HOURglass,PHYSical,s).
-   pure subroutine asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, lambda, mu, s, hx, &
-                                      hy, eh)
+   pure subroutine asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, lambda, mu, s, hx, hy, eh)
       real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
       real(wp), intent(in), dimension(NBLOCK) :: r0, f11, f12, f21, f22
       real(wp), intent(in) :: lambda, mu, s
@@ -903,8 +902,9 @@ contains
       call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
    end subroutine q4b_forces_1pt
 
+   !> asqbi_forces for q4_general.f90.
    pure subroutine q4b_asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, lambda, mu, s, hx, &
-                                          hy, eh)
+                                    hy, eh)
       real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
       real(wp), intent(in), dimension(NBLOCK) :: r0, f11, f12, f21, f22
       real(wp), intent(in) :: lambda, mu, s
