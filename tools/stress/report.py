@@ -46,6 +46,7 @@ def write(load, figdir, doc, log):
     inv = load("inversions_20261123")
     inv24 = load("inversions_20261124")
     hg24 = load("hourglass_20261124")
+    sc25 = load("scenes_20261125")
     out = []
     w = out.append
     w("# Numerical stability: the stress suite\n")
@@ -75,7 +76,7 @@ def write(load, figdir, doc, log):
     if inv:
         _inversions(inv, w)
     if inv24 and hg24:
-        _hourglass(inv24, hg24, w)
+        _hourglass(inv24, hg24, w, sc25)
     if fz:
         _fuzz(fz, w)
     if cfl:
@@ -261,7 +262,7 @@ def _inversions(data, w):
       "assumed-strain one) for impacts is the remedy, not a change of the contact.\n")
 
 
-def _hourglass(inv, hg, w):
+def _hourglass(inv, hg, w, new=None):
     """Section 1b: the stops of seed 20261124 classified by the one-point element's hourglass
     displacement and centroid J at the fold (inv: tools/stress/inversions.py with the campaign's
     exic), and the same scenes with the assumed-strain control (hg: the scenes rerun and judged
@@ -353,6 +354,27 @@ def _hourglass(inv, hg, w):
           "term grows without bound as a corner's J goes to 0; a linear (quadratic-energy) hourglass "
           "control has no such barrier. Those scenes need QUADrature 2 for the crushed body or a finer "
           "mesh.\n")
+    if new:
+        res2 = new["scenes"]
+        n = len(res2)
+        fin2 = [r for r in res2 if r["class"] == "finished"]
+        stop2 = [r for r in res2 if r["class"] == "stopped"]
+        reasons = ", ".join(f"{k} {v}" for k, v in
+                            collections.Counter(r.get("reason", "?") for r in stop2).most_common())
+        one2 = sum(1 for r in stop2 if any(b["quad"] == 1 and not b["rigid"] for b in r["bodies"]))
+        g2 = [r for r in fin2 if ((r.get("energy") or {}).get("max") or 0.0) > GROWTH_WARN]
+        p2 = [r for r in fin2 if ((r.get("penetration") or {}).get("relative") or 0.0) > DEPTH_LIMIT]
+        w(f"A new campaign with the generator writing `{hg['hourglass']}` "
+          f"(`tools/stress/stress.py --only scenes --seed {new['seed']} --scenes {n}`, "
+          f"{new['seconds']:.0f} s; results in `doc/stability/scenes_{new['seed']}.json`): "
+          f"{len(fin2)} of {n} scenes run to the end ({pct(len(fin2), n)}; seed 20261124 with HOURglass 0.1: "
+          f"90.4 %), {len(stop2)} stop ({reasons}; "
+          f"{sum(1 for r in stop2 if r.get('named'))} naming their element or pair, {one2} in scenes with a "
+          f"one-point body), {sum(1 for r in res2 if r['class'] in ('crash', 'hang'))} crash or hang; of the "
+          f"finished, {len(g2)} grow in energy by more than 1 % ({sum(1 for r in g2 if r.get('energy_warned'))} "
+          f"warned) and {len(p2)} hold a node deeper than 1e-3 edge inside another body "
+          f"({sum(1 for r in p2 if r.get('penetration_warned'))} warned). Still short of the 98 % of "
+          "issue 10.\n")
 
 
 def _scenes(data, w, figdir):
