@@ -11,7 +11,7 @@ RELEASE := --profile release --flag "-O3 -march=native -funroll-loops -ffp-contr
 EXAMPLE ?= inputs/examples/impact.inp
 OUTDIR  ?= out
 
-.PHONY: all setup deps venv build run test test-viewers verify stress bench bench-peers baseline plots install legacy-host clean help
+.PHONY: all setup deps venv build run test test-viewers verify stress bench bench-peers taylor-ccx baseline plots install legacy-host clean help
 
 all: build
 
@@ -24,6 +24,9 @@ help:
 	@echo "make bench    run the benchmarks (against the baseline commit BASELINE, built once) and"
 	@echo "              regenerate doc/performance figures"
 	@echo "make bench-peers  install CalculiX (Debian) and run it on the bar on a rigid wall"
+	@echo "make taylor-ccx   install CalculiX and run it on the Taylor bar (face held on the wall,"
+	@echo "              5 x 50 CAX8R, explicit; about 70 minutes) -> bench/results/taylor_ccx.json,"
+	@echo "              which make verify compares with exic (doc/plasticity.md section 12)"
 	@echo "make plots DECK=path.inp [OUTDIR=out]   run a deck, draw its histories and contours"
 	@echo "              into OUTDIR/plots"
 	@echo "make test-viewers  install ParaView (Debian packages) and check it reads the field output"
@@ -131,6 +134,11 @@ PEERS_ARGS ?=
 bench-peers: setup
 	@$(call apt_install,$(PEER_PACKAGES))
 	$(PYTHON) bench/peers.py $(PEERS_ARGS)
+
+TAYLOR_CCX_ARGS ?= --meshes 5 --elem CAX8R --explicit
+taylor-ccx: setup
+	@$(call apt_install,$(PEER_PACKAGES))
+	$(PYTHON) bench/taylor_ccx.py $(TAYLOR_CCX_ARGS)
 
 # the release binaries of BASELINE; $(BASE_DIR)/bindir names their folder
 baseline: setup

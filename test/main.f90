@@ -10,6 +10,7 @@ program exic_tests
    use test_corrector, only: run_corrector_tests
    use test_contact_geom, only: run_contact_geom_tests
    use test_element, only: run_element_tests
+   use test_hourglass, only: run_hourglass_tests
    use test_fields, only: run_fields_tests
    use test_xdmf, only: run_xdmf_tests
    use test_viewers, only: run_viewers_tests
@@ -46,6 +47,7 @@ program exic_tests
    call r%run('contact_geom', run_contact_geom_tests)
    call r%run('inside', run_inside_tests)
    call r%run('element', run_element_tests)
+   call r%run('hourglass', run_hourglass_tests)
    call r%run('plasticity', run_plasticity_tests)
    call r%run('axisymmetric', run_axisymmetric_tests)
    call r%run('plastic_decks', run_plastic_decks_tests)

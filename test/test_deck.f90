@@ -6,7 +6,7 @@ module test_deck
    use exic_base_strings, only: itoa
    use exic_base_error, only: error_t
    use exic_io_model, only: model_t
-   use exic_material_material, only: MAT_SOLID, MAT_RIGID
+   use exic_material_material, only: MAT_SOLID, MAT_RIGID, HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
    use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
                                 DETECT_SWEPT, DETECT_STATIC
@@ -42,6 +42,7 @@ contains
       call test_batch(s)
       call test_bar(s)
       call test_energy_warning(s)
+      call test_hourglass_records(s)
       call test_contact(s)
       call test_disk(s)
       call test_polar_ring(s)
@@ -481,6 +482,62 @@ contains
          if (allocated(e)) t = e%message
       end function msg
    end subroutine test_energy_warning
+
+   !> HOURglass h (Flanagan-Belytschko coefficient) and HOURglass,PHYSical[,s] (doc/hourglass.md);
+   !> a scale outside (0, 1] or an unknown form is an error naming file:line.
+   subroutine test_hourglass_records(s)
+      type(suite_t), intent(inout) :: s
+      type(model_t) :: m
+      type(error_t), allocatable :: err
+      integer, parameter :: L = 40
+      character(len=L) :: head(6), tail(13)
+      call section(s, 'deck: HOURglass records')
+      head = [character(len=L) :: 'FEAP * * one block', '0 0 0 2 2 4', 'MATErial,1', ' SOLId', &
+              '  ELAStic NEOHookean 1e4 0.3', '  QUADrature 1']
+      tail = [character(len=L) :: '  DENSity 0.1', '', 'BLOCk', ' CARTesian,2,1,1,1,1', '  1,0,0', &
+              '  2,2,0', '  3,2,1', '  4,0,1', '', 'END', 'BATCh', 'END', 'STOP']
+      call write_lines(tmp//'hg.inp', [character(len=L) :: head, '  HOURglass,PHYSical', tail])
+      call read_deck(tmp//'hg.inp', m, err)
+      call check(s, .not. allocated(err), 'HOURglass,PHYSical reads', msg(err))
+      if (allocated(err)) return
+      call check(s, m%materials(1)%hourglass_kind == HOURGLASS_PHYSICAL .and. &
+                 m%materials(1)%hourglass == 1.0_wp, 'HOURglass,PHYSical: scale 1')
+      call write_lines(tmp//'hg.inp', [character(len=L) :: head, '  HOURglass phys 0.5', tail])
+      call read_deck(tmp//'hg.inp', m, err)
+      call check(s, .not. allocated(err), 'HOURglass phys 0.5 reads', msg(err))
+      if (allocated(err)) return
+      call check(s, m%materials(1)%hourglass_kind == HOURGLASS_PHYSICAL .and. &
+                 m%materials(1)%hourglass == 0.5_wp, 'HOURglass phys 0.5: scale 0.5')
+      call write_lines(tmp//'hg.inp', [character(len=L) :: head, '  HOURglass 0.2', tail])
+      call read_deck(tmp//'hg.inp', m, err)
+      call check(s, .not. allocated(err), 'HOURglass 0.2 reads', msg(err))
+      if (allocated(err)) return
+      call check(s, m%materials(1)%hourglass_kind == HOURGLASS_STIFFNESS .and. &
+                 m%materials(1)%hourglass == 0.2_wp, 'HOURglass 0.2: the Flanagan-Belytschko coefficient')
+      call write_lines(tmp//'hg.inp', [character(len=L) :: head, tail])
+      call read_deck(tmp//'hg.inp', m, err)
+      call check(s, .not. allocated(err) .and. m%materials(1)%hourglass_kind == HOURGLASS_STIFFNESS &
+                 .and. m%materials(1)%hourglass == 0.1_wp, 'no HOURglass record: coefficient 0.1', msg(err))
+      call bad('  HOURglass,PHYSical,2', 'expected a scale s with 0 < s <= 1')
+      call bad('  HOURglass,PHYSical,0', 'expected a scale s with 0 < s <= 1')
+      call bad('  HOURglass,VISCous', 'HOURglass h (a coefficient) or HOURglass,PHYSical[,s]')
+      call bad('  HOURglass -0.1', 'expected a coefficient >= 0')
+   contains
+      subroutine bad(line, want)
+         character(len=*), intent(in) :: line, want
+         call write_lines(tmp//'hg.inp', [character(len=L) :: head, line, tail])
+         call read_deck(tmp//'hg.inp', m, err)
+         call check(s, allocated(err), trim(line)//' refused')
+         if (allocated(err)) call check(s, has(err%message, 'hg.inp:7:') .and. has(err%message, want), &
+                                        trim(line)//': file:line and what is expected', err%message)
+      end subroutine bad
+      function msg(e) result(t)
+         type(error_t), allocatable, intent(in) :: e
+         character(len=:), allocatable :: t
+         t = ''
+         if (allocated(e)) t = e%message
+      end function msg
+   end subroutine test_hourglass_records
 
    subroutine test_bar(s)
       type(suite_t), intent(inout) :: s

@@ -4,8 +4,10 @@
 !> BLOCk, and meshed from the .geo at run time, give the same histories to 1e-12; a bar made
 !> of a Gmsh half and a BLOCk half joined by TIE gives the histories of the one-block bar; a
 !> disk meshed at run time by Gmsh's unstructured quadrilateral mesher translates exactly;
-!> every bad input is an error naming file:line and what was expected.
+!> every bad input is an error naming file:line and what was expected; the library is loaded at
+!> run time (a library that does not load is an error, the exic program starts without it).
 module test_gmsh
+   use, intrinsic :: iso_c_binding, only: c_ptr, c_associated
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
@@ -13,7 +15,8 @@ module test_gmsh
    use exic_io_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
    use exic_mesh_edge_set, only: find_edge_set
-   use testing, only: suite_t, check, check_close, section
+   use exic_io_gmsh_c, only: GMSH_LIBRARIES, gmsh_library_open
+   use testing, only: suite_t, check, check_close, section, skip, have_command, file_text
    use deck_runner, only: read_table, column
    implicit none
    private
@@ -52,6 +55,8 @@ contains
       call translation(s)
       call section(s, 'gmsh: bad input')
       call bad_input(s)
+      call section(s, 'gmsh: the library is loaded at run time, not linked')
+      call run_time_library(s)
       call section(s, 'POLAr blocks: SHIFt centre, and edges at r = 0')
       call polar_blocks(s)
    end subroutine run_gmsh_tests
@@ -492,6 +497,59 @@ contains
                     tag//': '//at//' ... '//word, err%message)
       end subroutine bad
    end subroutine bad_input
+
+   !> exic_io_gmsh_c: libraries that do not load give an error naming each with dlerror's text
+   !> (the deck reader puts the GMSH record's file:line before it, as for the errors of
+   !> bad_input); the first name tried is the soname a link with -lgmsh would record; the exic
+   !> program needs no Gmsh library to start (none in its ldd list), and reads Gmsh meshes
+   !> (the other sections of this suite).
+   subroutine run_time_library(s)
+      type(suite_t), intent(inout) :: s
+      character(len=*), parameter :: missing(2) = [character(len=24) :: 'libexic-no-gmsh.so.0', &
+                                                   '/nonexistent/libgmsh.so']
+      type(c_ptr) :: handle
+      character(len=:), allocatable :: opened, soname, needed
+      type(error_t), allocatable :: err
+      character(len=4096) :: argv0
+      character(len=:), allocatable :: exic
+      logical :: exists
+      integer :: code
+      call gmsh_library_open(missing, handle, opened, err)
+      if (.not. allocated(err)) then
+         call check(s, .false., 'libraries that do not exist: an error', 'no error')
+      else
+         call check(s, .not. c_associated(handle) .and. has(err%message, 'the Gmsh library '// &
+                    'could not be loaded') .and. has(err%message, 'libexic-no-gmsh.so.0: '// &
+                    'libexic-no-gmsh.so.0: cannot open shared object file') .and. &
+                    has(err%message, '/nonexistent/libgmsh.so: /nonexistent/libgmsh.so: cannot '// &
+                    'open shared object file') .and. has(err%message, 'libgmsh-dev'), &
+                    'libraries that do not exist: both names with dlerror''s text, and what to '// &
+                    'install', err%message)
+      end if
+      if (.not. have_command('objdump')) then
+         call skip(s, 'the first library name is the soname of libgmsh.so', 'objdump', 1)
+      else
+         call execute_command_line('printf %s "$(objdump -p "$(gfortran -print-file-name='// &
+                                   'libgmsh.so)" | sed -n "s/^ *SONAME *//p")" > '//tmp// &
+                                   'soname.txt', exitstat=code)
+         soname = file_text(tmp//'soname.txt')
+         call check(s, code == 0 .and. trim(GMSH_LIBRARIES(1)) == soname, 'the first library '// &
+                    'name tried, '//trim(GMSH_LIBRARIES(1))//', is the SONAME of the libgmsh.so '// &
+                    'the linker finds', soname)
+      end if
+      call get_command_argument(0, argv0)
+      exic = argv0(1:index(argv0, '/', back=.true.))//'../app/exic'
+      inquire (file=exic, exist=exists)
+      if (.not. exists .or. .not. have_command('ldd')) then
+         call skip(s, 'the exic program loads no Gmsh library at start', 'the exic program '// &
+                   'next to the tests, and ldd', 1)
+         return
+      end if
+      call execute_command_line('ldd '//exic//' > '//tmp//'ldd.txt', exitstat=code)
+      needed = file_text(tmp//'ldd.txt')
+      call check(s, code == 0 .and. has(needed, 'libc.so') .and. .not. has(needed, 'gmsh'), &
+                 'the exic program loads no Gmsh library at start (ldd)', needed)
+   end subroutine run_time_library
 
    !> POLAr blocks about a SHIFt centre (FEAP's record form and the one-record form), and the
    !> errors for an edge at r = 0 and for collapsed elements of other origins.

@@ -650,6 +650,8 @@ contains
                  'include/exic_contact.h states the C link line of doc/api.md', cline)
       call check(s, index(f77, 'hdf5') == 0 .and. index(f77, 'gmsh') == 0 .and. index(cline, 'hdf5') == 0, &
                  'a host of the contact API links neither HDF5 nor Gmsh')
+      call check(s, index(cline, 'gmsh') == 0 .and. index(full, 'gmsh') == 0, &
+                 'no link line names Gmsh (GMSH loads it at run time)')
       if (len(f77) == 0) return
       f77 = replaced(replaced(f77, 'host.f', 'examples/legacy_host/skeleton.f -o '//bindir//'/skeleton_doc'), &
                      '$PREFIX', prefix)

@@ -2,7 +2,8 @@
 !> gravity (free fall, first contact, a block resting on a rigid floor), FEAP proportional loads
 !> on a 1-D bar (ramp and hold against the dynamic and static closed forms; a prescribed end
 !> displacement), edge loads (resultant on the deformed edge; a spinning ring under a follower
-!> pressure), a rigid punch driven into a block, and the input errors with file:line.
+!> pressure), a rigid punch driven into a block, the nodal arrays kept only for decks whose
+!> steps read them, and the input errors with file:line.
 module test_loads
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
@@ -49,9 +50,56 @@ contains
       call punch(s, 'INITial,VELOcity'//nl//'  REGIon,2,0,-vp'//nl//nl, 'initial velocity')
       call spun_body(s)
       call driven_region(s)
+      call section(s, 'loads: nodal arrays only for the decks whose steps read them')
+      call lean_arrays(s)
       call section(s, 'loads: input errors name file:line')
       call bad_input(s)
    end subroutine run_loads_tests
+
+   !> The loading's nodal arrays exist only where a step reads them (doc/performance.md 6.2,
+   !> "Bytes per element"): none for a free block; constant gravity is added to fext once and
+   !> not kept (fext is the block's weight); a driven rigid body has lever arms and v(n) but no
+   !> free bodies' lumped masses; a free rigid body has those too.
+   subroutine lean_arrays(s)
+      type(suite_t), intent(inout) :: s
+      type(model_t) :: model
+      type(stepper_t) :: stp
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: blk, rigid
+      blk = block(2, 2, 1, 1, 1, 1, 0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp)
+      rigid = block(2, 1, 101, 5, 2, 2, 0.0_wp, 1.0_wp, 1.0_wp, 0.5_wp)
+      call setup_stepper('lean_free', head//solid//blk//batch('0.1', ''), model, stp, err)
+      if (.not. ok('free block')) return
+      associate (ld => stp%ld)
+         call check(s, .not. (ld%active .or. allocated(ld%fnode) .or. allocated(ld%fbody) .or. &
+                    allocated(ld%fgrav) .or. allocated(ld%vold) .or. allocated(ld%fpro) .or. &
+                    allocated(ld%wlump) .or. allocated(ld%rb%r) .or. allocated(ld%fedge)), &
+                    'free block: no nodal array of loads, v(n), dof functions or bodies')
+      end associate
+      call setup_stepper('lean_gravity', head//solid//blk//'GRAVity,0,-10'//nl//nl// &
+                         batch('0.1', ''), model, stp, err)
+      if (.not. ok('constant gravity')) return
+      call check(s, .not. (allocated(stp%ld%fgrav) .or. allocated(stp%ld%fbody) .or. &
+                 allocated(stp%ld%fnode)) .and. abs(sum(stp%st%fext(2, :)) + 10.0_wp) <= 1.0e-13_wp, &
+                 'constant gravity: in fext once (weight -10), no gravity or body arrays kept', &
+                 rtoa(sum(stp%st%fext(2, :))))
+      call setup_stepper('lean_driven', head//solid//floor//blk//rigid//'MOTIon,REGIon,2,0,-1'//nl// &
+                         nl//batch('0.1', ''), model, stp, err)
+      if (.not. ok('driven body')) return
+      call check(s, allocated(stp%ld%rb%r) .and. allocated(stp%ld%vold) .and. &
+                 .not. allocated(stp%ld%wlump), 'driven body: lever arms and v(n), no free masses')
+      call setup_stepper('lean_body', head//solid//'MATErial,2'//nl//'  RIGId,FREE'//nl// &
+                         '    DENSity 1'//nl//nl//blk//rigid//batch('0.1', ''), model, stp, err)
+      if (.not. ok('free body')) return
+      call check(s, allocated(stp%ld%rb%r) .and. allocated(stp%ld%wlump) .and. stp%ld%has_free, &
+                 'free body: lever arms and lumped masses')
+   contains
+      logical function ok(what)
+         character(len=*), intent(in) :: what
+         ok = .not. allocated(err)
+         if (.not. ok) call check(s, .false., what//': the deck reads and sets up', err%message)
+      end function ok
+   end subroutine lean_arrays
 
    !> Write `text` as run_dir/<name>.inp, read it and set up a stepper with its loads.
    subroutine setup_stepper(name, text, model, stp, err)

@@ -25,6 +25,7 @@ contains
       call section(s, 'physics: energy of a spinning, stretching free block')
       call energy_test(s, 2)
       call energy_test(s, 1)
+      call energy_test(s, 1, 'HOURglass,PHYSical')
       call section(s, 'physics: stable step')
       call stability_tests(s)
       call section(s, 'physics: an overflowing energy stops the run before any non-finite row')
@@ -144,10 +145,11 @@ contains
 
    !> A free block released with v = w x (x - xc) + s (x - xc): a spin plus a stretch, reaching
    !> 10 % strain. Total energy must hold within 0.5 % over 1e4 steps at CFL 0.9, with no drift.
-   subroutine energy_test(s, nq)
+   subroutine energy_test(s, nq, hgrec)
       type(suite_t), intent(inout) :: s
       integer, intent(in) :: nq
-      character(len=:), allocatable :: msg, deck, init
+      character(len=*), intent(in), optional :: hgrec   !< a HOURglass record for the material
+      character(len=:), allocatable :: msg, deck, init, hg, tag, stem
       character(len=64), allocatable :: names(:)
       real(wp), allocatable :: d(:, :)
       integer :: stage, i, j, node, n, k, kd, ku, kh, nrow
@@ -170,40 +172,48 @@ contains
          end do
       end do
       write (q, '(i1)') nq
+      hg = ''
+      tag = q
+      stem = 'energy_q'//q
+      if (present(hgrec)) then
+         hg = '    '//hgrec//nl
+         tag = q//', '//hgrec
+         stem = stem//'p'
+      end if
       deck = 'FEAP * * spinning block'//nl//'0 0 0 2 2 4'//nl// &
              'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1 0.3'//nl// &
-             '    DENSity 1'//nl//'    QUADrature '//q//nl//nl// &
+             '    DENSity 1'//nl//'    QUADrature '//q//nl//hg//nl// &
              'BLOCk'//nl//'  CARTesian,16,16,1,1,1'//nl//'    1,-0.5,-0.5'//nl//'    2,0.5,-0.5'//nl// &
              '    3,0.5,0.5'//nl//'    4,-0.5,0.5'//nl//nl// &
              'END'//nl//'BATCh'//nl//'  TRANsient,EXPLicit'//nl//'  DT,CFL,0.9'//nl// &
              '  TPLOt,,10'//nl//'  INITial,VELOcity'//nl// &
              '  LOOP,,10000'//nl//'    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl// &
              'END'//nl//'  stre,,7,-0.45,-0.45'//nl//'  stre,,7,0,0'//nl//nl//init//nl//'STOP'
-      call run_deck('energy_q'//q, deck, stage, msg)
-      call check(s, stage == 0, 'energy deck runs (quadrature '//q//')', msg)
+      call run_deck(stem, deck, stage, msg)
+      call check(s, stage == 0, 'energy deck runs (quadrature '//tag//')', msg)
       if (stage /= 0) return
-      call read_table(run_dir//'/energy_q'//q//'.ene', names, d)
+      call read_table(run_dir//'/'//stem//'.ene', names, d)
       kd = column(names, 'drift')
       ku = column(names, 'strain')
       kh = column(names, 'hourglass')
       nrow = size(d, 2)
       worst = maxval(abs(d(kd, :)))
-      call check(s, worst <= 0.005_wp, 'total energy within 0.5 % over 1e4 steps (quadrature '//q//')', &
+      call check(s, worst <= 0.005_wp, 'total energy within 0.5 % over 1e4 steps (quadrature '//tag//')', &
                  'largest drift '//rtoa(worst))
       n = nrow/10
       early = sum(d(kd, n + 1:2*n))/n
       late = sum(d(kd, nrow - n + 1:nrow))/n
-      call check(s, abs(late - early) <= 1.0e-3_wp, 'no secular energy drift (quadrature '//q//')', &
+      call check(s, abs(late - early) <= 1.0e-3_wp, 'no secular energy drift (quadrature '//tag//')', &
                  'mean drift early '//rtoa(early)//', late '//rtoa(late))
-      call read_table(run_dir//'/energy_q'//q//'.his', names, d)
+      call read_table(run_dir//'/'//stem//'.his', names, d)
       jdev = 0.0_wp
       do k = 2, 3
          jdev = max(jdev, maxval(abs(d(k, :) - 1.0_wp)))
       end do
-      call check(s, jdev >= 0.05_wp, 'the block strains by more than 5 % in volume (quadrature '//q//')', &
+      call check(s, jdev >= 0.05_wp, 'the block strains by more than 5 % in volume (quadrature '//tag//')', &
                  'largest |J - 1| '//rtoa(jdev))
       if (nq == 1) then
-         call read_table(run_dir//'/energy_q'//q//'.ene', names, d)
+         call read_table(run_dir//'/'//stem//'.ene', names, d)
          ! hourglass energy at every output against the strain energy the block stores (its
          ! largest value): the strain energy itself breathes through near-zero minima
          umax = maxval(d(ku, :))

@@ -16,6 +16,10 @@
 !>   and the run stopped as "folded" at step 57. A flat corner is a triangle, not a fold
 !>   (doc/decisions.md, "Inverted and folded elements"): it runs to the end. (Saved under its own
 !>   name: a stress run of that seed replaces the scene_<seed>_*.inp files.)
+!> - scene 19 of seed 20261124: a block hit corner-first by a rigid block at about 0.24 c; with
+!>   HOURglass 0.1 a one-point element folded by its hourglass mode at step 55 (its corner node in
+!>   contact). With HOURglass,PHYSical (the assumed-strain control, doc/hourglass.md) the run ends
+!>   at its final time; the same deck with HOURglass 0.1 still stops there, naming the element.
 module test_stress_decks
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
@@ -57,7 +61,48 @@ contains
       v = number_after(out, 'final time ')
       call check(s, abs(v - 12.384075_wp) < 1.0e-5_wp, 'final time 12.384 (stopped at 0.646 as folded)', &
                  line_with(out, 'final time'))
+      call section(s, 'stress decks: scene 19 of seed 20261124, a one-point block under a corner impact')
+      call run_saved(s, 'hourglass_20261124_0019', out)
+      v = number_after(out, 'final time ')
+      call check(s, abs(v - 3.6115656_wp) < 1.0e-5_wp, 'HOURglass,PHYSical: final time 3.6116 (stopped at '// &
+                 '0.2287 with HOURglass 0.1)', line_with(out, 'final time'))
+      v = number_after(out, 'largest growth of the physical energy over the energy put in ')
+      call check(s, v >= 0.0_wp .and. v < 1.0_wp, 'energy growth below the warning limit of 1 %', &
+                 line_with(out, 'energy guard'))
+      call fold_with_fb(s)
    end subroutine run_stress_decks_tests
+
+   !> The deck of scene 19 with HOURglass 0.1 in place of HOURglass,PHYSical stops at step 55
+   !> with element 34 folded (the stop the saved deck no longer has).
+   subroutine fold_with_fb(s)
+      type(suite_t), intent(inout) :: s
+      type(model_t) :: m
+      type(run_options_t) :: opts
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: text
+      character(len=*), parameter :: phys = 'HOURglass,PHYSical'
+      integer :: u, k
+      text = slurp('test/data/stress/hourglass_20261124_0019.inp')
+      do
+         k = index(text, phys)
+         if (k == 0) exit
+         text = text(:k - 1)//'HOURglass 0.1'//text(k + len(phys):)
+      end do
+      open (newunit=u, file=run_dir//'/hourglass_fb_0019.inp', status='replace', action='write', &
+            access='stream', form='unformatted')
+      write (u) text
+      close (u)
+      call read_deck(run_dir//'/hourglass_fb_0019.inp', m, err)
+      call check(s, .not. allocated(err), 'the deck with HOURglass 0.1 reads')
+      if (allocated(err)) return
+      opts%base = run_dir//'/hourglass_fb_0019'
+      opts%quiet = .true.
+      call run_model(m, opts, err)
+      call check(s, allocated(err), 'with HOURglass 0.1 the run stops')
+      if (allocated(err)) call check(s, index(err%message, 'element 34 inverted') > 0 .and. &
+                                     index(err%message, 'step 55') > 0, &
+                                     'with HOURglass 0.1: element 34 folded at step 55', err%message)
+   end subroutine fold_with_fb
 
    !> Run test/data/stress/<name>.inp into run_dir and return its <stem>.out.
    subroutine run_saved(s, name, out)

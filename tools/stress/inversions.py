@@ -1,8 +1,13 @@
 #!/usr/bin/env python3
-"""Classify the random scenes that stopped on an inverted element (doc/stability.md, section 1a).
+"""Classify the random scenes that stopped on an inverted element (doc/stability.md, sections
+1a and 1b).
 
     tools/stress/inversions.py --scenes doc/stability/scenes_20261123.json [--exic PATH]
                                [--out doc/stability/inversions.json] [--only 52,60]
+                               [--hourglass 'HOURglass 0.1']
+
+(--hourglass: the one-point bodies' record; the campaigns up to seed 20261124 ran with
+'HOURglass 0.1', the generator now writes scenes.HOURGLASS.)
 
 Each scene of the campaign that stopped with "inverted" is run again (`scenes.make_scene`, the
 same deck) and its state at the failure (the last field output of <stem>.h5, which exic writes
@@ -10,7 +15,9 @@ when a run fails) is read: the element named by the message, its corners' det J 
 corner triangle's area) over the element's reference value, the node of the smallest one (the
 folded corner), whether that node and its two neighbours are on a contact surface and active in
 contact, the spread of the element's nodal velocities over its size (a strain rate), the step
-and the wave speed. Classes, first match:
+and the wave speed, the element's centroid J and its hourglass displacement |q| over its size
+(one_point_measures), and the strain and hourglass energy of the last row of <stem>.ene.
+Classes, first match:
 
 - flat corner: the folded node and both its neighbours are active in contact and the folded
   corner's det J is within 1e-6 of its reference value of zero (three nodes on a face);
@@ -46,6 +53,34 @@ def corner_j(x):
         e0 = x[(a - 1) % 4] - x[a]
         j[a] = e1[0] * e0[1] - e1[1] * e0[0]
     return j
+
+
+def one_point_measures(xr, ue):
+    """det F of the mean deformation gradient (the one-point element's J) and the
+    Flanagan-Belytschko hourglass displacement |q| over the element size sqrt(A0), for the
+    reference corners xr(4, 2) and displacements ue(4, 2) (src/exic/element/quad4.f90,
+    q4_force_1pt: gam_a = 1/4 (h_a - (h.X) b_a/A0), q_i = sum_a gam_a u_ia). For the mode of
+    nodal values +-c (h = (1,-1,1,-1)) q = c; a square of side L folds at c about L/2."""
+    x, y = xr[:, 0], xr[:, 1]
+    bx = 0.5 * np.array([y[1] - y[3], y[2] - y[0], y[3] - y[1], y[0] - y[2]])
+    by = 0.5 * np.array([x[3] - x[1], x[0] - x[2], x[1] - x[3], x[2] - x[0]])
+    a0 = float(bx @ x)
+    f = np.eye(2) + np.array([[ue[:, 0] @ bx, ue[:, 0] @ by], [ue[:, 1] @ bx, ue[:, 1] @ by]]) / a0
+    hv = np.array([1.0, -1.0, 1.0, -1.0])
+    gam = 0.25 * (hv - ((hv @ x) * bx + (hv @ y) * by) / a0)
+    q = gam @ ue
+    return float(np.linalg.det(f)), float(np.linalg.norm(q) / np.sqrt(a0))
+
+
+def _energies(stem):
+    """Strain (with hourglass) and hourglass energy of the last row of <stem>.ene and the share
+    hourglass/strain there (the strain column holds both)."""
+    with open(stem + ".ene") as f:
+        names = f.readline().lstrip("#").split()
+    e = np.atleast_2d(np.loadtxt(stem + ".ene"))
+    s, hg = e[:, names.index("strain")], e[:, names.index("hourglass")]
+    share = hg[-1] / s[-1] if s[-1] > 0 else 0.0
+    return {"strain_end": float(s[-1]), "hourglass_end": float(hg[-1]), "hourglass_share_end": float(share)}
 
 
 def classify(exic, seed, index, work):
@@ -96,6 +131,7 @@ def _failure_state(stem, element, info):
     active_now = act[-1][nodes] > 0
     active_ever = act[:, nodes].max(axis=0) > 0
     h = float(np.sqrt(0.5 * abs(jr[0] + jr[2])))
+    jc_mean, q_over_h = one_point_measures(xr, u[nodes])
     vn = v[nodes]
     dv = float(np.max(np.linalg.norm(vn[:, None, :] - vn[None, :, :], axis=2)))
     reg = int(np.ravel(region[element - 1])[0])
@@ -114,7 +150,8 @@ def _failure_state(stem, element, info):
             "corner_rel": [float(c) for c in rel], "folded_node": int(nodes[a]) + 1,
             "on_boundary": on_b, "active": [bool(b) for b in active_now],
             "active_ever": [bool(b) for b in active_ever], "h": h, "dv_over_h": dv / h,
-            "speed_over_c": max(speeds) if speeds else None, "kind": kind}
+            "speed_over_c": max(speeds) if speeds else None, "kind": kind,
+            "j_centroid": jc_mean, "q_over_h": q_over_h, **_energies(stem)}
 
 
 def main():
@@ -123,7 +160,11 @@ def main():
     ap.add_argument("--exic", default=None)
     ap.add_argument("--out", default=os.path.join(ROOT, "doc", "stability", "inversions.json"))
     ap.add_argument("--only", default="")
+    ap.add_argument("--hourglass", default=None,
+                    help='the hourglass record of one-point bodies (default: scenes.HOURGLASS)')
     args = ap.parse_args()
+    if args.hourglass:
+        scenes.HOURGLASS = args.hourglass
     import stress
     exic = os.path.abspath(args.exic or stress.find_exic())
     with open(args.scenes) as f:

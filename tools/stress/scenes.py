@@ -367,6 +367,11 @@ def _block_text(region, mat, nr, ns, corners, mids=None):
     return s + "\n"
 
 
+#: the hourglass record of the one-point (QUADrature 1) bodies: the assumed-strain control
+#: (doc/hourglass.md); campaigns up to seed 20261124 wrote "HOURglass 0.1" (stress.py --hourglass)
+HOURGLASS = "HOURglass,PHYSical"
+
+
 def _body_text(k, b):
     """MATErial and mesh of body k (region k, material k)."""
     m = b.mat
@@ -376,7 +381,7 @@ def _body_text(k, b):
         mat = (f"MATErial,{k}\n  SOLId\n    ELAStic NEOHookean {_fmt(m.young)} {_fmt(m.nu)}\n"
                f"    DENSity {_fmt(m.rho)}\n    QUADrature {m.quad}\n")
         if m.quad == 1:
-            mat += "    HOURglass 0.1\n"
+            mat += f"    {HOURGLASS}\n"
         mat += "\n"
     cx, cy = b.center
     mesh = f"REGIon,{k}\n"

@@ -193,7 +193,12 @@ def main():
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--timeout", type=float, default=120.0)
     ap.add_argument("--no-report", action="store_true")
+    ap.add_argument("--hourglass", default=None,
+                    help='the hourglass record of one-point bodies (default: scenes.HOURGLASS; '
+                         '"HOURglass 0.1" as in the campaigns up to seed 20261124)')
     args = ap.parse_args()
+    if args.hourglass:
+        scenes.HOURGLASS = args.hourglass
     exic = os.path.abspath(args.exic or find_exic())
     if not os.path.exists(exic):
         sys.exit(f"stress: no exic at {exic}")

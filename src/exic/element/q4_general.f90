@@ -16,9 +16,11 @@ module exic_element_q4_general
    use exic_material_j2_hardening, only: j2_param_t, j2_has_temperature, j2_static_yield, J2_MISES
    use exic_material_j2, only: j2_piola, j2_cauchy, j2_init_history
    use exic_material_neohookean, only: nh_wave_speed2_block
+   use exic_material_material, only: HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
    use exic_element_quad4, only: NBLOCK, gather => q4b_gather, kinematics_2x2 => q4b_kinematics_2x2, &
                                  kinematics_1pt => q4b_kinematics_1pt, positive => q4b_positive, &
                                  forces_2x2 => q4b_forces_2x2, forces_1pt => q4b_forces_1pt, &
+                                 asqbi_forces => q4b_asqbi_forces, &
                                  check_points => q4b_check_points, current => q4b_current, &
                                  stable_block => q4b_stable_block, &
                                  block_minimum => q4b_block_minimum, scatter => q4b_scatter
@@ -43,6 +45,7 @@ module exic_element_q4_general
       logical :: plastic = .false.           !< J2 plasticity with history
       integer :: nvar = 0                    !< history values per point (5, or 6 with T)
       real(wp) :: lambda = 0.0_wp, mu = 0.0_wp, rho = 0.0_wp, hg = 0.0_wp
+      integer :: hgkind = HOURGLASS_STIFFNESS  !< or HOURGLASS_PHYSICAL (hg its scale; doc/hourglass.md)
       type(j2_param_t) :: prm                !< the law (elastic sets: a yield never reached)
    end type q4_solid_t
 
@@ -50,12 +53,14 @@ contains
 
    !> The description of a set: prm is the material's plastic law when plastic, else a linear
    !> law with an infinite yield stress (j2_piola then stays elastic).
-   pure function q4g_init(nq, axi, mixed, plastic, lambda, mu, rho, hg, prm) result(o)
+   pure function q4g_init(nq, axi, mixed, plastic, lambda, mu, rho, hg, prm, hgkind) result(o)
       integer, intent(in) :: nq
       logical, intent(in) :: axi, mixed, plastic
       real(wp), intent(in) :: lambda, mu, rho, hg
       type(j2_param_t), intent(in) :: prm
+      integer, intent(in), optional :: hgkind   !< HOURGLASS_STIFFNESS (default) or HOURGLASS_PHYSICAL
       type(q4_solid_t) :: o
+      if (present(hgkind)) o%hgkind = hgkind
       o%nq = nq
       o%axi = axi
       o%mixed = mixed .and. nq == 2
@@ -380,7 +385,12 @@ contains
          ! mean part with the ring weights, hourglass part of the plane element times R_c
          zero = 0.0_wp
          call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fx, fy, eh)
-         call forces_1pt(xe, ye, uxe, uye, r0, zero, zero, zero, zero, kh, hx, hy, eh)
+         if (o%hgkind == HOURGLASS_PHYSICAL) then
+            call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, o%lambda, o%mu, o%hg, &
+                              hx, hy, eh)
+         else
+            call forces_1pt(xe, ye, uxe, uye, r0, zero, zero, zero, zero, kh, hx, hy, eh)
+         end if
          do a = 1, 4
             do k = 1, NBLOCK
                fx(k, a) = fx(k, a) + rc(k)*hx(k, a) + 0.25_wp*(p33(k)/rc(k))
@@ -388,6 +398,12 @@ contains
             end do
          end do
          eh = rc*eh
+      else if (o%hgkind == HOURGLASS_PHYSICAL) then
+         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fx, fy, eh)
+         call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, o%lambda, o%mu, o%hg, hx, &
+                           hy, eh)
+         fx = fx + hx
+         fy = fy + hy
       else
          call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
       end if

@@ -31,6 +31,7 @@ module exic_element_quad4
    use exic_base_kinds, only: wp
    use exic_base_sums, only: lane_sum
    use exic_material_neohookean, only: nh_piola, nh_cauchy, nh_wave_speed2_block
+   use exic_material_material, only: HOURGLASS_PHYSICAL
    implicit none
    private
 
@@ -39,8 +40,8 @@ module exic_element_quad4
    ! the block steps for the general solid path (q4_general.f90), as wrappers: the steps stay
    ! private, so that the compiler inlines them into the block routines as before
    public :: q4b_gather, q4b_kinematics_2x2, q4b_kinematics_1pt, q4b_positive, q4b_forces_2x2, &
-             q4b_forces_1pt, q4b_check_points, q4b_current, q4b_stable_block, q4b_block_minimum, &
-             q4b_scatter
+             q4b_forces_1pt, q4b_asqbi_forces, q4b_check_points, q4b_current, q4b_stable_block, &
+             q4b_block_minimum, q4b_scatter
 
    real(wp), parameter :: xin(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]   !< xi_a
    real(wp), parameter :: etn(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]   !< eta_a
@@ -310,9 +311,11 @@ contains
    !> 2/3 (lambda + 3 mu) c^2 in the fully integrated element, so hg is roughly the fraction of
    !> the fully integrated hourglass stiffness (0.05-0.15 usual). The force is linear in the
    !> total displacement: elastic, conservative, and zero for affine fields.
+   !> With hgkind = HOURGLASS_PHYSICAL the hourglass part is the assumed-strain stabilization
+   !> of doc/hourglass.md instead (asqbi_forces), hg its scale s.
    !> wint: strain energy of the mean part; whg: hourglass energy; the rest as for q4_force_2x2.
    pure subroutine q4_force_1pt(nel, nnode, conn, x0, u, lambda, mu, rho0, hg, f, wint, whg, jmin, &
-                                ebad, dt2min, emin, efold)
+                                ebad, dt2min, emin, efold, hgkind)
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
@@ -320,7 +323,12 @@ contains
       real(wp), intent(inout) :: f(2, nnode)
       real(wp), intent(out) :: wint, whg, jmin, dt2min
       integer, intent(out) :: ebad, emin, efold
+      integer, intent(in), optional :: hgkind   !< HOURGLASS_STIFFNESS (default) or HOURGLASS_PHYSICAL
       integer :: e0, nb
+      logical :: phys
+
+      phys = .false.
+      if (present(hgkind)) phys = hgkind == HOURGLASS_PHYSICAL
 
       wint = 0.0_wp
       whg = 0.0_wp
@@ -331,30 +339,43 @@ contains
       efold = 0
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
-         call block_1pt(nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, lambda, mu, rho0, hg, f, &
-                        wint, whg, jmin, ebad, dt2min, emin, efold)
+         call block_1pt(nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, lambda, mu, rho0, hg, phys, &
+                        f, wint, whg, jmin, ebad, dt2min, emin, efold)
       end do
    end subroutine q4_force_1pt
 
    !> One block of q4_force_1pt: elements off + 1 .. off + nb.
-   pure subroutine block_1pt(nb, off, nnode, conn, x0, u, lambda, mu, rho0, hg, f, wint, whg, jmin, &
-                             ebad, dt2min, emin, efold)
+   pure subroutine block_1pt(nb, off, nnode, conn, x0, u, lambda, mu, rho0, hg, phys, f, wint, whg, &
+                             jmin, ebad, dt2min, emin, efold)
       integer, intent(in) :: nb, off, nnode
       integer, intent(in) :: conn(4, nb)
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
       real(wp), intent(in) :: lambda, mu, rho0, hg
+      logical, intent(in) :: phys
       real(wp), intent(inout) :: f(2, nnode), wint, whg, jmin, dt2min
       integer, intent(inout) :: ebad, emin, efold
-      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy
+      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy, hx, hy
       real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, jac, js, a0, r0, p11, p12, p21, p22, wq, eh, &
                                      dt2, good
+      integer :: a, k
 
       call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
       call kinematics_1pt(xe, ye, uxe, uye, f11, f12, f21, f22, jac, a0, r0)
       call positive(NBLOCK, jac, js)
       ! the law at every centroid of the block, weighted by the reference areas
       call nh_piola(NBLOCK, lambda, mu, f11, f12, f21, f22, js, a0, p11, p12, p21, p22, wq)
-      call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, hg*(lambda + 2.0_wp*mu), fx, fy, eh)
+      if (phys) then
+         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fx, fy, eh)
+         call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, lambda, mu, hg, hx, hy, eh)
+         do a = 1, 4
+            do k = 1, NBLOCK
+               fx(k, a) = fx(k, a) + hx(k, a)
+               fy(k, a) = fy(k, a) + hy(k, a)
+            end do
+         end do
+      else
+         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, hg*(lambda + 2.0_wp*mu), fx, fy, eh)
+      end if
       wint = wint + lane_sum(nb, wq)
       whg = whg + lane_sum(nb, eh)
       call check_points(nb, 1, off, jac, jmin, ebad)
@@ -438,6 +459,91 @@ contains
          fy(k, 4) = qy*g4 - m2
       end do
    end subroutine forces_1pt
+
+   !> Hourglass forces hx, hy and energies eh of the assumed-strain (ASQBI) stabilization of a
+   !> block of one-point elements in the element's turning frame (doc/hourglass.md, (H1)-(H12);
+   !> Belytschko & Bindeman 1991): q = sum_a gam_a u_a (H2), q^ = R^T q with R the rotation of
+   !> the mean F (H8), W = 1/2 q^.K^ q^ with K^ = s E' [H - (1 + nub) H~xy (e1 e2^T + e2 e1^T)]
+   !> (H7, H9) from the reference element, and the forces the exact gradient of W (H10-H12).
+   !> r0 = 1/A0; f11..f22 the mean deformation gradient; s the scale (HOURglass,PHYSical,s).
+   pure subroutine asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, lambda, mu, s, hx, hy, eh)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
+      real(wp), intent(in), dimension(NBLOCK) :: r0, f11, f12, f21, f22
+      real(wp), intent(in) :: lambda, mu, s
+      real(wp), intent(out), dimension(NBLOCK, 4) :: hx, hy
+      real(wp), intent(out) :: eh(NBLOCK)
+      real(wp) :: ep, nub, bx1, bx2, by1, by2, hxg, hyg, t1, t2, g1, g2, g3, g4, qx, qy, c1x, c1y, &
+                  c2x, c2y, hh, kxx, kyy, kxy, e1x, e1y, hxy, sn, dn, nn, cr, sr, px, py, qpx, qpy, &
+                  rqx, rqy, tm
+      integer :: k
+
+      ! E' = 2 mu (1 + nub), nub = lambda/(lambda + 2 mu) (H4, H5)
+      nub = lambda/(lambda + 2.0_wp*mu)
+      ep = s*2.0_wp*mu*(1.0_wp + nub)
+      do k = 1, NBLOCK
+         bx1 = 0.5_wp*(ye(k, 2) - ye(k, 4))
+         bx2 = 0.5_wp*(ye(k, 3) - ye(k, 1))
+         by1 = 0.5_wp*(xe(k, 4) - xe(k, 2))
+         by2 = 0.5_wp*(xe(k, 1) - xe(k, 3))
+         ! gam_a (H1), as in forces_1pt
+         hxg = (xe(k, 1) - xe(k, 2)) + (xe(k, 3) - xe(k, 4))
+         hyg = (ye(k, 1) - ye(k, 2)) + (ye(k, 3) - ye(k, 4))
+         t1 = (hxg*bx1 + hyg*by1)*r0(k)
+         t2 = (hxg*bx2 + hyg*by2)*r0(k)
+         g1 = 0.25_wp*(1.0_wp - t1)
+         g2 = 0.25_wp*(-1.0_wp - t2)
+         g3 = 0.25_wp*(1.0_wp + t1)
+         g4 = 0.25_wp*(t2 - 1.0_wp)
+         qx = (g1*uxe(k, 1) + g2*uxe(k, 2)) + (g3*uxe(k, 3) + g4*uxe(k, 4))
+         qy = (g1*uye(k, 1) + g2*uye(k, 2)) + (g3*uye(k, 3) + g4*uye(k, 4))
+         ! c1 = dX/dxi, c2 = dX/deta at the centre; H = 4/(3 det J0) (perp c1 perp c1^T +
+         ! perp c2 perp c2^T) with det J0 = A0/4 (H7)
+         c1x = 0.25_wp*((xe(k, 2) - xe(k, 1)) + (xe(k, 3) - xe(k, 4)))
+         c1y = 0.25_wp*((ye(k, 2) - ye(k, 1)) + (ye(k, 3) - ye(k, 4)))
+         c2x = 0.25_wp*((xe(k, 3) - xe(k, 2)) + (xe(k, 4) - xe(k, 1)))
+         c2y = 0.25_wp*((ye(k, 3) - ye(k, 2)) + (ye(k, 4) - ye(k, 1)))
+         hh = (16.0_wp/3.0_wp)*r0(k)
+         kxx = hh*(c1y*c1y + c2y*c2y)
+         kyy = hh*(c1x*c1x + c2x*c2x)
+         kxy = -hh*(c1x*c1y + c2x*c2y)
+         ! the element's frame e1 = c1/|c1|, e2 = (-e1y, e1x); H~xy = e1^T H e2 (H9)
+         tm = 1.0_wp/sqrt(c1x*c1x + c1y*c1y)
+         e1x = c1x*tm
+         e1y = c1y*tm
+         hxy = e1x*(kxy*e1x - kxx*e1y) + e1y*(kyy*e1x - kxy*e1y)
+         ! K^ = E' [H - (1 + nub) H~xy (e1 e2^T + e2 e1^T)]
+         tm = (1.0_wp + nub)*hxy
+         kxx = ep*(kxx + tm*2.0_wp*e1x*e1y)
+         kyy = ep*(kyy - tm*2.0_wp*e1y*e1x)
+         kxy = ep*(kxy - tm*(e1x*e1x - e1y*e1y))
+         ! R of the mean F (H8): cos = S/sqrt(S^2 + D^2), sin = D/sqrt(S^2 + D^2)
+         sn = f11(k) + f22(k)
+         dn = f21(k) - f12(k)
+         nn = max(sn*sn + dn*dn, tiny(1.0_wp))
+         tm = 1.0_wp/sqrt(nn)
+         cr = sn*tm
+         sr = dn*tm
+         ! q^ = R^T q, Q^ = K^ q^, W = q^.Q^/2
+         px = cr*qx + sr*qy
+         py = cr*qy - sr*qx
+         qpx = kxx*px + kxy*py
+         qpy = kxy*px + kyy*py
+         eh(k) = 0.5_wp*(px*qpx + py*qpy)
+         rqx = cr*qpx - sr*qpy
+         rqy = sr*qpx + cr*qpy
+         ! m dtheta/du_a (H10, H11): tm = m/((S^2 + D^2) A0)
+         tm = (qpx*py - qpy*px)*r0(k)/nn
+         ! (H12), b_3 = -b_1, b_4 = -b_2
+         hx(k, 1) = g1*rqx - tm*(sn*by1 + dn*bx1)
+         hx(k, 2) = g2*rqx - tm*(sn*by2 + dn*bx2)
+         hx(k, 3) = g3*rqx + tm*(sn*by1 + dn*bx1)
+         hx(k, 4) = g4*rqx + tm*(sn*by2 + dn*bx2)
+         hy(k, 1) = g1*rqy + tm*(sn*bx1 - dn*by1)
+         hy(k, 2) = g2*rqy + tm*(sn*bx2 - dn*by2)
+         hy(k, 3) = g3*rqy - tm*(sn*bx1 - dn*by1)
+         hy(k, 4) = g4*rqy - tm*(sn*bx2 - dn*by2)
+      end do
+   end subroutine asqbi_forces
 
    !> The reference coordinates and displacements of nb elements, (element, local node); lanes
    !> nb + 1 .. NBLOCK repeat element nb.
@@ -795,6 +901,17 @@ contains
       real(wp), intent(out) :: eh(NBLOCK)
       call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
    end subroutine q4b_forces_1pt
+
+   !> asqbi_forces for q4_general.f90.
+   pure subroutine q4b_asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, lambda, mu, s, hx, &
+                                    hy, eh)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
+      real(wp), intent(in), dimension(NBLOCK) :: r0, f11, f12, f21, f22
+      real(wp), intent(in) :: lambda, mu, s
+      real(wp), intent(out), dimension(NBLOCK, 4) :: hx, hy
+      real(wp), intent(out) :: eh(NBLOCK)
+      call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, lambda, mu, s, hx, hy, eh)
+   end subroutine q4b_asqbi_forces
 
    !> check_points for q4_general.f90.
    pure subroutine q4b_check_points(nb, np, off, jac, jmin, ebad)

@@ -85,6 +85,7 @@ contains
             s%mu = m%mu
             s%rho = m%rho
             s%hourglass = m%hourglass
+            s%hgkind = m%hourglass_kind
             allocate (s%elems(s%nel), s%conn(4, s%nel))
             s%elems = pack([(i, i=1, ne)], mesh%mat == im)
             s%conn = mesh%conn(:, s%elems)
@@ -130,7 +131,7 @@ contains
       logical, intent(in) :: axi
       s%general = m%kind == MAT_SOLID .and. (axi .or. m%plastic .or. (m%mixed .and. m%quadrature == 2))
       s%solid = q4g_init(m%quadrature, axi, m%mixed, m%plastic .and. s%general, m%lambda, m%mu, &
-                         m%rho, m%hourglass, m%j2)
+                         m%rho, m%hourglass, m%j2, m%hourglass_kind)
       if (s%solid%plastic) then
          allocate (s%hist(s%solid%nvar, s%nq*s%nq, s%nel))
          call q4g_hist_init(s%solid, s%nel, s%hist)
@@ -289,7 +290,8 @@ contains
                phg(r) = 0.0_wp
             else
                call q4_force_1pt(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%lambda, s%mu, s%rho, &
-                                 s%hourglass, f, pw(r), phg(r), pj(r), pe(r), pd(r), pm(r), pf(r))
+                                 s%hourglass, f, pw(r), phg(r), pj(r), pe(r), pd(r), pm(r), pf(r), &
+                                 s%hgkind)
             end if
          end do
          !$omp end do

@@ -215,10 +215,10 @@ contains
             call q4_force_2x2(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, fm, w, jmin, eb, dt2, em, ef)
          else
             call q4_force_1pt(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, s%hourglass, fp, w, whg, jmin, &
-                              eb, dt2, em, ef)
+                              eb, dt2, em, ef, s%hgkind)
             u(mod(j - 1, 2) + 1, (j + 1)/2) = ue(mod(j - 1, 2) + 1, (j + 1)/2) - h
             call q4_force_1pt(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, s%hourglass, fm, w, whg, jmin, &
-                              eb, dt2, em, ef)
+                              eb, dt2, em, ef, s%hgkind)
          end if
          ke(:, j) = reshape(fp - fm, [8])/(2.0_wp*h)
       end do

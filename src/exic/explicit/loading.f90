@@ -42,17 +42,19 @@ module exic_explicit_loading
       integer :: nfn = 0                         !< functions 1..nfn (some may be undefined)
       real(wp), allocatable :: pv(:, :)          !< (3, 0:nfn) p, p', p'' at the current time
       logical :: any_body = .false., any_grav = .false.
-      real(wp), allocatable :: fnode(:, :)       !< (2, nnode) FORCe values
-      real(wp), allocatable :: fbody(:, :)       !< (2, nnode) BODY forces (function 0)
-      real(wp), allocatable :: fgrav(:, :)       !< (2, nnode) gravity forces (its function)
+      ! the nodal arrays below are allocated only for decks whose steps read them
+      real(wp), allocatable :: fnode(:, :)       !< (2, nnode) FORCe values (varying loads)
+      real(wp), allocatable :: fbody(:, :)       !< (2, nnode) BODY forces (fn 0; varying loads)
+      real(wp), allocatable :: fgrav(:, :)       !< (2, nnode) gravity (its fn; varying loads)
       real(wp), allocatable :: fedge(:, :)       !< (2, nnode) edge loads of the step
       real(wp), allocatable :: fext_old(:, :)    !< (2, nnode) fext(n)
       real(wp), allocatable :: favg(:, :)        !< (2, nnode) 1/2 (fext(n) + fext(n+1)) for the work
-      real(wp), allocatable :: vold(:, :)        !< (2, nnode) v(n) through the step
+      real(wp), allocatable :: vold(:, :)        !< (2, nnode) v(n) in the step (varying loads, W_pm)
       !> the works of the varying loads and of the prescribed motion by the trapezoid rule of the
       !> power, dt 1/2 (F(n) + F(n+1)) . 1/2 (v(n) + v(n+1)): the energy guard's second estimate
       real(wp) :: wext_p = 0.0_wp, wpm_p = 0.0_wp
-      integer, allocatable :: fpro(:, :)         !< (2, nnode) function of each dof (0: the sum)
+      integer, allocatable :: fpro(:, :)         !< (2, nnode) function of each dof (0: the sum;
+                                                 !< varying loads, DISPlacements under functions)
       ! DISPlacement under functions
       integer :: ndisp = 0
       integer, allocatable :: dnode(:), ddof(:)
@@ -65,6 +67,7 @@ module exic_explicit_loading
       integer, allocatable :: body_of(:)         !< (nnode) body of each node, 0: none
       real(wp), allocatable :: wlump(:)          !< (nnode) lumped masses of free bodies' nodes
       type(rigid_dofs_t) :: rb                   !< free bodies for the corrector; rb%r: lever arms
+                                                 !< (set up when a body is free or driven)
       ! the work of the prescribed motion: every prescribed dof and its last reaction
       integer :: npres = 0
       integer, allocatable :: pnode(:), pdof(:)
@@ -109,17 +112,19 @@ contains
       if (allocated(self%spec%fpro)) self%fpro = self%spec%fpro
       ndef = count(self%spec%fn%kind /= FN_UNDEFINED)
       call body_and_gravity(self, materials, st, sets)
-      self%fnode = mesh%force
-      self%varying = self%spec%nedge > 0 .or. (ndef > 0 .and. (any(self%fnode /= 0.0_wp) .or. &
+      self%varying = self%spec%nedge > 0 .or. (ndef > 0 .and. (any(mesh%force /= 0.0_wp) .or. &
                                                               self%any_body .or. self%any_grav))
+      ! nodal arrays only where the step reads them (doc/performance.md 6.2, "Bytes per element")
       if (.not. self%varying) then
          ! constant loads: formed once (with no function every factor is 1)
          if (self%any_body) st%fext = st%fext + self%fbody
          if (self%any_grav) st%fext = st%fext + self%fgrav
+         if (allocated(self%fbody)) deallocate (self%fbody)
+         if (allocated(self%fgrav)) deallocate (self%fgrav)
       else
+         self%fnode = mesh%force
          allocate (self%fedge(2, n), self%fext_old(2, n), self%favg(2, n), source=0.0_wp)
       end if
-      allocate (self%vold(2, n), source=0.0_wp)
       call make_bodies(self, mesh, materials, st, sets, err)
       if (allocated(err)) return
       ! MOTIon of deformable regions (the reader gave their nodes boundary codes)
@@ -165,6 +170,10 @@ contains
       allocate (self%rold(self%npres), source=0.0_wp)
       moving = self%ndisp > 0 .or. self%nmove > 0 .or. any(self%bodies%kind /= RB_PLAIN)
       self%active = self%varying .or. moving
+      ! v(n) is kept when the loads vary or W_pm can be booked (loading_velocities_set: a
+      ! prescribed dof that moves); the functions of the dofs when a step evaluates them
+      if (self%varying .or. self%npres > 0 .or. moving) allocate (self%vold(2, n), source=0.0_wp)
+      if (.not. (self%varying .or. self%ndisp > 0)) deallocate (self%fpro)
    end subroutine loading_init
 
    !> Nodal BODY and gravity forces of every solid and free rigid element set: b int N_a dV0 and
@@ -178,13 +187,16 @@ contains
       real(wp), allocatable :: vol(:)
       integer :: k
       logical :: loaded
-      allocate (self%fbody(2, st%nnode), self%fgrav(2, st%nnode), source=0.0_wp)
-      allocate (vol(st%nnode))
       do k = 1, size(sets)
          associate (s => sets(k), m => materials(sets(k)%mat))
             loaded = s%kind == MAT_SOLID .or. (s%kind == MAT_RIGID .and. m%free)
             if (.not. loaded) cycle
             if (all(m%body == 0.0_wp) .and. .not. self%spec%has_gravity) cycle
+            if (.not. allocated(vol)) then
+               ! the arrays of a deck with body forces or gravity only
+               allocate (vol(st%nnode))
+               allocate (self%fbody(2, st%nnode), self%fgrav(2, st%nnode), source=0.0_wp)
+            end if
             vol = 0.0_wp
             call q4_lumped_mass(s%nel, st%nnode, s%conn, st%x0, 1.0_wp, vol, st%axisymmetric)
             if (any(m%body /= 0.0_wp)) then
@@ -241,19 +253,22 @@ contains
       regions = unique_regions(mesh%region, is_rigid)
       nb = size(regions)
       allocate (self%bodies(nb))
+      if (nb == 0) return
       ! lumped masses of the deformable elements (point masses on nodes shared with a body)
       allocate (mdef(st%nnode), source=0.0_wp)
       do i = 1, size(sets)
          if (sets(i)%kind == MAT_SOLID) call q4_lumped_mass(sets(i)%nel, st%nnode, sets(i)%conn, &
                                                             st%x0, sets(i)%rho, mdef)
       end do
-      allocate (self%wlump(st%nnode), source=0.0_wp)
       do ib = 1, nb
          call make_body(self, mesh, materials, st, is_rigid, regions(ib), ib, mdef, err)
          if (allocated(err)) return
       end do
       nfree = count(self%bodies%kind == RB_FREE)
       self%has_free = nfree > 0
+      ! lever arms (rb%r) for bodies that move, lumped masses for free ones: nothing otherwise
+      if (all(self%bodies%kind == RB_PLAIN)) return
+      if (self%has_free) allocate (self%wlump(st%nnode), source=0.0_wp)
       allocate (free_of(st%nnode), source=0)
       i = 0
       do ib = 1, nb

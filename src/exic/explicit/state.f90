@@ -2,6 +2,7 @@
 module exic_explicit_state
    use exic_base_kinds, only: wp, i8
    use exic_element_q4_general, only: q4_solid_t
+   use exic_material_material, only: HOURGLASS_STIFFNESS
    implicit none
    private
 
@@ -22,6 +23,7 @@ module exic_explicit_state
       integer, allocatable :: elems(:)          !< (nel) global element numbers
       integer, allocatable :: conn(:, :)        !< (4, nel) global node numbers
       real(wp) :: lambda = 0.0_wp, mu = 0.0_wp, rho = 0.0_wp, hourglass = 0.0_wp
+      integer :: hgkind = HOURGLASS_STIFFNESS   !< or HOURGLASS_PHYSICAL (doc/hourglass.md)
       integer :: nrange = 0                     !< ranges of consecutive elements
       integer, allocatable :: rfirst(:)         !< (nrange + 1) first element of each range
       integer :: ncolour = 0

@@ -6,7 +6,8 @@
 !>   ELAStic NEOHookean E nu         (ELAStic ISOTropic E nu: read as NEOHookean, with a warning)
 !>   DENSity rho
 !>   QUADrature 1|2                  [ext]
-!>   HOURglass h                     [ext]
+!>   HOURglass h                     [ext] Flanagan-Belytschko stiffness coefficient (default 0.1)
+!>   HOURglass,PHYSical[,s]          [ext] assumed-strain stabilization, scale 0 < s <= 1 (doc/hourglass.md)
 !>   BODY bx by                      body force per unit reference volume (FEAP)
 !>   MASS LUMPed                     (explicit runs always use lumped mass)
 !>   PLANe STRAin | FINIte           accepted (the geometry is GLOBal's: plane strain or AXISymmetric)
@@ -24,7 +25,7 @@ module exic_io_deck_material
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
    use exic_material_material, only: material_t, lame_from_young, MAT_SOLID, MAT_RIGID, &
-                                     MAT_UNDEFINED
+                                     MAT_UNDEFINED, HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
    use exic_material_j2_hardening, only: j2_check_parameters, J2_MISES, J2_POWER, J2_JOHNSON_COOK
    use exic_io_records, only: keyword_is
    use exic_io_reader, only: reader_t, next_record, field, word, real_field, int_field, fail, &
@@ -41,6 +42,34 @@ module exic_io_deck_material
                                                 'SPECific', 'MIXEd']
 
 contains
+
+   !> `HOURglass h` (Flanagan-Belytschko stiffness form, coefficient h >= 0) or
+   !> `HOURglass,PHYSical[,s]` (assumed-strain stabilization with scale 0 < s <= 1, default 1;
+   !> above 1 it could exceed the 2x2 element's hourglass stiffness that the stable step covers,
+   !> doc/hourglass.md section 2).
+   subroutine hourglass_record(rd, i, mat, err)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: i
+      type(material_t), intent(inout) :: mat
+      type(error_t), allocatable, intent(out) :: err
+      if (keyword_is(word(rd, i, 2), 'phys')) then
+         mat%hourglass_kind = HOURGLASS_PHYSICAL
+         mat%hourglass = 1.0_wp
+         if (.not. has_field(rd, i, 3)) return
+         call real_field(rd, i, 3, 'HOURglass,PHYSical,s', mat%hourglass, err)
+         if (allocated(err)) return
+         if (.not. (mat%hourglass > 0.0_wp .and. mat%hourglass <= 1.0_wp)) &
+            call fail(rd, i, 'HOURglass,PHYSical,'//rtoa(mat%hourglass)//': expected a scale s with '// &
+                      '0 < s <= 1 (1: the assumed-strain stiffness of the material)', err)
+      else
+         mat%hourglass_kind = HOURGLASS_STIFFNESS
+         call real_field(rd, i, 2, 'HOURglass h (a coefficient) or HOURglass,PHYSical[,s]', &
+                         mat%hourglass, err)
+         if (allocated(err)) return
+         if (.not. mat%hourglass >= 0.0_wp) call fail(rd, i, 'HOURglass '//rtoa(mat%hourglass)// &
+                                                      ': expected a coefficient >= 0', err)
+      end if
+   end subroutine hourglass_record
 
    !> Read `MATErial,ma` (record `icmd`) and its data set into `mat`; `ma` is the set number.
    subroutine cmd_material(rd, icmd, ma, mat, err)
@@ -127,10 +156,7 @@ contains
             end if
             mat%quadrature = q
          else if (keyword_is(w, 'hour')) then
-            call real_field(rd, i, 2, 'HOURglass h', mat%hourglass, err)
-            if (allocated(err)) return
-            if (mat%hourglass < 0.0_wp) call fail(rd, i, 'HOURglass '//rtoa(mat%hourglass)// &
-                                                  ': expected a coefficient >= 0', err)
+            call hourglass_record(rd, i, mat, err)
          else if (keyword_is(w, 'mass')) then
             if (keyword_is(word(rd, i, 2), 'cons')) then
                call warn(rd, i, 'MASS CONSistent ignored: explicit runs use a lumped mass')

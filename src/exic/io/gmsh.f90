@@ -1,8 +1,9 @@
 !> Meshes read (or made) by the Gmsh library, through its C API (exic_io_gmsh_c).
 !>
-!> `gmsh_read` owns the library's whole life for one file: initialize (no configuration files,
-!> terminal output off, messages to Gmsh's logger), open the file, mesh it in 2-D when asked
-!> (`.geo` files), copy out what exic needs, finalize. Every status code is checked; a failure
+!> `gmsh_read` loads the library at its first call (exic_io_gmsh_c: dlopen, once per process)
+!> and owns the library's whole life for one file: initialize (no configuration files, terminal
+!> output off, messages to Gmsh's logger), open the file, mesh it in 2-D when asked (`.geo`
+!> files), copy out what exic needs, finalize. Every status code is checked; a failure
 !> becomes an error carrying Gmsh's own last message, and the library is finalized before
 !> returning (a failed Gmsh call leaves it unusable until then). Gmsh's warnings are returned.
 !> Arrays the library returns are copied and released with gmshFree; a failed call sets no
@@ -22,7 +23,8 @@ module exic_io_gmsh
    use exic_base_strings, only: itoa
    use exic_base_sort, only: sort_perm_i8
    use exic_io_posix, only: c_string
-   use exic_io_gmsh_c, only: gmshInitialize, gmshFinalize, gmshOpen, gmshFree, &
+   use exic_io_gmsh_c, only: GMSH_LIBRARIES, gmsh_library_load, gmshInitialize, gmshFinalize, &
+                             gmshOpen, gmshFree, &
                              gmshOptionSetNumber, gmshModelGetEntities, &
                              gmshModelGetPhysicalGroups, gmshModelGetPhysicalName, &
                              gmshModelGetEntitiesForPhysicalGroup, &
@@ -75,6 +77,8 @@ contains
       logical :: logging
 
       gm%warnings = ''
+      call gmsh_library_load(GMSH_LIBRARIES, err)
+      if (allocated(err)) return
       call gmshInitialize(0_c_int, c_null_ptr, 0_c_int, ierr)
       if (ierr /= 0) then
          call make_error(err, 'the Gmsh library failed to initialize (status '// &

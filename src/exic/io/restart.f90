@@ -30,6 +30,7 @@ module exic_io_restart
    use exic_io_output, only: output_t
    use exic_explicit_step, only: stepper_t
    use exic_contact_contact, only: contact_t
+   use exic_material_material, only: HOURGLASS_PHYSICAL
    implicit none
    private
 
@@ -174,12 +175,14 @@ contains
       do k = 1, size(stp%sets)
          associate (s => stp%sets(k))
             sets(:, k) = [real(s%mat, wp), real(s%kind, wp), real(s%nq, wp), real(s%nel, wp), &
-                          s%lambda, s%mu, s%rho, s%hourglass]
+                          s%lambda, s%mu, s%rho, merge(-s%hourglass, s%hourglass, &
+                          s%hgkind == HOURGLASS_PHYSICAL)]
          end associate
       end do
       call same_reals(ar, 'model.sets', reshape(sets, [size(sets)]), &
                       'the materials of the element sets (material, kind, quadrature, elements, '// &
-                      'lambda, mu, rho, hourglass)', 8)
+                      'lambda, mu, rho, hourglass: the coefficient, or minus the scale of '// &
+                      'HOURglass,PHYSical)', 8)
       np = -1
       if (stp%contact%active) np = size(stp%contact%passes)
       call same_int(ar, 'model.contact_passes', np, 'the contact passes (CONTact block)')

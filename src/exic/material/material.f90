@@ -8,6 +8,10 @@ module exic_material_material
    private
 
    integer, parameter, public :: MAT_UNDEFINED = 0, MAT_SOLID = 1, MAT_RIGID = 2
+   !> Hourglass control of one-point elements (doc/hourglass.md): `HOURglass h`, the
+   !> Flanagan-Belytschko stiffness form with coefficient h; `HOURglass,PHYSical[,s]`, the
+   !> assumed-strain (ASQBI) stabilization in the element's turning frame, scaled by s.
+   integer, parameter, public :: HOURGLASS_STIFFNESS = 1, HOURGLASS_PHYSICAL = 2
 
    public :: material_t, lame_from_young
 
@@ -18,7 +22,8 @@ module exic_material_material
       real(wp) :: lambda = 0.0_wp, mu = 0.0_wp       !< Lame constants from E, nu
       real(wp) :: rho = 0.0_wp                       !< reference density
       integer :: quadrature = 2                      !< 2: 2x2 Gauss; 1: one point + hourglass control
-      real(wp) :: hourglass = 0.1_wp                 !< hourglass coefficient for quadrature 1
+      real(wp) :: hourglass = 0.1_wp                 !< hourglass coefficient (or scale) for quadrature 1
+      integer :: hourglass_kind = HOURGLASS_STIFFNESS !< HOURGLASS_STIFFNESS or HOURGLASS_PHYSICAL
       real(wp) :: body(2) = 0.0_wp                   !< BODY bx by: force per unit reference volume
       logical :: free = .false.                      !< RIGId,FREE: a free rigid body (3 dofs)
       logical :: plastic = .false.                   !< PLAStic: J2 plasticity (material/j2.f90)

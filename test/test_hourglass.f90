@@ -1,0 +1,457 @@
+!> Tests of the assumed-strain (physical) hourglass stabilization of the one-point quadrilateral
+!> (doc/hourglass.md; src/exic/element/quad4.f90, asqbi_forces): zero for affine fields,
+!> objective, forces = derivative of the energy at finite strain and rotation, the stable step
+!> of the element holds, the bending energy of a rectangle is the beam's, and a cantilever of
+!> one-point elements under pure bending gets the exact tip displacement (the 2x2 element locks;
+!> the Flanagan-Belytschko form with 0.1 is shown beside them).
+module test_hourglass
+   use exic_base_kinds, only: wp
+   use exic_material_material, only: lame_from_young, HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
+   use exic_element_quad4, only: q4_force_1pt, q4_force_2x2, q4_lumped_mass, q4_stable_dt
+   use exic_element_q4_general, only: q4_solid_t, q4g_init, q4g_force
+   use exic_material_j2_hardening, only: j2_param_t
+   use testing, only: suite_t, check, check_close, section
+   use, intrinsic :: iso_fortran_env, only: output_unit, int64
+   implicit none
+   private
+
+   public :: run_hourglass_tests
+
+   interface
+      subroutine dsygv(itype, jobz, uplo, n, a, lda, b, ldb, w, work, lwork, info)
+         import :: wp
+         integer, intent(in) :: itype, n, lda, ldb, lwork
+         character(len=1), intent(in) :: jobz, uplo
+         real(wp), intent(inout) :: a(lda, *), b(ldb, *)
+         real(wp), intent(out) :: w(*), work(*)
+         integer, intent(out) :: info
+      end subroutine dsygv
+      subroutine dgesv(n, nrhs, a, lda, ipiv, b, ldb, info)
+         import :: wp
+         integer, intent(in) :: n, nrhs, lda, ldb
+         real(wp), intent(inout) :: a(lda, *), b(ldb, *)
+         integer, intent(out) :: ipiv(*), info
+      end subroutine dgesv
+   end interface
+
+   real(wp), parameter :: pi = 3.14159265358979323846_wp
+   !> element kinds of these tests: one point + physical control, one point + FB 0.1, 2x2
+   integer, parameter :: PHYS = 1, FB = 2, FULL = 3
+
+contains
+
+   subroutine run_hourglass_tests(s)
+      type(suite_t), intent(inout) :: s
+      call test_affine(s)
+      call test_objective(s)
+      call test_derivative(s)
+      call test_axisymmetric(s)
+      call test_stable_step(s)
+      call test_bending_energy(s)
+      call test_cantilever(s)
+   end subroutine run_hourglass_tests
+
+   ! ---------------------------------------------------------------- helpers
+
+   !> Park-Miller uniform number in (0, 1).
+   function rnd(seed) result(r)
+      integer(int64), intent(inout) :: seed
+      real(wp) :: r
+      seed = modulo(16807_int64*seed, 2147483647_int64)
+      r = real(seed, wp)/2147483647.0_wp
+   end function rnd
+
+   pure function rot(th) result(r)
+      real(wp), intent(in) :: th
+      real(wp) :: r(2, 2)
+      r = reshape([cos(th), sin(th), -sin(th), cos(th)], [2, 2])
+   end function rot
+
+   !> A distorted 3 x 3-node patch of four elements (interior node 5).
+   subroutine make_patch(x0, conn)
+      real(wp), allocatable, intent(out) :: x0(:, :)
+      integer, allocatable, intent(out) :: conn(:, :)
+      x0 = reshape([0.0_wp, 0.0_wp, 1.1_wp, 0.1_wp, 2.0_wp, 0.0_wp, &
+                    -0.1_wp, 0.9_wp, 0.9_wp, 1.2_wp, 2.1_wp, 1.0_wp, &
+                    0.0_wp, 2.0_wp, 1.0_wp, 2.1_wp, 1.9_wp, 1.9_wp], [2, 9])
+      conn = reshape([1, 2, 5, 4, 2, 3, 6, 5, 4, 5, 8, 7, 5, 6, 9, 8], [4, 4])
+   end subroutine make_patch
+
+   !> Internal force f (zeroed first), strain energy w and hourglass energy whg of elements
+   !> (x0, conn) of kind ek; jmin and the squared stable step dt2 (density rho).
+   subroutine force(ek, x0, conn, u, lambda, mu, f, w, whg, jmin, dt2, rho)
+      integer, intent(in) :: ek
+      real(wp), intent(in) :: x0(:, :), u(:, :), lambda, mu
+      integer, intent(in) :: conn(:, :)
+      real(wp), intent(out) :: f(:, :), w, whg, jmin
+      real(wp), intent(out), optional :: dt2
+      real(wp), intent(in), optional :: rho
+      real(wp) :: d, r
+      integer :: eb, em, ef
+      f = 0.0_wp
+      whg = 0.0_wp
+      r = 1.0_wp
+      if (present(rho)) r = rho
+      select case (ek)
+      case (PHYS)
+         call q4_force_1pt(size(conn, 2), size(x0, 2), conn, x0, u, lambda, mu, r, 1.0_wp, f, w, whg, &
+                           jmin, eb, d, em, ef, HOURGLASS_PHYSICAL)
+      case (FB)
+         call q4_force_1pt(size(conn, 2), size(x0, 2), conn, x0, u, lambda, mu, r, 0.1_wp, f, w, whg, &
+                           jmin, eb, d, em, ef, HOURGLASS_STIFFNESS)
+      case default
+         call q4_force_2x2(size(conn, 2), size(x0, 2), conn, x0, u, lambda, mu, r, f, w, jmin, eb, &
+                           d, em, ef)
+      end select
+      if (present(dt2)) dt2 = d
+   end subroutine force
+
+   !> Tangent stiffness at u = 0 by central differences of the force, (2 nnode)^2.
+   subroutine tangent(ek, x0, conn, lambda, mu, h, kmat)
+      integer, intent(in) :: ek
+      real(wp), intent(in) :: x0(:, :), lambda, mu, h
+      integer, intent(in) :: conn(:, :)
+      real(wp), intent(out) :: kmat(:, :)
+      real(wp), allocatable :: u(:, :), fp(:, :), fm(:, :)
+      real(wp) :: w, whg, jmin
+      integer :: j, n
+      n = size(x0, 2)
+      allocate (u(2, n), fp(2, n), fm(2, n))
+      do j = 1, 2*n
+         u = 0.0_wp
+         u(modulo(j - 1, 2) + 1, (j + 1)/2) = h
+         call force(ek, x0, conn, u, lambda, mu, fp, w, whg, jmin)
+         u(modulo(j - 1, 2) + 1, (j + 1)/2) = -h
+         call force(ek, x0, conn, u, lambda, mu, fm, w, whg, jmin)
+         kmat(:, j) = reshape(fp - fm, [2*n])/(2.0_wp*h)
+      end do
+      kmat = 0.5_wp*(kmat + transpose(kmat))
+   end subroutine tangent
+
+   ! ---------------------------------------------------------------- tests
+
+   !> An affine finite deformation (with a rotation) of a distorted patch: no hourglass energy
+   !> or force, the mean part alone (the patch test of the one-point element holds).
+   subroutine test_affine(s)
+      type(suite_t), intent(inout) :: s
+      real(wp), allocatable :: x0(:, :), u(:, :), f(:, :), f0(:, :)
+      integer, allocatable :: conn(:, :)
+      real(wp) :: fm(2, 2), lam, mu, w, w0, whg, whg0, jmin
+      call section(s, 'physical hourglass control: affine fields')
+      call make_patch(x0, conn)
+      call lame_from_young(1.0e4_wp, 0.3_wp, lam, mu)
+      fm = matmul(rot(0.7_wp), reshape([1.3_wp, -0.15_wp, 0.3_wp, 0.8_wp], [2, 2]))
+      u = matmul(fm, x0) - x0 + spread([0.4_wp, -2.0_wp], 2, 9)
+      allocate (f(2, 9), f0(2, 9))
+      call force(PHYS, x0, conn, u, lam, mu, f, w, whg, jmin)
+      call force(FB, x0, conn, u, lam, mu, f0, w0, whg0, jmin)
+      ! the FB control is zero on affine fields too: both are the mean part alone
+      call check(s, abs(whg) <= 1e-20_wp*w .and. abs(whg0) <= 1e-20_wp*w, 'hourglass energy zero')
+      call check(s, maxval(abs(f - f0)) <= 1e-13_wp*maxval(abs(f)), &
+                 'forces = the mean part alone (as with a zero hourglass stiffness)')
+      call check(s, maxval(abs(f(:, 5))) <= 1e-12_wp*maxval(abs(f)), 'zero net force at the interior node')
+   end subroutine test_affine
+
+   !> A non-affine finite deformation rotated by several angles: the same energies, the forces
+   !> rotated.
+   subroutine test_objective(s)
+      type(suite_t), intent(inout) :: s
+      real(wp), allocatable :: x0(:, :), u(:, :), ud(:, :), f(:, :), fr(:, :)
+      integer, allocatable :: conn(:, :)
+      real(wp), parameter :: angles(4) = [90.0_wp, 180.0_wp, 37.0_wp, -123.0_wp]
+      real(wp) :: lam, mu, w, whg, wr, whgr, jmin, err, ehg, r(2, 2)
+      integer :: i, k
+      integer(int64) :: seed
+      call section(s, 'physical hourglass control: objectivity')
+      call make_patch(x0, conn)
+      call lame_from_young(1.0e4_wp, 0.3_wp, lam, mu)
+      allocate (ud(2, 9), f(2, 9), fr(2, 9), u(2, 9))
+      seed = 2024_int64
+      do i = 1, 9
+         ud(:, i) = 0.25_wp*[rnd(seed) - 0.5_wp, rnd(seed) - 0.5_wp]
+      end do
+      call force(PHYS, x0, conn, ud, lam, mu, f, w, whg, jmin)
+      call check(s, jmin > 0.3_wp .and. whg > 1e-3_wp*w, 'deformed state valid, hourglass engaged')
+      err = 0.0_wp
+      ehg = 0.0_wp
+      do k = 1, size(angles)
+         r = rot(angles(k)*pi/180.0_wp)
+         u = matmul(r, x0 + ud) - x0
+         call force(PHYS, x0, conn, u, lam, mu, fr, wr, whgr, jmin)
+         err = max(err, abs(wr - w)/w, maxval(abs(fr - matmul(r, f)))/maxval(abs(f)))
+         ehg = max(ehg, abs(whgr - whg)/whg)
+      end do
+      call check(s, err <= 1e-12_wp .and. ehg <= 1e-12_wp, &
+                 'rotated deformed state: same strain and hourglass energy, forces rotated')
+   end subroutine test_objective
+
+   !> f = dW/du (strain + hourglass) by central differences at a finite strain with a finite
+   !> rotation of 50 degrees (the rotation term of (H12) is then large), nu = 0.3 and 0.49.
+   subroutine test_derivative(s)
+      type(suite_t), intent(inout) :: s
+      real(wp), allocatable :: x0(:, :), u(:, :), f(:, :), g(:, :), fd(:, :), ft(:, :)
+      integer, allocatable :: conn(:, :)
+      real(wp) :: lam, mu, w, whg, wp_, wm, jmin, h, rel, fm(2, 2)
+      real(wp), parameter :: nus(2) = [0.3_wp, 0.49_wp]
+      integer :: i, j, inu
+      integer(int64) :: seed
+      character(len=60) :: buf
+      call make_patch(x0, conn)
+      allocate (u(2, 9), f(2, 9), g(2, 9), fd(2, 9), ft(2, 9))
+      fm = matmul(rot(50.0_wp*pi/180.0_wp), reshape([1.15_wp, 0.1_wp, -0.2_wp, 0.9_wp], [2, 2]))
+      seed = 31337_int64
+      do i = 1, 9
+         u(:, i) = matmul(fm, x0(:, i)) - x0(:, i) + 0.2_wp*[rnd(seed) - 0.5_wp, rnd(seed) - 0.5_wp]
+      end do
+      h = 1e-6_wp
+      do inu = 1, size(nus)
+         write (buf, '(a,f4.2)') 'physical hourglass control: force = dW/du, nu = ', nus(inu)
+         call section(s, trim(buf))
+         call lame_from_young(1.0e4_wp, nus(inu), lam, mu)
+         call force(PHYS, x0, conn, u, lam, mu, f, w, whg, jmin)
+         call check(s, jmin > 0.4_wp .and. whg > 1e-3_wp*w, 'finite strain and rotation, hourglass engaged')
+         do j = 1, 9
+            do i = 1, 2
+               g = u
+               g(i, j) = u(i, j) + h
+               call force(PHYS, x0, conn, g, lam, mu, ft, wp_, whg, jmin)
+               wp_ = wp_ + whg
+               g(i, j) = u(i, j) - h
+               call force(PHYS, x0, conn, g, lam, mu, ft, wm, whg, jmin)
+               wm = wm + whg
+               fd(i, j) = (wp_ - wm)/(2.0_wp*h)
+            end do
+         end do
+         rel = maxval(abs(fd - f))/maxval(abs(f))
+         write (buf, '(a,es9.2)') 'max rel. error ', rel
+         call check(s, rel <= 1e-6_wp, 'f = dW/du, 18 dofs ('//trim(buf)//')')
+      end do
+   end subroutine test_derivative
+
+   !> The general path (q4_general.f90) in axisymmetry: the hourglass part of the plane element
+   !> times the centroid radius (doc/hourglass.md, end): f = dW/du by central differences at a
+   !> finite non-affine deformation of a patch off the axis, and no hourglass energy in an
+   !> affine one.
+   subroutine test_axisymmetric(s)
+      type(suite_t), intent(inout) :: s
+      real(wp), allocatable :: x0(:, :), u(:, :), f(:, :), g(:, :), fd(:, :), ft(:, :)
+      integer, allocatable :: conn(:, :)
+      real(wp) :: lam, mu, w, whg, wd, jmin, d2, wp_, wm, h, rel, hist(1, 1, 1)
+      type(q4_solid_t) :: o
+      type(j2_param_t) :: prm
+      integer :: i, j, eb, em, ef
+      integer(int64) :: seed
+      character(len=40) :: buf
+      call section(s, 'physical hourglass control: axisymmetric general path')
+      call make_patch(x0, conn)
+      x0(1, :) = x0(1, :) + 1.0_wp
+      call lame_from_young(1.0e4_wp, 0.3_wp, lam, mu)
+      o = q4g_init(1, .true., .false., .false., lam, mu, 1.0_wp, 1.0_wp, prm, HOURGLASS_PHYSICAL)
+      allocate (u(2, 9), f(2, 9), g(2, 9), fd(2, 9), ft(2, 9))
+      hist = 0.0_wp
+      u = matmul(reshape([1.1_wp, 0.05_wp, -0.1_wp, 0.95_wp], [2, 2]), x0) - x0
+      f = 0.0_wp
+      call q4g_force(o, 4, 9, conn, x0, u, 1.0_wp, hist, f, w, whg, wd, jmin, eb, d2, em, ef)
+      call check(s, abs(whg) <= 1e-20_wp*w, 'affine deformation: no hourglass energy')
+      seed = 99_int64
+      do i = 1, 9
+         u(:, i) = u(:, i) + 0.15_wp*[rnd(seed) - 0.5_wp, rnd(seed) - 0.5_wp]
+      end do
+      f = 0.0_wp
+      call q4g_force(o, 4, 9, conn, x0, u, 1.0_wp, hist, f, w, whg, wd, jmin, eb, d2, em, ef)
+      call check(s, eb == 0 .and. whg > 1e-3_wp*w, 'non-affine deformation, hourglass engaged')
+      h = 1e-6_wp
+      do j = 1, 9
+         do i = 1, 2
+            g = u
+            g(i, j) = u(i, j) + h
+            ft = 0.0_wp
+            call q4g_force(o, 4, 9, conn, x0, g, 1.0_wp, hist, ft, wp_, whg, wd, jmin, eb, d2, em, ef)
+            wp_ = wp_ + whg
+            g(i, j) = u(i, j) - h
+            ft = 0.0_wp
+            call q4g_force(o, 4, 9, conn, x0, g, 1.0_wp, hist, ft, wm, whg, wd, jmin, eb, d2, em, ef)
+            wm = wm + whg
+            fd(i, j) = (wp_ - wm)/(2.0_wp*h)
+         end do
+      end do
+      rel = maxval(abs(fd - f))/maxval(abs(f))
+      write (buf, '(a,es9.2)') 'max rel. error ', rel
+      call check(s, rel <= 1e-6_wp, 'f = dW/du, 18 dofs ('//trim(buf)//')')
+   end subroutine test_axisymmetric
+
+   !> The element's stable step estimate (q4_stable_dt, one point) stays below the exact limit
+   !> 2/omega_max of the element with the physical control, on random convex quads, nu to 0.49.
+   subroutine test_stable_step(s)
+      type(suite_t), intent(inout) :: s
+      integer, parameter :: nquad = 200
+      real(wp), parameter :: nus(4) = [0.0_wp, 0.3_wp, 0.45_wp, 0.49_wp]
+      real(wp) :: xq(2, 4), kmat(8, 8), mmat(8, 8), m(4), ev(8), work(64), dte, ratio, rmax, rmin
+      real(wp) :: lam, mu, rho, arat, skew
+      integer :: iq, inu, info, emin, efold, k, nfail
+      integer(int64) :: seed
+      integer :: conn(4, 1)
+      character(len=100) :: buf
+      call section(s, 'physical hourglass control: stable step')
+      conn(:, 1) = [1, 2, 3, 4]
+      rho = 1.3_wp
+      rmax = 0.0_wp
+      rmin = huge(1.0_wp)
+      nfail = 0
+      seed = 5151_int64
+      do iq = 1, nquad
+         do
+            arat = 1.0_wp + 4.0_wp*rnd(seed)
+            skew = 1.2_wp*(rnd(seed) - 0.5_wp)
+            xq = reshape([0.0_wp, 0.0_wp, arat, 0.0_wp, arat + skew, 1.0_wp, skew, 1.0_wp], [2, 4])
+            do k = 1, 4
+               xq(:, k) = xq(:, k) + 0.6_wp*[rnd(seed) - 0.5_wp, rnd(seed) - 0.5_wp]
+            end do
+            if (iq == 1) xq = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp], [2, 4])
+            if (convex(xq)) exit
+         end do
+         xq = matmul(rot(2.0_wp*pi*rnd(seed)), xq)
+         m = 0.0_wp
+         call q4_lumped_mass(1, 4, conn, xq, rho, m)
+         do inu = 1, size(nus)
+            call lame_from_young(1.0_wp, nus(inu), lam, mu)
+            call tangent(PHYS, xq, conn, lam, mu, 1e-5_wp*sqrt(minval(m)/rho), kmat)
+            mmat = 0.0_wp
+            do k = 1, 8
+               mmat(k, k) = m((k + 1)/2)
+            end do
+            call dsygv(1, 'N', 'U', 8, kmat, 8, mmat, 8, ev, work, size(work), info)
+            if (info /= 0) then
+               nfail = nfail + 1
+               cycle
+            end if
+            call q4_stable_dt(1, 1, 4, conn, xq, xq, lam, mu, rho, dte, emin, efold)
+            ratio = dte/(2.0_wp/sqrt(ev(8)))
+            rmax = max(rmax, ratio)
+            rmin = min(rmin, ratio)
+         end do
+      end do
+      write (buf, '(i0,a,f6.4,a,f6.4,a)') nquad*size(nus), ' cases, estimate/exact in [', rmin, ', ', &
+         rmax, ']'
+      write (output_unit, '(a)') '   '//trim(buf)
+      call check(s, nfail == 0, 'all eigenproblems solved')
+      call check(s, rmax <= 1.0_wp, 'estimate <= 2/omega_max in every case')
+   contains
+      logical function convex(xc)
+         real(wp), intent(in) :: xc(2, 4)
+         real(wp) :: e1(2), e2(2)
+         integer :: a
+         convex = .true.
+         do a = 1, 4
+            e1 = xc(:, modulo(a, 4) + 1) - xc(:, a)
+            e2 = xc(:, modulo(a - 2, 4) + 1) - xc(:, a)
+            convex = convex .and. (e1(1)*e2(2) - e1(2)*e2(1)) > 0.1_wp*norm2(e1)*norm2(e2)
+         end do
+      end function convex
+   end subroutine test_stable_step
+
+   !> One 2a x 2b rectangle, rotated by 30 degrees, in the small pure-bending mode about its own
+   !> y axis (u_x = k x y, u_y = -k (x^2 + nub y^2)/2 in its frame): the stored energy is the
+   !> beam's, (2/3) E' k^2 a b^3 (doc/hourglass.md, after (H7)).
+   subroutine test_bending_energy(s)
+      type(suite_t), intent(inout) :: s
+      real(wp) :: x0(2, 4), ul(2, 4), u(2, 4), f(2, 4), r(2, 2), lam, mu, nub, ep, w, whg, jmin, &
+                  a, b, k, wex
+      integer :: conn(4, 1), n
+      call section(s, 'physical hourglass control: bending energy of a rectangle')
+      conn(:, 1) = [1, 2, 3, 4]
+      a = 1.5_wp
+      b = 0.4_wp
+      k = 1e-7_wp
+      call lame_from_young(2.0e5_wp, 0.3_wp, lam, mu)
+      nub = lam/(lam + 2.0_wp*mu)
+      ep = 2.0_wp*mu*(1.0_wp + nub)
+      x0 = reshape([-a, -b, a, -b, a, b, -a, b], [2, 4])
+      do n = 1, 4
+         ul(:, n) = [k*x0(1, n)*x0(2, n), -0.5_wp*k*(x0(1, n)**2 + nub*x0(2, n)**2)]
+      end do
+      r = rot(pi/6.0_wp)
+      x0 = matmul(r, x0) + spread([3.0_wp, 1.0_wp], 2, 4)
+      u = matmul(r, ul)
+      call force(PHYS, x0, conn, u, lam, mu, f, w, whg, jmin)
+      wex = 2.0_wp/3.0_wp*ep*k*k*a*b**3
+      call check(s, abs(w) <= 1e-9_wp*wex, 'no mean strain in the bending mode')
+      call check_close(s, whg, wex, 1e-6_wp*wex, 'hourglass energy = beam bending energy (2/3) E'' k^2 a b^3')
+   end subroutine test_bending_energy
+
+   !> A cantilever L x 2c of nx x 2 rectangular elements under pure bending: left end u_x = 0
+   !> (u_y = 0 at its middle node), right end the linear traction sigma_xx = E' k y (consistent
+   !> nodal forces). Plane-strain beam: u_y(L, 0) = -k L^2/2, u_x(L, c) = k L c. Solved
+   !> linearly (tangent at u = 0 by differences of the force kernel, LAPACK dgesv).
+   subroutine test_cantilever(s)
+      type(suite_t), intent(inout) :: s
+      integer, parameter :: nx = 8, ny = 2
+      real(wp), parameter :: el = 10.0_wp, c = 0.5_wp, k = 1e-6_wp
+      real(wp) :: x0(2, (nx + 1)*(ny + 1)), kmat(2*(nx + 1)*(ny + 1), 2*(nx + 1)*(ny + 1)), &
+                  rhs(2*(nx + 1)*(ny + 1), 1), lam, mu, nub, ep, tip, top, tipx, topx, rel(3), y0, y1
+      integer :: conn(4, nx*ny), ipiv(2*(nx + 1)*(ny + 1)), i, j, n, ek, info, nn, ntip, ntop
+      logical :: fixed(2*(nx + 1)*(ny + 1))
+      character(len=16), parameter :: names(3) = [character(len=16) :: 'physical', 'FB 0.1', '2x2 Gauss']
+      character(len=100) :: buf
+      call section(s, 'physical hourglass control: cantilever in pure bending')
+      nn = (nx + 1)*(ny + 1)
+      do j = 0, ny
+         do i = 0, nx
+            x0(:, 1 + i + (nx + 1)*j) = [el*i/nx, -c + 2.0_wp*c*j/ny]
+         end do
+      end do
+      do j = 1, ny
+         do i = 1, nx
+            n = i + (nx + 1)*(j - 1)
+            conn(:, i + nx*(j - 1)) = [n, n + 1, n + nx + 2, n + nx + 1]
+         end do
+      end do
+      call lame_from_young(2.0e5_wp, 0.3_wp, lam, mu)
+      nub = lam/(lam + 2.0_wp*mu)
+      ep = 2.0_wp*mu*(1.0_wp + nub)
+      ! consistent nodal forces of sigma_xx = E' k y on the right edge (linear over each edge)
+      rhs = 0.0_wp
+      do j = 1, ny
+         y0 = x0(2, (nx + 1)*j)
+         y1 = x0(2, (nx + 1)*(j + 1))
+         n = (nx + 1)*j
+         rhs(2*n - 1, 1) = rhs(2*n - 1, 1) + ep*k*(y1 - y0)*(2.0_wp*y0 + y1)/6.0_wp
+         n = (nx + 1)*(j + 1)
+         rhs(2*n - 1, 1) = rhs(2*n - 1, 1) + ep*k*(y1 - y0)*(y0 + 2.0_wp*y1)/6.0_wp
+      end do
+      fixed = .false.
+      do j = 0, ny
+         fixed(2*(1 + (nx + 1)*j) - 1) = .true.
+      end do
+      fixed(2*(1 + (nx + 1)*(ny/2))) = .true.
+      ntip = (nx + 1)*(ny/2 + 1)
+      ntop = nn
+      tipx = -0.5_wp*k*el**2
+      topx = k*el*c
+      do ek = PHYS, FULL
+         call tangent(ek, x0, conn, lam, mu, 1e-6_wp*c, kmat)
+         do i = 1, 2*nn
+            if (fixed(i)) then
+               kmat(i, :) = 0.0_wp
+               kmat(:, i) = 0.0_wp
+               kmat(i, i) = 1.0_wp
+            end if
+         end do
+         block
+            real(wp) :: b(2*(nx + 1)*(ny + 1), 1)
+            b = rhs
+            call dgesv(2*nn, 1, kmat, 2*nn, ipiv, b, 2*nn, info)
+            call check(s, info == 0, trim(names(ek))//': the linear system solved')
+            tip = b(2*ntip, 1)
+            top = b(2*ntop - 1, 1)
+         end block
+         rel(ek) = max(abs(tip/tipx - 1.0_wp), abs(top/topx - 1.0_wp))
+         write (buf, '(a,f9.5,a,f9.5)') 'tip deflection / beam ', tip/tipx, ', top end u_x / beam ', &
+            top/topx
+         write (output_unit, '(a)') '   '//names(ek)//trim(buf)
+      end do
+      call check(s, rel(PHYS) <= 1e-6_wp, 'physical control: the beam solution to 1e-6')
+      call check(s, rel(FULL) > 0.1_wp, '2x2 Gauss locks in bending (more than 10 % stiff)')
+   end subroutine test_cantilever
+
+end module test_hourglass
