@@ -128,21 +128,36 @@ contains
       class(inside_t), intent(inout) :: self
       integer, intent(in) :: slave(:), master(:)
       logical :: bs(self%nbody), bm(self%nbody)
-      integer :: i, j
+      integer :: ls(self%nbody), lm(self%nbody)
+      integer :: i, j, ns, nm
       if (.not. self%active) return
+      ! the distinct bodies of each side (a call costs its node lists and the pairs it names, not
+      ! nbody^2: AUTOmatic makes one call per ordered pair of surfaces)
       bs = .false.
       bm = .false.
-      do i = 1, size(slave)
-         if (self%nb(slave(i)) > 0) bs(self%nb(slave(i))) = .true.
-      end do
-      do i = 1, size(master)
-         if (self%nb(master(i)) > 0) bm(self%nb(master(i))) = .true.
-      end do
-      do j = 1, self%nbody
-         do i = 1, self%nbody
-            if (bs(i) .and. bm(j) .and. i /= j) self%pairs(i, j) = .true.
+      call bodies_of(slave, bs, ls, ns)
+      call bodies_of(master, bm, lm, nm)
+      do j = 1, nm
+         do i = 1, ns
+            if (ls(i) /= lm(j)) self%pairs(ls(i), lm(j)) = .true.
          end do
       end do
+   contains
+      subroutine bodies_of(nodes, seen, list, n)
+         integer, intent(in) :: nodes(:)
+         logical, intent(inout) :: seen(:)
+         integer, intent(out) :: list(:), n
+         integer :: k, b
+         n = 0
+         do k = 1, size(nodes)
+            b = self%nb(nodes(k))
+            if (b == 0) cycle
+            if (seen(b)) cycle
+            seen(b) = .true.
+            n = n + 1
+            list(n) = b
+         end do
+      end subroutine bodies_of
    end subroutine inside_allow
 
    !> Check the positions x(2, nnode) at time t. `last` gets the deepest node, `worst` the deepest
