@@ -48,6 +48,7 @@ module exic_contact_broad_all
       integer, allocatable :: bslave(:), bseg(:, :)   !< the coarse search's "nodes" and "segments"
       integer, allocatable :: pfirst(:), partner(:)   !< surfaces whose boxes meet each one's (CSR)
       integer, allocatable :: lnodes(:), lseg(:, :)   !< nodes and segments of the near surfaces
+      integer :: nl = 0, ns = 0                       !< entries of lnodes, lseg in use
       integer, allocatable :: lnode_surf(:), lnode_loc(:)    !< surface and index in it of each
       integer, allocatable :: lseg_surf(:), lseg_loc(:)      !< of lnodes, of lseg
       integer, allocatable :: count(:), slot(:), jlist(:)
@@ -56,6 +57,7 @@ module exic_contact_broad_all
       logical :: kept = .false.
       real(wp) :: skin = 0.0_wp
       integer :: nkept = 0
+      integer :: nkept_nodes = 0, nkept_segs = 0   !< entries of lnodes, lseg of the kept search
       integer, allocatable :: keep(:, :)      !< (2, nkept) indices into lnodes, lseg
       real(wp), allocatable :: xw(:, :)       !< (4, size(nodes)) x0, x1 of every node at the build
       integer(i8) :: nbuilds = 0, nkept_steps = 0
@@ -107,6 +109,8 @@ contains
       self%ntests = 0
       self%kept = .false.
       self%fine%ncand = 0
+      self%nl = 0
+      self%ns = 0
       n = self%nsurf
       if (n < 2) return
       ! 1. the swept box of each surface, as the two positions of a "node" 2r-1 and 2r
@@ -196,6 +200,8 @@ contains
             self%lseg_loc(ns) = k - self%seg_first(r) + 1
          end do
       end do
+      self%nl = nl
+      self%ns = ns
       call broad_search(self%fine, nnode, x0, x1, nl, self%lnodes, ns, self%lseg, margin)
       self%ntests = self%ntests + self%fine%ntests
       call regroup(self, n)
@@ -249,6 +255,8 @@ contains
                          SKIN_STEPS*mv)
          call broad_all_search(self, nnode, x0, x1, margin + 2.0_wp*self%skin)
          self%nkept = self%fine%ncand
+         self%nkept_nodes = self%nl
+         self%nkept_segs = self%ns
          call grow(self%keep, max(self%nkept, 1), 2)
          if (self%nkept > 0) self%keep(:, 1:self%nkept) = self%fine%cand(:, 1:self%nkept)
          self%kept = .true.
@@ -256,22 +264,32 @@ contains
       else
          self%nkept_steps = self%nkept_steps + 1
       end if
-      ! the kept candidates that pass the search's own test at this step, in their order
+      ! the kept candidates that pass the search's own test at this step, in their order: the
+      ! boxes of the kept search's nodes and segments first (the segments' grown by margin, as
+      ! broad_search forms them), then four comparisons per candidate (boxes_overlap with 0)
+      call grow(self%fine%sbox, max(self%nkept_nodes, 1), 4)
+      call grow(self%fine%mbox, max(self%nkept_segs, 1), 4)
+      do l = 1, self%nkept_nodes
+         node = self%lnodes(l)
+         self%fine%sbox(1:2, l) = min(x0(:, node), x1(:, node))
+         self%fine%sbox(3:4, l) = max(x0(:, node), x1(:, node))
+      end do
+      do m = 1, self%nkept_segs
+         self%fine%mbox(1:2, m) = min(x0(:, self%lseg(1, m)), x1(:, self%lseg(1, m)), &
+                                      x0(:, self%lseg(2, m)), x1(:, self%lseg(2, m))) - margin
+         self%fine%mbox(3:4, m) = max(x0(:, self%lseg(1, m)), x1(:, self%lseg(1, m)), &
+                                      x0(:, self%lseg(2, m)), x1(:, self%lseg(2, m))) + margin
+      end do
       self%ngroup = 0
       self%fine%ncand = 0
       do k = 1, self%nkept
          l = self%keep(1, k)
          m = self%keep(2, k)
-         node = self%lnodes(l)
-         sb(1:2) = min(x0(:, node), x1(:, node))
-         sb(3:4) = max(x0(:, node), x1(:, node))
-         mb(1:2) = min(x0(:, self%lseg(1, m)), x1(:, self%lseg(1, m)), &
-                       x0(:, self%lseg(2, m)), x1(:, self%lseg(2, m))) - margin
-         mb(3:4) = max(x0(:, self%lseg(1, m)), x1(:, self%lseg(1, m)), &
-                       x0(:, self%lseg(2, m)), x1(:, self%lseg(2, m))) + margin
-         if (.not. boxes_overlap(mb, sb, 0.0_wp)) cycle
-         self%fine%ncand = self%fine%ncand + 1
-         self%fine%cand(:, self%fine%ncand) = self%keep(:, k)
+         if (self%fine%mbox(1, m) <= self%fine%sbox(3, l) .and. self%fine%sbox(1, l) <= self%fine%mbox(3, m) .and. &
+             self%fine%mbox(2, m) <= self%fine%sbox(4, l) .and. self%fine%sbox(2, l) <= self%fine%mbox(4, m)) then
+            self%fine%ncand = self%fine%ncand + 1
+            self%fine%cand(:, self%fine%ncand) = self%keep(:, k)
+         end if
       end do
       self%ntests = self%nkept
       call regroup(self, self%nsurf)
