@@ -282,12 +282,17 @@ def main():
     ap.add_argument("--ccx", default=shutil.which("ccx") or "/usr/bin/ccx")
     ap.add_argument("--meshes", default="30,60,120")
     ap.add_argument("--reps", type=int, default=1)
-    ap.add_argument("--plot-only", action="store_true", help="redraw doc/perf_peers.png from bench/results/peers.json")
+    ap.add_argument("--plot-only", action="store_true",
+                    help="no ccx run: recompute the ratios from bench/results/peers.json and impact.json "
+                         "(after a new `make bench BENCH_ONLY=impact`) and redraw doc/perf_peers.png")
     args = ap.parse_args()
     args.meshes = [int(x) for x in args.meshes.split(",")]
     path = os.path.join(RESULTS, "peers.json")
     if args.plot_only:
         res = json.load(open(path))
+        res["ratios"] = ratios(res)
+        with open(path, "w") as f:
+            json.dump(res, f, indent=1)
     else:
         if not os.access(args.ccx, os.X_OK):
             sys.exit(f"peers.py: error: CalculiX not found at {args.ccx} (Debian package calculix-ccx)")
