@@ -316,7 +316,7 @@ contains
       real(wp), intent(in) :: x(2, nnode)
       integer, intent(in) :: seg(2, nseg), where(2, nseg)
       real(wp), intent(out) :: nrm(2, nlist)
-      real(wp) :: n(2), len
+      real(wp) :: n(2)
       integer :: k, j, p
 
       nrm = 0.0_wp
@@ -328,14 +328,22 @@ contains
          end do
       end do
       do p = 1, nlist
-         len = hypot(nrm(1, p), nrm(2, p))
-         if (len > 1.0e-12_wp) then
-            nrm(:, p) = nrm(:, p)/len
-         else
-            nrm(:, p) = 0.0_wp
-         end if
+         nrm(:, p) = unit_or_zero(nrm(:, p))
       end do
    end subroutine node_normals
+
+   !> v / |v|, or 0 when |v| <= 1e-12 (a node whose segment normals cancel has no normal).
+   pure function unit_or_zero(v) result(u)
+      real(wp), intent(in) :: v(2)
+      real(wp) :: u(2)
+      real(wp) :: len
+      len = hypot(v(1), v(2))
+      if (len > 1.0e-12_wp) then
+         u = v/len
+      else
+         u = 0.0_wp
+      end if
+   end function unit_or_zero
 
    !> Segments of each node of a surface, in increasing segment order (CSR): the segments of
    !> node position p (as numbered by `where`, locate_nodes) are segs(head(p):head(p+1)-1).
@@ -377,7 +385,6 @@ contains
       real(wp), intent(in) :: x(2, nnode)
       integer, intent(in) :: seg(2, nseg), head(nlist + 1), segs(:), sel(nsel)
       real(wp), intent(inout) :: nrm(2, nlist)
-      real(wp) :: len
       integer :: i, p, q, k
 
       do i = 1, nsel
@@ -387,12 +394,7 @@ contains
             k = segs(q)
             nrm(:, p) = nrm(:, p) + segment_normal(x(:, seg(1, k)), x(:, seg(2, k)))
          end do
-         len = hypot(nrm(1, p), nrm(2, p))
-         if (len > 1.0e-12_wp) then
-            nrm(:, p) = nrm(:, p)/len
-         else
-            nrm(:, p) = 0.0_wp
-         end if
+         nrm(:, p) = unit_or_zero(nrm(:, p))
       end do
    end subroutine some_node_normals
 
