@@ -41,7 +41,8 @@ contains
       call section(s, 'restart: plastic history and Coulomb friction across the restart point')
       call continued(s, exic, 'friction_plastic', friction_plastic_deck())
       call section(s, 'restart: massless contact faces (LAGRange,ENERgy) pressed across the restart point')
-      call continued(s, exic, 'energy_face', energy_face_deck())
+      call continued(s, exic, 'energy_face', energy_face_deck('  RIGId'))
+      call continued(s, exic, 'energy_face_dofs', energy_face_deck('  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'))
       call check(s, shell('grep -q "stiffness rows formed again at large strain [1-9]" '//dir// &
                           '/energy_face/energy_face.out') == 0, 'energy_face: the face''s stiffness '// &
                  'is formed again during the run (its state crosses the restart point)')
@@ -337,13 +338,16 @@ contains
    !> A bar (12 x 2, neo-Hookean) at 1 against a rigid wall 0.01 away, its struck end a
    !> massless contact face (LAGRange,ENERgy, doc/impact.md section 3): contact from t = 0.01
    !> lasts past the end (2 L/c = 0.33), so the face is pressed before and after the restart
-   !> point (t = 0.03 of 0.06).
-   function energy_face_deck() result(deck)
+   !> point (t = 0.03 of 0.06). wall: the wall's material records (RIGId; or a solid, which makes
+   !> the struck face massless along its normal only and its lateral dofs keep their mass, with
+   !> masses per dof in the state, doc/impact.md section 3.1).
+   function energy_face_deck(wall) result(deck)
+      character(len=*), intent(in) :: wall
       character(len=:), allocatable :: deck
       deck = 'FEAP * * bar on a wall with a massless contact face, restart files'//nl//'0 0 0 2 2 4'//nl// &
              'PARAmeters'//nl//'  nx = 12'//nl//'  ny = 2'//nl//nl// &
              'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'//nl//'    DENSity 1'//nl//nl// &
-             'MATErial,2'//nl//'  RIGId'//nl//'    DENSity 1'//nl//nl// &
+             'MATErial,2'//nl//wall//nl//'    DENSity 1'//nl//nl// &
              'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,nx,ny,0,0,1'//nl//'    1,0,0'//nl//'    2,6,0'//nl// &
              '    3,6,1'//nl//'    4,0,1'//nl//nl// &
              'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,1,2,0,0,2'//nl//'    1,6.01,-1'//nl//'    2,7,-1'//nl// &

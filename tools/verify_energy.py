@@ -32,8 +32,9 @@ def section_energy(ctx):
     out = ["## The seed's examples with LAGRange,ENERgy (massless contact faces)\n",
            "Decks `inputs/paper/<example>_energy.inp`: each seed deck with `LAGRange,ENERgy` under "
            "its pairs (doc/impact.md, section 3), the seed's REGIon surfaces kept, so that the whole "
-           "boundary of every body in contact carries no mass and is placed by the static face "
-           "problem; the face stiffness is formed again at large strain (doc/impact.md, section "
+           "boundary of every body in contact is placed by the static face problem, massless along "
+           "its normals where it meets a deformable body and along both dofs against a rigid one "
+           "(doc/impact.md, section 3.1); the face stiffness is formed again at large strain (doc/impact.md, section "
            "3.2, 'Refresh at large strain'). Energy = kinetic + strain (- external and prescribed "
            "work) over its initial value; the default scheme's curve loses the capture of the "
            "struck nodes at every first contact, which its `contact_work` column books.\n"]

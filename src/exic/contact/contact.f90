@@ -150,6 +150,7 @@ module exic_contact_contact
       procedure :: summary => contact_summary
       procedure :: edges => contact_edges
       procedure :: face_nodes => contact_face_nodes
+      procedure :: face_dofs => contact_face_dofs
    end type contact_t
 
 contains
@@ -957,6 +958,61 @@ contains
          end do
       end if
    end function contact_face_nodes
+
+   !> The massless dofs of the surfaces of the passes that ask for LAGRange,ENERgy, at the
+   !> positions x (doc/impact.md, section 3.1); rigid(nnode): the nodes of rigid bodies. A surface
+   !> that meets a deformable body (a partner surface with a node not in `rigid`) is massless
+   !> along its normals only: dofs(d, i) when a segment at node i has a normal n with
+   !> |n_d| >= |n_other| (eq. I.3a; a node where the surface turns, a body's corner, gets both).
+   !> A surface that meets rigid bodies only is massless along both dofs.
+   function contact_face_dofs(self, nnode, x, rigid) result(dofs)
+      class(contact_t), intent(in) :: self
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: x(2, nnode)
+      logical, intent(in) :: rigid(nnode)
+      logical :: dofs(2, nnode)
+      ! per surface: 0 no ENERgy pass, 1 every partner rigid, 2 a deformable partner
+      integer :: meets(size(self%surfaces))
+      integer :: k, s, m, ndef
+      real(wp) :: t(2)
+      dofs = .false.
+      if (.not. self%active) return
+      meets = 0
+      do k = 1, self%nfixed
+         if (.not. self%passes(k)%energy) cycle
+         s = self%passes(k)%slave
+         m = self%passes(k)%master
+         meets(s) = max(meets(s), merge(2, 1, deformable(m)))
+         meets(m) = max(meets(m), merge(2, 1, deformable(s)))
+      end do
+      if (self%auto_pass%auto .and. self%auto_pass%energy) then
+         ! AUTOmatic: every one of its surfaces can meet every other one
+         ndef = 0
+         do k = self%auto_first + 1, self%auto_first + self%auto%nsurf
+            if (deformable(k)) ndef = ndef + 1
+         end do
+         do k = self%auto_first + 1, self%auto_first + self%auto%nsurf
+            meets(k) = max(meets(k), merge(2, 1, ndef - merge(1, 0, deformable(k)) > 0))
+         end do
+      end if
+      do k = 1, size(self%surfaces)
+         associate (sf => self%surfaces(k))
+            if (meets(k) == 1) dofs(:, sf%nodes) = .true.
+            if (meets(k) /= 2) cycle
+            do s = 1, sf%nseg
+               ! tangent t; the normal (t2, -t1) has |n_1| = |t_2|
+               t = x(:, sf%seg(2, s)) - x(:, sf%seg(1, s))
+               if (abs(t(2)) >= abs(t(1))) dofs(1, sf%seg(:, s)) = .true.
+               if (abs(t(1)) >= abs(t(2))) dofs(2, sf%seg(:, s)) = .true.
+            end do
+         end associate
+      end do
+   contains
+      logical function deformable(k)
+         integer, intent(in) :: k
+         deformable = .not. all(rigid(self%surfaces(k)%nodes))
+      end function deformable
+   end function contact_face_dofs
 
    !> Sorted unique values.
    function unique(a) result(u)

@@ -1,8 +1,10 @@
 !> Massless contact faces of `LAGRange,ENERgy` (doc/impact.md, section 3): the compliance of
 !> the face dofs in the contact corrector.
 !>
-!> The face nodes carry no mass (their lumped mass is moved to the other nodes of their
-!> elements by the caller, eq. I.3). Every step they are placed by the condensed static face
+!> The face dofs carry no mass (their lumped mass is moved to the other nodes of their elements
+!> by the caller, eq. I.3): both dofs of a face node, or the one along its normal (`free`, eq.
+!> I.3a), whose other dof keeps its mass and is an interior dof here (an identity row of K_FF,
+!> decoupled, right-hand side 0). Every step they are placed by the condensed static face
 !> problem (eq. I.5) with the initial stiffness's face block K_FF, factorized once (SuiteSparse
 !> LDL, `sparse_ldl_t`):
 !>
@@ -29,6 +31,9 @@ module exic_contact_massless_face
       integer :: nf = 0                          !< face nodes
       integer, allocatable :: node(:)            !< (nf) global node numbers
       integer, allocatable :: fidx(:)            !< (nnode) position in `node`, 0 off the face
+      !> (2, nf) the dof is massless and placed by the face problem; a face node's other dof keeps
+      !> its mass (doc/impact.md, section 3.1): its row of K_FF is the identity, decoupled
+      logical, allocatable :: free(:, :)
       ! rows of K0 for the face dofs (2 nf rows, dof 2 (k-1) + d of face node k), CSR over the
       ! global dofs 2 (i-1) + d of node i
       integer, allocatable :: rp(:), ci(:)
@@ -62,12 +67,14 @@ contains
 
    !> Face nodes node(nf) of a mesh of nnode nodes and the rows of K0 for their dofs (rp, ci, val:
    !> CSR, row 2 (k-1) + d for dof d of face node k, columns global dofs); factorizes K_FF.
-   subroutine face_init(self, nnode, nf, node, rp, ci, val, err)
+   !> dofs(2, nf): the massless dofs of each face node (default: both).
+   subroutine face_init(self, nnode, nf, node, rp, ci, val, err, dofs)
       class(massless_face_t), intent(inout) :: self
       integer, intent(in) :: nnode, nf
       integer, intent(in) :: node(nf), rp(:), ci(:)
       real(wp), intent(in) :: val(:)
       type(error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: dofs(2, nf)
       integer :: k, nnz
       integer, allocatable :: ap(:), ai(:)
       real(wp), allocatable :: ax(:)
@@ -82,6 +89,8 @@ contains
       self%rp = rp
       self%ci = ci
       self%val = val
+      allocate (self%free(2, nf), source=.true.)
+      if (present(dofs)) self%free = dofs
       allocate (self%uref(2, nnode), source=0.0_wp)
       if (nf == 0) return
       call face_block(self, ap, ai, ax, nnz)
@@ -125,14 +134,23 @@ contains
       real(wp), allocatable, intent(out) :: ax(:)
       integer, intent(out) :: nnz
       integer :: r, q, nd, d
-      allocate (ap(2*self%nf + 1), ai(size(self%ci)), ax(size(self%ci)))
+      allocate (ap(2*self%nf + 1), ai(size(self%ci) + 2*self%nf), ax(size(self%ci) + 2*self%nf))
       nnz = 0
       ap(1) = 1
       do r = 1, 2*self%nf
+         if (.not. self%free(2 - mod(r, 2), (r + 1)/2)) then
+            ! a dof with mass: identity row, decoupled (its solution is 0)
+            nnz = nnz + 1
+            ai(nnz) = r
+            ax(nnz) = 1.0_wp
+            ap(r + 1) = nnz + 1
+            cycle
+         end if
          do q = self%rp(r), self%rp(r + 1) - 1
             nd = (self%ci(q) + 1)/2
             d = self%ci(q) - 2*(nd - 1)
             if (self%fidx(nd) == 0) cycle
+            if (.not. self%free(d, self%fidx(nd))) cycle
             nnz = nnz + 1
             ai(nnz) = 2*(self%fidx(nd) - 1) + d
             ax(nnz) = self%val(q)
@@ -171,11 +189,15 @@ contains
       do k = 1, self%nf
          do d = 1, 2
             r = 2*(k - 1) + d
+            self%rhs(r) = 0.0_wp
+            if (.not. self%free(d, k)) cycle
             s = fres(d, self%node(k))
             do q = self%rp(r), self%rp(r + 1) - 1
                nd = (self%ci(q) + 1)/2
-               if (self%fidx(nd) /= 0) cycle
                dd = self%ci(q) - 2*(nd - 1)
+               if (self%fidx(nd) /= 0) then
+                  if (self%free(dd, self%fidx(nd))) cycle
+               end if
                s = s - self%val(q)*(xp(dd, nd) - x(dd, nd))
             end do
             self%rhs(r) = s
@@ -190,6 +212,7 @@ contains
       do k = 1, self%nf
          nd = self%node(k)
          do d = 1, 2
+            if (.not. self%free(d, k)) cycle
             s = x(d, nd) + self%du(2*(k - 1) + d)
             a(d, nd) = (s - xp(d, nd))/c
             xp(d, nd) = s
@@ -226,7 +249,7 @@ contains
             if (w(k, j) == 0.0_wp) cycle
             f = self%fidx(node(k, j))
             if (f == 0) cycle
-            self%rhs(2*f - 1:2*f) = self%rhs(2*f - 1:2*f) + w(k, j)*nrm(:, j)
+            self%rhs(2*f - 1:2*f) = self%rhs(2*f - 1:2*f) + merge(w(k, j)*nrm(:, j), 0.0_wp, self%free(:, f))
          end do
          call self%ldl%solve(self%rhs, self%z(:, self%slot(j)), stat)
          self%nsolves = self%nsolves + 1
@@ -260,6 +283,7 @@ contains
          if (w(k) == 0.0_wp) cycle
          f = self%fidx(node(k))
          if (f == 0) cycle
+         ! v is 0 on the dofs with mass (identity rows of K_FF with a zero right-hand side)
          s = s + w(k)*(nrm(1)*v(2*f - 1) + nrm(2)*v(2*f))
       end do
    end function face_dot
@@ -307,7 +331,7 @@ contains
       integer :: k
       if (.not. self%active) return
       do k = 1, self%nf
-         a(:, self%node(k)) = a(:, self%node(k)) + self%dx(2*k - 1:2*k)/self%c
+         where (self%free(:, k)) a(:, self%node(k)) = a(:, self%node(k)) + self%dx(2*k - 1:2*k)/self%c
       end do
    end subroutine face_accelerate
 

@@ -358,7 +358,11 @@ contains
    !> per fixed chunk of nodes and the chunks in order (the same bits for every number of threads).
    subroutine kinetic_energy(st)
       type(state_t), intent(inout) :: st
-      call cd_kinetic(st%nnode, st%mass, st%v, st%kinetic, st%momentum)
+      if (allocated(st%mass_dof)) then
+         call cd_kinetic(st%nnode, st%mass, st%v, st%kinetic, st%momentum, st%mass_dof)
+      else
+         call cd_kinetic(st%nnode, st%mass, st%v, st%kinetic, st%momentum)
+      end if
    end subroutine kinetic_energy
 
    !> The change since t = 0 of the correction that turns the kinetic energy of integer-time
@@ -382,7 +386,11 @@ contains
    !> Q of eq. E.3 over the nodes and the free bodies.
    real(wp) function kinetic_power(st) result(q)
       type(state_t), intent(in) :: st
-      q = cd_kinetic_power(st%nnode, st%mass, st%minv, st%fext, st%fint, st%a) + st%body_power
+      if (allocated(st%mass_dof)) then
+         q = cd_kinetic_power(st%nnode, st%mass, st%minv, st%fext, st%fint, st%a, st%mass_dof) + st%body_power
+      else
+         q = cd_kinetic_power(st%nnode, st%mass, st%minv, st%fext, st%fint, st%a) + st%body_power
+      end if
    end function kinetic_power
 
    !> Stress components (sxx, syy, szz, sxy, pressure, von Mises, J; ep, temperature, yield

@@ -194,13 +194,22 @@ contains
 
    !> Kinetic energy 1/2 sum m |v|^2 and linear momentum sum m v of n nodes, summed per chunk
    !> of CHUNK nodes and the chunks in order.
-   subroutine cd_kinetic(n, mass, v, kinetic, momentum)
+   subroutine cd_kinetic(n, mass, v, kinetic, momentum, mass_dof)
       integer, intent(in) :: n
       real(wp), intent(in) :: mass(n), v(2, n)
       real(wp), intent(out) :: kinetic, momentum(2)
+      real(wp), intent(in), optional :: mass_dof(2, n)
       real(wp), dimension((n + CHUNK - 1)/CHUNK) :: pk, px, py
       real(wp) :: k, p1, p2
       integer :: c, i0, m
+      if (present(mass_dof)) then
+         ! masses per dof (massless contact faces along their normals, doc/impact.md, 3.1)
+         do c = 1, (n + CHUNK - 1)/CHUNK
+            i0 = (c - 1)*CHUNK + 1
+            m = min(CHUNK, n - i0 + 1)
+            call kinetic_range_dof(m, mass_dof(1, i0), v(1, i0), pk(c), px(c), py(c))
+         end do
+      else
       !$omp parallel do if (n >= PAR_MIN_NODES) default(none) shared(n, mass, v, pk, px, py) &
       !$omp private(c, i0, m) schedule(dynamic)
       do c = 1, (n + CHUNK - 1)/CHUNK
@@ -209,6 +218,7 @@ contains
          call kinetic_range(m, mass(i0), v(1, i0), pk(c), px(c), py(c))
       end do
       !$omp end parallel do
+      end if
       k = 0.0_wp
       p1 = 0.0_wp
       p2 = 0.0_wp
@@ -238,18 +248,44 @@ contains
       p2 = lane_sum(m, py)
    end subroutine kinetic_range
 
+   !> kinetic_range with a mass per dof, mass(2, m).
+   pure subroutine kinetic_range_dof(m, mass, v, k, p1, p2)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: mass(2, m), v(2, m)
+      real(wp), intent(out) :: k, p1, p2
+      real(wp), dimension(CHUNK) :: pk, px, py
+      integer :: i
+      do i = 1, m
+         pk(i) = mass(1, i)*v(1, i)**2 + mass(2, i)*v(2, i)**2
+         px(i) = mass(1, i)*v(1, i)
+         py(i) = mass(2, i)*v(2, i)
+      end do
+      k = lane_sum(m, pk)
+      p1 = lane_sum(m, px)
+      p2 = lane_sum(m, py)
+   end subroutine kinetic_range_dof
+
    !> Q = sum_j r_j a_j over the dofs of n nodes, the rate of the correction of the kinetic
    !> energy (doc/decisions.md, "Energy balance", eq. E.3: c = -dt^2/8 Q), with r = F - P where the
    !> dof has mass and is free (minv > 0; the contact force is booked by half kicks, work_range)
    !> and r = m a elsewhere (prescribed dofs; rigid and fixed dofs have a = 0, massless ones
    !> m = 0). Summed per chunk of CHUNK nodes and the chunks in order (the same bits for every
    !> number of threads).
-   function cd_kinetic_power(n, mass, minv, fext, fint, a) result(q)
+   function cd_kinetic_power(n, mass, minv, fext, fint, a, mass_dof) result(q)
       integer, intent(in) :: n
       real(wp), intent(in) :: mass(n)
       real(wp), intent(in), dimension(2, n) :: minv, fext, fint, a
+      real(wp), intent(in), optional :: mass_dof(2, n)
       real(wp) :: q, pr((n + CHUNK - 1)/CHUNK)
       integer :: k, i0, m
+      if (present(mass_dof)) then
+         ! masses per dof: r = 0 on a massless dof, whatever the node's other dof holds
+         q = 0.0_wp
+         do k = 1, n
+            q = q + sum(merge(fext(:, k) - fint(:, k), mass_dof(:, k)*a(:, k), minv(:, k) > 0.0_wp)*a(:, k))
+         end do
+         return
+      end if
       !$omp parallel do if (n >= PAR_MIN_NODES) default(none) shared(n, mass, minv, fext, fint, a, pr) &
       !$omp private(k, i0, m) schedule(dynamic)
       do k = 1, (n + CHUNK - 1)/CHUNK

@@ -24,19 +24,21 @@ module exic_explicit_face
 
 contains
 
-   !> Face nodes of the ENERgy pairs of `contact`: mass moved (eq. I.3), st%mass and st%minv
-   !> updated, K0's face rows assembled and contact%face set up. nface: face nodes; nkept:
-   !> surface nodes that keep their mass (elements that would keep no mass, rigid or prescribed).
-   subroutine face_setup(st, sets, contact, nface, nkept, err)
+   !> Face nodes of the ENERgy pairs of `contact`, massless along their normals (doc/impact.md,
+   !> section 3.1): mass moved per direction (eq. I.3), st%mass, st%mass_dof and st%minv
+   !> updated, K0's face rows assembled and contact%face set up. nface: face nodes (a massless
+   !> dof or two); ndof: their massless dofs; nkept: surface nodes that keep their mass (elements
+   !> that would keep no mass, rigid or prescribed).
+   subroutine face_setup(st, sets, contact, nface, ndof, nkept, err)
       type(state_t), intent(inout) :: st
       type(element_set_t), intent(in) :: sets(:)
       type(contact_t), intent(inout) :: contact
-      integer, intent(out) :: nface, nkept
+      integer, intent(out) :: nface, ndof, nkept
       type(error_t), allocatable, intent(out) :: err
-      logical, allocatable :: cand(:), face(:)
+      logical, allocatable :: cand(:), face(:), dofs(:, :)
       integer, allocatable :: fidx(:), node(:), rp(:), ci(:)
-      real(wp), allocatable :: val(:), mass(:), u0(:, :)
-      integer :: k, e, i, nn, a
+      real(wp), allocatable :: val(:), mass(:, :), u0(:, :)
+      integer :: k, e, i, nn, a, d
       integer :: conn_l(4, 1)
       real(wp) :: xe(2, 4), me(4), moved, keep
 
@@ -44,24 +46,32 @@ contains
       cand = contact%face_nodes(nn)
       cand = cand .and. st%active .and. .not. st%rigid .and. st%minv(1, :) > 0.0_wp .and. &
              st%minv(2, :) > 0.0_wp
-      ! an element with all its nodes on the face keeps them massive (bodies one element thick)
-      face = cand
+      ! massless along the normals of a face that meets a deformable body (eq. I.3a), along
+      ! both dofs against rigid bodies only
+      dofs = contact%face_dofs(nn, st%x0, st%rigid) .and. spread(cand, 1, 2)
+      ! an element whose nodes are all massless along d keeps them massive along d (bodies one
+      ! element thick)
       do k = 1, size(sets)
          if (sets(k)%kind /= MAT_SOLID) cycle
          do e = 1, sets(k)%nel
-            if (all(cand(sets(k)%conn(:, e)))) face(sets(k)%conn(:, e)) = .false.
+            do d = 1, 2
+               if (all(dofs(d, sets(k)%conn(:, e)))) dofs(d, sets(k)%conn(:, e)) = .false.
+            end do
          end do
       end do
+      face = dofs(1, :) .or. dofs(2, :)
       nkept = count(contact%face_nodes(nn)) - count(face)
       nface = count(face)
+      ndof = count(dofs)
       allocate (fidx(nn), source=0)
       node = pack([(i, i=1, nn)], face)
       do i = 1, nface
          fidx(node(i)) = i
       end do
       conn_l(:, 1) = [1, 2, 3, 4]
-      ! mass transfer (eq. I.3)
-      mass = st%mass
+      ! mass transfer (eq. I.3), per direction: dof d of a face node gives its element mass to
+      ! dof d of the element's nodes that keep theirs
+      mass = spread(st%mass, 1, 2)
       do k = 1, size(sets)
          if (sets(k)%kind /= MAT_SOLID) cycle
          associate (s => sets(k))
@@ -70,15 +80,18 @@ contains
                xe = st%x0(:, s%conn(:, e))
                me = 0.0_wp
                call q4_lumped_mass(1, 4, conn_l, xe, s%rho, me)
-               moved = sum(me, mask=face(s%conn(:, e)))
-               keep = sum(me, mask=.not. face(s%conn(:, e)))
-               do a = 1, 4
-                  i = s%conn(a, e)
-                  if (face(i)) then
-                     mass(i) = mass(i) - me(a)
-                  else
-                     mass(i) = mass(i) + moved*me(a)/keep
-                  end if
+               do d = 1, 2
+                  moved = sum(me, mask=dofs(d, s%conn(:, e)))
+                  if (moved == 0.0_wp) cycle
+                  keep = sum(me, mask=.not. dofs(d, s%conn(:, e)))
+                  do a = 1, 4
+                     i = s%conn(a, e)
+                     if (dofs(d, i)) then
+                        mass(d, i) = mass(d, i) - me(a)
+                     else
+                        mass(d, i) = mass(d, i) + moved*me(a)/keep
+                     end if
+                  end do
                end do
             end do
          end associate
@@ -86,16 +99,25 @@ contains
       ! K0's face rows: the stiffness at the reference state
       u0 = 0.0_wp*st%x0
       call face_rows(st, sets, fidx, nface, u0, rp, ci, val)
+      ! the masses per dof, where a node keeps its mass along one dof only
+      if (any(dofs(1, :) .neqv. dofs(2, :))) st%mass_dof = spread(st%mass, 1, 2)
       do i = 1, nn
-         if (face(i)) then
-            st%mass(i) = 0.0_wp
-            st%minv(:, i) = 0.0_wp
-         else if (mass(i) /= st%mass(i)) then
-            st%mass(i) = mass(i)
-            where (st%minv(:, i) > 0.0_wp) st%minv(:, i) = 1.0_wp/mass(i)
+         do d = 1, 2
+            if (dofs(d, i)) then
+               mass(d, i) = 0.0_wp
+               st%minv(d, i) = 0.0_wp
+            else if (mass(d, i) /= st%mass(i)) then
+               if (st%minv(d, i) > 0.0_wp) st%minv(d, i) = 1.0_wp/mass(d, i)
+            end if
+         end do
+         if (allocated(st%mass_dof)) then
+            st%mass_dof(:, i) = mass(:, i)
+            st%mass(i) = 0.5_wp*(mass(1, i) + mass(2, i))
+         else
+            st%mass(i) = mass(1, i)
          end if
       end do
-      call contact%face%init(nn, nface, node, rp, ci, val, err)
+      call contact%face%init(nn, nface, node, rp, ci, val, err, dofs(:, node))
    end subroutine face_setup
 
    !> The face rows (row 2 (f-1) + d for dof d of face node f = fidx(i) > 0, columns the global

@@ -730,7 +730,13 @@ contains
       integer, intent(in) :: i, k
       r = st%fint(k, i) - st%fext(k, i)
       if (st%fcon(k, i) /= 0.0_wp) r = r - st%fcon(k, i)
-      if (st%a(k, i) /= 0.0_wp) r = r + st%mass(i)*st%a(k, i)
+      if (st%a(k, i) /= 0.0_wp) then
+         if (allocated(st%mass_dof)) then
+            r = r + st%mass_dof(k, i)*st%a(k, i)
+         else
+            r = r + st%mass(i)*st%a(k, i)
+         end if
+      end if
    end function reaction
 
 end module exic_explicit_loading

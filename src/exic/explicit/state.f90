@@ -50,6 +50,9 @@ module exic_explicit_state
       real(wp), allocatable :: fcon(:, :)       !< (2, nnode) contact force of the last step (-G lambda)
       real(wp), allocatable :: mass(:)          !< (nnode) lumped mass (rigid nodes included)
       real(wp), allocatable :: minv(:, :)       !< (2, nnode) inverse mass per dof; 0: prescribed or rigid
+      !> (2, nnode) lumped mass per dof, allocated only where the dofs of a node differ: massless
+      !> contact faces along their normals (doc/impact.md, section 3.1); mass then holds the mean
+      real(wp), allocatable :: mass_dof(:, :)
       logical, allocatable :: active(:)         !< (nnode) node used by an element
       logical, allocatable :: rigid(:)          !< (nnode) node of a rigid body
       integer, allocatable :: eset(:), eloc(:)  !< (nelem) element set and position in it

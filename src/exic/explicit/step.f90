@@ -128,7 +128,7 @@ contains
       type(contact_spec_t), intent(in) :: spec
       type(error_t), allocatable, intent(out) :: err
       type(load_spec_t), intent(in), optional :: loads
-      integer :: n, k, nface, nkept
+      integer :: n, k, nface, ndof, nkept
       real(wp) :: modulus
 
       call assembly_init(mesh, materials, self%st, self%sets, err)
@@ -149,9 +149,11 @@ contains
       if (allocated(err)) return
       if (self%contact%energy) then
          ! LAGRange,ENERgy: massless contact faces (doc/impact.md, section 3)
-         call face_setup(self%st, self%sets, self%contact, nface, nkept, err)
+         call face_setup(self%st, self%sets, self%contact, nface, ndof, nkept, err)
          if (allocated(err)) return
-         call self%messages%add('LAGRange,ENERgy: '//itoa(nface)//' massless face nodes, '//itoa(nkept)// &
+         call self%messages%add('LAGRange,ENERgy: '//itoa(nface)//' massless face nodes, '//itoa(ndof)// &
+                                ' massless dofs (a face that meets a deformable body along its normals '// &
+                                'only), '//itoa(nkept)// &
                                 ' surface nodes keep their mass (rigid, prescribed, or in elements '// &
                                 'with every node on the face)')
       end if

@@ -242,7 +242,15 @@ contains
       associate (st => stp%st)
          do i = 1, st%nnode
             if (self%region_of_node(i) /= region) cycle
-            if (comp <= 2) then
+            if (allocated(st%mass_dof)) then
+               ! masses per dof (massless contact faces along their normals)
+               if (comp <= 2) then
+                  p = p + st%mass_dof(comp, i)*st%v(comp, i)
+               else
+                  x = st%x0(:, i) + st%u(:, i)
+                  p = p + x(1)*st%mass_dof(2, i)*st%v(2, i) - x(2)*st%mass_dof(1, i)*st%v(1, i)
+               end if
+            else if (comp <= 2) then
                p = p + st%mass(i)*st%v(comp, i)
             else
                x = st%x0(:, i) + st%u(:, i)
