@@ -8,7 +8,7 @@ module exic_base_sort
    implicit none
    private
 
-   public :: sort_perm_i8, sort_perm_int, sort_short_int
+   public :: sort_perm_i8, sort_perm_int, sort_short_int, sorted_unique
 
 contains
 
@@ -75,5 +75,21 @@ contains
          a(j + 1) = v
       end do
    end subroutine sort_short_int
+
+   !> The distinct values of `a`, ascending (a bitmap over minval(a)..maxval(a): for node and
+   !> region numbers).
+   pure function sorted_unique(a) result(u)
+      integer, intent(in) :: a(:)
+      integer, allocatable :: u(:)
+      integer :: i, lo, hi
+      logical, allocatable :: seen(:)
+      lo = minval(a)
+      hi = maxval(a)
+      allocate (seen(lo:hi), source=.false.)
+      do i = 1, size(a)
+         seen(a(i)) = .true.
+      end do
+      u = pack([(i, i=lo, hi)], seen)
+   end function sorted_unique
 
 end module exic_base_sort

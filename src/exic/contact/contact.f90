@@ -21,11 +21,12 @@ module exic_contact_contact
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
    use exic_base_grow, only: grow
+   use exic_base_sort, only: sorted_unique
    use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, SURF_NODES, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
                                 DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t
    use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, node_normals, &
-                                 node_segments, some_node_normals
+                                 node_segments, slave_normals, normal_dofs
    use exic_contact_broad, only: broad_t, broad_search, broad_search_kept
    use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: contact_set_t, detect_contacts
@@ -248,7 +249,7 @@ contains
       if (allocated(spec%surfaces)) ns = size(spec%surfaces)
       nauto = 0
       if (spec%automatic) then
-         regions = unique(region)
+         regions = sorted_unique(region)
          nauto = size(regions)
       end if
       allocate (self%surfaces(ns + nauto))
@@ -268,7 +269,7 @@ contains
             case (SURF_NODES)
                ! slave nodes without segments: no normals, so no facing test (see detect_pairs)
                allocate (sf%seg(2, 0))
-               if (size(sp%nodes) > 0) sf%nodes = unique(sp%nodes)
+               if (size(sp%nodes) > 0) sf%nodes = sorted_unique(sp%nodes)
             end select
             if (allocated(err)) then
                err%message = 'SURFace '//itoa(sp%id)//': '//err%message
@@ -644,27 +645,17 @@ contains
       sf%nrm_stamp = self%stamp
    end subroutine surface_normals
 
-   !> Node normals of surface sf at positions x for the slaves of cand(1, 1:ncand) (sorted by
-   !> slave), the values node_normals gives them; nothing when the whole surface's normals of
-   !> this search are there already.
+   !> Node normals of sf at x for the slaves of cand (slave_normals), unless this search has them all.
    subroutine candidate_normals(self, sf, nnode, x, ncand, cand)
       type(contact_t), intent(in) :: self
       type(surface_t), intent(inout) :: sf
       integer, intent(in) :: nnode, ncand
       real(wp), intent(in) :: x(2, nnode)
       integer, intent(in) :: cand(:, :)
-      integer :: k, nsel
       if (sf%nrm_stamp == self%stamp) return
       call grow(sf%sel, ncand)
-      nsel = 0
-      do k = 1, ncand
-         if (k > 1) then
-            if (cand(1, k) == cand(1, k - 1)) cycle
-         end if
-         nsel = nsel + 1
-         sf%sel(nsel) = cand(1, k)
-      end do
-      call some_node_normals(nnode, x, sf%nseg, sf%seg, sf%nnode, sf%nhead, sf%nsegs, nsel, sf%sel, sf%nrm)
+      call slave_normals(nnode, x, sf%nseg, sf%seg, sf%nnode, sf%nhead, sf%nsegs, ncand, cand, sf%sel, &
+                         sf%nrm)
    end subroutine candidate_normals
 
    !> Every node of every contact surface, once (cnodes).
@@ -974,7 +965,6 @@ contains
       ! per surface: 0 no ENERgy pass, 1 every partner rigid, 2 a deformable partner
       integer :: meets(size(self%surfaces))
       integer :: k, s, m, ndef
-      real(wp) :: t(2)
       dofs = .false.
       if (.not. self%active) return
       meets = 0
@@ -996,16 +986,8 @@ contains
          end do
       end if
       do k = 1, size(self%surfaces)
-         associate (sf => self%surfaces(k))
-            if (meets(k) == 1) dofs(:, sf%nodes) = .true.
-            if (meets(k) /= 2) cycle
-            do s = 1, sf%nseg
-               ! tangent t; the normal (t2, -t1) has |n_1| = |t_2|
-               t = x(:, sf%seg(2, s)) - x(:, sf%seg(1, s))
-               if (abs(t(2)) >= abs(t(1))) dofs(1, sf%seg(:, s)) = .true.
-               if (abs(t(1)) >= abs(t(2))) dofs(2, sf%seg(:, s)) = .true.
-            end do
-         end associate
+         if (meets(k) == 1) dofs(:, self%surfaces(k)%nodes) = .true.
+         if (meets(k) == 2) call normal_dofs(nnode, x, self%surfaces(k)%nseg, self%surfaces(k)%seg, dofs)
       end do
    contains
       logical function deformable(k)
@@ -1013,21 +995,5 @@ contains
          deformable = .not. all(rigid(self%surfaces(k)%nodes))
       end function deformable
    end function contact_face_dofs
-
-   !> Sorted unique values.
-   function unique(a) result(u)
-      integer, intent(in) :: a(:)
-      integer, allocatable :: u(:)
-      integer :: i
-      logical, allocatable :: seen(:)
-      integer :: lo, hi
-      lo = minval(a)
-      hi = maxval(a)
-      allocate (seen(lo:hi), source=.false.)
-      do i = 1, size(a)
-         seen(a(i)) = .true.
-      end do
-      u = pack([(i, i=lo, hi)], seen)
-   end function unique
 
 end module exic_contact_contact
