@@ -49,6 +49,9 @@ contains
       call test_stable_step(s)
       call test_bending_energy(s)
       call test_cantilever(s)
+      call test_barrier_energy(s)
+      call test_barrier_step(s)
+      call test_barrier_fold(s)
    end subroutine run_hourglass_tests
 
    ! ---------------------------------------------------------------- helpers
@@ -79,13 +82,14 @@ contains
 
    !> Internal force f (zeroed first), strain energy w and hourglass energy whg of elements
    !> (x0, conn) of kind ek; jmin and the squared stable step dt2 (density rho).
-   subroutine force(ek, x0, conn, u, lambda, mu, f, w, whg, jmin, dt2, rho)
+   subroutine force(ek, x0, conn, u, lambda, mu, f, w, whg, jmin, dt2, rho, v)
       integer, intent(in) :: ek
       real(wp), intent(in) :: x0(:, :), u(:, :), lambda, mu
       integer, intent(in) :: conn(:, :)
       real(wp), intent(out) :: f(:, :), w, whg, jmin
       real(wp), intent(out), optional :: dt2
       real(wp), intent(in), optional :: rho
+      real(wp), intent(in), optional :: v(:, :)   !< nodal velocities (the physical control's step)
       real(wp) :: d, r
       integer :: eb, em, ef
       f = 0.0_wp
@@ -95,7 +99,7 @@ contains
       select case (ek)
       case (PHYS)
          call q4_force_1pt(size(conn, 2), size(x0, 2), conn, x0, u, lambda, mu, r, 1.0_wp, f, w, whg, &
-                           jmin, eb, d, em, ef, HOURGLASS_PHYSICAL)
+                           jmin, eb, d, em, ef, HOURGLASS_PHYSICAL, v)
       case (FB)
          call q4_force_1pt(size(conn, 2), size(x0, 2), conn, x0, u, lambda, mu, r, 0.1_wp, f, w, whg, &
                            jmin, eb, d, em, ef, HOURGLASS_STIFFNESS)
@@ -453,5 +457,264 @@ contains
       call check(s, rel(PHYS) <= 1e-6_wp, 'physical control: the beam solution to 1e-6')
       call check(s, rel(FULL) > 0.1_wp, '2x2 Gauss locks in bending (more than 10 % stiff)')
    end subroutine test_cantilever
+
+
+   ! ---------------------------------------------------------------- corner barrier
+
+   !> The unit square (nodes 1-4) with the hourglass displacement u_x = c xi eta (nodal values
+   !> c h_a) plus a small y part d h_a: corners 1 and 2 get r = 1 - c (doc/hourglass.md (H13)).
+   subroutine fold_state(c, d, xq, u)
+      real(wp), intent(in) :: c, d
+      real(wp), intent(out) :: xq(2, 4), u(2, 4)
+      real(wp), parameter :: h(4) = [1.0_wp, -1.0_wp, 1.0_wp, -1.0_wp]
+      xq = reshape([-1.0_wp, -1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp, 1.0_wp], [2, 4])
+      u(1, :) = c*h
+      u(2, :) = d*h
+   end subroutine fold_state
+
+   !> Corner barrier (doc/hourglass.md section 5): below r0 it adds energy (the element's
+   !> hourglass energy exceeds the quadratic control's), f = dW/du by central differences with
+   !> the barrier active, the energy and forces objective, and the energy grows without bound as
+   !> a corner approaches the fold.
+   subroutine test_barrier_energy(s)
+      type(suite_t), intent(inout) :: s
+      real(wp) :: xq(2, 4), u(2, 4), f(2, 4), g(2, 4), fd(2, 4), ft(2, 4), fr(2, 4), r(2, 2)
+      real(wp) :: lam, mu, w, whg, wa, whga, jmin, wp_, wm, h, rel, err, e1, e2, e3
+      integer :: i, j
+      integer :: conn(4, 1)
+      character(len=60) :: buf
+      call section(s, 'corner barrier: energy, gradient, objectivity')
+      conn(:, 1) = [1, 2, 3, 4]
+      call lame_from_young(1.0e4_wp, 0.3_wp, lam, mu)
+      ! r = 0.6 >= r0: the quadratic control alone, W = 1/2 q.K q (H6) with q = (c, d),
+      ! K = E' diag(4/3, 4/3) for the square of side 2
+      call fold_state(0.4_wp, 0.0_wp, xq, u)
+      call force(PHYS, xq, conn, u, lam, mu, f, w, whg, jmin)
+      e1 = 0.5_wp*(2.0_wp*mu*(1.0_wp + lam/(lam + 2.0_wp*mu)))*(4.0_wp/3.0_wp)*0.4_wp**2
+      call check_close(s, whg, e1, 1e-12_wp*e1, 'r = 0.6: the quadratic control only, W = E'' (2/3) c^2')
+      ! r = 0.3: the barrier adds kappa A0/4 (ln(0.3/0.5))^2 at each of corners 1 and 2
+      call fold_state(0.7_wp, 0.0_wp, xq, u)
+      call force(PHYS, xq, conn, u, lam, mu, f, w, whg, jmin)
+      e1 = 0.5_wp*(2.0_wp*mu*(1.0_wp + lam/(lam + 2.0_wp*mu)))*(4.0_wp/3.0_wp)*0.7_wp**2
+      e2 = 2.0_wp*(2.0_wp*mu*(1.0_wp + lam/(lam + 2.0_wp*mu)))*(4.0_wp/4.0_wp)*log(0.3_wp/0.5_wp)**2
+      call check_close(s, whg, e1 + e2, 1e-12_wp*(e1 + e2), 'r = 0.3: quadratic control + kappa A0/4 ln(r/r0)^2 at 2 corners')
+      ! a non-symmetric near-fold state with a rotation: f = dW/du
+      call fold_state(0.8_wp, 0.15_wp, xq, u)
+      u(:, 3) = u(:, 3) + [0.1_wp, -0.05_wp]
+      r = rot(0.6_wp)
+      u = matmul(r, xq + u) - xq
+      call force(PHYS, xq, conn, u, lam, mu, f, w, whg, jmin)
+      h = 1e-7_wp
+      do j = 1, 4
+         do i = 1, 2
+            g = u
+            g(i, j) = u(i, j) + h
+            call force(PHYS, xq, conn, g, lam, mu, ft, wp_, whga, jmin)
+            wp_ = wp_ + whga
+            g(i, j) = u(i, j) - h
+            call force(PHYS, xq, conn, g, lam, mu, ft, wm, whga, jmin)
+            wm = wm + whga
+            fd(i, j) = (wp_ - wm)/(2.0_wp*h)
+         end do
+      end do
+      rel = maxval(abs(fd - f))/maxval(abs(f))
+      write (buf, '(a,es9.2)') 'max rel. error ', rel
+      call check(s, rel <= 1e-6_wp, 'barrier active: f = dW/du, 8 dofs ('//trim(buf)//')')
+      ! objectivity: rotate the deformed element
+      err = 0.0_wp
+      do i = 1, 3
+         r = rot(real(i, wp)*1.9_wp)
+         g = matmul(r, xq + u) - xq
+         call force(PHYS, xq, conn, g, lam, mu, fr, wa, whga, jmin)
+         err = max(err, abs(whga - whg)/whg, maxval(abs(fr - matmul(r, f)))/maxval(abs(f)))
+      end do
+      call check(s, err <= 1e-11_wp, 'barrier active, rotated: same energy, forces rotated')
+      ! without bound: r = 1e-2, 1e-4, 1e-6
+      call fold_state(1.0_wp - 1e-2_wp, 0.0_wp, xq, u)
+      call force(PHYS, xq, conn, u, lam, mu, f, w, e1, jmin)
+      call fold_state(1.0_wp - 1e-4_wp, 0.0_wp, xq, u)
+      call force(PHYS, xq, conn, u, lam, mu, f, w, e2, jmin)
+      call fold_state(1.0_wp - 1e-6_wp, 0.0_wp, xq, u)
+      call force(PHYS, xq, conn, u, lam, mu, f, w, e3, jmin)
+      call check(s, e3 > e2 .and. e2 > e1 .and. e3 > 10.0_wp*mu*4.0_wp, &
+                 'energy grows without bound as a corner approaches the fold')
+   end subroutine test_barrier_energy
+
+   !> The stable step with the barrier (H18) stays below the exact limit 2/omega_max of the
+   !> element (tangent by central differences of the force at the deformed state, lumped mass)
+   !> on random states with a corner at r = 0.45 ... 0.001, and shrinks toward the fold.
+   subroutine test_barrier_step(s)
+      type(suite_t), intent(inout) :: s
+      integer, parameter :: ncase = 120
+      real(wp) :: xq(2, 4), u(2, 4), ub(2, 4), fp(2, 4), fm(2, 4), kmat(8, 8), mmat(8, 8), m(4), ev(8), work(64)
+      real(wp) :: lam, mu, rho, w, whg, jmin, d2, c, dx, ratio, rmax, rmin, hh, dtfar, dtnear
+      integer :: ic, j, k, info, nfail
+      integer :: conn(4, 1)
+      integer(int64) :: seed
+      character(len=100) :: buf
+      call section(s, 'corner barrier: stable step')
+      conn(:, 1) = [1, 2, 3, 4]
+      rho = 1.3_wp
+      seed = 777_int64
+      rmax = 0.0_wp
+      rmin = huge(1.0_wp)
+      nfail = 0
+      do ic = 1, ncase
+         call lame_from_young(1.0_wp, 0.49_wp*rnd(seed), lam, mu)
+         c = 1.0_wp - 0.45_wp*10.0_wp**(-3.0_wp*rnd(seed))
+         call fold_state(c, 0.3_wp*(rnd(seed) - 0.5_wp), xq, u)
+         do k = 1, 4
+            u(:, k) = u(:, k) + 0.05_wp*[rnd(seed) - 0.5_wp, rnd(seed) - 0.5_wp]
+         end do
+         m = 0.0_wp
+         call q4_lumped_mass(1, 4, conn, xq, rho, m)
+         call force(PHYS, xq, conn, u, lam, mu, fp, w, whg, jmin, d2, rho)
+         if (jmin <= 0.0_wp .or. .not. d2 > 0.0_wp) then
+            nfail = nfail + 1
+            cycle
+         end if
+         hh = 1e-4_wp*(1.0_wp - c)
+         do j = 1, 8
+            ub = u
+            ub(modulo(j - 1, 2) + 1, (j + 1)/2) = u(modulo(j - 1, 2) + 1, (j + 1)/2) + hh
+            call force(PHYS, xq, conn, ub, lam, mu, fp, w, whg, jmin)
+            ub(modulo(j - 1, 2) + 1, (j + 1)/2) = u(modulo(j - 1, 2) + 1, (j + 1)/2) - hh
+            call force(PHYS, xq, conn, ub, lam, mu, fm, w, whg, jmin)
+            kmat(:, j) = reshape(fp - fm, [8])/(2.0_wp*hh)
+         end do
+         kmat = 0.5_wp*(kmat + transpose(kmat))
+         mmat = 0.0_wp
+         do k = 1, 8
+            mmat(k, k) = m((k + 1)/2)
+         end do
+         call dsygv(1, 'N', 'U', 8, kmat, 8, mmat, 8, ev, work, size(work), info)
+         if (info /= 0) then
+            nfail = nfail + 1
+            cycle
+         end if
+         ratio = sqrt(d2)/(2.0_wp/sqrt(ev(8)))
+         rmax = max(rmax, ratio)
+         rmin = min(rmin, ratio)
+      end do
+      write (buf, '(i0,a,f6.4,a,f6.4,a)') ncase, ' near-fold states, estimate/exact in [', rmin, ', ', rmax, ']'
+      write (output_unit, '(a)') '   '//trim(buf)
+      call check(s, nfail == 0, 'all states valid, all eigenproblems solved')
+      call check(s, rmax <= 1.0_wp, 'estimate <= 2/omega_max in every case')
+      ! the step shrinks toward the fold: r = 0.6 (no barrier) against r = 1e-3
+      call lame_from_young(1.0_wp, 0.3_wp, lam, mu)
+      call fold_state(0.4_wp, 0.0_wp, xq, u)
+      call force(PHYS, xq, conn, u, lam, mu, fp, w, whg, jmin, d2, rho)
+      dtfar = sqrt(d2)
+      dx = 1.0_wp - 1e-3_wp
+      call fold_state(dx, 0.0_wp, xq, u)
+      call force(PHYS, xq, conn, u, lam, mu, fp, w, whg, jmin, d2, rho)
+      dtnear = sqrt(d2)
+      write (buf, '(a,es9.2)') 'step at r = 1e-3 / step at r = 0.6: ', dtnear/dtfar
+      call check(s, dtnear < 0.05_wp*dtfar, trim(buf))
+   end subroutine test_barrier_step
+
+   !> A free square driven into its hourglass fold: the velocity of the mode u_x = c xi eta
+   !> carries the kinetic energy the quadratic control alone stores at c = 1.5 (a fold at c = 1,
+   !> where corners 1 and 2 reach r = 0). Central differences in exic's velocity form (u(n+1) =
+   !> u + dt v + dt^2/2 a, v(n+1) = v + dt/2 (a + a(n+1)), the step chosen as step.f90 does) over
+   !> 5 periods of the mode: at 0.9 of the element's step the corners go deep into the barrier
+   !> and never fold; at 0.1 and 0.05 of it the total energy (kinetic + strain + hourglass) stays
+   !> within 2.5 % and 0.6 % of the initial one and its error falls as dt^2 (the forces are the
+   !> gradient of the energy; a single element's pointwise energy is that of its highest mode,
+   !> which at large steps moves far from the conserved shadow energy: 31 % at 0.9 with no
+   !> barrier at all, doc/hourglass.md section 6).
+   subroutine test_barrier_fold(s)
+      type(suite_t), intent(inout) :: s
+      real(wp) :: rmin(3), drift(3)
+      logical :: done(3)
+      character(len=100) :: buf
+      integer :: n
+      call section(s, 'corner barrier: a driven fold stays stable and conserves energy')
+      call drive(0.9_wp, n, rmin(1), drift(1), done(1))
+      write (buf, '(a,i0,a,f7.4,a,es9.2)') 'CFL 0.9: steps ', n, ', smallest corner ratio ', rmin(1), &
+         ', energy error ', drift(1)
+      write (output_unit, '(a)') '   '//trim(buf)
+      call check(s, done(1) .and. rmin(1) > 0.0_wp .and. rmin(1) < 0.3_wp, &
+                 'CFL 0.9: 5 periods, corners deep in the barrier (r < 0.3), never folded')
+      call drive(0.1_wp, n, rmin(2), drift(2), done(2))
+      call drive(0.05_wp, n, rmin(3), drift(3), done(3))
+      write (buf, '(a,es9.2,a,es9.2,a,2f7.4)') 'energy error at CFL 0.1 ', drift(2), ', 0.05 ', drift(3), &
+         '; smallest r ', rmin(2:3)
+      write (output_unit, '(a)') '   '//trim(buf)
+      call check(s, all(done(2:3)) .and. all(rmin(2:3) > 0.0_wp .and. rmin(2:3) < 0.3_wp), &
+                 'CFL 0.1, 0.05: 5 periods, corners in the barrier, never folded')
+      call check(s, drift(2) <= 2.5e-2_wp .and. drift(3) <= 6e-3_wp .and. drift(2) >= 3.0_wp*drift(3), &
+                 'total energy conserved to O(dt^2)')
+   contains
+      subroutine drive(cfl, n, rmin, drift, done)
+         real(wp), intent(in) :: cfl
+         integer, intent(out) :: n
+         real(wp), intent(out) :: rmin, drift
+         logical, intent(out) :: done
+         real(wp), parameter :: h(4) = [1.0_wp, -1.0_wp, 1.0_wp, -1.0_wp]
+         real(wp) :: xq(2, 4), u(2, 4), v(2, 4), acc(2, 4), anew(2, 4), f(2, 4), m(4), mm(2, 4)
+         real(wp) :: lam, mu, rho, w, whg, jmin, d2, e0, ek, t, kq, v0, dt, tend, target
+         integer :: conn(4, 1)
+         conn(:, 1) = [1, 2, 3, 4]
+         call lame_from_young(1.0_wp, 0.3_wp, lam, mu)
+         rho = 1.0_wp
+         call fold_state(0.0_wp, 0.0_wp, xq, u)
+         m = 0.0_wp
+         call q4_lumped_mass(1, 4, conn, xq, rho, m)
+         mm = spread(m, 1, 2)
+         ! W = 1/2 K c^2 with K = E' 4/3 (H6); kinetic energy of v_x = v0 h_a: 1/2 sum(m) v0^2
+         kq = 2.0_wp*mu*(1.0_wp + lam/(lam + 2.0_wp*mu))*(4.0_wp/3.0_wp)
+         v0 = sqrt(kq*1.5_wp**2/sum(m))
+         v(1, :) = v0*h
+         v(2, :) = 0.0_wp
+         e0 = 0.5_wp*sum(mm*v*v)
+         tend = 5.0_wp*2.0_wp*pi*sqrt(sum(m)/kq)
+         call force(PHYS, xq, conn, u, lam, mu, f, w, whg, jmin, d2, rho, v)
+         acc = -f/mm
+         dt = cfl*sqrt(d2)
+         t = 0.0_wp
+         drift = 0.0_wp
+         rmin = 1.0_wp
+         n = 0
+         done = .false.
+         do while (n < 100000)
+            u = u + dt*v + (0.5_wp*dt*dt)*acc
+            t = t + dt
+            n = n + 1
+            ! the forces and the step at u(n+1) with v(n), as the stepper calls them
+            call force(PHYS, xq, conn, u, lam, mu, f, w, whg, jmin, d2, rho, v)
+            if (jmin <= 0.0_wp .or. .not. d2 > 0.0_wp) exit
+            anew = -f/mm
+            v = v + (0.5_wp*dt)*(acc + anew)
+            acc = anew
+            ek = 0.5_wp*sum(mm*v*v)
+            drift = max(drift, abs(ek + w + whg - e0)/e0)
+            rmin = min(rmin, corner_ratio(xq + u))
+            if (rmin <= 0.0_wp) exit
+            if (t >= tend) then
+               done = .true.
+               exit
+            end if
+            ! exic's step choice (step.f90, choose_dt): shrink at once, grow beyond 15 %
+            target = cfl*sqrt(d2)
+            if (dt > target .or. dt < 0.85_wp*target) dt = target
+         end do
+      end subroutine drive
+
+      !> smallest corner volume ratio r_a of (H13) of the square of side 2 deformed to xc
+      real(wp) function corner_ratio(xc) result(r)
+         real(wp), intent(in) :: xc(2, 4)
+         real(wp) :: e1(2), e2(2), sq
+         integer :: a
+         sq = (xc(1, 3) - xc(1, 1))*(xc(2, 4) - xc(2, 2)) - (xc(2, 3) - xc(2, 1))*(xc(1, 4) - xc(1, 2))
+         r = huge(1.0_wp)
+         do a = 1, 4
+            e1 = xc(:, a) - xc(:, modulo(a - 2, 4) + 1)
+            e2 = xc(:, modulo(a, 4) + 1) - xc(:, a)
+            ! s0_a/S0 = 4/8 for the square
+            r = min(r, 2.0_wp*(e1(1)*e2(2) - e1(2)*e2(1))/sq)
+         end do
+      end function corner_ratio
+   end subroutine test_barrier_fold
 
 end module test_hourglass

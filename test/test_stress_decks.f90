@@ -20,6 +20,10 @@
 !>   HOURglass 0.1 a one-point element folded by its hourglass mode at step 55 (its corner node in
 !>   contact). With HOURglass,PHYSical (the assumed-strain control, doc/hourglass.md) the run ends
 !>   at its final time; the same deck with HOURglass 0.1 still stops there, naming the element.
+!> - scene 86 of seed 20261125: two one-point blocks with HOURglass,PHYSical, a corner impact;
+!>   without the corner barrier (doc/hourglass.md section 5) element 106 folded at a corner at
+!>   step 156 (t = 0.1708, the release build of the commit before the barrier); with it the run
+!>   ends at its final time with no energy growth.
 module test_stress_decks
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
@@ -70,6 +74,14 @@ contains
       call check(s, v >= 0.0_wp .and. v < 1.0_wp, 'energy growth below the warning limit of 1 %', &
                  line_with(out, 'energy guard'))
       call fold_with_fb(s)
+      call section(s, 'stress decks: scene 86 of seed 20261125, two one-point blocks, a corner impact')
+      call run_saved(s, 'barrier_20261125_0086', out)
+      v = number_after(out, 'final time ')
+      call check(s, abs(v - 2.4756629_wp) < 1.0e-5_wp, 'corner barrier: final time 2.4757 (stopped at '// &
+                 '0.1708, element 106 folded, without it)', line_with(out, 'final time'))
+      v = number_after(out, 'largest growth of the physical energy over the energy put in ')
+      call check(s, v >= 0.0_wp .and. v < 1.0_wp, 'energy growth below the warning limit of 1 %', &
+                 line_with(out, 'energy guard'))
    end subroutine run_stress_decks_tests
 
    !> The deck of scene 19 with HOURglass 0.1 in place of HOURglass,PHYSical stops at step 55

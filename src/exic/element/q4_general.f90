@@ -24,6 +24,7 @@ module exic_element_q4_general
                                  check_points => q4b_check_points, current => q4b_current, &
                                  stable_block => q4b_stable_block, &
                                  block_minimum => q4b_block_minimum, scatter => q4b_scatter
+   use exic_element_q4_barrier, only: corner_barrier, barrier_step, corner_rate, gather_v
    implicit none
    private
 
@@ -103,7 +104,7 @@ contains
    !> energy, whg: hourglass energy, wdis: plastic dissipation of the step; the rest as in
    !> q4_force_2x2.
    pure subroutine q4g_force(o, nel, nnode, conn, x0, u, dt, hist, f, wint, whg, wdis, jmin, ebad, &
-                             dt2min, emin, efold)
+                             dt2min, emin, efold, v)
       type(q4_solid_t), intent(in) :: o
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
@@ -112,6 +113,9 @@ contains
       real(wp), intent(inout) :: f(2, nnode)
       real(wp), intent(out) :: wint, whg, wdis, jmin, dt2min
       integer, intent(out) :: ebad, emin, efold
+      !> nodal velocities: the kinematic step limit of the corner barrier (one point, physical
+      !> control; doc/hourglass.md (H19))
+      real(wp), intent(in), optional :: v(2, nnode)
       integer :: e0, nb, h0
 
       wint = 0.0_wp
@@ -131,7 +135,7 @@ contains
                            wint, wdis, jmin, ebad, dt2min, emin, efold)
          else
             call block_1pt(o, nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, dt, hist, h0, f, &
-                           wint, whg, wdis, jmin, ebad, dt2min, emin, efold)
+                           wint, whg, wdis, jmin, ebad, dt2min, emin, efold, v)
          end if
       end do
    end subroutine q4g_force
@@ -351,7 +355,7 @@ contains
    !> One block of the one-point general path: F at the centroid with F33 = r_c/R_c and the
    !> weight A0 R_c, hoop force p33/(4 R_c), hourglass forces and energy times R_c (section 3).
    pure subroutine block_1pt(o, nb, off, nnode, conn, x0, u, dt, hist, h0, f, wint, whg, wdis, jmin, &
-                             ebad, dt2min, emin, efold)
+                             ebad, dt2min, emin, efold, v)
       type(q4_solid_t), intent(in) :: o
       integer, intent(in) :: nb, off, nnode, h0
       integer, intent(in) :: conn(4, nb)
@@ -361,7 +365,9 @@ contains
       integer, intent(inout) :: ebad, emin, efold
       real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy, hx, hy
       real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, jac, js, a0, r0, p11, p12, p21, p22, p33, &
-                                     wq, eh, dt2, good, f33, rc, wt, jchk, dw, ys, zero
+                                     wq, eh, dt2, good, f33, rc, wt, jchk, dw, ys, zero, ob, tk
+      real(wp), intent(in), optional :: v(2, nnode)
+      real(wp), dimension(NBLOCK, 4) :: vx, vy
       real(wp) :: h(NBLOCK, 1, 6), kh
       integer :: k, a
 
@@ -408,11 +414,24 @@ contains
          call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
       end if
       wint = wint + lane_sum(nb, wq)
-      whg = whg + lane_sum(nb, eh)
       wdis = wdis + lane_sum(nb, dw)
       call check_points(nb, 1, off, jchk, jmin, ebad)
       call current(xe, ye, uxe, uye)
+      ! the corner barrier (doc/hourglass.md section 5), times R_c in axisymmetry
+      if (o%hgkind == HOURGLASS_PHYSICAL) then
+         if (.not. o%axi) rc = 1.0_wp
+         call corner_barrier(NBLOCK, xe, ye, uxe, uye, rc, o%lambda, o%mu, o%rho, fx, fy, eh, ob)
+      end if
+      whg = whg + lane_sum(nb, eh)
       call stable_block(1, xe, ye, uxe, uye, o%lambda, o%mu, o%rho, dt2, good)
+      if (o%hgkind == HOURGLASS_PHYSICAL) then
+         tk = huge(1.0_wp)
+         if (present(v)) then
+            call gather_v(NBLOCK, nb, nnode, conn, v, vx, vy)
+            call corner_rate(NBLOCK, uxe, uye, vx, vy, tk)
+         end if
+         call barrier_step(NBLOCK, dt2, ob, tk)
+      end if
       if (o%axi) call ring_step(1, xe, ye, uxe, uye, o%lambda, o%mu, o%rho, dt2)
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
       call scatter(nb, nnode, conn, fx, fy, f)

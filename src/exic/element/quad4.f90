@@ -32,6 +32,7 @@ module exic_element_quad4
    use exic_base_sums, only: lane_sum
    use exic_material_neohookean, only: nh_piola, nh_cauchy, nh_wave_speed2_block
    use exic_material_material, only: HOURGLASS_PHYSICAL
+   use exic_element_q4_barrier, only: corner_barrier, barrier_step, corner_rate, gather_v
    implicit none
    private
 
@@ -315,7 +316,7 @@ contains
    !> of doc/hourglass.md instead (asqbi_forces), hg its scale s.
    !> wint: strain energy of the mean part; whg: hourglass energy; the rest as for q4_force_2x2.
    pure subroutine q4_force_1pt(nel, nnode, conn, x0, u, lambda, mu, rho0, hg, f, wint, whg, jmin, &
-                                ebad, dt2min, emin, efold, hgkind)
+                                ebad, dt2min, emin, efold, hgkind, v)
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
@@ -324,6 +325,9 @@ contains
       real(wp), intent(out) :: wint, whg, jmin, dt2min
       integer, intent(out) :: ebad, emin, efold
       integer, intent(in), optional :: hgkind   !< HOURGLASS_STIFFNESS (default) or HOURGLASS_PHYSICAL
+      !> nodal velocities: with the physical control, the step also keeps a corner from losing
+      !> more than a quarter of its volume ratio in one step (doc/hourglass.md (H19))
+      real(wp), intent(in), optional :: v(2, nnode)
       integer :: e0, nb
       logical :: phys
 
@@ -340,13 +344,13 @@ contains
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
          call block_1pt(nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, lambda, mu, rho0, hg, phys, &
-                        f, wint, whg, jmin, ebad, dt2min, emin, efold)
+                        f, wint, whg, jmin, ebad, dt2min, emin, efold, v)
       end do
    end subroutine q4_force_1pt
 
    !> One block of q4_force_1pt: elements off + 1 .. off + nb.
    pure subroutine block_1pt(nb, off, nnode, conn, x0, u, lambda, mu, rho0, hg, phys, f, wint, whg, &
-                             jmin, ebad, dt2min, emin, efold)
+                             jmin, ebad, dt2min, emin, efold, v)
       integer, intent(in) :: nb, off, nnode
       integer, intent(in) :: conn(4, nb)
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
@@ -354,9 +358,10 @@ contains
       logical, intent(in) :: phys
       real(wp), intent(inout) :: f(2, nnode), wint, whg, jmin, dt2min
       integer, intent(inout) :: ebad, emin, efold
-      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy, hx, hy
+      real(wp), intent(in), optional :: v(2, nnode)
+      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy, hx, hy, vx, vy
       real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, jac, js, a0, r0, p11, p12, p21, p22, wq, eh, &
-                                     dt2, good
+                                     dt2, good, ob, tk
       integer :: a, k
 
       call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
@@ -377,10 +382,23 @@ contains
          call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, hg*(lambda + 2.0_wp*mu), fx, fy, eh)
       end if
       wint = wint + lane_sum(nb, wq)
-      whg = whg + lane_sum(nb, eh)
       call check_points(nb, 1, off, jac, jmin, ebad)
       call current(xe, ye, uxe, uye)
+      if (phys) then
+         ! r0 is no longer needed: reused as the weight 1 of the plane element
+         r0 = 1.0_wp
+         call corner_barrier(NBLOCK, xe, ye, uxe, uye, r0, lambda, mu, rho0, fx, fy, eh, ob)
+      end if
+      whg = whg + lane_sum(nb, eh)
       call stable_block(1, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
+      if (phys) then
+         tk = huge(1.0_wp)
+         if (present(v)) then
+            call gather_v(NBLOCK, nb, nnode, conn, v, vx, vy)
+            call corner_rate(NBLOCK, uxe, uye, vx, vy, tk)
+         end if
+         call barrier_step(NBLOCK, dt2, ob, tk)
+      end if
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
       call scatter(nb, nnode, conn, fx, fy, f)
    end subroutine block_1pt
@@ -544,6 +562,7 @@ contains
          hy(k, 4) = g4*rqy - tm*(sn*bx2 - dn*by2)
       end do
    end subroutine asqbi_forces
+
 
    !> The reference coordinates and displacements of nb elements, (element, local node); lanes
    !> nb + 1 .. NBLOCK repeat element nb.
@@ -955,5 +974,6 @@ contains
       real(wp), intent(inout) :: f(2, nnode)
       call scatter(nb, nnode, conn, fx, fy, f)
    end subroutine q4b_scatter
+
 
 end module exic_element_quad4

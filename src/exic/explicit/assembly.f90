@@ -237,7 +237,8 @@ contains
       do k = 1, size(sets)
          associate (s => sets(k))
             if (s%kind /= MAT_SOLID) cycle
-            call set_forces(s, st%nnode, st%x0, st%u, st%dt_prev, st%fint, w, whg, wd, jm, eb, d, em, ef)
+            call set_forces(s, st%nnode, st%x0, st%u, st%v, st%dt_prev, st%fint, w, whg, wd, jm, eb, d, em, &
+                            ef)
             st%strain = st%strain + w
             st%plastic = st%plastic + wd
             st%hourglass = st%hourglass + whg
@@ -255,10 +256,11 @@ contains
    !> The force pass over one set (internal_forces): the ranges of each colour on the threads,
    !> one colour after the other; per-range results combined in range order. eb, em, ef are
    !> local element numbers of the set.
-   subroutine set_forces(s, nnode, x0, u, dt, f, w, whg, wd, jm, eb, d, em, ef)
+   subroutine set_forces(s, nnode, x0, u, v, dt, f, w, whg, wd, jm, eb, d, em, ef)
       type(element_set_t), intent(inout) :: s
       integer, intent(in) :: nnode
-      real(wp), intent(in) :: x0(2, nnode), u(2, nnode), dt
+      !> v: the nodal velocities (the corner barrier's kinematic step limit, doc/hourglass.md (H19))
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode), v(2, nnode), dt
       real(wp), intent(inout) :: f(2, nnode)
       real(wp), intent(out) :: w, whg, wd, jm, d
       integer, intent(out) :: eb, em, ef
@@ -268,7 +270,7 @@ contains
 
       pdw = 0.0_wp
       !$omp parallel if (s%nel >= PAR_MIN_ELEMENTS) default(none) private(c, i, r, e1, n) &
-      !$omp shared(s, nnode, x0, u, dt, f, pw, phg, pj, pd, pe, pm, pf, pdw)
+      !$omp shared(s, nnode, x0, u, v, dt, f, pw, phg, pj, pd, pe, pm, pf, pdw)
       do c = 1, s%ncolour
          !$omp do schedule(dynamic)
          do i = s%cfirst(c), s%cfirst(c + 1) - 1
@@ -279,10 +281,10 @@ contains
                if (s%solid%plastic) then
                   call q4g_force(s%solid, n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, dt, &
                                  s%hist(:, :, e1:e1 + n - 1), f, pw(r), phg(r), pdw(r), pj(r), pe(r), &
-                                 pd(r), pm(r), pf(r))
+                                 pd(r), pm(r), pf(r), v)
                else
                   call q4g_force(s%solid, n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, dt, s%hist, f, &
-                                 pw(r), phg(r), pdw(r), pj(r), pe(r), pd(r), pm(r), pf(r))
+                                 pw(r), phg(r), pdw(r), pj(r), pe(r), pd(r), pm(r), pf(r), v)
                end if
             else if (s%nq == 2) then
                call q4_force_2x2(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%lambda, s%mu, s%rho, f, &
@@ -291,7 +293,7 @@ contains
             else
                call q4_force_1pt(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%lambda, s%mu, s%rho, &
                                  s%hourglass, f, pw(r), phg(r), pj(r), pe(r), pd(r), pm(r), pf(r), &
-                                 s%hgkind)
+                                 s%hgkind, v)
             end if
          end do
          !$omp end do
