@@ -82,7 +82,52 @@ contains
       v = number_after(out, 'largest growth of the physical energy over the energy put in ')
       call check(s, v >= 0.0_wp .and. v < 1.0_wp, 'energy growth below the warning limit of 1 %', &
                  line_with(out, 'energy guard'))
+      call section(s, 'stress decks: a block bouncing between frictionless rigid walls, 10^5 steps')
+      call run_saved(s, 'flat_wall_bounce', out)
+      call transverse_momentum(s, run_dir//'/flat_wall_bounce.his')
    end subroutine run_stress_decks_tests
+
+   !> The largest |p_y| of the block (column 4 of the .his: t, cont, mome x, mome y, disp) over
+   !> the run against p_x at t = 0: frictionless flat walls normal to x must keep it at round-off.
+   subroutine transverse_momentum(s, path)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: path
+      character(len=512) :: line
+      real(wp) :: row(5), px0, pymax
+      integer :: u, ios, n
+      px0 = 0.0_wp
+      pymax = -1.0_wp
+      n = 0
+      open (newunit=u, file=path, action='read', iostat=ios)
+      if (ios == 0) then
+         do
+            read (u, '(a)', iostat=ios) line
+            if (ios /= 0) exit
+            if (line(1:1) == '#' .or. len_trim(line) == 0) cycle
+            read (line, *, iostat=ios) row
+            if (ios /= 0) exit
+            n = n + 1
+            if (n == 1) px0 = row(3)
+            pymax = max(pymax, abs(row(4)))
+         end do
+         close (u)
+      end if
+      call check(s, n > 1000 .and. px0 > 1.0_wp .and. pymax >= 0.0_wp .and. pymax <= 1.0e-12_wp*px0, &
+                 'transverse momentum at round-off (was 0.0094 of 1.83 over 10^5 steps)', &
+                 'rows '//trim(adjustl(itoa_(n)))//', largest |p_y| / p_x(0) '//trim(adjustl(rstr(pymax/max(px0, tiny(1.0_wp))))))
+   end subroutine transverse_momentum
+
+   function itoa_(i) result(t)
+      integer, intent(in) :: i
+      character(len=16) :: t
+      write (t, '(i0)') i
+   end function itoa_
+
+   function rstr(v) result(t)
+      real(wp), intent(in) :: v
+      character(len=24) :: t
+      write (t, '(es12.4)') v
+   end function rstr
 
    !> The deck of scene 19 with HOURglass 0.1 in place of HOURglass,PHYSical stops at step 55
    !> with element 34 folded (the stop the saved deck no longer has).

@@ -27,7 +27,7 @@ module exic_contact_broad
    private
 
    public :: broad_t, broad_search, broad_search_kept, broad_brute, swept_box, surfaces_apart, &
-             boxes_overlap
+             boxes_overlap, drop_flat_fixed
 
    !> Skin of the kept list (broad_search_kept): SKIN_SHARE of the mean segment length, or
    !> SKIN_STEPS times the largest motion of one step if that is larger.
@@ -256,6 +256,45 @@ contains
       bw%kept = .true.
       bw%nbuilds = bw%nbuilds + 1
    end subroutine build_kept
+
+   !> Drop from bw's candidates the slaves that lie inside a straight stretch of a surface that
+   !> the corrector cannot move: the slave and the far ends of its two segments have no inverse
+   !> mass (rigid, fixed or prescribed: minv = 0) and the two segments continue each other
+   !> (|t1 x t2| <= 1e-9 |t1| |t2|, t1 . t2 > 0) (doc/contact-detection.md, "Flat immovable
+   !> faces"). head, segs: the segments of each slave (node_segments). The pairs left keep
+   !> their order.
+   pure subroutine drop_flat_fixed(bw, nnode, x, minv, nslave, slaves, seg, head, segs)
+      type(broad_t), intent(inout) :: bw
+      integer, intent(in) :: nnode, nslave
+      real(wp), intent(in) :: x(2, nnode), minv(2, nnode)
+      integer, intent(in) :: slaves(nslave), seg(:, :), head(nslave + 1), segs(:)
+      integer :: k, n, s, node, far(2), j
+      real(wp) :: t1(2), t2(2)
+      logical :: flat
+
+      n = 0
+      do k = 1, bw%ncand
+         s = bw%cand(1, k)
+         node = slaves(s)
+         flat = head(s + 1) - head(s) == 2 .and. all(minv(:, node) == 0.0_wp)
+         if (flat) then
+            do j = 1, 2
+               far(j) = sum(seg(:, segs(head(s) + j - 1))) - node
+            end do
+            flat = all(minv(:, far) == 0.0_wp)
+         end if
+         if (flat) then
+            t1 = x(:, node) - x(:, far(1))
+            t2 = x(:, far(2)) - x(:, node)
+            flat = abs(t1(1)*t2(2) - t1(2)*t2(1)) <= 1.0e-9_wp*hypot(t1(1), t1(2))*hypot(t2(1), t2(2)) &
+                   .and. dot_product(t1, t2) > 0.0_wp
+         end if
+         if (flat) cycle
+         n = n + 1
+         bw%cand(:, n) = bw%cand(:, k)
+      end do
+      bw%ncand = n
+   end subroutine drop_flat_fixed
 
    !> Cell index (0-based) of coordinate v on an axis starting at lo with n cells of size h.
    pure integer function cell_of(v, lo, h, n) result(i)

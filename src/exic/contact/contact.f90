@@ -27,7 +27,7 @@ module exic_contact_contact
                                 DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t
    use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, node_normals, &
                                  node_segments, slave_normals, normal_dofs
-   use exic_contact_broad, only: broad_t, broad_search, broad_search_kept
+   use exic_contact_broad, only: broad_t, broad_search, broad_search_kept, drop_flat_fixed
    use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: contact_set_t, detect_contacts
    use exic_contact_corrector, only: constraints_t, corrector_t
@@ -529,8 +529,9 @@ contains
             end if
             if (.not. ps%auto) call broad_search_kept(ps%broad, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                                       ms%nseg, ms%seg, self%depth)
+            if (ps%auto) call drop_flat_fixed(ps%broad, nnode, x, minv, sl%nnode, sl%nodes, sl%seg, sl%nhead, &
+                                              sl%nsegs)
             if (ps%broad%ncand == 0) cycle
-            ! the normals of the candidate slaves only (the detection reads no others)
             call candidate_normals(self, sl, nnode, x, ps%broad%ncand, ps%broad%cand)
             call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                  sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
