@@ -27,6 +27,7 @@
 module test_stress_decks
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
+   use exic_base_strings, only: itoa, rtoa
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
@@ -114,20 +115,8 @@ contains
       end if
       call check(s, n > 1000 .and. px0 > 1.0_wp .and. pymax >= 0.0_wp .and. pymax <= 1.0e-12_wp*px0, &
                  'transverse momentum at round-off (was 0.0094 of 1.83 over 10^5 steps)', &
-                 'rows '//trim(adjustl(itoa_(n)))//', largest |p_y| / p_x(0) '//trim(adjustl(rstr(pymax/max(px0, tiny(1.0_wp))))))
+                 'rows '//itoa(n)//', largest |p_y| / p_x(0) '//rtoa(pymax/max(px0, tiny(1.0_wp))))
    end subroutine transverse_momentum
-
-   function itoa_(i) result(t)
-      integer, intent(in) :: i
-      character(len=16) :: t
-      write (t, '(i0)') i
-   end function itoa_
-
-   function rstr(v) result(t)
-      real(wp), intent(in) :: v
-      character(len=24) :: t
-      write (t, '(es12.4)') v
-   end function rstr
 
    !> The deck of scene 19 with HOURglass 0.1 in place of HOURglass,PHYSical stops at step 55
    !> with element 34 folded (the stop the saved deck no longer has).
