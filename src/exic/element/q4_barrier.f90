@@ -7,7 +7,7 @@ module exic_element_q4_barrier
    implicit none
    private
 
-   public :: corner_barrier, barrier_step, corner_rate, gather_v
+   public :: corner_barrier, barrier_limit
 
 contains
 
@@ -94,6 +94,26 @@ contains
          end do
       end do
    end subroutine corner_barrier
+
+   !> The step of a block with the corner barrier: barrier_step with ob from corner_barrier and
+   !> the kinematic limit of corner_rate from the nodal velocities v of the block's nodes, when
+   !> given (the force pass), without it otherwise (the initial step).
+   pure subroutine barrier_limit(n, nb, nnode, conn, xc, yc, ob, dt2, v)
+      integer, intent(in) :: n, nb, nnode
+      integer, intent(in) :: conn(4, nb)
+      real(wp), intent(in), dimension(n, 4) :: xc, yc
+      real(wp), intent(in) :: ob(n)
+      real(wp), intent(inout) :: dt2(n)
+      real(wp), intent(in), optional :: v(2, nnode)
+      real(wp), dimension(n, 4) :: vx, vy
+      real(wp) :: tk(n)
+      tk = huge(1.0_wp)
+      if (present(v)) then
+         call gather_v(n, nb, nnode, conn, v, vx, vy)
+         call corner_rate(n, xc, yc, vx, vy, tk)
+      end if
+      call barrier_step(n, dt2, ob, tk)
+   end subroutine barrier_limit
 
    !> The step with the corner barrier (H18): dt2 <- min(dt2/(1 + dt2 ob), tk), ob = sum_a
    !> omega_a^2/4 (corner_barrier), tk the squared kinematic limit (H19) (corner_rate; huge when

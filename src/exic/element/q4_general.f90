@@ -24,7 +24,7 @@ module exic_element_q4_general
                                  check_points => q4b_check_points, current => q4b_current, &
                                  stable_block => q4b_stable_block, &
                                  block_minimum => q4b_block_minimum, scatter => q4b_scatter
-   use exic_element_q4_barrier, only: corner_barrier, barrier_step, corner_rate, gather_v
+   use exic_element_q4_barrier, only: corner_barrier, barrier_limit
    implicit none
    private
 
@@ -365,9 +365,8 @@ contains
       integer, intent(inout) :: ebad, emin, efold
       real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy, hx, hy
       real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, jac, js, a0, r0, p11, p12, p21, p22, p33, &
-                                     wq, eh, dt2, good, f33, rc, wt, jchk, dw, ys, zero, ob, tk
+                                     wq, eh, dt2, good, f33, rc, wt, jchk, dw, ys, zero, ob
       real(wp), intent(in), optional :: v(2, nnode)
-      real(wp), dimension(NBLOCK, 4) :: vx, vy
       real(wp) :: h(NBLOCK, 1, 6), kh
       integer :: k, a
 
@@ -424,14 +423,7 @@ contains
       end if
       whg = whg + lane_sum(nb, eh)
       call stable_block(1, xe, ye, uxe, uye, o%lambda, o%mu, o%rho, dt2, good)
-      if (o%hgkind == HOURGLASS_PHYSICAL) then
-         tk = huge(1.0_wp)
-         if (present(v)) then
-            call gather_v(NBLOCK, nb, nnode, conn, v, vx, vy)
-            call corner_rate(NBLOCK, uxe, uye, vx, vy, tk)
-         end if
-         call barrier_step(NBLOCK, dt2, ob, tk)
-      end if
+      if (o%hgkind == HOURGLASS_PHYSICAL) call barrier_limit(NBLOCK, nb, nnode, conn, uxe, uye, ob, dt2, v)
       if (o%axi) call ring_step(1, xe, ye, uxe, uye, o%lambda, o%mu, o%rho, dt2)
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
       call scatter(nb, nnode, conn, fx, fy, f)

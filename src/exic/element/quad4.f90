@@ -32,7 +32,7 @@ module exic_element_quad4
    use exic_base_sums, only: lane_sum
    use exic_material_neohookean, only: nh_piola, nh_cauchy, nh_wave_speed2_block
    use exic_material_material, only: HOURGLASS_PHYSICAL
-   use exic_element_q4_barrier, only: corner_barrier, barrier_step, corner_rate, gather_v
+   use exic_element_q4_barrier, only: corner_barrier, barrier_limit
    implicit none
    private
 
@@ -359,9 +359,9 @@ contains
       real(wp), intent(inout) :: f(2, nnode), wint, whg, jmin, dt2min
       integer, intent(inout) :: ebad, emin, efold
       real(wp), intent(in), optional :: v(2, nnode)
-      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy, hx, hy, vx, vy
+      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy, hx, hy
       real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, jac, js, a0, r0, p11, p12, p21, p22, wq, eh, &
-                                     dt2, good, ob, tk
+                                     dt2, good, ob
       integer :: a, k
 
       call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
@@ -391,14 +391,7 @@ contains
       end if
       whg = whg + lane_sum(nb, eh)
       call stable_block(1, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
-      if (phys) then
-         tk = huge(1.0_wp)
-         if (present(v)) then
-            call gather_v(NBLOCK, nb, nnode, conn, v, vx, vy)
-            call corner_rate(NBLOCK, uxe, uye, vx, vy, tk)
-         end if
-         call barrier_step(NBLOCK, dt2, ob, tk)
-      end if
+      if (phys) call barrier_limit(NBLOCK, nb, nnode, conn, uxe, uye, ob, dt2, v)
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
       call scatter(nb, nnode, conn, fx, fy, f)
    end subroutine block_1pt
