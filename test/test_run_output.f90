@@ -174,28 +174,52 @@ contains
       close (u)
    end subroutine read_h5_vector
 
-   !> OUTPut,HDF5,1e-12 with a step of 1e-3: fields once per step (61 output times for 60 steps),
-   !> a warning in <stem>.out, and no loop over the 1e9 intervals each step jumps over.
+   !> OUTPut,HDF5,dt_out far below a step of 1e-3: fields once per step (61 output times for 60
+   !> steps), a warning in <stem>.out, and no loop over the intervals each step jumps over. With
+   !> 1e-308 and 1e-320 (below the spacing of the times, and so small that the number of intervals
+   !> a step jumps over overflows) adding the interval no longer moves the output time: the
+   !> schedule once stood still there for ever (a fuzzed deck). Each run is a child process under
+   !> `timeout 120` (it takes a fraction of a second), so that such a hang fails the check
+   !> instead of stopping the suite.
    subroutine tiny_interval_test(s)
       type(suite_t), intent(inout) :: s
-      character(len=:), allocatable :: msg, deck
+      character(len=*), parameter :: intervals(3) = ['1e-12 ', '1e-308', '1e-320']
+      character(len=:), allocatable :: child, argv0, deck, base, dt_out
+      character(len=4096) :: arg
       real(wp), allocatable :: times(:)
-      integer :: stage
-      deck = bar_deck(60, 1)
-      deck = deck(:index(deck, 'OUTPut,HDF5,') + 11)//'1e-12'//deck(index(deck, 'OUTPut,HDF5,') + 16:)
-      call check(s, index(deck, 'OUTPut,HDF5,1e-12'//nl) > 0, 'deck with OUTPut,HDF5,1e-12 written')
-      call run_deck('tiny_interval', deck, stage, msg)
-      call check(s, stage == 0, 'a run with OUTPut,HDF5,1e-12 and a step of 1e-3 finishes', msg)
-      if (stage /= 0) return
-      call check(s, file_has(run_dir//'/tiny_interval.out', 'fields are written once per step'), &
-                 'the interval below the step is a warning in <stem>.out')
-      if (.not. have_command('h5dump')) then
-         call skip(s, 'output times read back', 'h5dump')
-         return
-      end if
-      call read_h5_vector(run_dir//'/tiny_interval.h5', '/time', times)
-      call check(s, size(times) == 61, 'one output time per step (61 for 60 steps)', &
-                 'output times '//itoa(size(times)))
+      integer :: status, k
+      logical :: exists
+
+      call get_command_argument(0, arg)
+      argv0 = trim(arg)
+      child = argv0(1:index(argv0, '/', back=.true.))//'deck_run_child'
+      inquire (file=child, exist=exists)
+      call check(s, exists, 'child program found next to the test driver', child)
+      if (.not. exists) return
+      do k = 1, size(intervals)
+         dt_out = trim(intervals(k))
+         base = run_dir//'/tiny_interval_'//itoa(k)
+         deck = bar_deck(60, 1)
+         deck = deck(:index(deck, 'OUTPut,HDF5,') + 11)//dt_out//deck(index(deck, 'OUTPut,HDF5,') + 16:)
+         call check(s, index(deck, 'OUTPut,HDF5,'//dt_out//nl) > 0, 'deck with OUTPut,HDF5,'//dt_out//' written')
+         call write_text(base//'.inp', deck)
+         call execute_command_line('rm -f '//base//'.h5 '//base//'.out')
+         call execute_command_line('timeout 120 '//child//' --child '//base//'.inp '//base//' > '//base// &
+                                   '.log 2>&1', exitstat=status)
+         call check(s, status == 0, 'a run with OUTPut,HDF5,'//dt_out//' and a step of 1e-3 finishes', &
+                    'exit status '//itoa(status)//' (124: still running after 120 s)')
+         if (status /= 0) cycle
+         call check(s, file_has(base//'.out', 'fields are written once per step'), &
+                    'OUTPut,HDF5,'//dt_out//': the interval below the step is a warning in <stem>.out')
+         if (.not. have_command('h5dump')) then
+            call skip(s, 'output times read back', 'h5dump')
+            cycle
+         end if
+         call read_h5_vector(base//'.h5', '/time', times)
+         call check(s, size(times) == 61 .and. all(times(2:) > times(:size(times) - 1)), &
+                    'OUTPut,HDF5,'//dt_out//': one output time per step (61 for 60 steps)', &
+                    'output times '//itoa(size(times)))
+      end do
    end subroutine tiny_interval_test
 
    !> The bar at 100 instead of 0.5 folds an element at step 8 (t = 8e-3): the fields of that

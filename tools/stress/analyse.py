@@ -301,20 +301,29 @@ def _letters_in_text(path):
 
 
 def _nonfinite_h5(path):
-    """Datasets of <stem>.h5 (not the /xdmf views) holding a non-finite value, read in slabs."""
+    """Datasets of <stem>.h5 (not the /xdmf views) holding a non-finite value, read in slabs.
+    A file a killed run left (it still has /n_times, doc/fields.md "Complete output times") is
+    read over its complete output times only: the free slots after them hold the fill value NaN
+    by design."""
     import h5py
     bad = []
     try:
         with h5py.File(path, "r") as f:
+            slots = len(f["time"]) if "time" in f else -1
+            n_times = int(f["n_times"][0]) if "n_times" in f else None
+
             def visit(name, obj):
                 if not (isinstance(obj, h5py.Dataset) and obj.dtype.kind == "f" and obj.size):
                     return
                 if obj.ndim == 0:
                     ok = np.isfinite(obj[()])
                 else:
+                    rows = obj.shape[0]
+                    if n_times is not None and rows == slots and not name.startswith("mesh"):
+                        rows = min(rows, max(n_times, 0))
                     per = max(1, obj.size // max(obj.shape[0], 1))
                     step = max(1, (1 << 22) // per)
-                    ok = all(np.isfinite(obj[k:k + step]).all() for k in range(0, obj.shape[0], step))
+                    ok = all(np.isfinite(obj[k:min(k + step, rows)]).all() for k in range(0, rows, step))
                 if not ok:
                     bad.append(f"{os.path.basename(path)}:{name}")
             for g in ("mesh", "fields", "energies", "time"):
@@ -322,7 +331,7 @@ def _nonfinite_h5(path):
                     if isinstance(f[g], h5py.Dataset):
                         visit(g, f[g])
                     else:
-                        f[g].visititems(visit)
+                        f[g].visititems(lambda name, obj, g=g: visit(g + "/" + name, obj))
     except OSError:
         pass
     return bad

@@ -395,7 +395,7 @@ contains
       class(output_t), intent(inout) :: self
       type(stepper_t), intent(in) :: stp
       type(error_t), allocatable, intent(out) :: err
-      real(wp) :: behind
+      real(wp) :: behind, next
       if (.not. self%fields%is_open()) return
       if (stp%st%t < self%field_next*(1.0_wp - TIME_TOL)) return
       if (self%field_dt < stp%st%dt_prev .and. .not. self%warned_interval) then
@@ -406,9 +406,15 @@ contains
             ' is below the time step '//rtoa(stp%st%dt_prev)//': fields are written once per step'
       end if
       behind = (stp%st%t - self%field_next)/self%field_dt
-      if (behind > 64.0_wp) self%field_next = self%field_next + aint(behind - 1.0_wp)*self%field_dt
+      if (behind > 64.0_wp .and. behind <= huge(behind)) &
+         self%field_next = self%field_next + aint(behind - 1.0_wp)*self%field_dt
       do while (self%field_next <= stp%st%t*(1.0_wp + TIME_TOL))
-         self%field_next = self%field_next + self%field_dt
+         next = self%field_next + self%field_dt
+         ! an interval below the spacing of the times (or so small that the skip above overflows)
+         ! no longer moves the schedule: the next output is then the next step
+         if (.not. (next > self%field_next .and. behind <= huge(behind))) &
+            next = nearest(stp%st%t*(1.0_wp + TIME_TOL), 1.0_wp)
+         self%field_next = next
       end do
       ! the rows written so far reach the disk first: after a kill the text files are never
       ! behind the .h5
