@@ -112,6 +112,7 @@ contains
       character(len=*), intent(in) :: field_files !< the .h5 and .xdmf written, or ''
       type(inside_t), intent(in) :: inside        !< the geometric penetration check
       real(wp) :: ts
+      character(len=:), allocatable :: growth
       call files%say('')
       associate (st => stp%st, c => stp%contact)
          if (stp%started) then
@@ -119,8 +120,13 @@ contains
             call files%say('energy: kinetic '//rtoa(st%kinetic)//', strain '// &
                            rtoa(st%strain + st%hourglass)//', external work '//rtoa(st%wext)// &
                            ', contact work '//rtoa(st%wcon)//', initial total '//rtoa(st%total0))
+            if (stp%growth_max >= huge(1.0_wp)/100.0_wp) then
+               growth = 'all of it (energy appeared with none put in)'
+            else
+               growth = rtoa(100.0_wp*max(stp%growth_max, 0.0_wp))//' %'
+            end if
             call files%say('energy guard: largest growth of the physical energy over the energy put in '// &
-                           rtoa(100.0_wp*max(stp%growth_max, 0.0_wp))//' % (at t = '//rtoa(stp%growth_max_t)// &
+                           growth//' (at t = '//rtoa(stp%growth_max_t)// &
                            '); limits: warning '//rtoa(100.0_wp*stp%energy_warn)//' %, stop '// &
                            rtoa(100.0_wp*stp%energy_stop)//' %')
          end if
