@@ -25,6 +25,8 @@ contains
       call tiny_interval_test(s)
       call section(s, 'run output: a failed run keeps the fields of the state it stopped in')
       call failed_run_test(s)
+      call section(s, 'run output: non-finite values are never written as fields')
+      call nonfinite_fields_test(s)
    end subroutine run_run_output_tests
 
    !> A 12 x 2 bar hitting a rigid wall at a fixed step 1e-3: fields every `every` steps,
@@ -255,6 +257,51 @@ contains
       status = run_python('tools/check_xdmf.py '//base//'.xdmf --steps 3 --points 45 --cells 26 --time 2,8e-3')
       call check(s, status == 0, 'meshio.read shows the failing state, the series has the 3 times')
    end subroutine failed_run_test
+
+   !> A penalty of 1e300 (a fuzzed deck) with DT,CFL: the first step's contact forces overflow. The run stops
+   !> naming where the values stopped being finite, and neither the output at t = 0 nor the
+   !> state it stopped in is written with them: the .h5 holds no NaN or infinity. A penalty scale
+   !> whose stiffness overflows outright is an error at its record.
+   subroutine nonfinite_fields_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, deck, base
+      integer :: stage, status, k
+      k = index(bar_deck(200, 5), '  AUTOmatic'//nl) + len('  AUTOmatic'//nl) - 1
+      deck = bar_deck(200, 5)
+      deck = deck(:k)//'    PENAlty,1e300'//nl//deck(k + 1:)
+      ! the stable step of the penalty is 2.5e-151: a fixed DT of 1e-3 is refused at the start
+      call run_deck('penalty_dt', deck, stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'exceeds the stable limit 2.5000000E-151 (contact penalty)') > 0, &
+                 'PENAlty,1e300 with DT,,1e-3: refused, the stable limit with its three-digit exponent', msg)
+      ! the seed's 7.2 with PENAlty,1e300 and DT,CFL (the fuzzed deck): its bars touch at t = 0
+      ! with a round-off penetration, and the first step overflows
+      deck = 'FEAP * * seed 7.2 with a penalty of 1e300'//nl//'  0 0 0 2 2 4'//nl//'PARAmeters'//nl// &
+             '  nsv = 30'//nl//'  cfl = 0.9'//nl//'  tend = 0.3'//nl//'  tout = 0.002'//nl// &
+             'INCLude,../../inputs/paper/common/ex72_mesh.inc'//nl//'CONTact'//nl//'  SURFace,1'//nl// &
+             '    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl//'  PAIR,1,NTOS,1,2'//nl// &
+             '    PENAlty,1e300'//nl//'END CONTact'//nl//'INCLude,../../inputs/paper/common/ex72_batch.inc'
+      call run_deck('nonfinite_fields', deck, stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'not finite') > 0 .and. index(msg, 'step 1') > 0, &
+                 'PENAlty,1e300: the run stops at step 1 on a value that is not finite', msg)
+      base = run_dir//'/nonfinite_fields'
+      call check(s, file_has(base//'.out', 'fields of the state at the failure not written'), &
+                 '<stem>.out says the failing state was not written')
+      call check(s, .not. (file_has(base//'.out', 'NaN') .or. file_has(base//'.out', 'Infinity')), &
+                 'no NaN or Infinity in <stem>.out')
+      if (have_command('h5dump')) then
+         call execute_command_line('h5dump '//base//'.h5 > '//base//'.h5dump 2>&1', exitstat=status)
+         call check(s, status == 0 .and. file_has(base//'.h5dump', 'acceleration') .and. &
+                    .not. (file_has(base//'.h5dump', 'nan') .or. file_has(base//'.h5dump', 'inf')), &
+                    'the .h5 reads back and holds no NaN or infinity')
+      else
+         call skip(s, 'the .h5 holds no NaN', 'h5dump')
+      end if
+      deck = bar_deck(200, 5)
+      deck = deck(:k)//'    PENAlty,SCALe,1e308'//nl//deck(k + 1:)
+      call run_deck('penalty_overflow', deck, stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'penalty_overflow.inp:') > 0 .and. &
+                 index(msg, 'not a finite stiffness') > 0, 'PENAlty,SCALe,1e308: an error naming file:line', msg)
+   end subroutine nonfinite_fields_test
 
    !> The last number on the lines of a file (0 if none).
    real(wp) function last_number(path) result(x)

@@ -45,7 +45,7 @@ module exic_explicit_step
    implicit none
    private
 
-   public :: stepper_t, contact_hook_t
+   public :: stepper_t, contact_hook_t, first_nonfinite
 
    !> Pass-limit warnings of the corrector written to the report; later ones are only counted.
    integer, parameter :: MAX_PASS_WARNINGS = 10
@@ -476,9 +476,13 @@ contains
             end if
             st%dt = self%dt_fixed
             if (self%dt_fixed > self%dt_stable) then
-               write (buf, '(a,es12.5,a,es12.5,a,i0,a)') 'DT = ', self%dt_fixed, &
-                  ' exceeds the stable limit ', self%dt_stable, ' (element ', self%dt_element, &
-                  '); use a smaller DT or DT,CFL,c'
+               if (self%dt_element > 0) then
+                  buf = ' (element '//itoa(self%dt_element)//')'
+               else
+                  buf = ' (contact penalty)'
+               end if
+               buf = 'DT = '//rtoa(self%dt_fixed)//' exceeds the stable limit '//rtoa(self%dt_stable)// &
+                     trim(buf)//'; use a smaller DT or DT,CFL,c'
                if (.not. self%started .or. st%step == 0) then
                   call make_error(err, trim(buf), where)
                else if (.not. self%dt_warned) then
@@ -615,13 +619,13 @@ contains
       end if
    end function contributor
 
-   !> The first node (and an element using it) whose displacement, velocity, acceleration or
-   !> internal force is not finite.
+   !> The first node (and an element using it) whose displacement, velocity, acceleration,
+   !> internal force or contact force is not finite.
    function first_nonfinite(self) result(text)
       type(stepper_t), intent(in) :: self
       character(len=:), allocatable :: text
       integer :: i, k, j
-      character(len=12) :: what
+      character(len=13) :: what
       text = 'no node has a non-finite value (the energy sums overflowed)'
       associate (st => self%st)
          do i = 1, st%nnode
@@ -633,6 +637,8 @@ contains
                what = 'acceleration'
             else if (.not. all(ieee_is_finite(st%fint(:, i)))) then
                what = 'force'
+            else if (.not. all(ieee_is_finite(st%fcon(:, i)))) then
+               what = 'contact force'
             else
                cycle
             end if
