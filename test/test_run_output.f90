@@ -118,18 +118,12 @@ contains
    subroutine killed_run_test(s)
       type(suite_t), intent(inout) :: s
       integer, parameter :: nout = 20
-      character(len=:), allocatable :: child, argv0, script, base
-      character(len=4096) :: arg
+      character(len=:), allocatable :: child, script, base
       real(wp), allocatable :: times(:)
       integer :: status
       logical :: exists
 
-      call get_command_argument(0, arg)
-      argv0 = trim(arg)
-      child = argv0(1:index(argv0, '/', back=.true.))//'deck_run_child'
-      inquire (file=child, exist=exists)
-      call check(s, exists, 'child program found next to the test driver', child)
-      if (.not. exists) return
+      if (.not. child_found(s, child)) return
       base = run_dir//'/killed_run'
       call write_text(base//'.inp', bar_deck(20000000, 2))
       call execute_command_line('rm -f '//base//'.h5 '//base//'.xdmf '//base//'.ready '//base//'.status')
@@ -154,6 +148,17 @@ contains
       call execute_command_line('h5dump -d /fields/displacement '//base//'.h5 > /dev/null 2>&1', exitstat=status)
       call check(s, status == 0, 'the displacement field of every output time reads back')
    end subroutine killed_run_test
+
+   !> The child program deck_run_child next to the test driver (checked: it is there).
+   logical function child_found(s, child) result(exists)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable, intent(out) :: child
+      character(len=4096) :: arg
+      call get_command_argument(0, arg)
+      child = arg(1:index(arg, '/', back=.true.))//'deck_run_child'
+      inquire (file=child, exist=exists)
+      call check(s, exists, 'child program found next to the test driver', child)
+   end function child_found
 
    !> Values of a 1-D dataset, read with h5dump.
    subroutine read_h5_vector(h5, dset, v)
@@ -186,18 +191,11 @@ contains
    subroutine tiny_interval_test(s)
       type(suite_t), intent(inout) :: s
       character(len=*), parameter :: intervals(3) = ['1e-12 ', '1e-308', '1e-320']
-      character(len=:), allocatable :: child, argv0, deck, base, dt_out
-      character(len=4096) :: arg
+      character(len=:), allocatable :: child, deck, base, dt_out
       real(wp), allocatable :: times(:)
       integer :: status, k
-      logical :: exists
 
-      call get_command_argument(0, arg)
-      argv0 = trim(arg)
-      child = argv0(1:index(argv0, '/', back=.true.))//'deck_run_child'
-      inquire (file=child, exist=exists)
-      call check(s, exists, 'child program found next to the test driver', child)
-      if (.not. exists) return
+      if (.not. child_found(s, child)) return
       do k = 1, size(intervals)
          dt_out = trim(intervals(k))
          base = run_dir//'/tiny_interval_'//itoa(k)
