@@ -299,6 +299,14 @@ contains
       call run_deck('penalty_overflow', deck, stage, msg)
       call check(s, stage == 2 .and. index(msg, 'penalty_overflow.inp:') > 0 .and. &
                  index(msg, 'not a finite stiffness') > 0, 'PENAlty,SCALe,1e308: an error naming file:line', msg)
+      deck = bar_deck(200, 5)
+      k = index(deck, 'DENSity 1'//nl) + len('DENSity 1') - 1
+      deck = deck(:k)//'e308'//deck(k + 1:)
+      call run_deck('density_overflow', deck, stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'density_overflow.inp:') > 0 .and. &
+                 index(msg, 'DENSity 1.0000000E+308 gives lumped masses that are not finite') > 0, &
+                 'DENSity 1e308: an error naming the MATErial record (was "total mass Infinity" and a stop '// &
+                 'on the energy sums)', msg)
    end subroutine nonfinite_fields_test
 
    !> The last number on the lines of a file (0 if none).

@@ -490,9 +490,14 @@ contains
          if (nonfinite) then
             ! the failure names where the values appeared; the fields of t = field_last are the last
             deallocate (err)
-            call self%files%say('fields of the state at the failure not written (t = '//rtoa(stp%st%t)// &
-                                '): it holds values that are not finite; the last fields are those of t = '// &
-                                rtoa(self%field_last))
+            if (self%field_last > -huge(1.0_wp)) then
+               call self%files%say('fields of the state at the failure not written (t = '//rtoa(stp%st%t)// &
+                                   '): it holds values that are not finite; the last fields are those of t = '// &
+                                   rtoa(self%field_last))
+            else
+               call self%files%say('fields of the state at the failure not written (t = '//rtoa(stp%st%t)// &
+                                   '): it holds values that are not finite; no fields were written before')
+            end if
          else
             if (allocated(err)) return
             call self%files%say('fields of the state at the failure written (t = '//rtoa(stp%st%t)//')')

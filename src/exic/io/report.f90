@@ -70,7 +70,7 @@ contains
       do k = 1, size(stp%ld%bodies)
          if (stp%ld%bodies(k)%kind == RB_FREE) total = total + stp%ld%bodies(k)%mass
       end do
-      call files%say('total mass '//rtoa(total))
+      call files%say('total mass '//rtoa_result(total))
       call loads_summary(files, stp)
       call files%say(stp%contact%summary())
    end subroutine report_summary
