@@ -582,7 +582,7 @@ def _fuzz(data, w):
       "its title and the error and warning lines (a title \"seed nan\" is the user's text).\n")
     w("| outcome | mutants |")
     w("|---|---:|")
-    for k in ("finished", "stopped", "input", "long run", "crash", "hang"):
+    for k in ("finished", "stopped", "input", "long run", "crash", "hang", "checker"):
         w(f"| {k} | {cls.get(k, 0)} |")
     fl = sum(1 for r in res if r["class"] == "input" and r.get("file_line"))
     nf = sum(1 for r in res if r.get("nonfinite"))
