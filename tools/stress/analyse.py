@@ -387,7 +387,7 @@ def nonfinite_in_outputs(stem):
 
 
 def clean(stem):
-    for ext in (".his", ".ene", ".out", ".h5", ".xdmf"):
+    for ext in (".his", ".ene", ".out", ".h5", ".xdmf", "_series.xdmf"):
         try:
             os.remove(stem + ext)
         except OSError:
