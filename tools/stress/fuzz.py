@@ -184,8 +184,13 @@ def op_mutate_include(rng, lines, ctx):
     i = rng.choice(inc)
     name = _split(lines[i])[0][1]
     src = os.path.join(ctx["dir"], name)
+    # an INCLude that an earlier operator pointed at /dev/zero or a directory is left as it is
+    # (reading /dev/zero once took the generator to the memory limit)
+    if not os.path.isfile(src):
+        return
     try:
-        sub = open(src, errors="replace").read().split("\n")
+        with open(src, errors="replace") as f:
+            sub = f.read(1 << 20).split("\n")
     except OSError:
         return
     for _ in range(rng.randint(1, 3)):
