@@ -140,9 +140,14 @@ contains
       k = self%n + 1
       if (k > capacity(self)) call grow_all(self, max(k, 64))
       self%n = k
-      self%node(:, k) = [s, m1, m2]
-      self%w(:, k) = [1.0_wp, -(1.0_wp - alpha), -alpha]
-      self%nrm(:, k) = nrm
+      self%node(1, k) = s
+      self%node(2, k) = m1
+      self%node(3, k) = m2
+      self%w(1, k) = 1.0_wp
+      self%w(2, k) = -(1.0_wp - alpha)
+      self%w(3, k) = -alpha
+      self%nrm(1, k) = nrm(1)
+      self%nrm(2, k) = nrm(2)
       self%gap(k) = gap
       self%gap_now(k) = gap_now
       self%pair(k) = pair

@@ -96,6 +96,12 @@ contains
       self%ap(1) = 1
       do j = 1, m
          first = nnz + 1
+         ! a column holds at most m entries: room for them before it, none grown within
+         if (m > self%dense_limit .and. nnz + m > cap) then
+            call grow(self%ai, nnz + m)
+            call grow(self%ax, nnz + m)
+            cap = min(size(self%ai), size(self%ax))
+         end if
          do k = 1, 3
             if (w(k, j) == 0.0_wp) cycle
             nd = node(k, j)
@@ -151,11 +157,6 @@ contains
             if (self%mark(i) /= j) then
                self%mark(i) = j
                nnz = nnz + 1
-               if (nnz > cap) then
-                  call grow(self%ai, nnz)
-                  call grow(self%ax, nnz)
-                  cap = min(size(self%ai), size(self%ax))
-               end if
                self%ai(nnz) = i
                self%ax(nnz) = v
             else
