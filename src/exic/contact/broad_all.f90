@@ -468,11 +468,7 @@ contains
       integer :: n, f, k
       f = self%gfirst(g)
       n = self%gfirst(g + 1) - f
-      if (.not. allocated(bw%cand)) then
-         call grow(bw%cand, n, 2)
-      else if (size(bw%cand, 2) < n) then
-         call grow(bw%cand, n, 2)
-      end if
+      call grow(bw%cand, n, 2)
       do k = 1, n
          bw%cand(1, k) = self%gcand(1, f + k - 1)
          bw%cand(2, k) = self%gcand(2, f + k - 1)
