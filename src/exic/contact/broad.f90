@@ -276,7 +276,11 @@ contains
       do k = 1, bw%ncand
          s = bw%cand(1, k)
          node = slaves(s)
-         flat = head(s + 1) - head(s) == 2 .and. all(minv(:, node) == 0.0_wp)
+         ! a movable slave (the common case) is kept at once
+         flat = .false.
+         if (minv(1, node) == 0.0_wp) then
+            if (minv(2, node) == 0.0_wp) flat = head(s + 1) - head(s) == 2
+         end if
          if (flat) then
             do j = 1, 2
                far(j) = sum(seg(:, segs(head(s) + j - 1))) - node
@@ -291,7 +295,9 @@ contains
          end if
          if (flat) cycle
          n = n + 1
-         bw%cand(:, n) = bw%cand(:, k)
+         if (n == k) cycle
+         bw%cand(1, n) = bw%cand(1, k)
+         bw%cand(2, n) = bw%cand(2, k)
       end do
       bw%ncand = n
    end subroutine drop_flat_fixed

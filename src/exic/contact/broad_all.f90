@@ -52,13 +52,17 @@ module exic_contact_broad_all
       integer, allocatable :: lnode_surf(:), lnode_loc(:)    !< surface and index in it of each
       integer, allocatable :: lseg_surf(:), lseg_loc(:)      !< of lnodes, of lseg
       integer, allocatable :: count(:), slot(:), jlist(:)
-      ! kept list of search_kept: the fine candidates within margin + 2 skin at the build, with
-      ! lnodes, lseg and their surface indices of that search
+      ! kept list of search_kept: the groups of the candidates within margin + 2 skin at the
+      ! build, with lnodes, lseg and their surface indices of that search
       logical :: kept = .false.
       real(wp) :: skin = 0.0_wp
       integer :: nkept = 0
       integer :: nkept_nodes = 0, nkept_segs = 0   !< entries of lnodes, lseg of the kept search
-      integer, allocatable :: keep(:, :)      !< (2, nkept) indices into lnodes, lseg
+      integer, allocatable :: keep(:, :)      !< (2, nkept) indices into lnodes, lseg, grouped
+      integer, allocatable :: kloc(:, :)      !< (2, nkept) the same as indices within the surfaces
+      integer :: nkgroup = 0                  !< groups of the kept list
+      integer, allocatable :: kgslave(:), kgmaster(:), kgfirst(:)  !< its groups (CSR into keep)
+      integer, allocatable :: gidx(:, :)      !< (2, :) regroup's placed candidates as lnodes, lseg indices
       real(wp), allocatable :: xw(:, :)       !< (4, size(nodes)) x0, x1 of every node at the build
       integer(i8) :: nbuilds = 0, nkept_steps = 0
    contains
@@ -209,10 +213,11 @@ contains
 
    !> The result of `search` (the same groups, candidates and order, bit for bit) from a list
    !> kept across steps, as `broad_search_kept` does for one pair (doc/contact-detection.md,
-   !> "Kept broad-phase list"): the fine candidates of a search with margin + 2 skin, valid
-   !> while no surface node has moved more than SKIN_USE x skin from its positions at that
-   !> search; each step tests the kept candidates with `search`'s own test and margin and
-   !> regroups them. A candidate of now is in the kept list: its node and segment boxes lie
+   !> "Kept broad-phase list"): the groups of a search with margin + 2 skin, valid while no
+   !> surface node has moved more than SKIN_USE x skin from its positions at that search; each
+   !> step tests the kept candidates, group by group, with `search`'s own test and margin and
+   !> keeps the groups left with candidates (a filter keeps the order within and between the
+   !> groups, so nothing is regrouped). A candidate of now is in the kept list: its node and segment boxes lie
    !> within their boxes of then grown by the skin, so at the build they overlapped with
    !> margin + 2 skin, their surfaces' boxes too, and both passed the `reaches` tests.
    subroutine broad_all_search_kept(self, nnode, x0, x1, margin)
@@ -220,8 +225,8 @@ contains
       integer, intent(in) :: nnode
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
       real(wp), parameter :: SKIN_SHARE = 0.2_wp, SKIN_STEPS = 10.0_wp, SKIN_USE = 0.75_wp
-      real(wp) :: sb(4), mb(4), d, mv, lsum
-      integer :: k, l, m, node, nn
+      real(wp) :: d, mv, lsum
+      integer :: k, node, nn
 
       self%ngroup = 0
       self%ntests = 0
@@ -254,46 +259,110 @@ contains
          self%skin = max(SKIN_SHARE*lsum/real(max(self%seg_first(self%nsurf + 1) - 1, 1), wp), &
                          SKIN_STEPS*mv)
          call broad_all_search(self, nnode, x0, x1, margin + 2.0_wp*self%skin)
-         self%nkept = self%fine%ncand
+         ! keep the groups of that search (pairs within one surface are already out)
+         self%nkgroup = self%ngroup
+         self%nkept = 0
+         if (self%ngroup > 0) self%nkept = self%gfirst(self%ngroup + 1) - 1
          self%nkept_nodes = self%nl
          self%nkept_segs = self%ns
          call grow(self%keep, max(self%nkept, 1), 2)
-         if (self%nkept > 0) self%keep(:, 1:self%nkept) = self%fine%cand(:, 1:self%nkept)
+         call grow(self%kloc, max(self%nkept, 1), 2)
+         call grow(self%kgslave, max(self%nkgroup, 1))
+         call grow(self%kgmaster, max(self%nkgroup, 1))
+         call grow(self%kgfirst, self%nkgroup + 1)
+         if (self%nkept > 0) then
+            self%keep(:, 1:self%nkept) = self%gidx(:, 1:self%nkept)
+            self%kloc(:, 1:self%nkept) = self%gcand(:, 1:self%nkept)
+         end if
+         self%kgfirst(1) = 1
+         if (self%nkgroup > 0) then
+            self%kgslave(1:self%nkgroup) = self%gslave(1:self%nkgroup)
+            self%kgmaster(1:self%nkgroup) = self%gmaster(1:self%nkgroup)
+            self%kgfirst(1:self%nkgroup + 1) = self%gfirst(1:self%nkgroup + 1)
+         end if
          self%kept = .true.
          self%nbuilds = self%nbuilds + 1
       else
          self%nkept_steps = self%nkept_steps + 1
       end if
-      ! the kept candidates that pass the search's own test at this step, in their order: the
-      ! boxes of the kept search's nodes and segments first (the segments' grown by margin, as
-      ! broad_search forms them), then four comparisons per candidate (boxes_overlap with 0)
+      ! the kept candidates that pass the search's own test at this step, group by group in
+      ! their order: the boxes of the kept search's nodes and segments first (the segments'
+      ! grown by margin, as broad_search forms them), then four comparisons per candidate
+      ! (boxes_overlap with 0). Filtering the grouped kept list keeps regroup's order: its
+      ! groups are (slave surface, master surface) ascending, each sorted by slave then segment.
       call grow(self%fine%sbox, max(self%nkept_nodes, 1), 4)
       call grow(self%fine%mbox, max(self%nkept_segs, 1), 4)
-      do l = 1, self%nkept_nodes
-         node = self%lnodes(l)
-         self%fine%sbox(1:2, l) = min(x0(:, node), x1(:, node))
-         self%fine%sbox(3:4, l) = max(x0(:, node), x1(:, node))
-      end do
-      do m = 1, self%nkept_segs
-         self%fine%mbox(1:2, m) = min(x0(:, self%lseg(1, m)), x1(:, self%lseg(1, m)), &
-                                      x0(:, self%lseg(2, m)), x1(:, self%lseg(2, m))) - margin
-         self%fine%mbox(3:4, m) = max(x0(:, self%lseg(1, m)), x1(:, self%lseg(1, m)), &
-                                      x0(:, self%lseg(2, m)), x1(:, self%lseg(2, m))) + margin
-      end do
-      self%ngroup = 0
-      self%fine%ncand = 0
-      do k = 1, self%nkept
-         l = self%keep(1, k)
-         m = self%keep(2, k)
-         if (self%fine%mbox(1, m) <= self%fine%sbox(3, l) .and. self%fine%sbox(1, l) <= self%fine%mbox(3, m) .and. &
-             self%fine%mbox(2, m) <= self%fine%sbox(4, l) .and. self%fine%sbox(2, l) <= self%fine%mbox(4, m)) then
-            self%fine%ncand = self%fine%ncand + 1
-            self%fine%cand(:, self%fine%ncand) = self%keep(:, k)
-         end if
-      end do
+      call node_boxes(nnode, x0, x1, self%nkept_nodes, self%lnodes, self%fine%sbox)
+      call segment_boxes(nnode, x0, x1, self%nkept_segs, self%lseg, margin, self%fine%mbox)
+      call grow(self%gcand, max(self%nkept, 1), 2)
+      call grow(self%gslave, max(self%nkgroup, 1))
+      call grow(self%gmaster, max(self%nkgroup, 1))
+      call grow(self%gfirst, self%nkgroup + 1)
+      call filter_kept(self%nkgroup, self%kgslave, self%kgmaster, self%kgfirst, self%keep, self%kloc, &
+                       self%nkept_nodes, self%fine%sbox, self%nkept_segs, self%fine%mbox, &
+                       self%ngroup, self%gslave, self%gmaster, self%gfirst, self%gcand)
       self%ntests = self%nkept
-      call regroup(self, self%nsurf)
    end subroutine broad_all_search_kept
+
+   !> Swept boxes (xmin, ymin, xmax, ymax) of nodes(1:n) over x0 -> x1, as broad_search forms them.
+   pure subroutine node_boxes(nnode, x0, x1, n, nodes, box)
+      integer, intent(in) :: nnode, n, nodes(n)
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode)
+      real(wp), intent(inout) :: box(4, *)
+      integer :: l, node
+      do l = 1, n
+         node = nodes(l)
+         box(1:2, l) = min(x0(:, node), x1(:, node))
+         box(3:4, l) = max(x0(:, node), x1(:, node))
+      end do
+   end subroutine node_boxes
+
+   !> Swept boxes of segments seg(2, 1:n) over x0 -> x1 grown by margin, as broad_search forms them.
+   pure subroutine segment_boxes(nnode, x0, x1, n, seg, margin, box)
+      integer, intent(in) :: nnode, n, seg(2, n)
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+      real(wp), intent(inout) :: box(4, *)
+      integer :: m
+      do m = 1, n
+         box(1:2, m) = min(x0(:, seg(1, m)), x1(:, seg(1, m)), x0(:, seg(2, m)), x1(:, seg(2, m))) - margin
+         box(3:4, m) = max(x0(:, seg(1, m)), x1(:, seg(1, m)), x0(:, seg(2, m)), x1(:, seg(2, m))) + margin
+      end do
+   end subroutine segment_boxes
+
+   !> The kept groups' candidates (keep: node and segment box indices; kloc: what a group
+   !> holds) whose boxes overlap (sbox against mbox, the margin already in mbox), in their
+   !> order; the groups left with candidates, in their order, into (ngroup, gslave, gmaster,
+   !> gfirst, gcand).
+   pure subroutine filter_kept(nkg, kgslave, kgmaster, kgfirst, keep, kloc, nsb, sbox, nmb, mbox, &
+                               ngroup, gslave, gmaster, gfirst, gcand)
+      integer, intent(in) :: nkg, kgslave(*), kgmaster(*), kgfirst(nkg + 1), keep(2, *), kloc(2, *)
+      integer, intent(in) :: nsb, nmb
+      real(wp), intent(in) :: sbox(4, nsb), mbox(4, nmb)
+      integer, intent(out) :: ngroup
+      integer, intent(inout) :: gslave(*), gmaster(*), gfirst(*), gcand(2, *)
+      integer :: g, k, l, m, nc, c0
+      nc = 0
+      ngroup = 0
+      gfirst(1) = 1
+      do g = 1, nkg
+         c0 = nc
+         do k = kgfirst(g), kgfirst(g + 1) - 1
+            l = keep(1, k)
+            m = keep(2, k)
+            if (mbox(1, m) <= sbox(3, l) .and. sbox(1, l) <= mbox(3, m) .and. &
+                mbox(2, m) <= sbox(4, l) .and. sbox(2, l) <= mbox(4, m)) then
+               nc = nc + 1
+               gcand(1, nc) = kloc(1, k)
+               gcand(2, nc) = kloc(2, k)
+            end if
+         end do
+         if (nc == c0) cycle
+         ngroup = ngroup + 1
+         gslave(ngroup) = kgslave(g)
+         gmaster(ngroup) = kgmaster(g)
+         gfirst(ngroup + 1) = nc + 1
+      end do
+   end subroutine filter_kept
 
    !> True when `box` meets the box of a partner of surface r grown by `grow_by` on every side.
    pure logical function reaches(self, r, box, grow_by) result(yes)
@@ -321,7 +390,11 @@ contains
       call grow(self%slot, n)
       call grow(self%jlist, n)
       call grow(self%gcand, self%fine%ncand, 2)
-      call grow(self%gfirst, 1)
+      call grow(self%gidx, self%fine%ncand, 2)
+      ! at most one group per candidate
+      call grow(self%gslave, self%fine%ncand)
+      call grow(self%gmaster, self%fine%ncand)
+      call grow(self%gfirst, self%fine%ncand + 1)
       self%gfirst(1) = 1
       ntot = 0
       c0 = 1
@@ -360,9 +433,6 @@ contains
             self%jlist(t + 1) = v
          end do
          ! one group per master surface; a stable placement keeps (slave, segment) order
-         call grow(self%gslave, self%ngroup + nj)
-         call grow(self%gmaster, self%ngroup + nj)
-         call grow(self%gfirst, self%ngroup + nj + 1)
          p = ntot + 1
          do q = 1, nj
             j = self%jlist(q)
@@ -380,6 +450,8 @@ contains
             g = self%slot(j)
             self%gcand(1, g) = self%lnode_loc(l)
             self%gcand(2, g) = self%lseg_loc(m)
+            self%gidx(1, g) = l
+            self%gidx(2, g) = m
             self%slot(j) = g + 1
          end do
          ntot = p - 1
@@ -393,11 +465,14 @@ contains
       class(broad_all_t), intent(in) :: self
       integer, intent(in) :: g
       type(broad_t), intent(inout) :: bw
-      integer :: n, f
+      integer :: n, f, k
       f = self%gfirst(g)
       n = self%gfirst(g + 1) - f
       call grow(bw%cand, n, 2)
-      bw%cand(:, 1:n) = self%gcand(:, f:f + n - 1)
+      do k = 1, n
+         bw%cand(1, k) = self%gcand(1, f + k - 1)
+         bw%cand(2, k) = self%gcand(2, f + k - 1)
+      end do
       bw%ncand = n
       bw%ntests = 0
    end subroutine broad_all_take

@@ -99,6 +99,17 @@ contains
       call grow_all(self, m)
    end subroutine constraints_reserve
 
+   !> Candidates every array of `cs` can hold (those of friction only when `friction`).
+   pure integer function capacity(cs) result(m)
+      type(constraints_t), intent(in) :: cs
+      m = 0
+      if (.not. allocated(cs%gap)) return
+      m = size(cs%gap)
+      if (.not. cs%friction) return
+      m = 0
+      if (allocated(cs%mu)) m = min(size(cs%gap), size(cs%mu))
+   end function capacity
+
    !> Every array of `cs` holds at least m candidates, keeping its contents.
    subroutine grow_all(cs, m)
       type(constraints_t), intent(inout) :: cs
@@ -127,11 +138,16 @@ contains
       real(wp), intent(in), optional :: mu
       integer :: k
       k = self%n + 1
-      call grow_all(self, max(k, 64))
+      if (k > capacity(self)) call grow_all(self, max(k, 64))
       self%n = k
-      self%node(:, k) = [s, m1, m2]
-      self%w(:, k) = [1.0_wp, -(1.0_wp - alpha), -alpha]
-      self%nrm(:, k) = nrm
+      self%node(1, k) = s
+      self%node(2, k) = m1
+      self%node(3, k) = m2
+      self%w(1, k) = 1.0_wp
+      self%w(2, k) = -(1.0_wp - alpha)
+      self%w(3, k) = -alpha
+      self%nrm(1, k) = nrm(1)
+      self%nrm(2, k) = nrm(2)
       self%gap(k) = gap
       self%gap_now(k) = gap_now
       self%pair(k) = pair

@@ -75,7 +75,15 @@ contains
    pure subroutine gap_coefficients(xs0, xs1, xa0, xa1, xb0, xb1, a, b, c, g1)
       real(wp), intent(in) :: xs0(2), xs1(2), xa0(2), xa1(2), xb0(2), xb1(2)
       real(wp), intent(out) :: a, b, c, g1
-      real(wp) :: ni(2), nf(2), dn(2), di(2), df(2), e(2)
+      real(wp) :: ni(2), nf(2)
+      call coefficients_normals(xs0, xs1, xa0, xa1, xb0, xb1, a, b, c, g1, ni, nf)
+   end subroutine gap_coefficients
+
+   !> gap_coefficients, and the unit normals n_i, n_f of the segment at both ends of the step.
+   pure subroutine coefficients_normals(xs0, xs1, xa0, xa1, xb0, xb1, a, b, c, g1, ni, nf)
+      real(wp), intent(in) :: xs0(2), xs1(2), xa0(2), xa1(2), xb0(2), xb1(2)
+      real(wp), intent(out) :: a, b, c, g1, ni(2), nf(2)
+      real(wp) :: dn(2), di(2), df(2), e(2)
       ni = segment_normal(xa0, xb0)
       nf = segment_normal(xa1, xb1)
       dn = nf - ni
@@ -86,7 +94,7 @@ contains
       b = dot_product(e, ni) + dot_product(di, dn)
       c = dot_product(di, ni)
       g1 = dot_product(df, nf)
-   end subroutine gap_coefficients
+   end subroutine coefficients_normals
 
    !> Smallest tau in [0, 1] at which g = a tau^2 + b tau + c, positive at tau = 0 (c > 0),
    !> becomes zero; g1 is g(1) evaluated directly. Uses the cancellation-free form
@@ -149,7 +157,7 @@ contains
       inside = .false.
       if (.not. (tt > 0.0_wp)) return
       alpha = dot_product(p - xa, t)/tt
-      tol = alpha_tolerance(sqrt(tt), maxval(abs([p, xa, xb])))
+      tol = alpha_tolerance(sqrt(tt), max(abs(p(1)), abs(p(2)), abs(xa(1)), abs(xa(2)), abs(xb(1)), abs(xb(2))))
       inside = alpha >= -tol .and. alpha <= 1.0_wp + tol
    end subroutine project
 
@@ -159,15 +167,17 @@ contains
    !> Gap in [-depth, 0] at tau = 0 (touching, or slightly behind after an earlier step)
    !> and g(1) <= 0: contact at tau = 0. Deeper at the start, or moving out: no contact.
    !> The contact point alpha (eq. 6.6) is the projection at tau_c and must lie within
-   !> [-tol, 1 + tol].
-   pure subroutine swept_pair(xs0, xs1, xa0, xa1, xb0, xb1, depth, hit, tau, alpha)
+   !> [-tol, 1 + tol]. `nf`: the segment's unit normal at the end of the step (x1).
+   pure subroutine swept_pair(xs0, xs1, xa0, xa1, xb0, xb1, depth, hit, tau, alpha, nf)
       real(wp), intent(in) :: xs0(2), xs1(2), xa0(2), xa1(2), xb0(2), xb1(2), depth
       logical, intent(out) :: hit
       real(wp), intent(out) :: tau, alpha
-      real(wp) :: a, b, c, g1
+      real(wp), intent(out), optional :: nf(2)
+      real(wp) :: a, b, c, g1, ni(2), nend(2)
 
       alpha = 0.0_wp
-      call gap_coefficients(xs0, xs1, xa0, xa1, xb0, xb1, a, b, c, g1)
+      call coefficients_normals(xs0, xs1, xa0, xa1, xb0, xb1, a, b, c, g1, ni, nend)
+      if (present(nf)) nf = nend
       if (c > 0.0_wp) then
          call first_crossing(a, b, c, g1, hit, tau)
          if (.not. hit) return
@@ -175,7 +185,7 @@ contains
          tau = 0.0_wp
          hit = .false.
          if (c < -depth .or. g1 > 0.0_wp) return
-         if (all(segment_normal(xa0, xb0) == 0.0_wp)) return
+         if (all(ni == 0.0_wp)) return
       end if
       call project(xs0 + tau*(xs1 - xs0), xa0 + tau*(xa1 - xa0), xb0 + tau*(xb1 - xb0), &
                    alpha, hit)
@@ -252,12 +262,14 @@ contains
             if (mode == DETECT_STATIC) then
                call static_pair(x1(:, node), x1(:, ma), x1(:, mb), depth, hit, alpha, gap)
                tau = 1.0_wp
+               if (.not. hit) cycle
+               nf = segment_normal(x1(:, ma), x1(:, mb))
             else
+               ! nf: the normal of the segment at x1, as the swept test formed it
                call swept_pair(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
-                               x1(:, mb), depth, hit, tau, alpha)
+                               x1(:, mb), depth, hit, tau, alpha, nf)
+               if (.not. hit) cycle
             end if
-            if (.not. hit) cycle
-            nf = segment_normal(x1(:, ma), x1(:, mb))
             if (.not. faces(snrm(:, s), nf, facing)) cycle
             gap = dot_product(x1(:, node) - ((1.0_wp - alpha)*x1(:, ma) + alpha*x1(:, mb)), nf)
             key = [min(ma, mb), max(ma, mb)]

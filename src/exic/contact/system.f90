@@ -73,7 +73,7 @@ contains
       type(rigid_dofs_t), intent(in), optional :: rb
       logical, intent(in), optional :: tangent
       type(massless_face_t), intent(in), optional :: face
-      integer :: j, k, nd, q, i, nnz, first, l
+      integer :: j, k, nd, q, i, nnz, first, l, cap
       real(wp) :: v
       logical :: along_t
 
@@ -91,9 +91,17 @@ contains
       call grow(self%mark, m)
       self%mark(1:m) = 0
       nnz = 0
+      cap = 0
+      if (allocated(self%ai) .and. allocated(self%ax)) cap = min(size(self%ai), size(self%ax))
       self%ap(1) = 1
       do j = 1, m
          first = nnz + 1
+         ! a column holds at most m entries: room for them before it, none grown within
+         if (m > self%dense_limit .and. nnz + m > cap) then
+            call grow(self%ai, nnz + m)
+            call grow(self%ax, nnz + m)
+            cap = min(size(self%ai), size(self%ax))
+         end if
          do k = 1, 3
             if (w(k, j) == 0.0_wp) cycle
             nd = node(k, j)
@@ -149,8 +157,6 @@ contains
             if (self%mark(i) /= j) then
                self%mark(i) = j
                nnz = nnz + 1
-               call grow(self%ai, nnz)
-               call grow(self%ax, nnz)
                self%ai(nnz) = i
                self%ax(nnz) = v
             else
