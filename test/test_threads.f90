@@ -1,8 +1,9 @@
 !> Results do not depend on the number of threads: a deck with two element sets (2x2 and one
 !> point), more elements and nodes than the thresholds of the threaded loops, a contact pair
 !> and field output runs with one thread and with two (and three); its histories and energies
-!> must agree byte for byte, its HDF5 datasets value for value (h5dump). Without OpenMP the
-!> check is skipped.
+!> must agree byte for byte, its HDF5 datasets value for value (h5dump). The same deck without
+!> the contact pair (the step's two sweeps over the nodes) too. Without OpenMP the check is
+!> skipped.
 module test_threads
    use deck_runner, only: run_dir, run_deck
    use testing, only: suite_t, check, section, skip, have_command
@@ -23,9 +24,6 @@ contains
    !> Run every test of the suite.
    subroutine run_threads_tests(s)
       type(suite_t), intent(inout) :: s
-      integer :: nmax, th, stage
-      character(len=:), allocatable :: msg, deck
-      character(len=1) :: c
       logical :: openmp
 
       call section(s, 'threads: one, two and three threads give the same results')
@@ -37,35 +35,49 @@ contains
       end if
       call check(s, nx*ny >= PAR_MIN_ELEMENTS .and. 2*(nx + 1)*(ny + 1) >= PAR_MIN_NODES, &
                  'the deck is large enough for the threaded element and nodal loops')
+      ! with contact, and without (the step's two sweeps over the nodes, central.f90)
+      call same_for_threads(s, 'threads', threads_deck(.true.))
+      call same_for_threads(s, 'plain', threads_deck(.false.))
+   end subroutine run_threads_tests
+
+   !> Run `deck` as <stem>_1, <stem>_2, <stem>_3 with 1, 2, 3 threads; the histories and energies
+   !> of 2 and 3 threads must equal those of one byte for byte, every HDF5 dataset value for value.
+   subroutine same_for_threads(s, stem, deck)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: stem, deck
+      integer :: nmax, th, stage
+      character(len=:), allocatable :: msg
+      character(len=1) :: c
       nmax = 1
       !$ nmax = omp_get_max_threads()
-      deck = threads_deck()
       do th = 1, 3
          !$ call omp_set_num_threads(th)
          write (c, '(i1)') th
-         call run_deck('threads_'//c, deck, stage, msg)
-         call check(s, stage == 0, 'the deck runs with '//c//' thread(s)', msg)
+         call run_deck(stem//'_'//c, deck, stage, msg)
+         call check(s, stage == 0, stem//': the deck runs with '//c//' thread(s)', msg)
       end do
       !$ call omp_set_num_threads(nmax)
       do th = 2, 3
          write (c, '(i1)') th
-         call check(s, same_bytes(run_dir//'/threads_1.his', run_dir//'/threads_'//c//'.his'), &
-                    'histories (.his) with '//c//' threads equal those with one, byte for byte')
-         call check(s, same_bytes(run_dir//'/threads_1.ene', run_dir//'/threads_'//c//'.ene'), &
-                    'energies (.ene) with '//c//' threads equal those with one, byte for byte')
+         call check(s, same_bytes(run_dir//'/'//stem//'_1.his', run_dir//'/'//stem//'_'//c//'.his'), &
+                    stem//': histories (.his) with '//c//' threads equal those with one, byte for byte')
+         call check(s, same_bytes(run_dir//'/'//stem//'_1.ene', run_dir//'/'//stem//'_'//c//'.ene'), &
+                    stem//': energies (.ene) with '//c//' threads equal those with one, byte for byte')
          if (have_command('h5dump')) then
-            call check(s, same_dump(run_dir//'/threads_1.h5', run_dir//'/threads_'//c//'.h5'), &
-                       'every HDF5 dataset with '//c//' threads equals that with one')
+            call check(s, same_dump(run_dir//'/'//stem//'_1.h5', run_dir//'/'//stem//'_'//c//'.h5'), &
+                       stem//': every HDF5 dataset with '//c//' threads equals that with one')
          else
-            call skip(s, 'HDF5 datasets with '//c//' threads', 'h5dump')
+            call skip(s, stem//': HDF5 datasets with '//c//' threads', 'h5dump')
          end if
       end do
-   end subroutine run_threads_tests
+   end subroutine same_for_threads
 
    !> Two blocks 6 x 4 (nx x ny elements each), 2x2 below and one point above, 0.05 apart: the
    !> lower one deforming everywhere (initial velocity linear along each row, varying from row
-   !> to row), the upper one falling onto it (NTOS contact); fields every 0.05.
-   function threads_deck() result(deck)
+   !> to row), the upper one falling onto it (NTOS contact, when `contact`; else through it,
+   !> two bodies that never meet); fields every 0.05.
+   function threads_deck(contact) result(deck)
+      logical, intent(in) :: contact
       character(len=:), allocatable :: deck
       character(len=80) :: line
       integer :: j, m
@@ -90,12 +102,14 @@ contains
          write (line, '(2x,i0,a,f9.6)') (j + 1)*(nx + 1), ',0,-0.3,', 0.3*sin(6.2831853*(j + 0.5)/16.0)
          deck = deck//trim(line)//nl
       end do
-      deck = deck//'  REGIon,2,0,-0.5'//nl//nl// &
-             'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
-             '  PAIR,1,NTOS,2,1'//nl//'END CONTact'//nl//nl// &
-             'END'//nl//'BATCh'//nl//'  TRANsient,EXPLicit'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,5'//nl// &
+      deck = deck//'  REGIon,2,0,-0.5'//nl//nl
+      if (contact) deck = deck//'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl// &
+                          '    REGIon,2'//nl//'  PAIR,1,NTOS,2,1'//nl//'END CONTact'//nl//nl
+      deck = deck//'END'//nl//'BATCh'//nl//'  TRANsient,EXPLicit'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,5'//nl// &
              '  OUTPut,HDF5,0.05'//nl//'  LOOP,,200'//nl//'    TIME'//nl//'    FORM,EXPLicit'//nl// &
-             '  NEXT'//nl//'END'//nl//'  disp,,1,0,0'//nl//'  velo,,2,6,4'//nl//'  cont,1,1'//nl//nl//'STOP'
+             '  NEXT'//nl//'END'//nl//'  disp,,1,0,0'//nl//'  velo,,2,6,4'//nl
+      if (contact) deck = deck//'  cont,1,1'//nl
+      deck = deck//nl//'STOP'
    end function threads_deck
 
    !> The two files exist and have the same bytes.

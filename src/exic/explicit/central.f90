@@ -22,7 +22,7 @@ module exic_explicit_central
    private
 
    public :: cd_displacement, cd_predictor, cd_velocity, positions, cd_zero, cd_kinetic
-   public :: cd_kinetic_power
+   public :: cd_kinetic_power, cd_displacement_plain, cd_update_plain
    public :: positions_at, predictor_velocity_at
 
    !> Nodes per chunk (fixed: the order of the additions of a sum must not depend on threads).
@@ -192,6 +192,93 @@ contains
       sc = lane_sum(m, p)
    end subroutine work_range
 
+   !> Step 1 of a step without contact, loads or masses per dof: u = u + (dt v + dt^2/2 a), the
+   !> displacement increment of cd_displacement (the same operations) without storing it or a:
+   !> cd_update_plain forms both again from v(n) and a(n), which it reads anyway.
+   subroutine cd_displacement_plain(n, dt, v, a, u)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: dt
+      real(wp), intent(in) :: v(2, n), a(2, n)
+      real(wp), intent(inout) :: u(2, n)
+      integer :: c, i0, m
+      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) shared(n, dt, v, a, u) &
+      !$omp private(c, i0, m) schedule(dynamic)
+      do c = 1, (n + CHUNK - 1)/CHUNK
+         i0 = (c - 1)*CHUNK + 1
+         m = min(CHUNK, n - i0 + 1)
+         call displacement_plain_range(2*m, dt, v(1, i0), a(1, i0), u(1, i0))
+      end do
+      !$omp end parallel do
+   end subroutine cd_displacement_plain
+
+   !> cd_displacement_plain on m values.
+   pure subroutine displacement_plain_range(m, dt, v, a, u)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: dt, v(m), a(m)
+      real(wp), intent(inout) :: u(m)
+      real(wp) :: h
+      integer :: j
+      h = 0.5_wp*dt*dt
+      do j = 1, m
+         u(j) = u(j) + (dt*v(j) + h*a(j))
+      end do
+   end subroutine displacement_plain_range
+
+   !> Steps 4, 6 and 7 of a step without contact, loads or masses per dof (after
+   !> cd_displacement_plain, with its dt), in one sweep over the nodes: a(n+1) = M^-1 (F - P)
+   !> (cd_predictor), v = v + dt/2 (a(n) + a(n+1)) and the work F . du of the external forces
+   !> with du = dt v(n) + dt^2/2 a(n) (cd_displacement, cd_velocity), kinetic energy and momentum
+   !> (cd_kinetic). a holds a(n) on entry, a(n+1) on return. The same operations in the same
+   !> order as those passes, and the sums per chunk and the chunks in order as there: the same
+   !> bits, with 3 of the 10 nodal arrays those passes stream (du, a_old and a's second reading)
+   !> neither stored nor read.
+   subroutine cd_update_plain(n, dt, minv, fext, fint, mass, a, v, wext, kinetic, momentum)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: dt
+      real(wp), intent(in), dimension(2, n) :: minv, fext, fint
+      real(wp), intent(in) :: mass(n)
+      real(wp), intent(inout) :: a(2, n), v(2, n), wext
+      real(wp), intent(out) :: kinetic, momentum(2)
+      real(wp), dimension((n + CHUNK - 1)/CHUNK) :: pe, pk, px, py
+      real(wp) :: se
+      integer :: c, i0, m
+      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) &
+      !$omp shared(n, dt, minv, fext, fint, mass, a, v, pe, pk, px, py) private(c, i0, m) schedule(dynamic)
+      do c = 1, (n + CHUNK - 1)/CHUNK
+         i0 = (c - 1)*CHUNK + 1
+         m = min(CHUNK, n - i0 + 1)
+         call update_plain_range(2*m, dt, minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), v(1, i0), pe(c))
+         call kinetic_range(m, mass(i0), v(1, i0), pk(c), px(c), py(c))
+      end do
+      !$omp end parallel do
+      se = 0.0_wp
+      do c = 1, (n + CHUNK - 1)/CHUNK
+         se = se + pe(c)
+      end do
+      wext = wext + se
+      call kinetic_total((n + CHUNK - 1)/CHUNK, pk, px, py, kinetic, momentum)
+   end subroutine cd_update_plain
+
+   !> cd_update_plain's velocity update on m values: displacement_range's du, acceleration_range's
+   !> a and velocity_range's v and F . du, in one loop.
+   pure subroutine update_plain_range(m, dt, minv, fext, fint, a, v, se)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: dt, minv(m), fext(m), fint(m)
+      real(wp), intent(inout) :: a(m), v(m)
+      real(wp), intent(out) :: se
+      real(wp) :: h, h2, an, p(2*CHUNK)
+      integer :: j
+      h = 0.5_wp*dt
+      h2 = 0.5_wp*dt*dt
+      do j = 1, m
+         an = minv(j)*(fext(j) - fint(j))
+         p(j) = fext(j)*(dt*v(j) + h2*a(j))
+         v(j) = v(j) + h*(a(j) + an)
+         a(j) = an
+      end do
+      se = lane_sum(m, p)
+   end subroutine update_plain_range
+
    !> Kinetic energy 1/2 sum m |v|^2 and linear momentum sum m v of n nodes, summed per chunk
    !> of CHUNK nodes and the chunks in order.
    subroutine cd_kinetic(n, mass, v, kinetic, momentum, mass_dof)
@@ -200,7 +287,6 @@ contains
       real(wp), intent(out) :: kinetic, momentum(2)
       real(wp), intent(in), optional :: mass_dof(2, n)
       real(wp), dimension((n + CHUNK - 1)/CHUNK) :: pk, px, py
-      real(wp) :: k, p1, p2
       integer :: c, i0, m
       if (present(mass_dof)) then
          ! masses per dof (massless contact faces along their normals, doc/impact.md, 3.1)
@@ -219,17 +305,27 @@ contains
       end do
       !$omp end parallel do
       end if
+      call kinetic_total((n + CHUNK - 1)/CHUNK, pk, px, py, kinetic, momentum)
+   end subroutine cd_kinetic
+
+   !> Kinetic energy and momentum from the sums of nc chunks (kinetic_range), added in chunk order.
+   pure subroutine kinetic_total(nc, pk, px, py, kinetic, momentum)
+      integer, intent(in) :: nc
+      real(wp), intent(in), dimension(nc) :: pk, px, py
+      real(wp), intent(out) :: kinetic, momentum(2)
+      real(wp) :: k, p1, p2
+      integer :: c
       k = 0.0_wp
       p1 = 0.0_wp
       p2 = 0.0_wp
-      do c = 1, (n + CHUNK - 1)/CHUNK
+      do c = 1, nc
          k = k + pk(c)
          p1 = p1 + px(c)
          p2 = p2 + py(c)
       end do
       kinetic = 0.5_wp*k
       momentum = [p1, p2]
-   end subroutine cd_kinetic
+   end subroutine kinetic_total
 
    !> sum m |v|^2 and sum m v over m nodes (lane_sum).
    pure subroutine kinetic_range(m, mass, v, k, p1, p2)

@@ -37,8 +37,8 @@ module exic_explicit_step
    use exic_explicit_state, only: state_t, element_set_t
    use exic_explicit_assembly, only: assembly_init, internal_forces, stable_step, kinetic_energy, &
                                      kinetic_correction, book_step_change
-   use exic_explicit_central, only: cd_displacement, cd_predictor, cd_velocity, positions, positions_at, &
-                                    predictor_velocity_at
+   use exic_explicit_central, only: cd_displacement, cd_predictor, cd_velocity, cd_displacement_plain, &
+                                    cd_update_plain, positions, positions_at, predictor_velocity_at
    use exic_explicit_loads, only: load_spec_t
    use exic_explicit_loading, only: loading_t
    use exic_explicit_face, only: face_setup, face_refresh
@@ -225,15 +225,20 @@ contains
       class(stepper_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
       real(wp) :: t0, t1
-      logical :: contact_on, work_con
+      logical :: contact_on, work_con, plain
 
       t0 = wall_time()
       contact_on = self%has_contact()
+      plain = .not. (contact_on .or. self%ld%active .or. allocated(self%st%mass_dof))
       associate (st => self%st)
          ! a step set between steps (BATCh DT) enters the kinetic correction (eq. E.4)
          call book_step_change(st)
          ! 1. x(n+1) = x(n) + dt(n) v(n) + dt(n)^2/2 a(n)
-         call cd_displacement(st%nnode, st%dt, st%v, st%a, st%u, self%du, self%a_old)
+         if (plain) then
+            call cd_displacement_plain(st%nnode, st%dt, st%v, st%a, st%u)
+         else
+            call cd_displacement(st%nnode, st%dt, st%v, st%a, st%u, self%du, self%a_old)
+         end if
          st%t = st%t + st%dt
          st%dt_prev = st%dt
          st%step = st%step + 1
@@ -248,33 +253,43 @@ contains
          self%time_forces = self%time_forces + (wall_time() - t1)
          if (allocated(err)) return
          if (self%ld%active) call self%ld%forces(st, self%x, .false.)
-         ! 4. predictor, eq. 4.3-4.4 (v~ only when there is contact to search; exic's own
-         ! contact without loads reads it at its surface nodes only)
-         call cd_predictor(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%v, self%a_old, st%a, &
-                           contact_on .and. .not. surface_only(self), self%vt)
-         if (surface_only(self)) call predictor_velocity_at(st%nnode, st%dt_prev, st%v, self%a_old, st%a, &
-                                                            self%contact%cnodes, self%vt)
-         if (self%ld%active) call self%ld%predict(st, self%vt, 0.5_wp*st%dt_prev)
-         ! 5. contact corrector, eq. 4.5-4.7
-         call correct(self, self%vt, err)
-         if (allocated(err)) return
-         if (self%ld%active) call self%ld%corrected(st)
-         ! 6. v(n+1) and the work of external and contact forces over the step (trapezoid rule);
-         ! without a contact force at t(n) and t(n+1) the contact work's sum is +0 term by term
-         ! and is skipped (the same bits)
-         work_con = contact_on .and. .not. (self%fcon_old_clean .and. fcon_clean(self))
-         if (self%ld%varying) then
-            ! loads that vary in time: the trapezoid rule 1/2 (F(n) + F(n+1)) . du
-            call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, self%ld%favg, self%du, work_con, &
-                             self%fcon_old, st%fcon, st%minv, st%v, st%wext, st%wcon)
+         if (plain) then
+            ! no contact, loads or masses per dof: steps 4, 6 and 7 in one sweep over the nodes,
+            ! which forms du and reads a(n) where the other steps store them (the same operations
+            ! in the same order); the corrector has nothing to do
+            call correct(self, self%vt, err)
+            if (allocated(err)) return
+            call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%mass, st%a, st%v, &
+                                 st%wext, st%kinetic, st%momentum)
          else
-            call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, st%fext, self%du, work_con, &
-                             self%fcon_old, st%fcon, st%minv, st%v, st%wext, st%wcon)
+            ! 4. predictor, eq. 4.3-4.4 (v~ only when there is contact to search; exic's own
+            ! contact without loads reads it at its surface nodes only)
+            call cd_predictor(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%v, self%a_old, st%a, &
+                              contact_on .and. .not. surface_only(self), self%vt)
+            if (surface_only(self)) call predictor_velocity_at(st%nnode, st%dt_prev, st%v, self%a_old, st%a, &
+                                                               self%contact%cnodes, self%vt)
+            if (self%ld%active) call self%ld%predict(st, self%vt, 0.5_wp*st%dt_prev)
+            ! 5. contact corrector, eq. 4.5-4.7
+            call correct(self, self%vt, err)
+            if (allocated(err)) return
+            if (self%ld%active) call self%ld%corrected(st)
+            ! 6. v(n+1) and the work of external and contact forces over the step (trapezoid rule);
+            ! without a contact force at t(n) and t(n+1) the contact work's sum is +0 term by term
+            ! and is skipped (the same bits)
+            work_con = contact_on .and. .not. (self%fcon_old_clean .and. fcon_clean(self))
+            if (self%ld%varying) then
+               ! loads that vary in time: the trapezoid rule 1/2 (F(n) + F(n+1)) . du
+               call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, self%ld%favg, self%du, work_con, &
+                                self%fcon_old, st%fcon, st%minv, st%v, st%wext, st%wcon)
+            else
+               call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, st%fext, self%du, work_con, &
+                                self%fcon_old, st%fcon, st%minv, st%v, st%wext, st%wcon)
+            end if
+            if (self%ld%active) call self%ld%finish(st, self%du, 0.5_wp*st%dt_prev, .false.)
          end if
-         if (self%ld%active) call self%ld%finish(st, self%du, 0.5_wp*st%dt_prev, .false.)
       end associate
       ! 7. energies and health; the step dt(n+1) enters the kinetic correction (eq. E.4)
-      call kinetic_energy(self%st)
+      if (.not. plain) call kinetic_energy(self%st)
       if (self%ld%active) call self%ld%energy(self%st)
       call book_step_change(self%st)
       self%time_steps = self%time_steps + (wall_time() - t0)
