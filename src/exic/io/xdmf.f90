@@ -61,14 +61,19 @@ contains
 
    ! ---------------------------------------------------------------------------- the series
 
-   !> Create `path`: `head`, a reserve, `tail` (written to '<path>.tmp' and renamed).
-   subroutine series_create(self, path, head, tail, err)
+   !> Create `path`: `head`, a reserve, `tail` (written to '<path>.tmp' and renamed). `reserve`:
+   !> the bytes the caller expects to append (the reserve is at least RESERVE_MIN).
+   subroutine series_create(self, path, head, tail, err, reserve)
       class(xdmf_series_t), intent(inout) :: self
       character(len=*), intent(in) :: path, head, tail
       type(error_t), allocatable, intent(out) :: err
+      integer(i8), intent(in), optional :: reserve
+      integer(i8) :: r
+      r = RESERVE_MIN
+      if (present(reserve)) r = max(r, reserve)
       self%path = path
       self%tail = tail
-      call rebuild(self, head, '', RESERVE_MIN, err)
+      call rebuild(self, head, '', r, err)
    end subroutine series_create
 
    !> Append `grid` (text without '--') before the tail, keeping the file well-formed after every
