@@ -34,7 +34,7 @@ module exic_io_fields
    use exic_io_posix, only: rename_file, copy_file, remove_file
    use exic_base_clock, only: wall_time
    use exic_io_xdmf, only: xdmf_series_t, write_whole_file, xml_escape, real_text
-   use exic_io_fields_text, only: fields_text_t, NODE_VECTORS, BUFFER
+   use exic_io_fields_text, only: fields_text_t, NODE_VECTORS, BUFFER, series_path, xdmf_reference
    implicit none
    private
 
@@ -730,21 +730,6 @@ contains
       writer_flushed = self%ntime - self%npend
    end function writer_flushed
 
-   !> The series XDMF file of the last-state file `path_xdmf`: '<stem>_series.xdmf'.
-   function series_path(path_xdmf) result(path)
-      character(len=*), intent(in) :: path_xdmf
-      character(len=:), allocatable :: path
-      integer :: n
-      n = len(path_xdmf)
-      if (n > 5) then
-         if (path_xdmf(n - 4:) == '.xdmf') then
-            path = path_xdmf(:n - 5)//'_series.xdmf'
-            return
-         end if
-      end if
-      path = path_xdmf//'_series.xdmf'
-   end function series_path
-
    ! ---------------------------------------------------------------------------- checks
 
 
@@ -964,31 +949,6 @@ contains
       self%energy_names = names
       self%nenergy = size(names)
    end subroutine create_energy_series
-
-   !> How the XDMF files name the .h5 file: its base name when both share a directory, else the
-   !> absolute path. XDMF separates file and dataset by ':' and Xdmf3 a selection by '|': the name has neither.
-   subroutine xdmf_reference(path_h5, path_xdmf, ref, err)
-      character(len=*), intent(in) :: path_h5, path_xdmf
-      character(len=:), allocatable, intent(out) :: ref
-      type(error_t), allocatable, intent(out) :: err
-      integer :: i5, ix
-
-      i5 = index(path_h5, '/', back=.true.)
-      ix = index(path_xdmf, '/', back=.true.)
-      if (path_h5(1:i5) == path_xdmf(1:ix)) then
-         ref = path_h5(i5 + 1:)
-      else if (path_h5(1:1) == '/') then
-         ref = path_h5
-      else
-         call make_error(err, "field output: '"//path_h5//"' and '"//path_xdmf// &
-                         "' must be in one directory (or give the .h5 path absolute)")
-         return
-      end if
-      if (scan(ref, ':|') > 0 .or. len(ref) == 0 .or. any([(iachar(ref(i5:i5)) < 32, i5=1, len(ref))])) then
-         call make_error(err, "field output: the HDF5 file name '"//ref// &
-                         "' must be non-empty and contain no ':', '|' or control character")
-      end if
-   end subroutine xdmf_reference
 
    !> Names joined by single blanks.
    function join(names) result(s)

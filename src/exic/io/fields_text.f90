@@ -10,11 +10,12 @@
 module exic_io_fields_text
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa
+   use exic_base_error, only: error_t, make_error
    use exic_io_xdmf, only: real_text, data_item, attribute
    implicit none
    private
 
-   public :: fields_text_t, NODE_VECTORS, BUFFER
+   public :: fields_text_t, NODE_VECTORS, BUFFER, series_path, xdmf_reference
 
    !> Names of the nodal vector fields, datasets `/fields/<name>`; the last, the nodal friction
    !> force (doc/friction.md), only when the run has friction.
@@ -280,5 +281,45 @@ contains
       if (k >= 1000000) write (buf, '(i0)') k
       name = trim(buf)
    end function six_digits
+
+   !> The series XDMF file of the last-state file `path_xdmf`: '<stem>_series.xdmf'.
+   function series_path(path_xdmf) result(path)
+      character(len=*), intent(in) :: path_xdmf
+      character(len=:), allocatable :: path
+      integer :: n
+      n = len(path_xdmf)
+      if (n > 5) then
+         if (path_xdmf(n - 4:) == '.xdmf') then
+            path = path_xdmf(:n - 5)//'_series.xdmf'
+            return
+         end if
+      end if
+      path = path_xdmf//'_series.xdmf'
+   end function series_path
+
+   !> How the XDMF files name the .h5 file: its base name when both share a directory, else the
+   !> absolute path. XDMF separates file and dataset by ':' and Xdmf3 a selection by '|': the name has neither.
+   subroutine xdmf_reference(path_h5, path_xdmf, ref, err)
+      character(len=*), intent(in) :: path_h5, path_xdmf
+      character(len=:), allocatable, intent(out) :: ref
+      type(error_t), allocatable, intent(out) :: err
+      integer :: i5, ix
+
+      i5 = index(path_h5, '/', back=.true.)
+      ix = index(path_xdmf, '/', back=.true.)
+      if (path_h5(1:i5) == path_xdmf(1:ix)) then
+         ref = path_h5(i5 + 1:)
+      else if (path_h5(1:1) == '/') then
+         ref = path_h5
+      else
+         call make_error(err, "field output: '"//path_h5//"' and '"//path_xdmf// &
+                         "' must be in one directory (or give the .h5 path absolute)")
+         return
+      end if
+      if (scan(ref, ':|') > 0 .or. len(ref) == 0 .or. any([(iachar(ref(i5:i5)) < 32, i5=1, len(ref))])) then
+         call make_error(err, "field output: the HDF5 file name '"//ref// &
+                         "' must be non-empty and contain no ':', '|' or control character")
+      end if
+   end subroutine xdmf_reference
 
 end module exic_io_fields_text

@@ -2,7 +2,6 @@
  * ABI-specific structures or macros (struct stat and S_ISREG, struct rlimit and RLIMIT_AS,
  * errno and strerror), behind plain int / long long / char* interfaces that Fortran binds
  * with bind(C). Nothing here allocates or keeps state. */
-#define _GNU_SOURCE /* copy_file_range(2) */
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -65,10 +64,9 @@ long long exic_c_file_size(const char *path)
 }
 
 /* Copy the bytes of the file `from` to `to` (created or truncated, mode 0666 less the umask)
- * inside the kernel with copy_file_range(2) (no copy through user space: about 30 % less
- * processor time for the field file, doc/performance.md section 6.5), or, where the system or
- * the file system cannot (ENOSYS, EXDEV, EINVAL, EOPNOTSUPP before the first byte), with
- * read(2) and write(2) in 1 MiB blocks; short writes and EINTR handled; close both.
+ * with read(2) and write(2) in 1 MiB blocks, short writes and EINTR handled, and close both.
+ * (copy_file_range(2) was tried: on ext4 its in-kernel page copy took 3.5 times the processor
+ * time of read/write on the field file of the seed's 7.2, doc/performance.md section 6.5.)
  * Returns 0, or errno with the system's text and the failing step in msg (at most msglen
  * bytes, NUL-terminated). */
 int exic_c_copy_file(const char *from, const char *to, char *msg, int msglen)
@@ -90,24 +88,7 @@ int exic_c_copy_file(const char *from, const char *to, char *msg, int msglen)
         close(in);
         goto done;
     }
-    for (long long copied = 0;;) {
-        ssize_t n = copy_file_range(in, NULL, out, NULL, BLOCK, 0);
-        if (n < 0 && errno == EINTR) continue;
-        if (n < 0 && copied == 0 &&
-            (errno == ENOSYS || errno == EXDEV || errno == EINVAL || errno == EOPNOTSUPP)) break;
-        if (n < 0) {
-            e = errno;
-            what = "write";
-            break;
-        }
-        if (n == 0) {
-            close(in);
-            goto closed;
-        }
-        copied += n;
-    }
     for (;;) {
-        if (e != 0) break;
         ssize_t n = read(in, buf, BLOCK);
         if (n < 0 && errno == EINTR) continue;
         if (n < 0) {
@@ -130,7 +111,6 @@ int exic_c_copy_file(const char *from, const char *to, char *msg, int msglen)
         if (e != 0) break;
     }
     close(in);
-closed:
     if (close(out) != 0 && e == 0) {
         e = errno;
         what = "close";
