@@ -453,15 +453,32 @@ contains
       if (self%h5%is_open()) call allocate_batch(self)
    end subroutine writer_set_batch
 
-   !> The series grids of output times k0 .. k0+m-1 as one text, as m appends would leave them.
+   !> The series grids of output times k0 .. k0+m-1 as one text, as m appends would leave them
+   !> (each grid once into a text of the final length: no repeated concatenation).
    function series_grids(self, k0, m) result(s)
       type(field_writer_t), intent(in) :: self
       integer, intent(in) :: k0, m
       character(len=:), allocatable :: s
-      integer :: j
-      s = self%text%series_grid(k0, self%btime(1))
-      do j = 2, m
-         s = s//'  '//achar(10)//'    '//self%text%series_grid(k0 + j - 1, self%btime(j))
+      character(len=*), parameter :: SEP = '  '//achar(10)//'    '
+      type :: text_t
+         character(len=:), allocatable :: c
+      end type text_t
+      type(text_t) :: g(m)
+      integer :: j, n, at
+      n = 0
+      do j = 1, m
+         g(j)%c = self%text%series_grid(k0 + j - 1, self%btime(j))
+         n = n + len(g(j)%c)
+      end do
+      allocate (character(len=n + (m - 1)*len(SEP)) :: s)
+      at = 0
+      do j = 1, m
+         if (j > 1) then
+            s(at + 1:at + len(SEP)) = SEP
+            at = at + len(SEP)
+         end if
+         s(at + 1:at + len(g(j)%c)) = g(j)%c
+         at = at + len(g(j)%c)
       end do
    end function series_grids
 
