@@ -92,7 +92,7 @@ contains
              'BATCh'//nl//'  LOOP,,10'//nl//'    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//'STOP'
       call run_deck('overlap', deck, stage, msg)
       call check(s, stage == 2 .and. index(msg, 'overlap') > 0 .and. index(msg, 'node') > 0 .and. &
-                 index(msg, '5.000E-02') > 0, 'overlapping bodies are refused, naming the node and the depth', msg)
+                 index(msg, '5.0000000E-02') > 0, 'overlapping bodies are refused, naming the node and the depth', msg)
    end subroutine overlap_test
 
    !> Seed example 7.2: bar 30 x 4 (30 x 6) at 50 against a free vertical bar 4 x 30 meshed

@@ -25,6 +25,8 @@ contains
       call tiny_interval_test(s)
       call section(s, 'run output: a failed run keeps the fields of the state it stopped in')
       call failed_run_test(s)
+      call section(s, 'run output: non-finite values are never written as fields')
+      call nonfinite_fields_test(s)
    end subroutine run_run_output_tests
 
    !> A 12 x 2 bar hitting a rigid wall at a fixed step 1e-3: fields every `every` steps,
@@ -116,18 +118,12 @@ contains
    subroutine killed_run_test(s)
       type(suite_t), intent(inout) :: s
       integer, parameter :: nout = 20
-      character(len=:), allocatable :: child, argv0, script, base
-      character(len=4096) :: arg
+      character(len=:), allocatable :: child, script, base
       real(wp), allocatable :: times(:)
       integer :: status, nflushed
       logical :: exists
 
-      call get_command_argument(0, arg)
-      argv0 = trim(arg)
-      child = argv0(1:index(argv0, '/', back=.true.))//'deck_run_child'
-      inquire (file=child, exist=exists)
-      call check(s, exists, 'child program found next to the test driver', child)
-      if (.not. exists) return
+      if (.not. child_found(s, child)) return
       base = run_dir//'/killed_run'
       call write_text(base//'.inp', bar_deck(20000000, 2))
       call execute_command_line('rm -f '//base//'.h5 '//base//'.xdmf '//base//'.ready '//base//'.status')
@@ -154,6 +150,17 @@ contains
       call execute_command_line('h5dump -d /fields/displacement '//base//'.h5 > /dev/null 2>&1', exitstat=status)
       call check(s, status == 0, 'the displacement field of every output time reads back')
    end subroutine killed_run_test
+
+   !> The child program deck_run_child next to the test driver (checked: it is there).
+   logical function child_found(s, child) result(exists)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable, intent(out) :: child
+      character(len=4096) :: arg
+      call get_command_argument(0, arg)
+      child = arg(1:index(arg, '/', back=.true.))//'deck_run_child'
+      inquire (file=child, exist=exists)
+      call check(s, exists, 'child program found next to the test driver', child)
+   end function child_found
 
    !> Values of a 1-D dataset, read with h5dump.
    subroutine read_h5_vector(h5, dset, v)
@@ -186,18 +193,11 @@ contains
    subroutine tiny_interval_test(s)
       type(suite_t), intent(inout) :: s
       character(len=*), parameter :: intervals(3) = ['1e-12 ', '1e-308', '1e-320']
-      character(len=:), allocatable :: child, argv0, deck, base, dt_out
-      character(len=4096) :: arg
+      character(len=:), allocatable :: child, deck, base, dt_out
       real(wp), allocatable :: times(:)
       integer :: status, k
-      logical :: exists
 
-      call get_command_argument(0, arg)
-      argv0 = trim(arg)
-      child = argv0(1:index(argv0, '/', back=.true.))//'deck_run_child'
-      inquire (file=child, exist=exists)
-      call check(s, exists, 'child program found next to the test driver', child)
-      if (.not. exists) return
+      if (.not. child_found(s, child)) return
       do k = 1, size(intervals)
          dt_out = trim(intervals(k))
          base = run_dir//'/tiny_interval_'//itoa(k)
@@ -269,6 +269,59 @@ contains
       if (ios /= 0) n = -1
       close (u)
    end function first_number
+
+   !> A penalty of 1e300 (a fuzzed deck) with DT,CFL: the first step's contact forces overflow. The run stops
+   !> naming where the values stopped being finite, and neither the output at t = 0 nor the
+   !> state it stopped in is written with them: the .h5 holds no NaN or infinity. A penalty scale
+   !> whose stiffness overflows outright is an error at its record.
+   subroutine nonfinite_fields_test(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, deck, base
+      integer :: stage, status, k
+      k = index(bar_deck(200, 5), '  AUTOmatic'//nl) + len('  AUTOmatic'//nl) - 1
+      deck = bar_deck(200, 5)
+      deck = deck(:k)//'    PENAlty,1e300'//nl//deck(k + 1:)
+      ! the stable step of the penalty is 2.5e-151: a fixed DT of 1e-3 is refused at the start
+      call run_deck('penalty_dt', deck, stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'exceeds the stable limit 2.5000000E-151 (contact penalty)') > 0, &
+                 'PENAlty,1e300 with DT,,1e-3: refused, the stable limit with its three-digit exponent', msg)
+      ! the seed's 7.2 with PENAlty,1e300 and DT,CFL (the fuzzed deck): its bars touch at t = 0
+      ! with a round-off penetration, and the first step overflows
+      deck = 'FEAP * * seed 7.2 with a penalty of 1e300'//nl//'  0 0 0 2 2 4'//nl//'PARAmeters'//nl// &
+             '  nsv = 30'//nl//'  cfl = 0.9'//nl//'  tend = 0.3'//nl//'  tout = 0.002'//nl// &
+             'INCLude,../../inputs/paper/common/ex72_mesh.inc'//nl//'CONTact'//nl//'  SURFace,1'//nl// &
+             '    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl//'  PAIR,1,NTOS,1,2'//nl// &
+             '    PENAlty,1e300'//nl//'END CONTact'//nl//'INCLude,../../inputs/paper/common/ex72_batch.inc'
+      call run_deck('nonfinite_fields', deck, stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'not finite') > 0 .and. index(msg, 'step 1') > 0, &
+                 'PENAlty,1e300: the run stops at step 1 on a value that is not finite', msg)
+      base = run_dir//'/nonfinite_fields'
+      call check(s, file_has(base//'.out', 'fields of the state at the failure not written'), &
+                 '<stem>.out says the failing state was not written')
+      call check(s, .not. (file_has(base//'.out', 'NaN') .or. file_has(base//'.out', 'Infinity')), &
+                 'no NaN or Infinity in <stem>.out')
+      if (have_command('h5dump')) then
+         call execute_command_line('h5dump '//base//'.h5 > '//base//'.h5dump 2>&1', exitstat=status)
+         call check(s, status == 0 .and. file_has(base//'.h5dump', 'acceleration') .and. &
+                    .not. (file_has(base//'.h5dump', 'nan') .or. file_has(base//'.h5dump', 'inf')), &
+                    'the .h5 reads back and holds no NaN or infinity')
+      else
+         call skip(s, 'the .h5 holds no NaN', 'h5dump')
+      end if
+      deck = bar_deck(200, 5)
+      deck = deck(:k)//'    PENAlty,SCALe,1e308'//nl//deck(k + 1:)
+      call run_deck('penalty_overflow', deck, stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'penalty_overflow.inp:') > 0 .and. &
+                 index(msg, 'not a finite stiffness') > 0, 'PENAlty,SCALe,1e308: an error naming file:line', msg)
+      deck = bar_deck(200, 5)
+      k = index(deck, 'DENSity 1'//nl) + len('DENSity 1') - 1
+      deck = deck(:k)//'e308'//deck(k + 1:)
+      call run_deck('density_overflow', deck, stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'density_overflow.inp:') > 0 .and. &
+                 index(msg, 'DENSity 1.0000000E+308 gives lumped masses that are not finite') > 0, &
+                 'DENSity 1e308: an error naming the MATErial record (was "total mass Infinity" and a stop '// &
+                 'on the energy sums)', msg)
+   end subroutine nonfinite_fields_test
 
    !> The last number on the lines of a file (0 if none).
    real(wp) function last_number(path) result(x)

@@ -20,6 +20,10 @@
 !>   HOURglass 0.1 a one-point element folded by its hourglass mode at step 55 (its corner node in
 !>   contact). With HOURglass,PHYSical (the assumed-strain control, doc/hourglass.md) the run ends
 !>   at its final time; the same deck with HOURglass 0.1 still stops there, naming the element.
+!> - mutant 280 of the fuzzer's seed 20261128: a bar at rest with its massless face on a rigid wall;
+!>   nothing is put in and the strain energy is round-off (terms that cancel), which the energy
+!>   guard took as energy appearing from nothing and stopped on at step 1, writing a non-finite percentage in
+!>   <stem>.out. The guard now measures against the round-off scale ENERGY_FLOOR eps M c^2.
 !> - scene 86 of seed 20261125: two one-point blocks with HOURglass,PHYSical, a corner impact;
 !>   without the corner barrier (doc/hourglass.md section 5) element 106 folded at a corner at
 !>   step 156 (t = 0.1708, the release build of the commit before the barrier); with it the run
@@ -75,6 +79,13 @@ contains
       call check(s, v >= 0.0_wp .and. v < 1.0_wp, 'energy growth below the warning limit of 1 %', &
                  line_with(out, 'energy guard'))
       call fold_with_fb(s)
+      call section(s, 'stress decks: fuzzed mutant 280 of seed 20261128, a bar at rest touching a wall')
+      call run_saved(s, 'rest_on_wall_20261128_0280', out)
+      v = number_after(out, 'largest growth of the physical energy over the energy put in ')
+      call check(s, v >= 0.0_wp .and. v < 1.0_wp, 'nothing put in, round-off energies: growth below the '// &
+                 'warning limit (stopped at step 1 as "appeared with no energy put in")', line_with(out, 'energy guard'))
+      call check(s, index(out, 'warning:') == 0 .and. index(out, 'Infinity') == 0 .and. index(out, 'NaN') == 0, &
+                 'no warning and no non-finite number in <stem>.out')
       call section(s, 'stress decks: scene 86 of seed 20261125, two one-point blocks, a corner impact')
       call run_saved(s, 'barrier_20261125_0086', out)
       v = number_after(out, 'final time ')

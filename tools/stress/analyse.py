@@ -74,13 +74,29 @@ def probe_status(p, stderr_path, probes=2, wait=1.0):
     return times
 
 
+CHILD_PREFIX = []
+
+
+def limit_memory(gib=8):
+    """Bound the address space of the suite's own Python process (soft limit only): a checker
+    that reads more than that raises MemoryError for its mutant instead of drawing the
+    machine's out-of-memory killer. exic runs without the bound: util-linux's prlimit raises the
+    soft limit back to the hard one before it executes exic (no preexec_fn: the suite runs
+    its mutants from threads)."""
+    import resource
+    soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    want = gib << 30 if hard == resource.RLIM_INFINITY else min(gib << 30, hard)
+    resource.setrlimit(resource.RLIMIT_AS, (want, hard))
+    CHILD_PREFIX[:] = ["prlimit", "--as=" + ("unlimited" if hard == resource.RLIM_INFINITY else str(hard)), "--"]
+
+
 def run(exic, deck, outdir, timeout, extra=()):
     """Run `exic deck -q -o outdir`; a dict with code, class, seconds, stderr, message. The
     console goes to files (a run may print without end), of which the ends are read."""
     t0 = time.time()
     base = os.path.join(outdir, os.path.splitext(os.path.basename(deck))[0])
     with open(base + ".stdout", "wb") as fo, open(base + ".stderr", "wb") as fe:
-        p = subprocess.Popen([exic, deck, "-q", "-o", outdir, *extra], stdout=fo, stderr=fe,
+        p = subprocess.Popen(CHILD_PREFIX + [exic, deck, "-q", "-o", outdir, *extra], stdout=fo, stderr=fe,
                              start_new_session=True)
         try:
             code = p.wait(timeout=timeout)
@@ -371,7 +387,7 @@ def nonfinite_in_outputs(stem):
 
 
 def clean(stem):
-    for ext in (".his", ".ene", ".out", ".h5", ".xdmf"):
+    for ext in (".his", ".ene", ".out", ".h5", ".xdmf", "_series.xdmf"):
         try:
             os.remove(stem + ext)
         except OSError:

@@ -246,6 +246,22 @@ def make_mutant(seed, k, tree):
 
 
 def one_mutant(exic, seed, k, tree, outdir, timeout):
+    """One mutant made, run and checked; a failure of the checker itself (it once ran out of
+    memory) is a failure of that mutant, named, not the end of the campaign."""
+    try:
+        return _one_mutant(exic, seed, k, tree, outdir, timeout)
+    except (MemoryError, OSError, ValueError) as e:
+        r = {"k": k, "deck": "?", "ops": [], "class": "checker", "failures": [f"checker error: {e!r}"[:200]],
+             "message": ""}
+        try:
+            path = make_mutant(seed, k, tree)[0]
+            keep = open(path, encoding="latin-1").read()
+        except (OSError, MemoryError):
+            keep = None
+        return r, keep
+
+
+def _one_mutant(exic, seed, k, tree, outdir, timeout):
     path, orig, ops, files = make_mutant(seed, k, tree)
     r = analyse.run(exic, path, outdir, timeout)
     stem = os.path.join(outdir, f"fuzz{k:05d}")
@@ -307,6 +323,7 @@ def run_fuzz(exic, seed, n, jobs, work, save, log):
     shutil.copytree(os.path.join(ROOT, "inputs"), tree)
     os.makedirs(outdir, exist_ok=True)
     timeout = 20.0
+    analyse.limit_memory()
     log(f"fuzz: {n} mutants of the {len(decks())} decks of inputs/, seed {seed}, timeout {timeout:.0f} s")
     t0 = time.time()
     results, kept = [], {}

@@ -19,6 +19,11 @@ module exic_base_constants
    !> ENERGY_STOP before it stops. A deck sets both with [ext] `CHECk,ENERgy,warn,stop`.
    real(wp), parameter, public :: ENERGY_WARN = 0.01_wp
    real(wp), parameter, public :: ENERGY_STOP = 0.10_wp
+   !> The energy put in is measured against at least ENERGY_FLOOR eps M c^2 (M the deformable
+   !> mass, c^2 the largest (lambda + 2 mu)/rho0): the strain energy of a body at rest, summed from
+   !> terms such as mu/2 (I1 - 3) - mu ln J that cancel, is round-off of order eps mu V, and energy
+   !> that appears at that level where nothing was put in is not growth (doc/decisions.md).
+   real(wp), parameter, public :: ENERGY_FLOOR = 1000.0_wp
 
    !> The geometric penetration check (src/exic/contact/inside.f90) warns when a node lies deeper
    !> than PENETRATION_WARN element edges inside another body; [ext] `CHECk,PENEtration,fraction`.

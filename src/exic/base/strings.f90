@@ -4,7 +4,7 @@ module exic_base_strings
    implicit none
    private
 
-   public :: itoa, rtoa
+   public :: itoa, rtoa, rtoa_result
 
    !> An integer (default or 64-bit) as text, without blanks.
    interface itoa
@@ -45,5 +45,17 @@ contains
       end if
       s = trim(adjustl(buf))
    end function rtoa
+
+   !> A computed result as text for a report: rtoa(x), or `not finite` for NaN and infinities,
+   !> which are never written as results (a run that failed on them says where they appeared).
+   pure function rtoa_result(x) result(s)
+      real(wp), intent(in) :: x
+      character(len=:), allocatable :: s
+      if (x - x == 0.0_wp) then
+         s = rtoa(x)
+      else
+         s = 'not finite'
+      end if
+   end function rtoa_result
 
 end module exic_base_strings

@@ -24,7 +24,7 @@ module exic_contact_contact
    use exic_base_sort, only: sorted_unique
    use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, SURF_NODES, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
-                                DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t
+                                DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t, spec_penalty_finite
    use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, node_normals, &
                                  node_segments, slave_normals, normal_dofs
    use exic_contact_broad, only: broad_t, broad_search, broad_search_kept, drop_flat_fixed
@@ -198,6 +198,8 @@ contains
          if (self%passes(k)%method == METHOD_PENALTY) self%any_penalty = .true.
       end do
       call penalty_stiffness(self, modulus)
+      call spec_penalty_finite(spec, modulus, err)
+      if (allocated(err)) return
       call friction_arrays(self, nnode, x)
       if (self%energy .and. self%friction) then
          ! the massless faces enter the normal problem only (doc/impact.md, section 3.3)
@@ -415,6 +417,7 @@ contains
       end do
    end subroutine penalty_stiffness
 
+
    !> Index of the surface with deck id `id` (0 if none).
    integer function surface_index(self, id) result(k)
       type(contact_t), intent(in) :: self
@@ -433,8 +436,6 @@ contains
       type(error_t), allocatable, intent(out) :: err
       integer :: k, j, worst_node, worst_m(2)
       real(wp) :: worst
-      character(len=200) :: buf
-
       worst = 0.0_wp
       worst_node = 0
       call auto_passes(self, nnode, x, x, 0.5_wp*self%lref)
@@ -456,11 +457,10 @@ contains
             end do
          end associate
       end do
-      if (worst > 1.0e-8_wp*self%lref) then
-         write (buf, '(a,i0,a,i0,a,i0,a,es10.3)') 'bodies overlap at the start: node ', worst_node, &
-            ' is inside segment ', worst_m(1), '-', worst_m(2), ' by ', worst
-         call make_error(err, trim(buf)//' (move the bodies apart or fix the mesh)')
-      end if
+      if (worst > 1.0e-8_wp*self%lref) call make_error(err, 'bodies overlap at the start: node '//itoa(worst_node)// &
+                                                       ' is inside segment '//itoa(worst_m(1))//'-'// &
+                                                       itoa(worst_m(2))//' by '//rtoa(worst)// &
+                                                       ' (move the bodies apart or fix the mesh)')
    end subroutine check_overlap
 
    !> Correct the predicted accelerations so that every active gap closes at t(n+2): the one

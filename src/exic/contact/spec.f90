@@ -1,6 +1,8 @@
 !> What a deck's CONTact block asks for (spec section 4), before surfaces are built.
 module exic_contact_spec
    use exic_base_kinds, only: wp
+   use exic_base_error, only: error_t, make_error
+   use exic_base_strings, only: rtoa
    implicit none
    private
 
@@ -11,7 +13,7 @@ module exic_contact_spec
    integer, parameter, public :: METHOD_LAGRANGE = 1, METHOD_PENALTY = 2
    integer, parameter, public :: DETECT_SWEPT = 1, DETECT_STATIC = 2
 
-   public :: surface_spec_t, pair_spec_t, contact_spec_t
+   public :: surface_spec_t, pair_spec_t, contact_spec_t, spec_penalty_finite
 
    !> SURFace,id: the free boundary of a region or material, or explicit facets; or
    !> (legacy API) a set of slave nodes.
@@ -51,5 +53,30 @@ module exic_contact_spec
       type(surface_spec_t), allocatable :: surfaces(:)
       type(pair_spec_t), allocatable :: pairs(:)
    end type contact_spec_t
+
+contains
+
+   !> PENAlty,SCALe,f whose stiffness f x modulus is not a finite number: an error at the record.
+   subroutine spec_penalty_finite(spec, modulus, err)
+      type(contact_spec_t), intent(in) :: spec
+      real(wp), intent(in) :: modulus
+      type(error_t), allocatable, intent(out) :: err
+      integer :: k
+      if (allocated(spec%pairs)) then
+         do k = 1, size(spec%pairs)
+            call check_pair(spec%pairs(k))
+            if (allocated(err)) return
+         end do
+      end if
+      if (spec%automatic) call check_pair(spec%auto_options)
+   contains
+      subroutine check_pair(ps)
+         type(pair_spec_t), intent(in) :: ps
+         if (ps%method /= METHOD_PENALTY .or. .not. ps%penalty_scaled) return
+         if (ps%penalty*modulus <= huge(1.0_wp)) return
+         call make_error(err, ps%where//': PENAlty,SCALe,'//rtoa(ps%penalty)//' times the modulus lambda + 2 mu = '// &
+                         rtoa(modulus)//' is not a finite stiffness: expected a factor of order 0.01 to 100')
+      end subroutine check_pair
+   end subroutine spec_penalty_finite
 
 end module exic_contact_spec

@@ -14,7 +14,9 @@
 module exic_explicit_assembly
    use exic_base_kinds, only: wp
    use, intrinsic :: iso_fortran_env, only: int64
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use exic_base_error, only: error_t, make_error
+   use exic_base_strings, only: rtoa
    use exic_mesh_mesh, only: mesh_t
    use exic_material_material, only: material_t, MAT_SOLID, MAT_RIGID
    use exic_explicit_state, only: state_t, element_set_t
@@ -96,6 +98,13 @@ contains
                return
             end if
             call q4_lumped_mass(s%nel, nn, s%conn, st%x0, s%rho, st%mass, mesh%axisymmetric)
+            if (.not. (all(ieee_is_finite(st%mass(reshape(s%conn, [4*s%nel])))) .and. &
+                       ieee_is_finite(sum(st%mass)))) then
+               write (buf, '(a,i0,a)') 'MATErial ', im, ': DENSity '
+               call make_error(err, trim(buf)//' '//rtoa(m%rho)//' gives lumped masses that are not finite '// &
+                               '(density x element area overflows)', m%where)
+               return
+            end if
             call general_path(s, m, mesh%axisymmetric)
             if (m%plastic .and. m%kind == MAT_SOLID) st%has_plastic = .true.
             call set_ranges(s, nn)

@@ -25,7 +25,7 @@
 module exic_explicit_step
    use exic_base_kinds, only: wp
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-   use exic_base_constants, only: DEFAULT_CFL, TIME_TOL, ENERGY_WARN, ENERGY_STOP
+   use exic_base_constants, only: DEFAULT_CFL, TIME_TOL, ENERGY_WARN, ENERGY_STOP, ENERGY_FLOOR
    use exic_base_error, only: error_t, make_error
    use exic_base_strings, only: itoa, rtoa
    use exic_base_clock, only: wall_time
@@ -45,7 +45,7 @@ module exic_explicit_step
    implicit none
    private
 
-   public :: stepper_t, contact_hook_t
+   public :: stepper_t, contact_hook_t, first_nonfinite
 
    !> Pass-limit warnings of the corrector written to the report; later ones are only counted.
    integer, parameter :: MAX_PASS_WARNINGS = 10
@@ -97,6 +97,12 @@ module exic_explicit_step
       logical :: energy_warned = .false.
       real(wp) :: growth_max = 0.0_wp                 !< largest growth / energy put in
       real(wp) :: growth_max_t = 0.0_wp               !< time of it
+      !> largest (lambda + 2 mu)/rho of the solids: with the deformable mass, the round-off scale
+      !> of the energy guard (energy_floor)
+      real(wp) :: c2max = 0.0_wp
+      !> the energy of round-off: ENERGY_FLOOR eps M c2max, M the deformable mass (doc/decisions.md,
+      !> "Energy guard"); the guard measures growth against the energy put in or this, the larger
+      real(wp) :: energy_floor = 0.0_wp
       integer :: pass_limit_warnings = 0              !< corrector pass-limit warnings written
       ! work arrays of a step, (2, nnode)
       real(wp), allocatable :: x(:, :)                !< x(n+1) = x0 + u
@@ -142,7 +148,10 @@ contains
       ! PENAlty,SCALe refers to the largest constrained modulus of the solids
       modulus = 0.0_wp
       do k = 1, size(materials)
-         if (materials(k)%kind == MAT_SOLID) modulus = max(modulus, materials(k)%lambda + 2.0_wp*materials(k)%mu)
+         if (materials(k)%kind /= MAT_SOLID) cycle
+         modulus = max(modulus, materials(k)%lambda + 2.0_wp*materials(k)%mu)
+         if (materials(k)%rho > 0.0_wp) &
+            self%c2max = max(self%c2max, (materials(k)%lambda + 2.0_wp*materials(k)%mu)/materials(k)%rho)
       end do
       call self%contact%init(spec, n, self%st%x0, self%x, mesh%nelem, mesh%conn, mesh%region, mesh%mat, &
                              modulus, err)
@@ -201,6 +210,7 @@ contains
          call kinetic_energy(st)
          if (self%ld%active) call self%ld%energy(st)
          st%total0 = st%kinetic + st%strain + st%hourglass
+         self%energy_floor = ENERGY_FLOOR*epsilon(1.0_wp)*self%c2max*sum(st%mass, mask=st%active .and. .not. st%rigid)
          ! the kinetic correction at t = 0, for the step dt(0) (doc/decisions.md, eq. E.3-E.4)
          st%dt_residual = 0.0_wp
          st%correction0 = 0.0_wp
@@ -466,9 +476,13 @@ contains
             end if
             st%dt = self%dt_fixed
             if (self%dt_fixed > self%dt_stable) then
-               write (buf, '(a,es12.5,a,es12.5,a,i0,a)') 'DT = ', self%dt_fixed, &
-                  ' exceeds the stable limit ', self%dt_stable, ' (element ', self%dt_element, &
-                  '); use a smaller DT or DT,CFL,c'
+               if (self%dt_element > 0) then
+                  buf = ' (element '//itoa(self%dt_element)//')'
+               else
+                  buf = ' (contact penalty)'
+               end if
+               buf = 'DT = '//rtoa(self%dt_fixed)//' exceeds the stable limit '//rtoa(self%dt_stable)// &
+                     trim(buf)//'; use a smaller DT or DT,CFL,c'
                if (.not. self%started .or. st%step == 0) then
                   call make_error(err, trim(buf), where)
                else if (.not. self%dt_warned) then
@@ -510,6 +524,9 @@ contains
             w_in = st%wext + st%wpm
             put_in = abs(st%total0) + abs(st%wext) + abs(st%wpm)
          end if
+         ! energy put in below the round-off scale (none, or a round-off amount) is measured
+         ! against that scale: energy that appears at the level of round-off is not growth
+         put_in = max(put_in, self%energy_floor)
          if (put_in > 0.0_wp) then
             growth = (e - (st%total0 + w_in))/put_in
          else
@@ -520,14 +537,14 @@ contains
             self%growth_max_t = st%t
          end if
          if (growth <= self%energy_warn) return
-         if (put_in > 0.0_wp) then
+         if (put_in > self%energy_floor) then
             what = 'the physical energy (kinetic + strain + plastic work'//trim(merge(' + frictional dissipation', &
                    '                         ', self%contact%friction))//') exceeds the energy put in (initial energy '// &
                    '+ external work + work of prescribed motion) by '//percent(growth)//' of it at t = '// &
                    rtoa(st%t)//', step '//itoa(int(st%step))
          else
-            what = 'kinetic + strain energy '//rtoa(e)//' appeared with no energy put in at t = '// &
-                   rtoa(st%t)//', step '//itoa(int(st%step))
+            what = 'kinetic + strain energy '//rtoa(e)//' appeared with no energy put in (round-off scale '// &
+                   rtoa(self%energy_floor)//') at t = '//rtoa(st%t)//', step '//itoa(int(st%step))
          end if
          if (growth > self%energy_stop) then
             call make_error(err, what//' (stop limit '//percent(self%energy_stop)//'); largest '// &
@@ -545,10 +562,14 @@ contains
       real(wp), intent(in) :: x
       character(len=:), allocatable :: text
       character(len=32) :: buf
-      if (x >= huge(1.0_wp)) then
+      if (x >= huge(1.0_wp)/100.0_wp) then
          text = 'all'
       else
-         write (buf, '(es10.3)') 100.0_wp*x
+         if (abs(100.0_wp*x) < 1.0e99_wp .and. (x == 0.0_wp .or. abs(100.0_wp*x) >= 1.0e-99_wp)) then
+            write (buf, '(es10.3)') 100.0_wp*x
+         else
+            write (buf, '(es11.3e3)') 100.0_wp*x
+         end if
          text = trim(adjustl(buf))//' %'
       end if
    end function percent
@@ -598,13 +619,13 @@ contains
       end if
    end function contributor
 
-   !> The first node (and an element using it) whose displacement, velocity, acceleration or
-   !> internal force is not finite.
+   !> The first node (and an element using it) whose displacement, velocity, acceleration,
+   !> internal force or contact force is not finite.
    function first_nonfinite(self) result(text)
       type(stepper_t), intent(in) :: self
       character(len=:), allocatable :: text
       integer :: i, k, j
-      character(len=12) :: what
+      character(len=13) :: what
       text = 'no node has a non-finite value (the energy sums overflowed)'
       associate (st => self%st)
          do i = 1, st%nnode
@@ -616,6 +637,8 @@ contains
                what = 'acceleration'
             else if (.not. all(ieee_is_finite(st%fint(:, i)))) then
                what = 'force'
+            else if (.not. all(ieee_is_finite(st%fcon(:, i)))) then
+               what = 'contact force'
             else
                cycle
             end if

@@ -5,10 +5,11 @@
 !> (`final`). Values come from the stepper's state; nothing here changes it.
 module exic_io_output
    use, intrinsic :: iso_fortran_env, only: error_unit
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use exic_base_kinds, only: wp, i8
    use exic_base_constants, only: TIME_TOL
-   use exic_base_error, only: error_t
-   use exic_base_strings, only: rtoa
+   use exic_base_error, only: error_t, make_error
+   use exic_base_strings, only: itoa, rtoa
    use exic_io_model, only: model_t
    use exic_io_program, only: REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, REQ_REAC, REQ_CONT, REQ_MOME, &
                               REQ_REAC_REGION, REQ_REAC_SET, REQ_RIGI
@@ -16,7 +17,7 @@ module exic_io_output
    use exic_io_history, only: history_files_t
    use exic_io_fields, only: field_writer_t
    use exic_io_report, only: energy_balance
-   use exic_explicit_step, only: stepper_t
+   use exic_explicit_step, only: stepper_t, first_nonfinite
    use exic_explicit_assembly, only: element_stress, all_stresses, NSIG
    use exic_explicit_loading, only: reaction
    use exic_explicit_rigid, only: RB_PLAIN, RB_FREE
@@ -430,10 +431,11 @@ contains
 
    !> The fields of the current state; with friction also the nodal friction force and the
    !> frictional dissipation (doc/friction.md).
-   subroutine write_fields(self, stp, err)
+   subroutine write_fields(self, stp, err, nonfinite)
       type(output_t), intent(inout) :: self
       type(stepper_t), intent(in) :: stp
       type(error_t), allocatable, intent(out) :: err
+      logical, intent(out), optional :: nonfinite   !< the error is a non-finite value (nothing written)
       real(wp), allocatable :: sig(:, :)
       integer, allocatable :: flag(:)
       real(wp) :: energies(7)
@@ -442,9 +444,19 @@ contains
          nc = merge(NSIG, 7, st%has_plastic)
          allocate (sig(nc, st%nelem), flag(st%nnode))
          call all_stresses(st, stp%sets, sig)
-         flag = merge(1, 0, st%fcon(1, :) /= 0.0_wp .or. st%fcon(2, :) /= 0.0_wp)
          energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass, &
                      stp%contact%dissipation, st%plastic]
+         ! non-finite values are never written as results: the run stops, naming where
+         if (present(nonfinite)) nonfinite = .false.
+         if (.not. (all(ieee_is_finite(st%u)) .and. all(ieee_is_finite(st%v)) .and. all(ieee_is_finite(st%a)) &
+                    .and. all(ieee_is_finite(st%fcon)) .and. all(ieee_is_finite(sig)) .and. &
+                    all(ieee_is_finite(energies)))) then
+            if (present(nonfinite)) nonfinite = .true.
+            call make_error(err, 'a value is not finite at t = '//rtoa(st%t)//', step '//itoa(int(st%step))// &
+                            ': '//first_nonfinite(stp))
+            return
+         end if
+         flag = merge(1, 0, st%fcon(1, :) /= 0.0_wp .or. st%fcon(2, :) /= 0.0_wp)
          if (stp%contact%friction) then
             call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
                                         pack(energies, energy_mask(stp)), &
@@ -477,11 +489,25 @@ contains
       type(stepper_t), intent(in) :: stp
       character(len=*), intent(in) :: message
       type(error_t), allocatable, intent(out) :: err
+      logical :: nonfinite
       if (.not. self%fields%is_open()) return
       if (stp%st%t > self%field_last) then
-         call write_fields(self, stp, err)
-         if (allocated(err)) return
-         call self%files%say('fields of the state at the failure written (t = '//rtoa(stp%st%t)//')')
+         call write_fields(self, stp, err, nonfinite)
+         if (nonfinite) then
+            ! the failure names where the values appeared; the fields of t = field_last are the last
+            deallocate (err)
+            if (self%field_last > -huge(1.0_wp)) then
+               call self%files%say('fields of the state at the failure not written (t = '//rtoa(stp%st%t)// &
+                                   '): it holds values that are not finite; the last fields are those of t = '// &
+                                   rtoa(self%field_last))
+            else
+               call self%files%say('fields of the state at the failure not written (t = '//rtoa(stp%st%t)// &
+                                   '): it holds values that are not finite; no fields were written before')
+            end if
+         else
+            if (allocated(err)) return
+            call self%files%say('fields of the state at the failure written (t = '//rtoa(stp%st%t)//')')
+         end if
       end if
       call self%fields%mark_failed(message, err)
    end subroutine output_failed

@@ -2,7 +2,7 @@
 !> the final state, energy balance, wall time and contact statistics at the end.
 module exic_io_report
    use exic_base_kinds, only: wp
-   use exic_base_strings, only: itoa, rtoa
+   use exic_base_strings, only: itoa, rtoa, rtoa_result
    use exic_base_error, only: error_t
    use exic_material_material, only: MAT_SOLID
    use exic_io_model, only: model_t
@@ -70,7 +70,7 @@ contains
       do k = 1, size(stp%ld%bodies)
          if (stp%ld%bodies(k)%kind == RB_FREE) total = total + stp%ld%bodies(k)%mass
       end do
-      call files%say('total mass '//rtoa(total))
+      call files%say('total mass '//rtoa_result(total))
       call loads_summary(files, stp)
       call files%say(stp%contact%summary())
    end subroutine report_summary
@@ -112,15 +112,21 @@ contains
       character(len=*), intent(in) :: field_files !< the .h5 and .xdmf written, or ''
       type(inside_t), intent(in) :: inside        !< the geometric penetration check
       real(wp) :: ts
+      character(len=:), allocatable :: growth
       call files%say('')
       associate (st => stp%st, c => stp%contact)
          if (stp%started) then
             call files%say('final time '//rtoa(st%t)//' after '//itoa(int(st%step))//' steps')
-            call files%say('energy: kinetic '//rtoa(st%kinetic)//', strain '// &
-                           rtoa(st%strain + st%hourglass)//', external work '//rtoa(st%wext)// &
-                           ', contact work '//rtoa(st%wcon)//', initial total '//rtoa(st%total0))
+            call files%say('energy: kinetic '//rtoa_result(st%kinetic)//', strain '// &
+                           rtoa_result(st%strain + st%hourglass)//', external work '//rtoa_result(st%wext)// &
+                           ', contact work '//rtoa_result(st%wcon)//', initial total '//rtoa_result(st%total0))
+            if (stp%growth_max >= huge(1.0_wp)/100.0_wp) then
+               growth = 'all of it (energy appeared with none put in)'
+            else
+               growth = rtoa(100.0_wp*max(stp%growth_max, 0.0_wp))//' %'
+            end if
             call files%say('energy guard: largest growth of the physical energy over the energy put in '// &
-                           rtoa(100.0_wp*max(stp%growth_max, 0.0_wp))//' % (at t = '//rtoa(stp%growth_max_t)// &
+                           growth//' (at t = '//rtoa(stp%growth_max_t)// &
                            '); limits: warning '//rtoa(100.0_wp*stp%energy_warn)//' %, stop '// &
                            rtoa(100.0_wp*stp%energy_stop)//' %')
          end if
@@ -148,7 +154,7 @@ contains
                                            itoa(c%fr%sweep_limit_hits)//', tangential problems at their pass '// &
                                            'limit '//itoa(c%fr%pass_limit_hits)//', tangential factorizations '// &
                                            itoa(c%fr%tt%nsolves)//' (reused '//itoa(c%fr%tt%nreused)// &
-                                           '), frictional dissipation '//rtoa(c%dissipation))
+                                           '), frictional dissipation '//rtoa_result(c%dissipation))
             ! the massless contact faces (doc/impact.md, section 3.2)
             if (c%face%active) call files%say('massless contact faces: back-substitutions '// &
                                               itoa(c%face%nsolves)//', stiffness rows formed again '// &
@@ -197,10 +203,10 @@ contains
          end if
          if (c%active) text = text//NL//'exic: largest penetration over the run '//largest_penetration(stp, inside)
          call energy_balance(st, total, drift)
-         text = text//NL//'exic: energy: initial total '//rtoa(st%total0)//', kinetic '//rtoa(st%kinetic)// &
-                ', strain '//rtoa(st%strain + st%hourglass)//', external work '//rtoa(st%wext)// &
-                ', contact work '//rtoa(st%wcon)//NL//'exic: energy balance: total '//rtoa(total)// &
-                ', drift '//rtoa(drift)
+         text = text//NL//'exic: energy: initial total '//rtoa_result(st%total0)//', kinetic '// &
+                rtoa_result(st%kinetic)//', strain '//rtoa_result(st%strain + st%hourglass)//', external work '// &
+                rtoa_result(st%wext)//', contact work '//rtoa_result(st%wcon)//NL//'exic: energy balance: total '// &
+                rtoa_result(total)//', drift '//rtoa_result(drift)
       end associate
    end function console_summary
 
@@ -213,14 +219,14 @@ contains
       character(len=:), allocatable :: text
       associate (w => inside%worst)
          if (inside%active .and. w%node > 0) then
-            text = rtoa(w%depth)//' (geometric: node '//itoa(w%node)//' of region '//itoa(w%of_body)// &
-                   ' inside region '//itoa(w%in_body)//' by '//rtoa(w%edges)//' element edges at t = '// &
-                   rtoa(w%t)//'; detected pairs '//rtoa(stp%contact%max_penetration)//')'
+            text = rtoa_result(w%depth)//' (geometric: node '//itoa(w%node)//' of region '//itoa(w%of_body)// &
+                   ' inside region '//itoa(w%in_body)//' by '//rtoa_result(w%edges)//' element edges at t = '// &
+                   rtoa(w%t)//'; detected pairs '//rtoa_result(stp%contact%max_penetration)//')'
          else if (inside%active) then
             text = rtoa(0.0_wp)//' (geometric, at '//itoa(inside%nchecks)//' checked times; detected pairs '// &
-                   rtoa(stp%contact%max_penetration)//')'
+                   rtoa_result(stp%contact%max_penetration)//')'
          else
-            text = rtoa(stp%contact%max_penetration)//' (detected pairs)'
+            text = rtoa_result(stp%contact%max_penetration)//' (detected pairs)'
          end if
       end associate
    end function largest_penetration

@@ -991,7 +991,8 @@ contains
       real(wp), intent(in) :: x
       character(len=:), allocatable :: s
       character(len=32) :: b
-      write (b, '(es12.5)') x
+      ! three exponent digits where they are needed (es12.5 would drop the E: 1.23456-302)
+      write (b, merge('(es13.5e3)', '(es12.5)  ', abs(x) < 1.0e-98_wp .and. x /= 0.0_wp .or. abs(x) >= 1.0e99_wp))
       s = trim(adjustl(b))
    end function rtoa
 

@@ -153,7 +153,7 @@ contains
          if (r%pos%print_inc > 0) then
             if (mod(st%step, int(r%pos%print_inc, i8)) == 0) then
                call r%progress%clear()
-               print '(a,es12.5,a,i0,a,es12.5,a,es12.5,a,es12.5,a,es12.5)', ' t=', st%t, ' step ', st%step, &
+               print '(a,es13.5e3,a,i0,a,es13.5e3,a,es13.5e3,a,es13.5e3,a,es13.5e3)', ' t=', st%t, ' step ', st%step, &
                   ' K=', st%kinetic, ' U=', st%strain + st%hourglass, ' Wext=', st%wext, ' Wc=', st%wcon
             end if
          end if
