@@ -2,10 +2,12 @@
 !>
 !> `deck_run_child --child DECK BASE` reads DECK and runs it quietly through the library, writing
 !> BASE.his/.ene/.out (and .h5/.xdmf when the deck asks), as the exic command does.
-!> `deck_run_child --child DECK BASE N MARKER` does the same but, once N field output times are written
-!> and flushed, creates the file MARKER and waits (up to 2 minutes) without closing anything,
+!> `deck_run_child --child DECK BASE N MARKER` does the same but, once at least N field output times
+!> are flushed into the .h5 (at the first flush that reaches N: output times are written in batches,
+!> doc/fields.md), creates the file MARKER (the count flushed and the time of the last) and waits
+!> (up to 2 minutes) without closing anything,
 !> so that the test can kill it at a known point. `deck_run_child --child DECK BASE N MARKER
-!> signals` answers signals as the exic command does and, once N field output times are written,
+!> signals` answers signals as the exic command does and, once N field output times are flushed,
 !> creates MARKER and waits until a signal comes, then goes on (the run then meets the signal at
 !> the end of its next step: a known point too); exit code 3 when SIGINT or SIGTERM stopped it.
 !> Without `--child` first (as `fpm test` starts
@@ -25,7 +27,7 @@ program deck_run_child
    type(error_t), allocatable :: err
    character(len=4096) :: deck, base, arg, marker
    integer :: park_after, ios, status
-   logical :: on_signal
+   logical :: on_signal, parked = .false.
 
    call get_command_argument(1, arg)
    if (arg /= '--child' .or. command_argument_count() < 3 .or. command_argument_count() > 6 .or. &
@@ -60,15 +62,17 @@ program deck_run_child
 
 contains
 
-   !> After the N-th field output time: tell the test through MARKER, then wait to be killed.
+   !> At the first flush that holds N field output times or more: tell the test through MARKER
+   !> (the count and the time of the last), then wait to be killed, or for a signal.
    subroutine park(count, t)
       integer, intent(in) :: count
       real(wp), intent(in) :: t
       character(len=64) :: text
-      if (count < park_after) return
+      if (count < park_after .or. parked) return
+      parked = .true.
       write (text, '(i0,1x,es24.16e3)') count, t
       if (on_signal) then
-         if (count == park_after) call park_until_signal(trim(marker), trim(text), signals_peek)
+         call park_until_signal(trim(marker), trim(text), signals_peek)
       else
          call park_until_killed(trim(marker), trim(text))
       end if

@@ -1,6 +1,6 @@
 !> Child process of the "killed writer" test in test_fields.
 !>
-!> `field_writer_child --child STEM N MARKER` writes the synthetic mesh and N output times to STEM.h5 and
+!> `field_writer_child --child STEM N MARKER` writes the synthetic mesh and N output times (flushed) to STEM.h5 and
 !> STEM.xdmf, creates the file MARKER, and then waits (up to 2 minutes) without closing anything,
 !> so that the test can kill it with SIGTERM. Without `--child` first (as `fpm test` starts every
 !> program under test/, with the suite words given to it), it does nothing and succeeds.

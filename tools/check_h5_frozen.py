@@ -9,7 +9,7 @@ leaves). The raw data of every dataset of LATER (each allocated chunk of a chunk
 h5py's `get_chunk_info`, and the storage of a contiguous one, `get_offset`) may differ; every
 other byte of the file, and its length, must be identical to CREATED (doc/fields.md, "Kill
 safety"). With --times N, LATER must also open with h5py, its count /n_times must be N, /time
-must be finite in its first N entries and NaN after them.
+must be finite in its first N entries and 0 after them (allocated, never written).
 
 Exit code 0 when every check holds, 1 otherwise (the first differing byte is named).
 """
@@ -72,11 +72,11 @@ def main():
         if n != args.times:
             print(f"FAIL: /n_times is {n}, expected {args.times}")
             ok = False
-        elif not (np.all(np.isfinite(t[:n])) and np.all(np.isnan(t[n:]))):
-            print(f"FAIL: /time is not finite in its first {n} entries and NaN after: {t}")
+        elif not (np.all(np.isfinite(t[:n])) and np.all(t[n:] == 0)):
+            print(f"FAIL: /time is not finite in its first {n} entries and 0 after: {t}")
             ok = False
         else:
-            print(f"/n_times {n}, /time finite up to it and NaN in the {t.size - n} free slots")
+            print(f"/n_times {n}, /time finite up to it and 0 in the {t.size - n} free slots")
     return 0 if ok else 1
 
 

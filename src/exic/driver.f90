@@ -32,7 +32,8 @@ module exic_driver
       character(len=:), allocatable :: restart !< continue from this restart file (else the deck's
                                                !< RESTart file, else none)
       logical :: signals = .false.            !< answer SIGINT, SIGTERM, SIGUSR1, SIGUSR2 (README)
-      !> called after every field output time, when associated (a library user following the run)
+      !> called after every flush of the field file (doc/fields.md, "Batches"), when associated (a
+      !> library user following the run)
       procedure(fields_observer), pointer, nopass :: on_fields => null()
    end type run_options_t
 
@@ -126,7 +127,7 @@ contains
       type(run_t), intent(inout) :: r
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: err
-      integer :: pc, depth, nfields
+      integer :: pc, depth, nfields, nflushed
       integer :: remaining(MAX_LOOP_DEPTH)
 
       pc = r%pos%pc
@@ -161,9 +162,10 @@ contains
                call start(r, model, err)
                if (.not. allocated(err)) call r%out%record(model, r%stp)
                nfields = r%out%fields%count()
+               nflushed = r%out%fields%flushed()
                if (.not. allocated(err)) call r%out%fields_due(r%stp, err)
-               if (.not. allocated(err) .and. r%out%fields%count() > nfields .and. associated(r%on_fields)) &
-                  call r%on_fields(r%out%fields%count(), r%stp%st%t)
+               if (.not. allocated(err) .and. r%out%fields%flushed() > nflushed .and. associated(r%on_fields)) &
+                  call r%on_fields(r%out%fields%flushed(), r%out%fields%last_flushed_time())
                if (.not. allocated(err) .and. (r%out%fields%count() > nfields .or. &
                                                r%stp%st%step - r%inside_step >= INSIDE_STEPS)) call check_inside(r)
                if (.not. allocated(err) .and. c%v(1) > 0.0_wp) then

@@ -319,8 +319,8 @@ def _letters_in_text(path):
 def _nonfinite_h5(path):
     """Datasets of <stem>.h5 (not the /xdmf views) holding a non-finite value, read in slabs.
     A file a killed run left (it still has /n_times, doc/fields.md "Complete output times") is
-    read over its complete output times only: the free slots after them hold the fill value NaN
-    by design."""
+    read over its complete output times only: the free slots after them hold no output (0,
+    space allocated and never written) by design."""
     import h5py
     bad = []
     try:

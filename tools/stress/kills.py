@@ -12,7 +12,8 @@ After each kill:
 - the .h5 opens with h5dump (-H) and with h5py, and its complete output times are the
   reference's first ones (a SIGTERM/SIGINT run adds the state it stopped in as its last). A
   file left open (SIGKILL) has the count /n_times: /time is finite in its first n_times slots
-  and NaN beyond the slot after them (that one may hold a half-written output time), and every
+  and 0 beyond the slot after them (space allocated and never written: that slot may hold a
+  half-written output time), and every
   series has as many slots as /time; a file closed normally has no count and no NaN;
 - the series XDMF file parses and names only times the .h5 holds, and so does the last-state
   XDMF file (an output time is complete when the XDMF files name it: they are written after
@@ -92,8 +93,8 @@ def h5_times(path, info=None):
                 n = int(f["n_times"][0])
                 if info is not None:
                     info["open_file"] = True
-                if not (0 <= n <= t.size and np.all(np.isfinite(t[:n])) and np.all(np.isnan(t[n + 1:]))):
-                    return False, None, f"/time is not finite up to /n_times = {n} and NaN after the next slot"
+                if not (0 <= n <= t.size and np.all(np.isfinite(t[:n])) and np.all(t[n + 1:] == 0)):
+                    return False, None, f"/time is not finite up to /n_times = {n} and 0 after the next slot"
                 return True, [float(x) for x in t[:n]], ""
             if not np.all(np.isfinite(t)):
                 return False, None, "a closed file (no /n_times) has unwritten times"

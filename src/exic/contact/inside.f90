@@ -56,6 +56,7 @@ module exic_contact_inside
       integer, private :: nx = 0, ny = 0
       real(wp), private :: lo(2) = 0.0_wp, h = 1.0_wp
       integer, allocatable, private :: ehead(:), eitem(:), ghead(:), gitem(:)
+      real(wp), allocatable, private :: ebox(:, :)   !< (4, nelem) element boxes: x, y low, x, y high
    contains
       procedure :: init => inside_init
       procedure :: allow => inside_allow
@@ -170,7 +171,7 @@ contains
       character(len=:), allocatable, intent(out) :: warn
       integer :: n, a, c, k, e, b, ncount(self%nbody, self%nbody), pb(self%nbody)
       integer :: ib, jb, np
-      real(wp) :: box(4), d, rel, t0
+      real(wp) :: d, rel, t0, q(2, 4)
       type(inside_hit_t) :: first(self%nbody, self%nbody)
 
       warn = ''
@@ -192,11 +193,15 @@ contains
             b = self%eb(e)
             if (.not. self%pairs(a, b)) cycle
             if (any(pb(1:np) == b)) cycle
-            box(1:2) = minval(x(:, self%conn(:, e)), dim=2)
-            box(3:4) = maxval(x(:, self%conn(:, e)), dim=2)
-            if (x(1, n) < box(1) .or. x(1, n) > box(3) .or. x(2, n) < box(2) .or. x(2, n) > box(4)) cycle
+            associate (box => self%ebox(:, e))
+               if (x(1, n) < box(1) .or. x(1, n) > box(3) .or. x(2, n) < box(2) .or. x(2, n) > box(4)) cycle
+            end associate
             if (any(self%conn(:, e) == n)) cycle
-            if (.not. point_in_quad(x(:, n), x(:, self%conn(:, e)))) cycle
+            q(:, 1) = x(:, self%conn(1, e))
+            q(:, 2) = x(:, self%conn(2, e))
+            q(:, 3) = x(:, self%conn(3, e))
+            q(:, 4) = x(:, self%conn(4, e))
+            if (.not. point_in_quad(x(:, n), q)) cycle
             np = np + 1
             pb(np) = b
             call boundary_depth(self, x, x(:, n), b, d, rel)
@@ -254,7 +259,8 @@ contains
    end function inside_report
 
    !> Grid over the box of the used nodes: cell = mean element box extent, at most ~4 nelem
-   !> cells; elements binned by the cells their boxes touch, boundary edges likewise.
+   !> cells; elements binned by the cells their boxes touch (the boxes kept in ebox for the
+   !> node tests), boundary edges likewise.
    subroutine build_grids(self, x)
       type(inside_t), intent(inout) :: self
       real(wp), intent(in) :: x(:, :)
@@ -265,9 +271,19 @@ contains
       self%lo = huge(1.0_wp)
       hi = -huge(1.0_wp)
       ext = 0.0_wp
+      if (allocated(self%ebox)) then
+         if (size(self%ebox, 2) /= self%nelem) deallocate (self%ebox)
+      end if
+      if (.not. allocated(self%ebox)) allocate (self%ebox(4, self%nelem))
       do e = 1, self%nelem
-         bl = minval(x(:, self%conn(:, e)), dim=2)
-         bh = maxval(x(:, self%conn(:, e)), dim=2)
+         associate (c => self%conn(:, e))
+            bl(1) = min(x(1, c(1)), x(1, c(2)), x(1, c(3)), x(1, c(4)))
+            bl(2) = min(x(2, c(1)), x(2, c(2)), x(2, c(3)), x(2, c(4)))
+            bh(1) = max(x(1, c(1)), x(1, c(2)), x(1, c(3)), x(1, c(4)))
+            bh(2) = max(x(2, c(1)), x(2, c(2)), x(2, c(3)), x(2, c(4)))
+         end associate
+         self%ebox(1:2, e) = bl
+         self%ebox(3:4, e) = bh
          self%lo = min(self%lo, bl)
          hi = max(hi, bh)
          ext = ext + max(bh(1) - bl(1), bh(2) - bl(2))
@@ -295,8 +311,7 @@ contains
             fill = self%ehead(1:ncell)
          end if
          do e = 1, self%nelem
-            call bin(minval(x(:, self%conn(:, e)), dim=2), maxval(x(:, self%conn(:, e)), dim=2), e, &
-                     self%ehead, self%eitem)
+            call bin(self%ebox(1:2, e), self%ebox(3:4, e), e, self%ehead, self%eitem)
          end do
          if (pass == 2) fill = self%ghead(1:ncell)
          do e = 1, ne

@@ -32,8 +32,9 @@ module exic_io_fields
    use exic_io_hdf5_held, only: hdf5_held_t
    use exic_io_fields_checks, only: check_mesh, check_names
    use exic_io_posix, only: rename_file, copy_file, remove_file
-   use exic_io_xdmf, only: xdmf_series_t, write_whole_file, xml_escape, real_text, data_item, &
-                           attribute
+   use exic_base_clock, only: wall_time
+   use exic_io_xdmf, only: xdmf_series_t, write_whole_file, xml_escape, real_text
+   use exic_io_fields_text, only: fields_text_t, NODE_VECTORS, BUFFER, series_path, xdmf_reference
    implicit none
    private
 
@@ -43,15 +44,12 @@ module exic_io_fields
    !> 5 pressure, 6 von Mises, 7 J): the default element values, in `/fields/stress`.
    character(len=9), parameter :: STRESS_NAMES(7) = [character(len=9) :: 'sxx', 'syy', 'szz', &
                                                      'sxy', 'pressure', 'von_mises', 'J']
-   !> Names of the nodal vector fields, datasets `/fields/<name>`; the last, the nodal friction
-   !> force (doc/friction.md), only when the run has friction (`nvec`).
-   character(len=14), parameter :: NODE_VECTORS(5) = [character(len=14) :: 'displacement', &
-                                                      'velocity', 'acceleration', 'contact_force', &
-                                                      'friction_force']
-   !> The two last-state buffers, `/last/a` and `/last/b`.
-   character(len=1), parameter :: BUFFER(0:1) = ['a', 'b']
-
-   character(len=*), parameter :: NL = achar(10)
+   !> Output times kept in memory before they are written (doc/fields.md, "Batches"): at most
+   !> BATCH_BYTES of them, and none longer than BATCH_SECONDS of wall time.
+   integer(i8), parameter :: BATCH_BYTES = 4_i8*1024*1024
+   real(wp), parameter :: BATCH_SECONDS = 1.0_wp
+   !> The most blank space the series XDMF file is made with (it regrows beyond).
+   integer(i8), parameter :: SERIES_RESERVE_MAX = 16_i8*1024*1024
 
    !> Output times preallocated when the caller gives no estimate, and the most bytes a
    !> preallocation made from an estimate may take (growth takes over beyond it).
@@ -66,16 +64,29 @@ module exic_io_fields
       type(hdf5_file_t) :: h5
       type(hdf5_held_t) :: held                     !< the datasets an output time writes
       type(xdmf_series_t) :: series                 !< <stem>_series.xdmf
+      type(fields_text_t) :: text                   !< the XDMF text (series grid template)
       character(len=:), allocatable :: last_path    !< <stem>.xdmf
-      character(len=:), allocatable :: h5_ref       !< the .h5 file as the XDMF files name it
       integer :: nnode = 0, nelem = 0
       integer :: nvec = 4                           !< nodal vectors written (5: with friction_force)
       integer :: ncomp = 0                          !< element value components
       character(len=16), allocatable :: comp_names(:)
       real(wp), allocatable :: x0(:, :)             !< reference coordinates (2, nnode)
       integer, allocatable :: conn(:, :)            !< connectivity (4, nelem), 1-based
-      real(wp), allocatable :: x(:, :), vec3(:, :), nodal(:, :), col_cell(:), col_node(:)
-      integer :: ntime = 0                          !< output times written so far
+      real(wp), allocatable :: x(:, :), vec3(:, :), col_cell(:), col_node(:)
+      integer :: ntime = 0                          !< output times written so far (taken)
+      !> the batch: output times ntime-npend .. ntime-1 taken but not yet in the file, slot j
+      !> of each array holding output time ntime-npend+j-1
+      integer :: npend = 0, nbatch = 1              !< pending output times, room for them
+      integer(i8) :: batch_bytes = BATCH_BYTES      !< the batch's bounds (`set_batch`)
+      real(wp) :: batch_seconds = BATCH_SECONDS
+      real(wp) :: wall_first = 0.0_wp               !< wall time the oldest pending one was taken
+      real(wp), allocatable :: bvec(:, :, :, :)     !< (2, nnode, nbatch, nvec)
+      integer, allocatable :: bact(:, :)            !< (nnode, nbatch)
+      real(wp), allocatable :: bsig(:, :, :), bnod(:, :, :)   !< (ncomp, nelem | nnode, nbatch)
+      real(wp), allocatable :: ben(:, :), btime(:)  !< (nbatch, nenergy), (nbatch)
+      integer(i8), allocatable :: bstep(:)
+      integer :: named = -1                         !< the output time <stem>.xdmf names (-1: none)
+      real(wp) :: t_flushed = 0.0_wp                !< time of the last output time flushed
       integer :: capacity = 0                       !< output times the series have room for
       character(len=:), allocatable :: path_h5
       character(len=:), allocatable :: failed       !< message of a failed run, stored at close
@@ -97,6 +108,11 @@ module exic_io_fields
       procedure :: mark_failed => writer_mark_failed
       procedure :: is_open => writer_is_open
       procedure :: count => writer_count
+      procedure :: flushed => writer_flushed
+      procedure :: last_flushed_time => writer_last_flushed_time
+      procedure :: flush => writer_flush
+      procedure :: flush_stale => writer_flush_stale
+      procedure :: set_batch => writer_set_batch
    end type field_writer_t
 
 contains
@@ -158,10 +174,11 @@ contains
       if (.not. allocated(err)) call close_live(self, err)
       if (.not. allocated(err)) call rename_file(path_h5//'.tmp', path_h5, err)
       if (.not. allocated(err)) call open_live(self, err)
-      if (.not. allocated(err)) call self%series%create(series_path(path_xdmf), series_head(), &
-                                                        series_tail(), err)
-      if (.not. allocated(err)) call write_whole_file(self%last_path, last_document(self, -1, 0.0_wp, &
-                                                                                    0_i8), err)
+      if (.not. allocated(err)) call self%series%create(series_path(path_xdmf), self%text%series_head(), &
+                                                        self%text%series_tail(), err, series_reserve(self))
+      if (.not. allocated(err)) call write_whole_file(self%last_path, self%text%last_document(-1, -1, 0.0_wp, &
+                                                                                              0_i8), err)
+      if (.not. allocated(err)) call allocate_batch(self)
       if (allocated(err)) then
          call self%series%abandon()
          call close_live(self, err2)
@@ -181,7 +198,6 @@ contains
       character(len=:), allocatable :: ref
       call xdmf_reference(path_h5, path_xdmf, ref, err)
       if (allocated(err)) return
-      self%h5_ref = xml_escape(ref, dash=.true.)
       self%last_path = path_xdmf
       self%path_h5 = path_h5
       if (allocated(self%failed)) deallocate (self%failed)
@@ -192,12 +208,17 @@ contains
          if (friction) self%nvec = 5
       end if
       self%ncomp = size(self%comp_names)
+      call self%text%init(xml_escape(ref, dash=.true.), nnode, nelem, self%nvec, self%comp_names)
       self%x0 = x0
       self%conn = conn
-      if (allocated(self%x)) deallocate (self%x, self%vec3, self%nodal, self%col_cell, self%col_node)
-      allocate (self%x(2, nnode), self%vec3(3, nnode), self%nodal(self%ncomp, nnode), &
-                self%col_cell(nelem), self%col_node(nnode))
+      if (allocated(self%x)) deallocate (self%x, self%vec3, self%col_cell, self%col_node)
+      allocate (self%x(2, nnode), self%vec3(3, nnode), self%col_cell(nelem), self%col_node(nnode))
       self%ntime = 0
+      self%npend = 0
+      self%named = -1
+      self%t_flushed = 0.0_wp
+      self%batch_bytes = BATCH_BYTES
+      self%batch_seconds = BATCH_SECONDS
       self%t_last = 0.0_wp
       self%nenergy = -1
       self%broken = .false.
@@ -251,14 +272,16 @@ contains
          call self%h5%read('/time', times, err)
       end if
       if (.not. allocated(err)) call self%h5%read('/step', steps, err)
-      if (.not. allocated(err)) call self%series%create(series_path(path_xdmf), series_head(), &
-                                                        series_tail(), err)
+      if (.not. allocated(err)) call self%series%create(series_path(path_xdmf), self%text%series_head(), &
+                                                        self%text%series_tail(), err, series_reserve(self))
       do i = 1, ntime
          if (allocated(err)) exit
          self%ntime = i
          self%t_last = times(i)
-         call self%series%append(series_grid(self, i - 1, times(i)), err)
+         call self%series%append(self%text%series_grid(i - 1, times(i)), err)
       end do
+      if (ntime > 0) self%t_flushed = self%t_last
+      if (.not. allocated(err)) call allocate_batch(self)
       if (allocated(err)) then
          call self%series%abandon()
          call close_live(self, err2)
@@ -284,7 +307,7 @@ contains
       character(len=*), intent(in) :: energy_names(:)
       type(error_t), allocatable, intent(out) :: err
       real(wp), intent(in), contiguous, optional :: ffric(:, :)
-      integer :: i, b, k
+      integer :: j
 
       call check_step(self, t, u, v, a, sig, fcont, active, energies, energy_names, err)
       if (allocated(err)) return
@@ -297,7 +320,8 @@ contains
          if (allocated(err)) return
       end if
       if (self%nenergy < 0) then
-         ! the energy series are added by a copy of the file, like a growth
+         ! the energy series are added by a copy of the file, like a growth (first output time:
+         ! nothing is pending)
          self%energy_names = energy_names
          call rebuild(self, self%ntime, self%capacity, .false., err, new_energies=.true.)
          if (allocated(err)) then
@@ -305,57 +329,193 @@ contains
             return
          end if
          self%nenergy = size(energy_names)
+         call allocate_batch(self)
       end if
       if (self%ntime == self%capacity) then
-         call rebuild(self, self%ntime, 2*max(self%capacity, 1), .false., err)
+         ! the room is full: what is pending goes in first, then the room doubles
+         call writer_flush(self, err)
+         if (.not. allocated(err)) call rebuild(self, self%ntime, 2*max(self%capacity, 1), .false., err)
          if (allocated(err)) then
             self%broken = .true.
             err%message = 'field output at t = '//real_text(t)//': '//err%message
             return
          end if
       end if
-      ! element values averaged to the nodes over the current configuration
+      ! the output time into the next slot of the batch; the nodal averages of the element values
+      ! over the current configuration
+      j = self%npend + 1
+      self%bvec(:, :, j, 1) = u
+      self%bvec(:, :, j, 2) = v
+      self%bvec(:, :, j, 3) = a
+      self%bvec(:, :, j, 4) = fcont
+      if (self%nvec == 5) self%bvec(:, :, j, 5) = ffric
+      self%bact(:, j) = active
+      self%bsig(:, :, j) = sig
       self%x = self%x0 + u
-      call nodal_average(self%ncomp, self%nnode, self%nelem, self%conn, self%x, sig, self%nodal)
+      call nodal_average(self%ncomp, self%nnode, self%nelem, self%conn, self%x, sig, self%bnod(:, :, j))
+      self%ben(j, :) = energies
+      self%btime(j) = t
+      self%bstep(j) = step
+      self%npend = j
+      self%ntime = self%ntime + 1
+      self%t_last = t
+      if (j == 1) self%wall_first = wall_time()
+      if (j == self%nbatch) then
+         call writer_flush(self, err)
+      else
+         call writer_flush_stale(self, err)
+      end if
+   end subroutine writer_write_step
 
-      ! raw data only, into the slab k allocated at creation, through the held handles
-      k = self%ntime
-      call self%held%write_slab(self%id_vec(1), k, u, err)
-      if (.not. allocated(err)) call self%held%write_slab(self%id_vec(2), k, v, err)
-      if (.not. allocated(err)) call self%held%write_slab(self%id_vec(3), k, a, err)
-      if (.not. allocated(err)) call self%held%write_slab(self%id_vec(4), k, fcont, err)
-      if (.not. allocated(err) .and. self%nvec == 5) call self%held%write_slab(self%id_vec(5), k, ffric, err)
-      if (.not. allocated(err)) call self%held%write_slab(self%id_active, k, active, err)
-      if (.not. allocated(err)) call self%held%write_slab(self%id_stress, k, sig, err)
-      if (.not. allocated(err)) call self%held%write_slab(self%id_nodal, k, self%nodal, err)
-      do i = 1, size(energies)
+   !> Write the pending output times into the .h5 (doc/fields.md, "Batches" and "Kill safety"):
+   !> one H5Dwrite per series for all of them (consecutive slabs), the last-state buffers of the
+   !> last two, the count `/n_times`, the flush; then the series XDMF grids and the last-state
+   !> file. Nothing to do when nothing is pending.
+   subroutine writer_flush(self, err)
+      class(field_writer_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      integer :: i, k0, m, kk
+      logical :: same
+
+      if (self%npend == 0) return
+      if (self%broken) then
+         call make_error(err, 'field output: an earlier output failed half-way; the file takes no more')
+         return
+      end if
+      m = self%npend
+      k0 = self%ntime - m
+      kk = self%ntime - 1
+      do i = 1, self%nvec
          if (allocated(err)) exit
-         call self%held%write_slab(self%id_energy(i), k, energies(i), err)
+         call self%held%write_slabs(self%id_vec(i), k0, self%bvec(:, :, 1:m, i), err)
       end do
-      if (.not. allocated(err)) call self%held%write_slab(self%id_time, k, t, err)
-      if (.not. allocated(err)) call self%held%write_slab(self%id_step, k, step, err)
-      b = mod(self%ntime, 2)
-      if (.not. allocated(err)) call write_last_buffer(self, b, u, v, a, fcont, active, sig, err)
-      if (.not. allocated(err) .and. self%nvec == 5) then
-         self%vec3(1:2, :) = ffric
-         call self%held%write_whole(self%id_last(5, b), self%vec3, err)
+      if (.not. allocated(err)) call self%held%write_slabs(self%id_active, k0, self%bact(:, 1:m), err)
+      if (.not. allocated(err)) call self%held%write_slabs(self%id_stress, k0, self%bsig(:, :, 1:m), err)
+      if (.not. allocated(err)) call self%held%write_slabs(self%id_nodal, k0, self%bnod(:, :, 1:m), err)
+      do i = 1, self%nenergy
+         if (allocated(err)) exit
+         call self%held%write_slabs(self%id_energy(i), k0, self%ben(1:m, i), err)
+      end do
+      if (.not. allocated(err)) call self%held%write_slabs(self%id_time, k0, self%btime(1:m), err)
+      if (.not. allocated(err)) call self%held%write_slabs(self%id_step, k0, self%bstep(1:m), err)
+      ! the buffers end holding output kk in buffer mod(kk, 2) and kk - 1 in the other, whatever
+      ! the batches were; the one <stem>.xdmf names is never written (doc/fields.md)
+      same = m >= 2 .and. self%named >= 0 .and. mod(kk, 2) == mod(max(self%named, 0), 2)
+      if (same) then
+         if (.not. allocated(err)) call write_last_buffer(self, kk - 1, m - 1, err)
+      else
+         if (.not. allocated(err)) call write_last_buffer(self, kk, m, err)
       end if
       ! the count last: it says how many slabs hold a complete output time
-      if (.not. allocated(err)) call self%held%write_whole(self%id_count, self%ntime + 1, err)
+      if (.not. allocated(err)) call self%held%write_whole(self%id_count, self%ntime, err)
       if (.not. allocated(err)) call self%h5%flush(err)
-      if (.not. allocated(err)) then
-         self%ntime = self%ntime + 1
-         self%t_last = t
-         ! only now, with the HDF5 file complete on disk, do the XDMF files name this time
-         call self%series%append(series_grid(self, self%ntime - 1, t), err)
-         if (.not. allocated(err)) &
-            call write_whole_file(self%last_path, last_document(self, b, t, step), err)
+      ! only now, with the HDF5 file complete on disk, do the XDMF files name these times
+      if (.not. allocated(err)) call self%series%append(series_grids(self, k0, m), err)
+      if (same) then
+         if (.not. allocated(err)) call name_last(self, kk - 1, m - 1, err)
+         if (.not. allocated(err)) call write_last_buffer(self, kk, m, err)
+         if (.not. allocated(err)) call name_last(self, kk, m, err)
+      else
+         if (.not. allocated(err)) call name_last(self, kk, m, err)
+         if (.not. allocated(err) .and. m >= 2) call write_last_buffer(self, kk - 1, m - 1, err)
       end if
       if (allocated(err)) then
          self%broken = .true.
-         err%message = 'field output at t = '//real_text(t)//': '//err%message
+         err%message = 'field output at t = '//real_text(self%btime(m))//': '//err%message
+         return
       end if
-   end subroutine writer_write_step
+      self%t_flushed = self%btime(m)
+      self%npend = 0
+   end subroutine writer_flush
+
+   !> Flush when the oldest pending output time was taken BATCH_SECONDS (`set_batch`) of wall
+   !> time ago or more, so that a process killed loses no more than that; called at every output
+   !> time and between steps.
+   subroutine writer_flush_stale(self, err)
+      class(field_writer_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      if (self%npend == 0) return
+      if (wall_time() - self%wall_first >= self%batch_seconds) call writer_flush(self, err)
+   end subroutine writer_flush_stale
+
+   !> Bounds of the batch of the open file: at most `max_bytes` of output times (at least one)
+   !> and none kept longer than `max_seconds` of wall time (`open` sets BATCH_BYTES and
+   !> BATCH_SECONDS). Pending output times are flushed first.
+   subroutine writer_set_batch(self, max_bytes, max_seconds, err)
+      class(field_writer_t), intent(inout) :: self
+      integer(i8), intent(in) :: max_bytes
+      real(wp), intent(in) :: max_seconds
+      type(error_t), allocatable, intent(out) :: err
+      call writer_flush(self, err)
+      if (allocated(err)) return
+      self%batch_bytes = max_bytes
+      self%batch_seconds = max_seconds
+      if (self%h5%is_open()) call allocate_batch(self)
+   end subroutine writer_set_batch
+
+   !> The series grids of output times k0 .. k0+m-1 as one text, as m appends would leave them
+   !> (each grid once into a text of the final length: no repeated concatenation).
+   function series_grids(self, k0, m) result(s)
+      type(field_writer_t), intent(in) :: self
+      integer, intent(in) :: k0, m
+      character(len=:), allocatable :: s
+      character(len=*), parameter :: SEP = '  '//achar(10)//'    '
+      type :: text_t
+         character(len=:), allocatable :: c
+      end type text_t
+      type(text_t) :: g(m)
+      integer :: j, n, at
+      n = 0
+      do j = 1, m
+         g(j)%c = self%text%series_grid(k0 + j - 1, self%btime(j))
+         n = n + len(g(j)%c)
+      end do
+      allocate (character(len=n + (m - 1)*len(SEP)) :: s)
+      at = 0
+      do j = 1, m
+         if (j > 1) then
+            s(at + 1:at + len(SEP)) = SEP
+            at = at + len(SEP)
+         end if
+         s(at + 1:at + len(g(j)%c)) = g(j)%c
+         at = at + len(g(j)%c)
+      end do
+   end function series_grids
+
+   !> <stem>.xdmf names output k, batch slot j, in its buffer mod(k, 2).
+   subroutine name_last(self, k, j, err)
+      type(field_writer_t), intent(inout) :: self
+      integer, intent(in) :: k, j
+      type(error_t), allocatable, intent(out) :: err
+      call write_whole_file(self%last_path, self%text%last_document(mod(k, 2), k, self%btime(j), &
+                                                                     self%bstep(j)), err)
+      if (.not. allocated(err)) self%named = k
+   end subroutine name_last
+
+   !> The reserve of the series XDMF file for the output times the room holds (the grids of a
+   !> run that keeps to its estimate then never make the file regrow), at most SERIES_RESERVE_MAX.
+   integer(i8) function series_reserve(self) result(r)
+      type(field_writer_t), intent(in) :: self
+      r = int(self%capacity, i8)*(len(self%text%series_grid(self%capacity, 0.0_wp), i8) + 8_i8)
+      r = min(r, SERIES_RESERVE_MAX)
+   end function series_reserve
+
+   !> The batch's arrays, room for as many output times as `batch_bytes` holds (at least one, at
+   !> most the file's room).
+   subroutine allocate_batch(self)
+      type(field_writer_t), intent(inout) :: self
+      integer(i8) :: per_time
+      per_time = 8_i8*(2_i8*self%nvec*self%nnode + int(self%ncomp, i8)*(self%nelem + self%nnode) + &
+                       max(self%nenergy, 0) + 2) + 4_i8*self%nnode
+      ! never more than the room: a full room is flushed before it grows
+      self%nbatch = int(max(1_i8, min(int(max(self%capacity, 1), i8), self%batch_bytes/per_time)))
+      if (allocated(self%bvec)) deallocate (self%bvec, self%bact, self%bsig, self%bnod, self%ben, &
+                                            self%btime, self%bstep)
+      allocate (self%bvec(2, self%nnode, self%nbatch, self%nvec), self%bact(self%nnode, self%nbatch), &
+                self%bsig(self%ncomp, self%nelem, self%nbatch), self%bnod(self%ncomp, self%nnode, self%nbatch), &
+                self%ben(self%nbatch, max(self%nenergy, 0)), self%btime(self%nbatch), self%bstep(self%nbatch))
+      self%npend = 0
+   end subroutine allocate_batch
 
    !> Close the .h5 file and cut it to the output times written (a copy renamed over it, which
    !> also drops the count `/n_times` and stores the message of `mark_failed`), then write the
@@ -367,7 +527,8 @@ contains
       type(error_t), allocatable, intent(out) :: err
       type(error_t), allocatable :: err2
       if (.not. self%h5%is_open()) return
-      call rebuild(self, self%ntime, self%ntime, .true., err)
+      call writer_flush(self, err)
+      if (.not. allocated(err)) call rebuild(self, self%ntime, self%ntime, .true., err)
       call close_live(self, err2)
       if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
       call self%series%finish(err2)
@@ -568,26 +729,23 @@ contains
       writer_is_open = self%h5%is_open()
    end function writer_is_open
 
-   !> Number of output times written.
+   !> Number of output times written (taken: some may still be pending in the batch).
    pure integer function writer_count(self)
       class(field_writer_t), intent(in) :: self
       writer_count = self%ntime
    end function writer_count
 
-   !> The series XDMF file of the last-state file `path_xdmf`: '<stem>_series.xdmf'.
-   function series_path(path_xdmf) result(path)
-      character(len=*), intent(in) :: path_xdmf
-      character(len=:), allocatable :: path
-      integer :: n
-      n = len(path_xdmf)
-      if (n > 5) then
-         if (path_xdmf(n - 4:) == '.xdmf') then
-            path = path_xdmf(:n - 5)//'_series.xdmf'
-            return
-         end if
-      end if
-      path = path_xdmf//'_series.xdmf'
-   end function series_path
+   !> Time of the last output time complete in the .h5 file (0 before the first).
+   pure real(wp) function writer_last_flushed_time(self) result(t)
+      class(field_writer_t), intent(in) :: self
+      t = self%t_flushed
+   end function writer_last_flushed_time
+
+   !> Number of output times complete in the .h5 file and named by the XDMF files.
+   pure integer function writer_flushed(self)
+      class(field_writer_t), intent(in) :: self
+      writer_flushed = self%ntime - self%npend
+   end function writer_flushed
 
    ! ---------------------------------------------------------------------------- checks
 
@@ -745,35 +903,32 @@ contains
       end do
    end subroutine create_last_buffers
 
-   !> Write the output time (index self%ntime) into buffer b: the vectors padded to 3 components,
-   !> the contact flag, each element value component and its nodal average.
-   subroutine write_last_buffer(self, b, u, v, a, fcont, active, sig, err)
+   !> Write output time k, held in slot j of the batch, into its buffer mod(k, 2): the vectors
+   !> padded to 3 components, the contact flag, each element value component and its nodal
+   !> average, and k itself.
+   subroutine write_last_buffer(self, k, j, err)
       type(field_writer_t), intent(inout) :: self
-      integer, intent(in) :: b
-      real(wp), intent(in) :: u(:, :), v(:, :), a(:, :), fcont(:, :), sig(:, :)
-      integer, intent(in), contiguous :: active(:)
+      integer, intent(in) :: k, j
       type(error_t), allocatable, intent(out) :: err
-      integer :: i, j
+      integer :: i, n, b
 
-      j = self%nvec + 1
+      b = mod(k, 2)
+      n = self%nvec + 1
       self%vec3(3, :) = 0.0_wp
-      self%vec3(1:2, :) = u
-      call self%held%write_whole(self%id_last(1, b), self%vec3, err)
-      self%vec3(1:2, :) = v
-      if (.not. allocated(err)) call self%held%write_whole(self%id_last(2, b), self%vec3, err)
-      self%vec3(1:2, :) = a
-      if (.not. allocated(err)) call self%held%write_whole(self%id_last(3, b), self%vec3, err)
-      self%vec3(1:2, :) = fcont
-      if (.not. allocated(err)) call self%held%write_whole(self%id_last(4, b), self%vec3, err)
-      if (.not. allocated(err)) call self%held%write_whole(self%id_last(j, b), active, err)
+      do i = 1, self%nvec
+         if (allocated(err)) return
+         self%vec3(1:2, :) = self%bvec(:, :, j, i)
+         call self%held%write_whole(self%id_last(i, b), self%vec3, err)
+      end do
+      if (.not. allocated(err)) call self%held%write_whole(self%id_last(n, b), self%bact(:, j), err)
       do i = 1, self%ncomp
          if (allocated(err)) return
-         self%col_cell = sig(i, :)
-         call self%held%write_whole(self%id_last(j + i, b), self%col_cell, err)
-         self%col_node = self%nodal(i, :)
-         if (.not. allocated(err)) call self%held%write_whole(self%id_last(j + self%ncomp + i, b), self%col_node, err)
+         self%col_cell = self%bsig(i, :, j)
+         call self%held%write_whole(self%id_last(n + i, b), self%col_cell, err)
+         self%col_node = self%bnod(i, :, j)
+         if (.not. allocated(err)) call self%held%write_whole(self%id_last(n + self%ncomp + i, b), self%col_node, err)
       end do
-      if (.not. allocated(err)) call self%held%write_whole(self%id_last(j + 2*self%ncomp + 1, b), self%ntime, err)
+      if (.not. allocated(err)) call self%held%write_whole(self%id_last(n + 2*self%ncomp + 1, b), k, err)
    end subroutine write_last_buffer
 
    !> Create one series /energies/<name> per energy in the file `h5` (the one being made, or a
@@ -811,179 +966,6 @@ contains
       self%energy_names = names
       self%nenergy = size(names)
    end subroutine create_energy_series
-
-   ! ---------------------------------------------------------------------------- XDMF text
-
-   !> The series file up to its first grid.
-   function series_head() result(s)
-      character(len=:), allocatable :: s
-      s = '<?xml version="1.0" ?>'//NL// &
-          '<!-- exic field output: every output time, for the Xdmf3 readers of ParaView. The last'//NL// &
-          '     time alone, for every reader (meshio too), is in the .xdmf file without _series.'//NL// &
-          '     Blank space before the closing tags is room for the next output times. -->'//NL// &
-          '<Xdmf Version="3.0">'//NL// &
-          '  <Domain>'//NL// &
-          '    <Grid Name="exic" GridType="Collection" CollectionType="Temporal">'//NL
-   end function series_head
-
-   !> The series file after its last grid.
-   function series_tail() result(s)
-      character(len=:), allocatable :: s
-      s = '    </Grid>'//NL//'  </Domain>'//NL//'</Xdmf>'//NL
-   end function series_tail
-
-   !> Topology and geometry (the reference mesh) of a grid.
-   function mesh_items(self) result(s)
-      type(field_writer_t), intent(in) :: self
-      character(len=:), allocatable :: s
-      character(len=:), allocatable :: f
-      f = self%h5_ref//':'
-      s = '        <Topology TopologyType="Quadrilateral" NumberOfElements="'//itoa(self%nelem)//'">'//NL// &
-          data_item(itoa(self%nelem)//' 4', 'Int', '4', f//'/mesh/connectivity')// &
-          '        </Topology>'//NL// &
-          '        <Geometry GeometryType="XY">'//NL// &
-          data_item(itoa(self%nnode)//' 2', 'Float', '8', f//'/mesh/coordinates')// &
-          '        </Geometry>'//NL
-   end function mesh_items
-
-   !> Region and material of every element.
-   function static_attributes(self) result(s)
-      type(field_writer_t), intent(in) :: self
-      character(len=:), allocatable :: s
-      character(len=:), allocatable :: f
-      f = self%h5_ref//':'
-      s = attribute('region', 'Scalar', 'Cell', data_item(itoa(self%nelem), 'Int', '4', f//'/mesh/region'))// &
-          attribute('material', 'Scalar', 'Cell', data_item(itoa(self%nelem), 'Int', '4', f//'/mesh/material'))
-   end function static_attributes
-
-   !> The grid of output k (0-based) at time t in the series file: slab k of the datasets, in
-   !> Xdmf3's form "file:/dataset|start:stride:count:dims" (C order, time first). Indented for
-   !> the four blanks exic_io_xdmf puts before it, without a final newline.
-   function series_grid(self, k, t) result(s)
-      type(field_writer_t), intent(in) :: self
-      integer, intent(in) :: k
-      real(wp), intent(in) :: t
-      character(len=:), allocatable :: s
-      character(len=:), allocatable :: nn, ne, nc
-      integer :: i
-
-      nn = itoa(self%nnode)
-      ne = itoa(self%nelem)
-      nc = itoa(self%ncomp)
-      s = '  <Grid Name="t'//six_digits(k)//'" GridType="Uniform">'//NL// &
-          '        <Time Value="'//real_text(t)//'"/>'//NL//mesh_items(self)
-      do i = 1, self%nvec
-         s = s//attribute(trim(NODE_VECTORS(i)), 'Vector', 'Node', data_item(nn//' 3', 'Float', '8', &
-                          slab(self, '/xdmf/'//trim(NODE_VECTORS(i)), k, '0 0', '1 1', nn//' 3', nn//' 3')))
-      end do
-      s = s//attribute('contact_active', 'Scalar', 'Node', data_item(nn, 'Int', '4', &
-                       slab(self, '/fields/contact_active', k, '0', '1', nn, nn)))
-      do i = 1, self%ncomp
-         s = s//attribute(trim(self%comp_names(i)), 'Scalar', 'Cell', data_item(ne, 'Float', '8', &
-                          slab(self, '/fields/stress', k, '0 '//itoa(i - 1), '1 1', ne//' 1', ne//' '//nc)))
-      end do
-      do i = 1, self%ncomp
-         s = s//attribute(trim(self%comp_names(i)), 'Scalar', 'Node', data_item(nn, 'Float', '8', &
-                          slab(self, '/fields/nodal_stress', k, '0 '//itoa(i - 1), '1 1', nn//' 1', nn//' '//nc)))
-      end do
-      s = s//static_attributes(self)//'      </Grid>'
-   end function series_grid
-
-   !> "file:dataset|k start:1 stride:1 count:k+1 dims": slab k of a series, C order.
-   function slab(self, dataset, k, start, stride, count, dims) result(s)
-      type(field_writer_t), intent(in) :: self
-      character(len=*), intent(in) :: dataset, start, stride, count, dims
-      integer, intent(in) :: k
-      character(len=:), allocatable :: s
-      s = self%h5_ref//':'//dataset//'|'//itoa(k)//' '//start//':1 '//stride//':1 '//count//':'// &
-          itoa(k + 1)//' '//dims
-   end function slab
-
-   !> The last-state file: output k (0-based; -1 before the first: the mesh alone) at time t,
-   !> solver step `step`, held in buffer b; plain datasets only, one Uniform grid, no Time element
-   !> (meshio.read accepts exactly this).
-   function last_document(self, b, t, step) result(s)
-      type(field_writer_t), intent(in) :: self
-      integer, intent(in) :: b
-      real(wp), intent(in) :: t
-      integer(i8), intent(in) :: step
-      character(len=:), allocatable :: s
-      character(len=:), allocatable :: nn, ne, g, name
-      integer :: i
-
-      nn = itoa(self%nnode)
-      ne = itoa(self%nelem)
-      if (b < 0) then
-         name = 'exic mesh (no output time yet)'
-      else
-         name = 'exic t = '//real_text(t)//', step '//step_text(step)//', output '//itoa(self%ntime - 1)
-      end if
-      s = '<?xml version="1.0" ?>'//NL// &
-          '<!-- exic field output: the last output time (every one: the _series.xdmf file) -->'//NL// &
-          '<Xdmf Version="3.0">'//NL//'  <Domain>'//NL// &
-          '    <Grid Name="'//name//'" GridType="Uniform">'//NL//mesh_items(self)
-      if (b >= 0) then
-         g = self%h5_ref//':/last/'//BUFFER(b)//'/'
-         do i = 1, self%nvec
-            s = s//attribute(trim(NODE_VECTORS(i)), 'Vector', 'Node', &
-                             data_item(nn//' 3', 'Float', '8', g//trim(NODE_VECTORS(i))))
-         end do
-         s = s//attribute('contact_active', 'Scalar', 'Node', data_item(nn, 'Int', '4', g//'contact_active'))
-         do i = 1, self%ncomp
-            s = s//attribute(trim(self%comp_names(i)), 'Scalar', 'Cell', &
-                             data_item(ne, 'Float', '8', g//'cell_'//trim(self%comp_names(i))))
-         end do
-         do i = 1, self%ncomp
-            s = s//attribute(trim(self%comp_names(i)), 'Scalar', 'Node', &
-                             data_item(nn, 'Float', '8', g//'node_'//trim(self%comp_names(i))))
-         end do
-      end if
-      s = s//static_attributes(self)//'    </Grid>'//NL//'  </Domain>'//NL//'</Xdmf>'//NL
-   end function last_document
-
-   !> A 64-bit step number as text.
-   function step_text(step) result(s)
-      integer(i8), intent(in) :: step
-      character(len=:), allocatable :: s
-      character(len=24) :: buf
-      write (buf, '(i0)') step
-      s = trim(buf)
-   end function step_text
-
-   !> k with six digits at least.
-   function six_digits(k) result(name)
-      integer, intent(in) :: k
-      character(len=:), allocatable :: name
-      character(len=16) :: buf
-      write (buf, '(i6.6)') k
-      if (k >= 1000000) write (buf, '(i0)') k
-      name = trim(buf)
-   end function six_digits
-
-   !> How the XDMF files name the .h5 file: its base name when both share a directory, else the
-   !> absolute path. XDMF separates file and dataset by ':' and Xdmf3 a selection by '|': the name has neither.
-   subroutine xdmf_reference(path_h5, path_xdmf, ref, err)
-      character(len=*), intent(in) :: path_h5, path_xdmf
-      character(len=:), allocatable, intent(out) :: ref
-      type(error_t), allocatable, intent(out) :: err
-      integer :: i5, ix
-
-      i5 = index(path_h5, '/', back=.true.)
-      ix = index(path_xdmf, '/', back=.true.)
-      if (path_h5(1:i5) == path_xdmf(1:ix)) then
-         ref = path_h5(i5 + 1:)
-      else if (path_h5(1:1) == '/') then
-         ref = path_h5
-      else
-         call make_error(err, "field output: '"//path_h5//"' and '"//path_xdmf// &
-                         "' must be in one directory (or give the .h5 path absolute)")
-         return
-      end if
-      if (scan(ref, ':|') > 0 .or. len(ref) == 0) then
-         call make_error(err, "field output: the HDF5 file name '"//ref// &
-                         "' must be non-empty and contain no ':' or '|'")
-      end if
-   end subroutine xdmf_reference
 
    !> Names joined by single blanks.
    function join(names) result(s)

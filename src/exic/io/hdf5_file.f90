@@ -29,7 +29,7 @@ module exic_io_hdf5_file
                    H5T_STD_I64LE, H5T_FORTRAN_S1, H5T_STR_NULLPAD_F, h5pset_alloc_time_f, &
                    h5pset_fill_time_f, h5pset_obj_track_times_f, h5pset_cache_f, &
                    h5pset_sieve_buf_size_f, h5ldelete_f, H5D_ALLOC_TIME_EARLY_F, &
-                   H5D_FILL_TIME_ALLOC_F, H5P_FILE_ACCESS_F, SIZE_T
+                   H5D_FILL_TIME_NEVER_F, H5P_FILE_ACCESS_F, SIZE_T
    implicit none
    private
 
@@ -405,8 +405,8 @@ contains
    !> Create the extendible dataset `name` of Fortran shape (lead..., 0), unlimited in its last
    !> dimension, chunked so that a chunk holds whole slabs (about CHUNK_BYTES, no compression).
    !> With `capacity`, the dataset is created with `capacity` slabs at once, its chunks allocated
-   !> and filled at creation (NaN for reals, -1 for integers: what an unwritten slab reads as),
-   !> and no object times: writing slabs into it later changes no metadata.
+   !> but not written (fill time "never": an unwritten slab holds no output, doc/fields.md), and
+   !> no object times: writing slabs into it later changes no metadata.
    subroutine file_create_series(self, name, dtype, lead, err, capacity)
       class(hdf5_file_t), intent(inout) :: self
       character(len=*), intent(in) :: name
@@ -442,7 +442,7 @@ contains
          if (st >= 0) call h5pset_chunk_f(dcpl, rank, chunk, st)
          if (st >= 0 .and. present(capacity)) then
             call h5pset_alloc_time_f(dcpl, H5D_ALLOC_TIME_EARLY_F, st)
-            if (st >= 0) call h5pset_fill_time_f(dcpl, H5D_FILL_TIME_ALLOC_F, st)
+            if (st >= 0) call h5pset_fill_time_f(dcpl, H5D_FILL_TIME_NEVER_F, st)
             if (st >= 0) call set_unwritten_fill(dcpl, dtype, st)
             if (st >= 0) call h5pset_obj_track_times_f(dcpl, .false., st)
          end if

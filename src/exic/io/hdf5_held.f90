@@ -37,10 +37,15 @@ module exic_io_hdf5_held
       procedure :: release => held_release
       procedure, private :: slab_real0, slab_real1, slab_real2, slab_int1, slab_int64_0
       procedure, private :: whole_real1, whole_real2, whole_int1, whole_int0
+      procedure, private :: slabs_real1, slabs_real3, slabs_int2, slabs_int64_1
       !> Write slab k (0-based, in the last dimension) of the held series `id`:
       !> `call h%write_slab(id, k, x, err)`; x has the series' leading shape. Nothing but raw data
       !> is written: the slab must lie inside the dataset's current extent.
       generic :: write_slab => slab_real0, slab_real1, slab_real2, slab_int1, slab_int64_0
+      !> Write m consecutive slabs k .. k+m-1 of the held series `id` by one H5Dwrite:
+      !> `call h%write_slabs(id, k, x, err)`; x has the series' leading shape and m as its last
+      !> extent (a series of scalars: x(m)). The slabs must lie inside the current extent.
+      generic :: write_slabs => slabs_real1, slabs_real3, slabs_int2, slabs_int64_1
       !> Overwrite the whole held dataset `id` (same shape): `call h%write_whole(id, x, err)`.
       generic :: write_whole => whole_real1, whole_real2, whole_int1, whole_int0
    end type hdf5_held_t
@@ -102,7 +107,7 @@ contains
       real(wp), intent(in), target :: x
       type(error_t), allocatable, intent(out) :: err
       integer(hsize_t) :: lead(0)
-      call slab_raw(self, id, k, DTYPE_REAL, lead, c_loc(x), err)
+      call slab_raw(self, id, k, 1, DTYPE_REAL, lead, c_loc(x), err)
    end subroutine slab_real0
 
    subroutine slab_real1(self, id, k, x, err)
@@ -110,7 +115,7 @@ contains
       integer, intent(in) :: id, k
       real(wp), intent(in), target, contiguous :: x(:)
       type(error_t), allocatable, intent(out) :: err
-      call slab_raw(self, id, k, DTYPE_REAL, int(shape(x), hsize_t), c_loc(x), err)
+      call slab_raw(self, id, k, 1, DTYPE_REAL, int(shape(x), hsize_t), c_loc(x), err)
    end subroutine slab_real1
 
    subroutine slab_real2(self, id, k, x, err)
@@ -118,7 +123,7 @@ contains
       integer, intent(in) :: id, k
       real(wp), intent(in), target, contiguous :: x(:, :)
       type(error_t), allocatable, intent(out) :: err
-      call slab_raw(self, id, k, DTYPE_REAL, int(shape(x), hsize_t), c_loc(x), err)
+      call slab_raw(self, id, k, 1, DTYPE_REAL, int(shape(x), hsize_t), c_loc(x), err)
    end subroutine slab_real2
 
    subroutine slab_int1(self, id, k, x, err)
@@ -126,7 +131,7 @@ contains
       integer, intent(in) :: id, k
       integer, intent(in), target, contiguous :: x(:)
       type(error_t), allocatable, intent(out) :: err
-      call slab_raw(self, id, k, DTYPE_INT, int(shape(x), hsize_t), c_loc(x), err)
+      call slab_raw(self, id, k, 1, DTYPE_INT, int(shape(x), hsize_t), c_loc(x), err)
    end subroutine slab_int1
 
    subroutine slab_int64_0(self, id, k, x, err)
@@ -135,14 +140,48 @@ contains
       integer(i8), intent(in), target :: x
       type(error_t), allocatable, intent(out) :: err
       integer(hsize_t) :: lead(0)
-      call slab_raw(self, id, k, DTYPE_INT64, lead, c_loc(x), err)
+      call slab_raw(self, id, k, 1, DTYPE_INT64, lead, c_loc(x), err)
    end subroutine slab_int64_0
 
-   !> Write the data at `p` (Fortran shape `lead`) into slab k (0-based) of the held series `id`,
-   !> which must have that leading shape and more than k slabs.
-   subroutine slab_raw(self, id, k, dtype, lead, p, err)
+   subroutine slabs_real1(self, id, k, x, err)
       class(hdf5_held_t), intent(inout) :: self
-      integer, intent(in) :: id, k, dtype
+      integer, intent(in) :: id, k
+      real(wp), intent(in), target, contiguous :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t) :: lead(0)
+      call slab_raw(self, id, k, size(x), DTYPE_REAL, lead, c_loc(x), err)
+   end subroutine slabs_real1
+
+   subroutine slabs_real3(self, id, k, x, err)
+      class(hdf5_held_t), intent(inout) :: self
+      integer, intent(in) :: id, k
+      real(wp), intent(in), target, contiguous :: x(:, :, :)
+      type(error_t), allocatable, intent(out) :: err
+      call slab_raw(self, id, k, size(x, 3), DTYPE_REAL, int(shape(x(:, :, 1)), hsize_t), c_loc(x), err)
+   end subroutine slabs_real3
+
+   subroutine slabs_int2(self, id, k, x, err)
+      class(hdf5_held_t), intent(inout) :: self
+      integer, intent(in) :: id, k
+      integer, intent(in), target, contiguous :: x(:, :)
+      type(error_t), allocatable, intent(out) :: err
+      call slab_raw(self, id, k, size(x, 2), DTYPE_INT, int(shape(x(:, 1)), hsize_t), c_loc(x), err)
+   end subroutine slabs_int2
+
+   subroutine slabs_int64_1(self, id, k, x, err)
+      class(hdf5_held_t), intent(inout) :: self
+      integer, intent(in) :: id, k
+      integer(i8), intent(in), target, contiguous :: x(:)
+      type(error_t), allocatable, intent(out) :: err
+      integer(hsize_t) :: lead(0)
+      call slab_raw(self, id, k, size(x), DTYPE_INT64, lead, c_loc(x), err)
+   end subroutine slabs_int64_1
+
+   !> Write the data at `p` (Fortran shape (lead, m)) into slabs k .. k+m-1 (0-based) of the held
+   !> series `id`, which must have that leading shape and more than k+m-1 slabs.
+   subroutine slab_raw(self, id, k, m, dtype, lead, p, err)
+      class(hdf5_held_t), intent(inout) :: self
+      integer, intent(in) :: id, k, m, dtype
       integer(hsize_t), intent(in) :: lead(:)
       type(c_ptr), intent(in) :: p
       type(error_t), allocatable, intent(out) :: err
@@ -165,15 +204,15 @@ contains
                call fail(self, err, 'write a slab of the wrong shape to', h%name)
                exit steps
             end if
-            if (k < 0 .or. int(k, hsize_t) >= dims(rank)) then
-               call fail(self, err, 'write slab '//itoa(k)//' outside the '//itoa(int(dims(rank), i8))// &
-                         ' slabs of', h%name)
+            if (k < 0 .or. m < 1 .or. int(k, hsize_t) + int(m, hsize_t) > dims(rank)) then
+               call fail(self, err, 'write slabs '//itoa(k)//' to '//itoa(k + m - 1)//' outside the '// &
+                         itoa(int(dims(rank), i8))//' slabs of', h%name)
                exit steps
             end if
             offset = 0
             offset(rank) = int(k, hsize_t)
             count(1:rank - 1) = lead
-            count(rank) = 1
+            count(rank) = int(m, hsize_t)
             call h5sselect_hyperslab_f(fspace, H5S_SELECT_SET_F, offset, count, st)
             if (st >= 0) call h5screate_simple_f(rank, count, mspace, st)
             if (st < 0) then

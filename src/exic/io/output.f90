@@ -83,11 +83,13 @@ contains
       call self%files%open(base, err)
    end subroutine output_open
 
-   !> Flush the files and note their lengths and the number of field output times, for a
-   !> restart file written now.
-   subroutine output_checkpoint(self)
+   !> Flush the files (the field output times still in memory too) and note their lengths and
+   !> the number of field output times, for a restart file written now.
+   subroutine output_checkpoint(self, err)
       class(output_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
       call self%files%sizes(self%saved_his_bytes, self%saved_ene_bytes)
+      if (self%fields%is_open()) call self%fields%flush(err)
       self%saved_field_times = self%fields%count()
    end subroutine output_checkpoint
 
@@ -398,6 +400,10 @@ contains
       type(error_t), allocatable, intent(out) :: err
       real(wp) :: behind, next
       if (.not. self%fields%is_open()) return
+      ! output times kept in memory longer than the batch allows go to the file now (the rows of
+      ! the text files up to them were flushed when they were taken)
+      call self%fields%flush_stale(err)
+      if (allocated(err)) return
       if (stp%st%t < self%field_next*(1.0_wp - TIME_TOL)) return
       if (self%field_dt < stp%st%dt_prev .and. .not. self%warned_interval) then
          self%warned_interval = .true.

@@ -65,6 +65,8 @@ long long exic_c_file_size(const char *path)
 
 /* Copy the bytes of the file `from` to `to` (created or truncated, mode 0666 less the umask)
  * with read(2) and write(2) in 1 MiB blocks, short writes and EINTR handled, and close both.
+ * (copy_file_range(2) was tried: on ext4 its in-kernel page copy took 3.5 times the processor
+ * time of read/write on the field file of the seed's 7.2, doc/performance.md section 6.5.)
  * Returns 0, or errno with the system's text and the failing step in msg (at most msglen
  * bytes, NUL-terminated). */
 int exic_c_copy_file(const char *from, const char *to, char *msg, int msglen)

@@ -61,14 +61,19 @@ contains
 
    ! ---------------------------------------------------------------------------- the series
 
-   !> Create `path`: `head`, a reserve, `tail` (written to '<path>.tmp' and renamed).
-   subroutine series_create(self, path, head, tail, err)
+   !> Create `path`: `head`, a reserve, `tail` (written to '<path>.tmp' and renamed). `reserve`:
+   !> the bytes the caller expects to append (the reserve is at least RESERVE_MIN).
+   subroutine series_create(self, path, head, tail, err, reserve)
       class(xdmf_series_t), intent(inout) :: self
       character(len=*), intent(in) :: path, head, tail
       type(error_t), allocatable, intent(out) :: err
+      integer(i8), intent(in), optional :: reserve
+      integer(i8) :: r
+      r = RESERVE_MIN
+      if (present(reserve)) r = max(r, reserve)
       self%path = path
       self%tail = tail
-      call rebuild(self, head, '', RESERVE_MIN, err)
+      call rebuild(self, head, '', r, err)
    end subroutine series_create
 
    !> Append `grid` (text without '--') before the tail, keeping the file well-formed after every
@@ -163,16 +168,30 @@ contains
       character(len=*), intent(in) :: content, grid
       integer(i8), intent(in) :: reserve
       type(error_t), allocatable, intent(out) :: err
-      character(len=:), allocatable :: space
-      integer(i8) :: k
+      character(len=:), allocatable :: text
+      character(len=RESERVE_LINE) :: line
+      integer(i8) :: k, at, nfull
       integer :: ios
       character(len=256) :: msg
 
-      allocate (character(len=reserve) :: space)
-      do k = 1, reserve
-         space(k:k) = merge(NL, ' ', mod(k, int(RESERVE_LINE, i8)) == 0_i8)
+      ! the file in one piece: content, grid, the reserve in lines of RESERVE_LINE - 1 blanks
+      ! and a newline (the last line cut short), the tail
+      line = repeat(' ', RESERVE_LINE - 1)//NL
+      allocate (character(len=len(content, i8) + len(grid, i8) + reserve + len(self%tail, i8)) :: text)
+      at = 0
+      text(at + 1:at + len(content)) = content
+      at = at + len(content)
+      text(at + 1:at + len(grid)) = grid
+      at = at + len(grid)
+      nfull = reserve/RESERVE_LINE
+      do k = 1, nfull
+         text(at + 1:at + RESERVE_LINE) = line
+         at = at + RESERVE_LINE
       end do
-      call write_whole_file(self%path, content//grid//space//self%tail, err)
+      text(at + 1:at + reserve - nfull*RESERVE_LINE) = ''
+      at = at + reserve - nfull*RESERVE_LINE
+      text(at + 1:) = self%tail
+      call write_whole_file(self%path, text, err)
       if (allocated(err)) return
       self%free = len(content, i8) + len(grid, i8)
       self%tail_at = self%free + reserve

@@ -30,7 +30,8 @@ module exic_session_run
    integer, parameter :: INSIDE_STEPS = 1000
 
    abstract interface
-      !> Told after each field output time is written and flushed: how many there are and t.
+      !> Told after the field file is flushed (doc/fields.md, "Batches"): how many output times
+      !> it holds complete, and the time of the last of them.
       subroutine fields_observer(count, t)
          import :: wp
          integer, intent(in) :: count
@@ -81,7 +82,8 @@ contains
       type(run_t), intent(inout) :: r
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: err
-      call r%out%checkpoint()
+      call r%out%checkpoint(err)
+      if (allocated(err)) return
       call write_restart(r%rst, model, r%stp, r%out, r%pos, err)
       if (allocated(err)) return
       r%saved_step = r%stp%st%step

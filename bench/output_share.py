@@ -1,0 +1,124 @@
+#!/usr/bin/env python3
+"""Output share of the seed's example 7.2 as shipped (doc/performance.md, sections 6.5 and 6.6).
+
+Runs inputs/paper/ex72_compliant.inp in four variants with two exic binaries, interleaved (old
+then new, the order reversed every other repetition), and reports the medians of the processor
+time of the exic process (user + system of all its threads, os.wait4):
+
+  version        `exic --version` (start-up alone)
+  shipped        the deck as shipped (fields every 0.002, 26 histories every step)
+  no_fields      without OUTPut,HDF5
+  no_output      without OUTPut,HDF5 and with TPLOt,,1000000 (histories only at the end)
+
+output share = (shipped - no_output) / shipped, field share = (shipped - no_fields) / shipped.
+
+    python3 bench/output_share.py --old OLD_EXIC --new NEW_EXIC [--reps 9] [--threads 1 2]
+                                  [--json bench/results/output_share.json]
+
+OPENBLAS_NUM_THREADS=1; OMP_NUM_THREADS as given by --threads (one table per value). The load
+average before and after is printed: on a loaded machine the absolute figures are inflated and
+the differences between the binaries are what counts.
+"""
+import argparse
+import json
+import os
+import platform
+import re
+import shutil
+import statistics
+import subprocess
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DECK = os.path.join(ROOT, "inputs", "paper", "ex72_compliant.inp")
+COMMON = os.path.join(ROOT, "inputs", "paper", "common")
+
+
+def make_variants(work):
+    """Copies of the deck and its include files under `work`, one directory per variant."""
+    batch = open(os.path.join(COMMON, "ex72_batch.inc")).read()
+    if not re.search(r"^\s*OUTPut,HDF5,tout\s*$", batch, re.M) or not re.search(r"^\s*TPLOt,,1\s*$", batch, re.M):
+        raise SystemExit("ex72_batch.inc no longer has the lines 'OUTPut,HDF5,tout' and 'TPLOt,,1'")
+    no_fields = re.sub(r"^\s*OUTPut,HDF5,tout\s*\n", "", batch, flags=re.M)
+    no_output = re.sub(r"^(\s*)TPLOt,,1\s*$", r"\1TPLOt,,1000000", no_fields, flags=re.M)
+    decks = {}
+    for name, text in (("shipped", batch), ("no_fields", no_fields), ("no_output", no_output)):
+        d = os.path.join(work, name)
+        shutil.copytree(COMMON, os.path.join(d, "common"))
+        with open(os.path.join(d, "common", "ex72_batch.inc"), "w") as f:
+            f.write(text)
+        shutil.copy(DECK, d)
+        decks[name] = os.path.join(d, os.path.basename(DECK))
+    return decks
+
+
+def cpu_of(cmd, env, cwd):
+    """Processor time (user + system) of one run of `cmd`; the run must succeed."""
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env, cwd=cwd)
+    _, status, ru = os.wait4(p.pid, 0)
+    err = p.stderr.read().decode(errors="replace")
+    p.stderr.close()
+    if os.waitstatus_to_exitcode(status) != 0:
+        raise SystemExit(f"{' '.join(cmd)} failed ({status}): {err}")
+    return ru.ru_utime + ru.ru_stime
+
+
+def measure(binaries, decks, reps, threads, work):
+    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS=str(threads))
+    names = ["version"] + list(decks)
+    cpu = {b: {n: [] for n in names} for b in binaries}
+    for rep in range(reps):
+        order = list(binaries) if rep % 2 == 0 else list(reversed(binaries))
+        for n in names:
+            for b in order:
+                if n == "version":
+                    cmd = [binaries[b], "--version"]
+                    cwd = work
+                else:
+                    out = os.path.join(work, f"out_{b}_{n}")
+                    cmd = [binaries[b], "-q", decks[n], "-o", out]
+                    cwd = os.path.dirname(decks[n])
+                cpu[b][n].append(cpu_of(cmd, env, cwd))
+    res = {}
+    for b in binaries:
+        med = {n: statistics.median(v) for n, v in cpu[b].items()}
+        med["output_share"] = (med["shipped"] - med["no_output"])/med["shipped"]
+        med["field_share"] = (med["shipped"] - med["no_fields"])/med["shipped"]
+        med["output_seconds"] = med["shipped"] - med["no_output"]
+        res[b] = {"median": med, "samples": cpu[b]}
+    return res
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--old", required=True, help="the exic binary before the change")
+    ap.add_argument("--new", required=True, help="the exic binary after it")
+    ap.add_argument("--reps", type=int, default=9)
+    ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--json", help="write the figures to this file")
+    args = ap.parse_args()
+    binaries = {"old": os.path.abspath(args.old), "new": os.path.abspath(args.new)}
+    result = {"machine": platform.processor() or platform.machine(), "reps": args.reps,
+              "load_before": os.getloadavg(), "threads": {}}
+    with tempfile.TemporaryDirectory(prefix="exic_output_share_") as work:
+        decks = make_variants(work)
+        for th in args.threads:
+            result["threads"][str(th)] = measure(binaries, decks, args.reps, th, work)
+    result["load_after"] = os.getloadavg()
+    print(f"load average before {result['load_before'][0]:.2f}, after {result['load_after'][0]:.2f}; "
+          f"{args.reps} repetitions, medians of processor time (user + system)")
+    print("| build | threads | --version | as shipped | without fields | without fields and histories "
+          "| output share |")
+    print("|---|---|---|---|---|---|---|")
+    for th, res in result["threads"].items():
+        for b in ("old", "new"):
+            m = res[b]["median"]
+            print(f"| {b} | {th} | {m['version']:.3f} s | {m['shipped']:.3f} s | {m['no_fields']:.3f} s "
+                  f"| {m['no_output']:.3f} s | {100*m['output_share']:.0f} % (fields {100*m['field_share']:.0f} %) |")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(result, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
