@@ -420,16 +420,7 @@ def _fresh(data, prev, w):
       "draw before that change: 495 finished, 5 stops, 21 and 2 warned failures), "
       f"results in `doc/stability/scenes_{data['seed']}.json`: **{len(fin)} of {n} run to the end "
       f"({pct(len(fin), n)})**; every stop names its element, node or pair:\n")
-    cols = ([prev] if prev else []) + [data]
-    w("| | " + " | ".join(f"seed {c['seed']}" for c in cols) + " |")
-    w("|---|" + "---:|" * len(cols))
-    for rows in zip(*(_counts(c) for c in cols)):
-        w(f"| {rows[0][0]} | " + " | ".join(str(r[1]) for r in rows) + " |")
-    w("")
-    for r in data["scenes"]:
-        if r["class"] != "finished":
-            w(f"- scene {r['index']} ({r['pattern']}): {r['class']}: {r['message'][:160]}")
-    w("")
+    _draw_table(data, prev, w)
 
 
 def _final(data, prev, w):
@@ -444,6 +435,11 @@ def _final(data, prev, w):
       f"results in `doc/stability/scenes_{data['seed']}.json`: **{len(fin)} of {n} run to the end "
       f"({pct(len(fin), n)})**; every stop names its element, node or pair, every finished scene with "
       "energy growth over 1 % or a node deeper than 1e-3 edges inside another body was warned:\n")
+    _draw_table(data, prev, w)
+
+
+def _draw_table(data, prev, w):
+    """The counts of a draw beside those of the draw before, and its runs that did not finish."""
     cols = ([prev] if prev else []) + [data]
     w("| | " + " | ".join(f"seed {c['seed']}" for c in cols) + " |")
     w("|---|" + "---:|" * len(cols))
