@@ -93,8 +93,15 @@ def h5_times(path, info=None):
                 n = int(f["n_times"][0])
                 if info is not None:
                     info["open_file"] = True
-                if not (0 <= n <= t.size and np.all(np.isfinite(t[:n])) and np.all(t[n + 1:] == 0)):
-                    return False, None, f"/time is not finite up to /n_times = {n} and 0 after the next slot"
+                # after the complete times: the batch a kill interrupted (slots written, count not
+                # yet), increasing from the last complete time, then unwritten slots (0)
+                rest = t[n:] if 0 <= n <= t.size else t
+                k, prev = 0, (t[n - 1] if 0 < n <= t.size else -np.inf)
+                while k < rest.size and np.isfinite(rest[k]) and rest[k] > prev:
+                    prev, k = rest[k], k + 1
+                if not (0 <= n <= t.size and np.all(np.isfinite(t[:n])) and np.all(rest[k:] == 0)):
+                    return False, None, (f"/time is not finite up to /n_times = {n}, then an interrupted "
+                                         "batch of increasing times, then 0")
                 return True, [float(x) for x in t[:n]], ""
             if not np.all(np.isfinite(t)):
                 return False, None, "a closed file (no /n_times) has unwritten times"
