@@ -14,6 +14,7 @@ module testing
 
    public :: suite_t, runner_t, suite_procedure, check, check_close, section, skip
    public :: have_command, have_python_modules, python_command, fpm_command, file_text
+   public :: energy_of, gradient_error
 
    !> Running totals of one test run.
    type :: suite_t
@@ -30,6 +31,11 @@ module testing
          import :: suite_t
          type(suite_t), intent(inout) :: s
       end subroutine suite_procedure
+      !> A total energy as a function of the nodal displacements (2, nnode).
+      real(wp) function energy_of(u)
+         import :: wp
+         real(wp), intent(in) :: u(:, :)
+      end function energy_of
    end interface
 
    !> Runs the suites the command line selects.
@@ -226,5 +232,25 @@ contains
       read (u, iostat=ios) text
       close (u)
    end function file_text
+
+   !> max |fd - f| / max |f|: a force f against the central differences, step h, of the total
+   !> energy at u (every dof in turn).
+   real(wp) function gradient_error(u, f, h, energy) result(rel)
+      real(wp), intent(in) :: u(:, :), f(:, :), h
+      procedure(energy_of) :: energy
+      real(wp) :: g(size(u, 1), size(u, 2)), fd(size(u, 1), size(u, 2)), ep, em
+      integer :: i, j
+      do j = 1, size(u, 2)
+         do i = 1, size(u, 1)
+            g = u
+            g(i, j) = u(i, j) + h
+            ep = energy(g)
+            g(i, j) = u(i, j) - h
+            em = energy(g)
+            fd(i, j) = (ep - em)/(2.0_wp*h)
+         end do
+      end do
+      rel = maxval(abs(fd - f))/maxval(abs(f))
+   end function gradient_error
 
 end module testing
