@@ -57,47 +57,53 @@ contains
       call check(s, index(out, 'warning: at t') == 0, 'no penetration warning')
       call section(s, 'stress decks: scene 206, sliding disks')
       call run_saved(s, 'scene_20240610_0206', out)
-      v = number_after(out, 'largest growth of the physical energy over the energy put in ')
-      call check(s, v >= 0.0_wp .and. v < 1.0_wp, 'energy growth below the warning limit of 1 % (was 8.8 %)', &
-                 line_with(out, 'energy guard'))
+      call check_growth(s, out, 'energy growth below the warning limit of 1 % (was 8.8 %)')
       call section(s, 'stress decks: scene 98, light block over a heavy disk')
       call run_saved(s, 'scene_20240610_0098', out)
-      v = number_after(out, 'largest growth of the physical energy over the energy put in ')
-      call check(s, v >= 0.0_wp .and. v < 1.0_wp, 'energy growth below the warning limit of 1 % (was 6.2 %)', &
-                 line_with(out, 'energy guard'))
+      call check_growth(s, out, 'energy growth below the warning limit of 1 % (was 6.2 %)')
       call section(s, 'stress decks: scene 101 of seed 20261123, a corner flattened on a rigid face')
       call run_saved(s, 'flat_corner_20261123_0101', out)
-      v = number_after(out, 'final time ')
-      call check(s, abs(v - 12.384075_wp) < 1.0e-5_wp, 'final time 12.384 (stopped at 0.646 as folded)', &
-                 line_with(out, 'final time'))
+      call check_final_time(s, out, 12.384075_wp, 'final time 12.384 (stopped at 0.646 as folded)')
       call section(s, 'stress decks: scene 19 of seed 20261124, a one-point block under a corner impact')
       call run_saved(s, 'hourglass_20261124_0019', out)
-      v = number_after(out, 'final time ')
-      call check(s, abs(v - 3.6115656_wp) < 1.0e-5_wp, 'HOURglass,PHYSical: final time 3.6116 (stopped at '// &
-                 '0.2287 with HOURglass 0.1)', line_with(out, 'final time'))
-      v = number_after(out, 'largest growth of the physical energy over the energy put in ')
-      call check(s, v >= 0.0_wp .and. v < 1.0_wp, 'energy growth below the warning limit of 1 %', &
-                 line_with(out, 'energy guard'))
+      call check_final_time(s, out, 3.6115656_wp, 'HOURglass,PHYSical: final time 3.6116 (stopped at '// &
+                            '0.2287 with HOURglass 0.1)')
+      call check_growth(s, out, 'energy growth below the warning limit of 1 %')
       call fold_with_fb(s)
       call section(s, 'stress decks: fuzzed mutant 280 of seed 20261128, a bar at rest touching a wall')
       call run_saved(s, 'rest_on_wall_20261128_0280', out)
-      v = number_after(out, 'largest growth of the physical energy over the energy put in ')
-      call check(s, v >= 0.0_wp .and. v < 1.0_wp, 'nothing put in, round-off energies: growth below the '// &
-                 'warning limit (stopped at step 1 as "appeared with no energy put in")', line_with(out, 'energy guard'))
+      call check_growth(s, out, 'nothing put in, round-off energies: growth below the '// &
+                        'warning limit (stopped at step 1 as "appeared with no energy put in")')
       call check(s, index(out, 'warning:') == 0 .and. index(out, 'Infinity') == 0 .and. index(out, 'NaN') == 0, &
                  'no warning and no non-finite number in <stem>.out')
       call section(s, 'stress decks: scene 86 of seed 20261125, two one-point blocks, a corner impact')
       call run_saved(s, 'barrier_20261125_0086', out)
-      v = number_after(out, 'final time ')
-      call check(s, abs(v - 2.4756629_wp) < 1.0e-5_wp, 'corner barrier: final time 2.4757 (stopped at '// &
-                 '0.1708, element 106 folded, without it)', line_with(out, 'final time'))
-      v = number_after(out, 'largest growth of the physical energy over the energy put in ')
-      call check(s, v >= 0.0_wp .and. v < 1.0_wp, 'energy growth below the warning limit of 1 %', &
-                 line_with(out, 'energy guard'))
+      call check_final_time(s, out, 2.4756629_wp, 'corner barrier: final time 2.4757 (stopped at '// &
+                            '0.1708, element 106 folded, without it)')
+      call check_growth(s, out, 'energy growth below the warning limit of 1 %')
       call section(s, 'stress decks: a block bouncing between frictionless rigid walls, 10^5 steps')
       call run_saved(s, 'flat_wall_bounce', out)
       call transverse_momentum(s, run_dir//'/flat_wall_bounce.his')
    end subroutine run_stress_decks_tests
+
+   !> The run's largest energy growth (<stem>.out) is below the warning limit of 1 %.
+   subroutine check_growth(s, out, label)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: out, label
+      real(wp) :: v
+      v = number_after(out, 'largest growth of the physical energy over the energy put in ')
+      call check(s, v >= 0.0_wp .and. v < 1.0_wp, label, line_with(out, 'energy guard'))
+   end subroutine check_growth
+
+   !> The run ended at the final time `t_end` (<stem>.out, to 1e-5).
+   subroutine check_final_time(s, out, t_end, label)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: out, label
+      real(wp), intent(in) :: t_end
+      real(wp) :: v
+      v = number_after(out, 'final time ')
+      call check(s, abs(v - t_end) < 1.0e-5_wp, label, line_with(out, 'final time'))
+   end subroutine check_final_time
 
    !> The largest |p_y| of the block (column 4 of the .his: t, cont, mome x, mome y, disp) over
    !> the run against p_x at t = 0: frictionless flat walls normal to x must keep it at round-off.
