@@ -74,9 +74,10 @@ def make_dir(d):
 
 def h5_times(path, info=None):
     """(ok, times, message): the file opens with h5dump -H and h5py; its complete output times
-    (the first /n_times of /time in a file left open, all of /time in a closed one), with the
-    invariant of the count checked (doc/fields.md, "Kill safety"). `info` (a dict) gets
-    "open_file": whether the file has the count."""
+    (the first /n_times of /time; all of /time in a file without the count), with the invariant
+    of the count checked (doc/fields.md, "Kill safety"). `info` (a dict) gets "open_file":
+    whether the file still has room after its complete output times (a run left it without
+    closing it; a closed file's series hold exactly /n_times output times)."""
     import h5py
     import numpy as np
     r = subprocess.run(["h5dump", "-H", path], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, timeout=60)
@@ -92,7 +93,7 @@ def h5_times(path, info=None):
             if "n_times" in f:
                 n = int(f["n_times"][0])
                 if info is not None:
-                    info["open_file"] = True
+                    info["open_file"] = n < t.size
                 # after the complete times: the batch a kill interrupted (slots written, count not
                 # yet), increasing from the last complete time, then unwritten slots (0)
                 rest = t[n:] if 0 <= n <= t.size else t

@@ -118,7 +118,7 @@ def _kills(data, w):
       "output times not yet flushed, at most 1 s or 4 MB of them. Checked after each kill: the .h5 opens with h5dump and h5py; a file left open "
       "(SIGKILL) has its count /n_times, /time finite in that many slots, then at most an interrupted "
       "batch of increasing times (written, not yet counted), then 0 (unwritten slots, doc/fields.md), "
-      "every series as many slots as /time, and a closed file no count and no NaN (*count right*); "
+      "every series as many slots as /time, and a closed file the count of all its slots and no NaN (*count right*; files finished before the count was kept: no count); "
       "its complete output times are the reference's first ones (a SIGTERM or SIGINT run adds the "
       "state it stopped in); both XDMF files parse and name only times the .h5 holds; the .his "
       "reaches the last time of the .h5; every restart file present opens, and the run continued "

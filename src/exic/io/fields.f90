@@ -15,10 +15,11 @@
 !>
 !> Kill safety (doc/fields.md): no metadata byte of the .h5 changes while the run goes on. The
 !> file is created whole under a temporary name (mesh, every series with room for the expected
-!> output times, chunks allocated early and filled with NaN / -1, the buffers, the count
-!> `/n_times`), renamed, and opened write-through; an output time writes raw data only, through
-!> dataset handles held open (exic_io_hdf5_held), the count last, then flushes. Growth, restart
-!> and the final cut to the times written are a copy of the file changed and renamed over it.
+!> output times, chunks allocated early and never filled, the buffers, the count `/n_times`),
+!> renamed, and opened write-through; an output time writes raw data only, through dataset
+!> handles held open (exic_io_hdf5_held), the count last, then flushes. Growth, restart and the
+!> final cut to the times written (needed only when the run did not fill its room exactly, or
+!> failed) are a copy of the file changed and renamed over it.
 !> Only then are the XDMF files updated: the series is appended to in place by writes each of
 !> which leaves a well-formed document (exic_io_xdmf), the last-state file is written to a
 !> temporary name and renamed. A run killed at any moment leaves an HDF5 file whose count names
@@ -55,7 +56,7 @@ module exic_io_fields
    !> preallocation made from an estimate may take (growth takes over beyond it).
    integer, parameter :: START_CAPACITY = 16
    integer(i8), parameter :: ESTIMATE_BYTES_MAX = 256_i8*1024*1024
-   !> The count of complete output times while the run goes on (removed at `close`).
+   !> The count of complete output times (in a finished file, the length of every series).
    character(len=*), parameter :: COUNT_NAME = '/n_times'
 
    !> Writer of one field output (`.h5`, `.xdmf`, `_series.xdmf`).
@@ -518,8 +519,9 @@ contains
    end subroutine allocate_batch
 
    !> Close the .h5 file and cut it to the output times written (a copy renamed over it, which
-   !> also drops the count `/n_times` and stores the message of `mark_failed`), then write the
-   !> series file once more without its reserve (the last-state file is complete already).
+   !> also stores the message of `mark_failed`; not needed when the output times filled the
+   !> room exactly and the run did not fail: the file is then finished as it is), then write
+   !> the series file once more without its reserve (the last-state file is complete already).
    !> Every file is closed even when one step fails; the first failure is returned (the .h5 is
    !> then left as a killed run leaves it). No-op when not open.
    subroutine writer_close(self, err)
@@ -528,7 +530,9 @@ contains
       type(error_t), allocatable :: err2
       if (.not. self%h5%is_open()) return
       call writer_flush(self, err)
-      if (.not. allocated(err)) call rebuild(self, self%ntime, self%ntime, .true., err)
+      ! a room the run filled exactly is the finished file as it is: no cut, no copy
+      if (.not. allocated(err) .and. (self%ntime /= self%capacity .or. allocated(self%failed))) &
+         call rebuild(self, self%ntime, self%ntime, .true., err)
       call close_live(self, err2)
       if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
       call self%series%finish(err2)
@@ -623,9 +627,9 @@ contains
    !> Change the file's metadata the only way that is safe while a run may be killed: close it,
    !> copy it to <path>.tmp, change the copy, rename the copy over it. Every series is cut to
    !> `nkeep` output times (the slabs beyond become unwritten again) and, unless `final`, given
-   !> room for `capacity`; the count is set to `nkeep` (made when missing: a finished file).
-   !> `final`: the finished file instead (no count, no room, the `failed` attribute when the run
-   !> failed), not opened again. `new_energies`: also create the energy series of
+   !> room for `capacity`; the count is set to `nkeep` (made when missing: a file from before
+   !> the count was kept). `final`: the finished file instead (no room, the `failed` attribute
+   !> when the run failed), not opened again. `new_energies`: also create the energy series of
    !> self%energy_names. Otherwise the live file is opened again and its datasets held. The file
    !> at <path> is at every moment either the old whole file or the new whole file.
    subroutine rebuild(self, nkeep, capacity, final, err, new_energies)
@@ -659,11 +663,9 @@ contains
          end do
       end associate
       if (.not. allocated(err)) then
-         if (final .and. tmp%exists(COUNT_NAME(2:))) then
-            call tmp%delete(COUNT_NAME, err)
-         else if (.not. final .and. tmp%exists(COUNT_NAME(2:))) then
+         if (tmp%exists(COUNT_NAME(2:))) then
             call tmp%rewrite(COUNT_NAME, [nkeep], err)
-         else if (.not. final) then
+         else
             call tmp%write(COUNT_NAME, [nkeep], err)
          end if
       end if
@@ -701,8 +703,8 @@ contains
       names = [character(len=64) :: names, '/time', '/step']
    end function series_names
 
-   !> The number of complete output times of the field file `path`: its count `/n_times` while a
-   !> run writes it (or after a kill), else the length of `/time` (a finished file).
+   !> The number of complete output times of the field file `path`: its count `/n_times`, or
+   !> the length of `/time` in a file without the count (finished before the count was kept).
    subroutine complete_times(path, n, err)
       character(len=*), intent(in) :: path
       integer, intent(out) :: n

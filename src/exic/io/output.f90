@@ -368,6 +368,9 @@ contains
    integer function expected_field_times(model, t, dt_out) result(k)
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: t, dt_out
+      !> how near an integer (relative) the number of intervals counts as one: far above the
+      !> rounding of the division and of the schedule's sums, far below a step of the schedule
+      real(wp), parameter :: FIELD_TIMES_TOL = 1.0e-9_wp
       real(wp) :: t_end, n
       integer :: i
       k = 0
@@ -377,7 +380,16 @@ contains
       end do
       if (.not. (t_end > t .and. dt_out > 0.0_wp)) return
       n = (t_end - t)/dt_out
-      if (n < 1.0e8_wp) k = int(n) + 2
+      if (.not. (n < 1.0e8_wp)) return
+      ! an end time on the schedule (to rounding) is written as the last output time, the final
+      ! state then coincides with it: n + 1 output times, which fill the room exactly, so that
+      ! closing the file needs no cut (doc/fields.md, "Kill safety"); otherwise the final state
+      ! is one more
+      if (abs(n - anint(n)) <= FIELD_TIMES_TOL*max(1.0_wp, n)) then
+         k = nint(n) + 1
+      else
+         k = int(n) + 2
+      end if
    end function expected_field_times
 
    !> Which of ENERGY_NAMES the run's field output has: the frictional dissipation with friction
