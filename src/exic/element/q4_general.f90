@@ -481,6 +481,7 @@ contains
          a = 0.5_wp*((xc(k, 3) - xc(k, 1))*(yc(k, 4) - yc(k, 2)) - (yc(k, 3) - yc(k, 1))*(xc(k, 4) - xc(k, 2)))
          jr(k) = (a/a0)*(rcur/rc)
          if (.not. jr(k) > 0.0_wp) jr(k) = 1.0_wp
+         jr(k) = max(jr(k), tiny(1.0_wp))   ! a normal number (nh_wave_speed2_block)
       end do
       call nh_wave_speed2_block(NBLOCK, lambda, mu, rho0, jr, c2)
       do k = 1, NBLOCK

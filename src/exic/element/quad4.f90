@@ -164,14 +164,16 @@ contains
       call scatter(nb, nnode, conn, fx, fy, f)
    end subroutine block_2x2
 
-   !> js = J where J > 0, else 1 (so that the law stays finite on an element the caller rejects).
+   !> js = J where J is a positive normal number, else 1 (so that the law stays finite on an
+   !> element the caller rejects: check_points rejects J < tiny, i.e. J <= 0 and the subnormal
+   !> J below 2.2e-308, whose logarithm the laws' ln_normal_block does not take).
    pure subroutine positive(n, jac, js)
       integer, intent(in) :: n
       real(wp), intent(in) :: jac(n)
       real(wp), intent(out) :: js(n)
       integer :: q
       do q = 1, n
-         js(q) = merge(jac(q), 1.0_wp, jac(q) > 0.0_wp)
+         js(q) = merge(jac(q), 1.0_wp, jac(q) >= tiny(1.0_wp))
       end do
    end subroutine positive
 
@@ -640,7 +642,8 @@ contains
    end subroutine scatter
 
    !> jmin over the points jac(NBLOCK, np) of the block's nb elements; ebad (when 0) becomes the
-   !> first element off + k with J <= 0 at a point.
+   !> first element off + k with J <= 0 at a point (or a subnormal J > 0, below tiny = 2.2e-308:
+   !> an element crushed that far is rejected as inverted, see positive).
    pure subroutine check_points(nb, np, off, jac, jmin, ebad)
       integer, intent(in) :: nb, np, off
       real(wp), intent(in) :: jac(NBLOCK, np)
@@ -655,9 +658,9 @@ contains
          end do
       end do
       jmin = min(jmin, m)
-      if (ebad /= 0 .or. m > 0.0_wp) return
+      if (ebad /= 0 .or. m >= tiny(1.0_wp)) return
       do k = 1, nb
-         if (any(jac(k, :) <= 0.0_wp)) then
+         if (any(jac(k, :) < tiny(1.0_wp))) then
             ebad = off + k
             return
          end if
@@ -713,8 +716,8 @@ contains
          num(k) = ph*a2
          den(k) = 4.0_wp*max(d1x*d1x + d1y*d1y, d2x*d2x + d2y*d2y)
          ! J = A/A0, or 1 where the estimate is 0 (a0/a0: a division under a condition would
-         ! stop the vectorizer)
-         jr(k) = merge(a2, a02, ok(k) > 0.0_wp)/a02
+         ! stop the vectorizer); at least tiny, the smallest normal number (nh_wave_speed2_block)
+         jr(k) = max(merge(a2, a02, ok(k) > 0.0_wp)/a02, tiny(1.0_wp))
       end do
       call nh_wave_speed2_block(NBLOCK, lambda, mu, rho0, jr, c2)
       do k = 1, NBLOCK
