@@ -157,9 +157,8 @@ contains
       end do
       wint = wint + lane_sum(nb, we)
       call check_points(nb, 4, off, jac, jmin, ebad)
-      ! the stable step at the current geometry
-      call current(xe, ye, uxe, uye)
-      call stable_block(2, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
+      ! the stable step at the current geometry x0 + u
+      call stable_block_u(2, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
       call scatter(nb, nnode, conn, fx, fy, f)
    end subroutine block_2x2
@@ -385,15 +384,19 @@ contains
       end if
       wint = wint + lane_sum(nb, wq)
       call check_points(nb, 1, off, jac, jmin, ebad)
-      call current(xe, ye, uxe, uye)
       if (phys) then
+         call current(xe, ye, uxe, uye)
          ! r0 is no longer needed: reused as the weight 1 of the plane element
          r0 = 1.0_wp
          call corner_barrier(NBLOCK, xe, ye, uxe, uye, r0, lambda, mu, rho0, fx, fy, eh, ob)
+         whg = whg + lane_sum(nb, eh)
+         call stable_block(1, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
+         call barrier_limit(NBLOCK, nb, nnode, conn, uxe, uye, ob, dt2, v)
+      else
+         whg = whg + lane_sum(nb, eh)
+         ! the stable step at the current geometry x0 + u
+         call stable_block_u(1, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
       end if
-      whg = whg + lane_sum(nb, eh)
-      call stable_block(1, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
-      if (phys) call barrier_limit(NBLOCK, nb, nnode, conn, uxe, uye, ob, dt2, v)
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
       call scatter(nb, nnode, conn, fx, fy, f)
    end subroutine block_1pt
@@ -680,13 +683,50 @@ contains
       real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, xc, yc
       real(wp), intent(in) :: lambda, mu, rho0
       real(wp), intent(out), dimension(NBLOCK) :: dt2, good
-      real(wp), parameter :: s3 = 0.57735026918962576451_wp
-      !> a corner triangle within FLAT of the area is flat (three nodes on a line to round-off), not folded
-      real(wp), parameter :: FLAT = 1.0e-10_wp
-      real(wp), dimension(NBLOCK) :: num, den, jr, c2, ok
-      real(wp) :: c0, c1, d1x, d1y, d2x, d2y, a2, a02, t2, pa, ph, ex(4), ey(4)
+      real(wp), dimension(NBLOCK) :: num, den, jr, ok
+      real(wp) :: c0, c1, xcl(4), ycl(4)
+      integer :: k
+
+      call taper_factors(nq, c0, c1)
+      ! masks as reals (1 or 0), so that the loop vectorizes
+      do k = 1, NBLOCK
+         xcl = xc(k, :)
+         ycl = yc(k, :)
+         call corner_estimate(c0, c1, xr(k, 1), xr(k, 2), xr(k, 3), xr(k, 4), yr(k, 1), yr(k, 2), &
+                              yr(k, 3), yr(k, 4), xcl, ycl, good(k), ok(k), num(k), den(k), jr(k))
+      end do
+      call stable_finish(lambda, mu, rho0, num, den, jr, ok, dt2)
+   end subroutine stable_block
+
+   !> stable_block from the reference corners (xr, yr) and the displacements (ux, uy) of the
+   !> block: the current corners xr + ux, yr + uy (the sums of `current`) are formed in the loop
+   !> instead of being stored and loaded again.
+   pure subroutine stable_block_u(nq, xr, yr, ux, uy, lambda, mu, rho0, dt2, good)
+      integer, intent(in) :: nq
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, ux, uy
+      real(wp), intent(in) :: lambda, mu, rho0
+      real(wp), intent(out), dimension(NBLOCK) :: dt2, good
+      real(wp), dimension(NBLOCK) :: num, den, jr, ok
+      real(wp) :: c0, c1, xcl(4), ycl(4)
       integer :: k, a
 
+      call taper_factors(nq, c0, c1)
+      do k = 1, NBLOCK
+         do a = 1, 4
+            xcl(a) = xr(k, a) + ux(k, a)
+            ycl(a) = yr(k, a) + uy(k, a)
+         end do
+         call corner_estimate(c0, c1, xr(k, 1), xr(k, 2), xr(k, 3), xr(k, 4), yr(k, 1), yr(k, 2), &
+                              yr(k, 3), yr(k, 4), xcl, ycl, good(k), ok(k), num(k), den(k), jr(k))
+      end do
+      call stable_finish(lambda, mu, rho0, num, den, jr, ok, dt2)
+   end subroutine stable_block_u
+
+   !> c0, c1 of phi^2 = c0 + c1 t for the rule nq (q4_stable_dt).
+   pure subroutine taper_factors(nq, c0, c1)
+      integer, intent(in) :: nq
+      real(wp), intent(out) :: c0, c1
+      real(wp), parameter :: s3 = 0.57735026918962576451_wp
       if (nq == 1) then
          c0 = 2.0_wp/3.0_wp
          c1 = 2.0_wp/3.0_wp
@@ -694,36 +734,55 @@ contains
          c0 = 1.0_wp - s3
          c1 = 2.0_wp*s3
       end if
-      ! masks as reals (1 or 0), so that the loop vectorizes
-      do k = 1, NBLOCK
-         a02 = (xr(k, 3) - xr(k, 1))*(yr(k, 4) - yr(k, 2)) - (yr(k, 3) - yr(k, 1))*(xr(k, 4) - xr(k, 2))
-         d1x = xc(k, 3) - xc(k, 1)
-         d1y = yc(k, 3) - yc(k, 1)
-         d2x = xc(k, 4) - xc(k, 2)
-         d2y = yc(k, 4) - yc(k, 2)
-         a2 = d1x*d2y - d1y*d2x
-         ! edges a -> a+1; the corner triangle (a-1, a, a+1) is e_(a-1) x e_a / 2
-         do a = 1, 4
-            ex(a) = xc(k, modulo(a, 4) + 1) - xc(k, a)
-            ey(a) = yc(k, modulo(a, 4) + 1) - yc(k, a)
-         end do
-         t2 = min(min(ex(4)*ey(1) - ey(4)*ex(1), ex(1)*ey(2) - ey(1)*ex(2)), &
-                  min(ex(2)*ey(3) - ey(2)*ex(3), ex(3)*ey(4) - ey(3)*ex(4)))
-         pa = merge(1.0_wp, 0.0_wp, a2 > 0.0_wp)
-         good(k) = pa*merge(1.0_wp, 0.0_wp, t2 > -FLAT*a2)
-         ph = c0*a2 + c1*t2
-         ok(k) = pa*merge(1.0_wp, 0.0_wp, ph > 0.0_wp)
-         num(k) = ph*a2
-         den(k) = 4.0_wp*max(d1x*d1x + d1y*d1y, d2x*d2x + d2y*d2y)
-         ! J = A/A0, or 1 where the estimate is 0 (a0/a0: a division under a condition would
-         ! stop the vectorizer); at least tiny, the smallest normal number (nh_wave_speed2_block)
-         jr(k) = max(merge(a2, a02, ok(k) > 0.0_wp)/a02, tiny(1.0_wp))
+   end subroutine taper_factors
+
+   !> One element of stable_block: reference corners (xr1..4, yr1..4), current corners (xc, yc);
+   !> good, ok (1 or 0), the numerator ph A and denominator D of dt^2 c^2 and the volume ratio jr.
+   pure subroutine corner_estimate(c0, c1, xr1, xr2, xr3, xr4, yr1, yr2, yr3, yr4, xc, yc, good, ok, &
+                                   num, den, jr)
+      real(wp), intent(in) :: c0, c1, xr1, xr2, xr3, xr4, yr1, yr2, yr3, yr4, xc(4), yc(4)
+      real(wp), intent(out) :: good, ok, num, den, jr
+      !> a corner triangle within FLAT of the area is flat (three nodes on a line to round-off), not folded
+      real(wp), parameter :: FLAT = 1.0e-10_wp
+      real(wp) :: d1x, d1y, d2x, d2y, a2, a02, t2, pa, ph, ex(4), ey(4)
+      integer :: a
+
+      a02 = (xr3 - xr1)*(yr4 - yr2) - (yr3 - yr1)*(xr4 - xr2)
+      d1x = xc(3) - xc(1)
+      d1y = yc(3) - yc(1)
+      d2x = xc(4) - xc(2)
+      d2y = yc(4) - yc(2)
+      a2 = d1x*d2y - d1y*d2x
+      ! edges a -> a+1; the corner triangle (a-1, a, a+1) is e_(a-1) x e_a / 2
+      do a = 1, 4
+         ex(a) = xc(modulo(a, 4) + 1) - xc(a)
+         ey(a) = yc(modulo(a, 4) + 1) - yc(a)
       end do
+      t2 = min(min(ex(4)*ey(1) - ey(4)*ex(1), ex(1)*ey(2) - ey(1)*ex(2)), &
+               min(ex(2)*ey(3) - ey(2)*ex(3), ex(3)*ey(4) - ey(3)*ex(4)))
+      pa = merge(1.0_wp, 0.0_wp, a2 > 0.0_wp)
+      good = pa*merge(1.0_wp, 0.0_wp, t2 > -FLAT*a2)
+      ph = c0*a2 + c1*t2
+      ok = pa*merge(1.0_wp, 0.0_wp, ph > 0.0_wp)
+      num = ph*a2
+      den = 4.0_wp*max(d1x*d1x + d1y*d1y, d2x*d2x + d2y*d2y)
+      ! J = A/A0, or 1 where the estimate is 0 (a0/a0: a division under a condition would
+      ! stop the vectorizer); at least tiny, the smallest normal number (nh_wave_speed2_block)
+      jr = max(merge(a2, a02, ok > 0.0_wp)/a02, tiny(1.0_wp))
+   end subroutine corner_estimate
+
+   !> dt2 = num/(den c^2) where ok, else 0, with c^2 the wave speed at the volume ratio jr.
+   pure subroutine stable_finish(lambda, mu, rho0, num, den, jr, ok, dt2)
+      real(wp), intent(in) :: lambda, mu, rho0
+      real(wp), intent(in), dimension(NBLOCK) :: num, den, jr, ok
+      real(wp), intent(out) :: dt2(NBLOCK)
+      real(wp) :: c2(NBLOCK)
+      integer :: k
       call nh_wave_speed2_block(NBLOCK, lambda, mu, rho0, jr, c2)
       do k = 1, NBLOCK
          dt2(k) = merge(num(k)/merge(den(k)*c2(k), 1.0_wp, ok(k) > 0.0_wp), 0.0_wp, ok(k) > 0.0_wp)
       end do
-   end subroutine stable_block
+   end subroutine stable_finish
 
    !> dt2min/emin: the smallest dt2 of the block's nb elements (first element off + k on ties)
    !> if below dt2min; efold (when 0): the first folded element (good = 0, stable_block).
