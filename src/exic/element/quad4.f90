@@ -33,72 +33,21 @@ module exic_element_quad4
    use exic_material_neohookean, only: nh_piola, nh_cauchy, nh_wave_speed2_block
    use exic_material_material, only: HOURGLASS_PHYSICAL
    use exic_element_q4_barrier, only: corner_barrier, barrier_limit
+   use exic_element_q4_reference, only: q4_check_reference, q4_lumped_mass, gq
+   use exic_element_q4_block, only: NBLOCK, gather, current, scatter, scatter_pairs, split_pairs
    implicit none
    private
 
    public :: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, q4_stable_dt, &
-             q4_deformation, q4_stress
+             q4_deformation, q4_stress, NBLOCK
    ! the block steps for the general solid path (q4_general.f90), as wrappers: the steps stay
    ! private, so that the compiler inlines them into the block routines as before
-   public :: q4b_gather, q4b_kinematics_2x2, q4b_kinematics_1pt, q4b_positive, q4b_forces_2x2, &
-             q4b_forces_1pt, q4b_asqbi_forces, q4b_check_points, q4b_current, q4b_stable_block, &
-             q4b_block_minimum, q4b_scatter
+   public :: q4b_kinematics_2x2, q4b_kinematics_1pt, q4b_positive, q4b_forces_2x2, &
+             q4b_forces_1pt, q4b_asqbi_forces, q4b_check_points, q4b_stable_block, &
+             q4b_block_minimum
 
-   real(wp), parameter :: xin(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]   !< xi_a
-   real(wp), parameter :: etn(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]   !< eta_a
-   real(wp), parameter :: gq = 0.57735026918962576451_wp                 !< 1/sqrt(3)
-   !> Elements per block of the force kernels: the block's work arrays (about 90 values per
-   !> element) stay in the L1 cache, and its loops run over 32 elements (4 AVX-512 vectors).
-   integer, parameter, public :: NBLOCK = 32
 
 contains
-
-   !> First element with det J0 <= 0 at a corner of the reference mesh (det J0 is a linear
-   !> function of xi and eta on each edge, so its corner values bound it everywhere, Gauss
-   !> points included) or a non-positive area; 0 if none.
-   pure subroutine q4_check_reference(nel, nnode, conn, x0, ebad)
-      integer, intent(in) :: nel, nnode
-      integer, intent(in) :: conn(4, nel)
-      real(wp), intent(in) :: x0(2, nnode)
-      integer, intent(out) :: ebad
-      real(wp) :: xe(4), ye(4), dnx(4), dny(4), dj, a0
-      integer :: e, a
-
-      ebad = 0
-      do e = 1, nel
-         xe = x0(1, conn(:, e))
-         ye = x0(2, conn(:, e))
-         a0 = 0.5_wp*((xe(3) - xe(1))*(ye(4) - ye(2)) - (ye(3) - ye(1))*(xe(4) - xe(2)))
-         if (.not. a0 > 0.0_wp) then
-            ebad = e
-            return
-         end if
-         do a = 1, 4
-            call grad_at(xe, ye, xin(a), etn(a), dnx, dny, dj)
-            if (dj <= 0.0_wp) then
-               ebad = e
-               return
-            end if
-         end do
-      end do
-   end subroutine q4_check_reference
-
-   !> dN_a/dX, dN_a/dY and det J0 of the element (xe, ye) at natural point (xi, eta).
-   pure subroutine grad_at(xe, ye, xi, eta, dnx, dny, dj)
-      real(wp), intent(in) :: xe(4), ye(4), xi, eta
-      real(wp), intent(out) :: dnx(4), dny(4), dj
-      real(wp) :: dxi(4), deta(4), j11, j12, j21, j22, r
-      dxi = 0.25_wp*xin*(1.0_wp + etn*eta)
-      deta = 0.25_wp*etn*(1.0_wp + xin*xi)
-      j11 = sum(dxi*xe)
-      j12 = sum(dxi*ye)
-      j21 = sum(deta*xe)
-      j22 = sum(deta*ye)
-      dj = j11*j22 - j12*j21
-      r = 1.0_wp/merge(dj, 1.0_wp, dj /= 0.0_wp)
-      dnx = (j22*dxi - j12*deta)*r
-      dny = (j11*deta - j21*dxi)*r
-   end subroutine grad_at
 
    !> Internal force with 2x2 Gauss quadrature, f_ia += sum_g det J0 P_iJ(F_g) dN_a/dX_J, and the
    !> stable step of every element from the same gathered nodes (q4_stable_dt's estimate).
@@ -142,8 +91,8 @@ contains
       real(wp), intent(inout) :: f(2, nnode), wint, jmin, dt2min
       integer, intent(inout) :: ebad, emin, efold
       real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, js, wt, i11, i12, &
-                                        i21, i22, p11, p12, p21, p22, wq, fx, fy
-      real(wp) :: dt2(NBLOCK), good(NBLOCK), we(NBLOCK)
+                                        i21, i22, p11, p12, p21, p22, wq
+      real(wp) :: fp(2, NBLOCK, 4), dt2(NBLOCK), good(NBLOCK), we(NBLOCK)
       integer :: k
 
       call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
@@ -151,7 +100,7 @@ contains
       call positive(4*NBLOCK, jac, js)
       ! the law at every point of the block
       call nh_piola(4*NBLOCK, lambda, mu, f11, f12, f21, f22, js, wt, p11, p12, p21, p22, wq)
-      call forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
+      call forces_2x2_pairs(p11, p12, p21, p22, i11, i12, i21, i22, fp)
       do k = 1, NBLOCK
          we(k) = ((wq(k, 1) + wq(k, 2)) + wq(k, 3)) + wq(k, 4)
       end do
@@ -160,7 +109,7 @@ contains
       ! the stable step at the current geometry x0 + u
       call stable_block_u(2, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
-      call scatter(nb, nnode, conn, fx, fy, f)
+      call scatter_pairs(nb, nnode, conn, fp, f)
    end subroutine block_2x2
 
    !> js = J where J is a positive normal number, else 1 (so that the law stays finite on an
@@ -269,22 +218,41 @@ contains
    pure subroutine forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
       real(wp), intent(in), dimension(NBLOCK, 4) :: p11, p12, p21, p22, i11, i12, i21, i22
       real(wp), intent(out), dimension(NBLOCK, 4) :: fx, fy
-      real(wp) :: a(4), b(4), c(4), d(4)
-      integer :: k, g
-
+      integer :: k
       do k = 1, NBLOCK
-         do g = 1, 4
-            a(g) = p11(k, g)*i11(k, g) + p12(k, g)*i12(k, g)
-            b(g) = p11(k, g)*i21(k, g) + p12(k, g)*i22(k, g)
-            c(g) = p21(k, g)*i11(k, g) + p22(k, g)*i12(k, g)
-            d(g) = p21(k, g)*i21(k, g) + p22(k, g)*i22(k, g)
-         end do
-         call natural_forces(a(1), a(2), a(3), a(4), b(1), b(2), b(3), b(4), fx(k, 1), fx(k, 2), &
-                             fx(k, 3), fx(k, 4))
-         call natural_forces(c(1), c(2), c(3), c(4), d(1), d(2), d(3), d(4), fy(k, 1), fy(k, 2), &
-                             fy(k, 3), fy(k, 4))
+         call element_forces_2x2(k, p11, p12, p21, p22, i11, i12, i21, i22, fx(k, 1), fx(k, 2), &
+                                 fx(k, 3), fx(k, 4), fy(k, 1), fy(k, 2), fy(k, 3), fy(k, 4))
       end do
    end subroutine forces_2x2
+
+   !> forces_2x2 with the forces as (x, y) pairs fp(:, k, a), the layout scatter_pairs adds.
+   pure subroutine forces_2x2_pairs(p11, p12, p21, p22, i11, i12, i21, i22, fp)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: p11, p12, p21, p22, i11, i12, i21, i22
+      real(wp), intent(out) :: fp(2, NBLOCK, 4)
+      integer :: k
+      do k = 1, NBLOCK
+         call element_forces_2x2(k, p11, p12, p21, p22, i11, i12, i21, i22, fp(1, k, 1), fp(1, k, 2), &
+                                 fp(1, k, 3), fp(1, k, 4), fp(2, k, 1), fp(2, k, 2), fp(2, k, 3), fp(2, k, 4))
+      end do
+   end subroutine forces_2x2_pairs
+
+   !> The nodal forces (fx1..fx4, fy1..fy4) of element k of forces_2x2.
+   pure subroutine element_forces_2x2(k, p11, p12, p21, p22, i11, i12, i21, i22, fx1, fx2, fx3, fx4, &
+                                      fy1, fy2, fy3, fy4)
+      integer, intent(in) :: k
+      real(wp), intent(in), dimension(NBLOCK, 4) :: p11, p12, p21, p22, i11, i12, i21, i22
+      real(wp), intent(out) :: fx1, fx2, fx3, fx4, fy1, fy2, fy3, fy4
+      real(wp) :: a(4), b(4), c(4), d(4)
+      integer :: g
+      do g = 1, 4
+         a(g) = p11(k, g)*i11(k, g) + p12(k, g)*i12(k, g)
+         b(g) = p11(k, g)*i21(k, g) + p12(k, g)*i22(k, g)
+         c(g) = p21(k, g)*i11(k, g) + p22(k, g)*i12(k, g)
+         d(g) = p21(k, g)*i21(k, g) + p22(k, g)*i22(k, g)
+      end do
+      call natural_forces(a(1), a(2), a(3), a(4), b(1), b(2), b(3), b(4), fx1, fx2, fx3, fx4)
+      call natural_forces(c(1), c(2), c(3), c(4), d(1), d(2), d(3), d(4), fy1, fy2, fy3, fy4)
+   end subroutine element_forces_2x2
 
    !> One force component at the four nodes from Q_i1 = a_g and Q_i2 = b_g at the Gauss points.
    pure subroutine natural_forces(a1, a2, a3, a4, b1, b2, b3, b4, f1, f2, f3, f4)
@@ -361,6 +329,7 @@ contains
       integer, intent(inout) :: ebad, emin, efold
       real(wp), intent(in), optional :: v(2, nnode)
       real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy, hx, hy
+      real(wp) :: fp(2, NBLOCK, 4)
       real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, jac, js, a0, r0, p11, p12, p21, p22, wq, eh, &
                                      dt2, good, ob
       integer :: a, k
@@ -371,7 +340,8 @@ contains
       ! the law at every centroid of the block, weighted by the reference areas
       call nh_piola(NBLOCK, lambda, mu, f11, f12, f21, f22, js, a0, p11, p12, p21, p22, wq)
       if (phys) then
-         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fx, fy, eh)
+         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fp, eh)
+         call split_pairs(fp, fx, fy)
          call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, lambda, mu, hg, hx, hy, eh)
          do a = 1, 4
             do k = 1, NBLOCK
@@ -380,7 +350,7 @@ contains
             end do
          end do
       else
-         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, hg*(lambda + 2.0_wp*mu), fx, fy, eh)
+         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, hg*(lambda + 2.0_wp*mu), fp, eh)
       end if
       wint = wint + lane_sum(nb, wq)
       call check_points(nb, 1, off, jac, jmin, ebad)
@@ -398,7 +368,11 @@ contains
          call stable_block_u(1, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
       end if
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
-      call scatter(nb, nnode, conn, fx, fy, f)
+      if (phys) then
+         call scatter(nb, nnode, conn, fx, fy, f)
+      else
+         call scatter_pairs(nb, nnode, conn, fp, f)
+      end if
    end subroutine block_1pt
 
    !> Mean deformation gradient of a block of one-point elements: F = 1 + sum_a u_a (x) b_a/A0,
@@ -428,14 +402,14 @@ contains
       end do
    end subroutine kinematics_1pt
 
-   !> Mean and hourglass forces fx, fy and hourglass energies eh of a block of one-point
+   !> Mean and hourglass forces fp (as (x, y) pairs) and hourglass energies eh of a block of one-point
    !> elements from their weighted stresses p = A0 P, r0 = 1/A0 and the hourglass stiffness
    !> factor kh = hg (lambda + 2 mu) (q4_force_1pt; b_3 = -b_1, b_4 = -b_2).
-   pure subroutine forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
+   pure subroutine forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fp, eh)
       real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
       real(wp), intent(in), dimension(NBLOCK) :: r0, p11, p12, p21, p22
       real(wp), intent(in) :: kh
-      real(wp), intent(out), dimension(NBLOCK, 4) :: fx, fy
+      real(wp), intent(out) :: fp(2, NBLOCK, 4)   !< (x, y) pairs, the layout of scatter_pairs
       real(wp), intent(out) :: eh(NBLOCK)
       real(wp) :: bx1, bx2, by1, by2, hx, hy, t1, t2, g1, g2, g3, g4, kk, qx, qy, m1, m2
       integer :: k
@@ -463,16 +437,16 @@ contains
          ! mean part: (p b)/A0 with p = A0 P
          m1 = (p11(k)*bx1 + p12(k)*by1)*r0(k)
          m2 = (p11(k)*bx2 + p12(k)*by2)*r0(k)
-         fx(k, 1) = m1 + qx*g1
-         fx(k, 2) = m2 + qx*g2
-         fx(k, 3) = qx*g3 - m1
-         fx(k, 4) = qx*g4 - m2
+         fp(1, k, 1) = m1 + qx*g1
+         fp(1, k, 2) = m2 + qx*g2
+         fp(1, k, 3) = qx*g3 - m1
+         fp(1, k, 4) = qx*g4 - m2
          m1 = (p21(k)*bx1 + p22(k)*by1)*r0(k)
          m2 = (p21(k)*bx2 + p22(k)*by2)*r0(k)
-         fy(k, 1) = m1 + qy*g1
-         fy(k, 2) = m2 + qy*g2
-         fy(k, 3) = qy*g3 - m1
-         fy(k, 4) = qy*g4 - m2
+         fp(2, k, 1) = m1 + qy*g1
+         fp(2, k, 2) = m2 + qy*g2
+         fp(2, k, 3) = qy*g3 - m1
+         fp(2, k, 4) = qy*g4 - m2
       end do
    end subroutine forces_1pt
 
@@ -561,88 +535,6 @@ contains
       end do
    end subroutine asqbi_forces
 
-
-   !> The reference coordinates and displacements of nb elements, (element, local node); lanes
-   !> nb + 1 .. NBLOCK repeat element nb. A node's (x, y) pairs are copied as pairs (one 16-byte
-   !> load and store each) into (component, element, local node) arrays, which a vectorized loop
-   !> then splits into the x and y arrays: half the scalar loads and stores of copying value by value.
-   pure subroutine gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
-      integer, intent(in) :: nb, nnode
-      integer, intent(in) :: conn(4, nb)
-      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
-      real(wp), intent(out), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
-      real(wp), dimension(2, NBLOCK, 4) :: p0, pu
-      integer :: k, a, n
-      ! pairs by scalar index: faster here than the vector gather instructions (measured)
-      !GCC$ novector
-      do k = 1, nb
-         do a = 1, 4
-            n = conn(a, k)
-            p0(1, k, a) = x0(1, n)
-            p0(2, k, a) = x0(2, n)
-            pu(1, k, a) = u(1, n)
-            pu(2, k, a) = u(2, n)
-         end do
-      end do
-      do a = 1, 4
-         do k = 1, nb
-            xe(k, a) = p0(1, k, a)
-            ye(k, a) = p0(2, k, a)
-            uxe(k, a) = pu(1, k, a)
-            uye(k, a) = pu(2, k, a)
-         end do
-      end do
-      do a = 1, 4
-         do k = nb + 1, NBLOCK
-            xe(k, a) = xe(nb, a)
-            ye(k, a) = ye(nb, a)
-            uxe(k, a) = uxe(nb, a)
-            uye(k, a) = uye(nb, a)
-         end do
-      end do
-   end subroutine gather
-
-   !> Current coordinates in place of the displacements: ux <- x0 + u, uy <- y0 + v (the same
-   !> sums as the stepper's positions, hence the same bits).
-   pure subroutine current(xe, ye, uxe, uye)
-      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye
-      real(wp), intent(inout), dimension(NBLOCK, 4) :: uxe, uye
-      integer :: k, a
-      do a = 1, 4
-         do k = 1, NBLOCK
-            uxe(k, a) = xe(k, a) + uxe(k, a)
-            uye(k, a) = ye(k, a) + uye(k, a)
-         end do
-      end do
-   end subroutine current
-
-   !> f(:, conn(a, k)) += (fx(k, a), fy(k, a)) for the block's nb elements, in order. The forces
-   !> are interleaved into (x, y) pairs first (a vectorized loop), so that each node takes one
-   !> 16-byte load, addition and store: the same additions in the same order as value by value.
-   pure subroutine scatter(nb, nnode, conn, fx, fy, f)
-      integer, intent(in) :: nb, nnode
-      integer, intent(in) :: conn(4, nb)
-      real(wp), intent(in), dimension(NBLOCK, 4) :: fx, fy
-      real(wp), intent(inout) :: f(2, nnode)
-      real(wp) :: fp(2, NBLOCK, 4), t1, t2
-      integer :: k, a, n
-      do a = 1, 4
-         do k = 1, NBLOCK
-            fp(1, k, a) = fx(k, a)
-            fp(2, k, a) = fy(k, a)
-         end do
-      end do
-      !GCC$ novector
-      do k = 1, nb
-         do a = 1, 4
-            n = conn(a, k)
-            t1 = f(1, n) + fp(1, k, a)
-            t2 = f(2, n) + fp(2, k, a)
-            f(1, n) = t1
-            f(2, n) = t2
-         end do
-      end do
-   end subroutine scatter
 
    !> jmin over the points jac(NBLOCK, np) of the block's nb elements; ebad (when 0) becomes the
    !> first element off + k with J <= 0 at a point (or a subnormal J > 0, below tiny = 2.2e-308:
@@ -807,42 +699,6 @@ contains
       end do
    end subroutine block_minimum
 
-   !> Row-sum lumped mass m_a = rho integral N_a dA0 (2x2 Gauss, exact for the bilinear
-   !> element), accumulated into mass(nnode). The element masses sum to rho A0 exactly.
-   !> axi (GLOBal AXISymmetric): m_a = rho integral N_a R dA0, the ring mass per radian
-   !> (doc/axisymmetry.md, (A5); 2x2 Gauss is exact for it too).
-   pure subroutine q4_lumped_mass(nel, nnode, conn, x0, rho, mass, axi)
-      integer, intent(in) :: nel, nnode
-      integer, intent(in) :: conn(4, nel)
-      real(wp), intent(in) :: x0(2, nnode)
-      real(wp), intent(in) :: rho
-      real(wp), intent(inout) :: mass(nnode)
-      logical, intent(in), optional :: axi
-      real(wp) :: xe(4), ye(4), dnx(4), dny(4), dj, xi, eta, me(4), rg
-      integer :: e, g
-      logical :: ax
-
-      ax = .false.
-      if (present(axi)) ax = axi
-      do e = 1, nel
-         xe = x0(1, conn(:, e))
-         ye = x0(2, conn(:, e))
-         me = 0.0_wp
-         do g = 1, 4
-            xi = gq*xin(g)
-            eta = gq*etn(g)
-            call grad_at(xe, ye, xi, eta, dnx, dny, dj)
-            if (ax) then
-               rg = 0.25_wp*sum((1.0_wp + xin*xi)*(1.0_wp + etn*eta)*xe)
-               me = me + (rho*dj*0.25_wp*rg)*(1.0_wp + xin*xi)*(1.0_wp + etn*eta)
-            else
-               me = me + (rho*dj*0.25_wp)*(1.0_wp + xin*xi)*(1.0_wp + etn*eta)
-            end if
-         end do
-         mass(conn(:, e)) = mass(conn(:, e)) + me
-      end do
-   end subroutine q4_lumped_mass
-
    !> Smallest critical time step of the elements from the current geometry x(2, nnode) (the same
    !> estimate, to the bit, as the force kernels compute at x = x0 + u):
    !>
@@ -951,15 +807,6 @@ contains
       end do
    end subroutine q4_stress
 
-   !> gather for q4_general.f90.
-   pure subroutine q4b_gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
-      integer, intent(in) :: nb, nnode
-      integer, intent(in) :: conn(4, nb)
-      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
-      real(wp), intent(out), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
-      call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
-   end subroutine q4b_gather
-
    !> kinematics_2x2 for q4_general.f90.
    pure subroutine q4b_kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
       real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
@@ -989,14 +836,16 @@ contains
       call forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
    end subroutine q4b_forces_2x2
 
-   !> forces_1pt for q4_general.f90.
+   !> forces_1pt for q4_general.f90, the forces split into fx, fy.
    pure subroutine q4b_forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
       real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
       real(wp), intent(in), dimension(NBLOCK) :: r0, p11, p12, p21, p22
       real(wp), intent(in) :: kh
       real(wp), intent(out), dimension(NBLOCK, 4) :: fx, fy
       real(wp), intent(out) :: eh(NBLOCK)
-      call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
+      real(wp) :: fp(2, NBLOCK, 4)
+      call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fp, eh)
+      call split_pairs(fp, fx, fy)
    end subroutine q4b_forces_1pt
 
    !> asqbi_forces for q4_general.f90.
@@ -1019,13 +868,6 @@ contains
       call check_points(nb, np, off, jac, jmin, ebad)
    end subroutine q4b_check_points
 
-   !> current for q4_general.f90.
-   pure subroutine q4b_current(xe, ye, uxe, uye)
-      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye
-      real(wp), intent(inout), dimension(NBLOCK, 4) :: uxe, uye
-      call current(xe, ye, uxe, uye)
-   end subroutine q4b_current
-
    !> stable_block for q4_general.f90.
    pure subroutine q4b_stable_block(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2, good)
       integer, intent(in) :: nq
@@ -1043,15 +885,5 @@ contains
       integer, intent(inout) :: emin, efold
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
    end subroutine q4b_block_minimum
-
-   !> scatter for q4_general.f90.
-   pure subroutine q4b_scatter(nb, nnode, conn, fx, fy, f)
-      integer, intent(in) :: nb, nnode
-      integer, intent(in) :: conn(4, nb)
-      real(wp), intent(in), dimension(NBLOCK, 4) :: fx, fy
-      real(wp), intent(inout) :: f(2, nnode)
-      call scatter(nb, nnode, conn, fx, fy, f)
-   end subroutine q4b_scatter
-
 
 end module exic_element_quad4
