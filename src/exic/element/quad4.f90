@@ -1,7 +1,7 @@
 !> The 4-node plane-strain quadrilateral in the total Lagrangian form: internal force (2x2
 !> Gauss, or one point with Flanagan-Belytschko stiffness hourglass control) fused with the
-!> stable time step, row-sum lumped mass, the reference-mesh check, the deformation gradient and
-!> element stress for output.
+!> stable time step, the deformation gradient and element stress for output; the row-sum lumped
+!> mass and the reference-mesh check (q4_reference.f90) are made available here too.
 !>
 !> Plain kernels on explicit-shape arrays; every call works on `nel` elements sharing one
 !> material. `conn(4, nel)` holds global node numbers counter-clockwise, `x0(2, nnode)` the
@@ -27,6 +27,13 @@
 !> Gauss point): point (k, g) is k + (g - 1) NBLOCK, the constant stride that lets the compiler
 !> vectorize loops writing several columns. A last block of nb < NBLOCK elements is padded with
 !> copies of its last element (every lane stays a valid element); only lanes 1..nb are used.
+!> NBLOCK, the gather and the scatter-add are in q4_block.f90.
+!>
+!> Work arrays are written and read again between the steps of a block (the law is a call into
+!> src/exic/material), so steps that can share a loop do: the plain 2x2 and one-point kernels
+!> write their nodal forces directly as the (x, y) pairs the scatter adds (forces_2x2_pairs,
+!> forces_1pt), and the stable step forms the current corners x0 + u in its own loop
+!> (stable_block_u) rather than in a pass that stores them (doc/performance.md, section 6.2).
 module exic_element_quad4
    use exic_base_kinds, only: wp
    use exic_base_sums, only: lane_sum
@@ -580,7 +587,6 @@ contains
       integer :: k
 
       call taper_factors(nq, c0, c1)
-      ! masks as reals (1 or 0), so that the loop vectorizes
       do k = 1, NBLOCK
          xcl = xc(k, :)
          ycl = yc(k, :)
@@ -652,6 +658,7 @@ contains
       end do
       t2 = min(min(ex(4)*ey(1) - ey(4)*ex(1), ex(1)*ey(2) - ey(1)*ex(2)), &
                min(ex(2)*ey(3) - ey(2)*ex(3), ex(3)*ey(4) - ey(3)*ex(4)))
+      ! masks as reals (1 or 0), so that the callers' loops vectorize
       pa = merge(1.0_wp, 0.0_wp, a2 > 0.0_wp)
       good = pa*merge(1.0_wp, 0.0_wp, t2 > -FLAT*a2)
       ph = c0*a2 + c1*t2
