@@ -4,7 +4,7 @@
 !> kernel (vectorized) and the elemental function give the same bits.
 module test_math
    use exic_base_kinds, only: wp
-   use exic_base_logarithm, only: ln, ln_block
+   use exic_base_logarithm, only: ln, ln_block, ln_normal_block
    use, intrinsic :: iso_fortran_env, only: real128, int64
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
    use testing, only: suite_t, check, section
@@ -118,6 +118,23 @@ contains
          if (transfer(y(i), 1_int64) /= transfer(ln(x(i)), 1_int64)) ndiff = ndiff + 1
       end do
       call check(s, ndiff == 0, 'ln_block(x) = ln(x) to the bit at 1001 points (vector loop and remainder)')
+      ! ln_normal_block: every positive normal number, the reduction's boundaries and the ends
+      x(18) = tiny(1.0_wp)
+      x(19) = huge(1.0_wp)
+      x(20) = sqrt(2.0_wp)
+      x(21) = nearest(sqrt(2.0_wp), -1.0_wp)
+      x(22) = 0.5_wp*sqrt(2.0_wp)
+      x(23) = nearest(0.5_wp*sqrt(2.0_wp), -1.0_wp)
+      do i = 24, 124
+         x(i) = 2.0_wp**(20*(i - 74))*(1.0_wp + 0.37_wp*real(i, wp)/124.0_wp)
+      end do
+      call ln_normal_block(n, x, y)
+      ndiff = 0
+      do i = 1, n
+         if (transfer(y(i), 1_int64) /= transfer(ln(x(i)), 1_int64)) ndiff = ndiff + 1
+      end do
+      call check(s, ndiff == 0, 'ln_normal_block(x) = ln(x) to the bit at 1001 normal numbers (tiny, huge, '// &
+                 'next to sqrt(2)/2 and sqrt(2), 2^-1000 .. 2^1000)')
    end subroutine test_block
 
 end module test_math

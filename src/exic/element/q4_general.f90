@@ -17,13 +17,14 @@ module exic_element_q4_general
    use exic_material_j2, only: j2_piola, j2_cauchy, j2_init_history
    use exic_material_neohookean, only: nh_wave_speed2_block
    use exic_material_material, only: HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
-   use exic_element_quad4, only: NBLOCK, gather => q4b_gather, kinematics_2x2 => q4b_kinematics_2x2, &
+   use exic_element_q4_block, only: NBLOCK, gather, current, scatter
+   use exic_element_quad4, only: kinematics_2x2 => q4b_kinematics_2x2, &
                                  kinematics_1pt => q4b_kinematics_1pt, positive => q4b_positive, &
                                  forces_2x2 => q4b_forces_2x2, forces_1pt => q4b_forces_1pt, &
                                  asqbi_forces => q4b_asqbi_forces, &
-                                 check_points => q4b_check_points, current => q4b_current, &
+                                 check_points => q4b_check_points, &
                                  stable_block => q4b_stable_block, &
-                                 block_minimum => q4b_block_minimum, scatter => q4b_scatter
+                                 block_minimum => q4b_block_minimum
    use exic_element_q4_barrier, only: corner_barrier, barrier_limit
    implicit none
    private
@@ -481,6 +482,7 @@ contains
          a = 0.5_wp*((xc(k, 3) - xc(k, 1))*(yc(k, 4) - yc(k, 2)) - (yc(k, 3) - yc(k, 1))*(xc(k, 4) - xc(k, 2)))
          jr(k) = (a/a0)*(rcur/rc)
          if (.not. jr(k) > 0.0_wp) jr(k) = 1.0_wp
+         jr(k) = max(jr(k), tiny(1.0_wp))   ! a normal number (nh_wave_speed2_block)
       end do
       call nh_wave_speed2_block(NBLOCK, lambda, mu, rho0, jr, c2)
       do k = 1, NBLOCK

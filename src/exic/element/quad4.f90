@@ -1,7 +1,7 @@
 !> The 4-node plane-strain quadrilateral in the total Lagrangian form: internal force (2x2
 !> Gauss, or one point with Flanagan-Belytschko stiffness hourglass control) fused with the
-!> stable time step, row-sum lumped mass, the reference-mesh check, the deformation gradient and
-!> element stress for output.
+!> stable time step, the deformation gradient and element stress for output; the row-sum lumped
+!> mass and the reference-mesh check (q4_reference.f90) are made available here too.
 !>
 !> Plain kernels on explicit-shape arrays; every call works on `nel` elements sharing one
 !> material. `conn(4, nel)` holds global node numbers counter-clockwise, `x0(2, nnode)` the
@@ -27,78 +27,34 @@
 !> Gauss point): point (k, g) is k + (g - 1) NBLOCK, the constant stride that lets the compiler
 !> vectorize loops writing several columns. A last block of nb < NBLOCK elements is padded with
 !> copies of its last element (every lane stays a valid element); only lanes 1..nb are used.
+!> NBLOCK, the gather and the scatter-add are in q4_block.f90.
+!>
+!> Work arrays are written and read again between the steps of a block (the law is a call into
+!> src/exic/material), so steps that can share a loop do: the plain 2x2 and one-point kernels
+!> write their nodal forces directly as the (x, y) pairs the scatter adds (forces_2x2_pairs,
+!> forces_1pt), and the stable step forms the current corners x0 + u in its own loop
+!> (stable_block_u) rather than in a pass that stores them (doc/performance.md, section 6.2).
 module exic_element_quad4
    use exic_base_kinds, only: wp
    use exic_base_sums, only: lane_sum
    use exic_material_neohookean, only: nh_piola, nh_cauchy, nh_wave_speed2_block
    use exic_material_material, only: HOURGLASS_PHYSICAL
    use exic_element_q4_barrier, only: corner_barrier, barrier_limit
+   use exic_element_q4_reference, only: q4_check_reference, q4_lumped_mass, gq
+   use exic_element_q4_block, only: NBLOCK, gather, current, scatter, scatter_pairs, split_pairs
    implicit none
    private
 
    public :: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, q4_stable_dt, &
-             q4_deformation, q4_stress
+             q4_deformation, q4_stress, NBLOCK
    ! the block steps for the general solid path (q4_general.f90), as wrappers: the steps stay
    ! private, so that the compiler inlines them into the block routines as before
-   public :: q4b_gather, q4b_kinematics_2x2, q4b_kinematics_1pt, q4b_positive, q4b_forces_2x2, &
-             q4b_forces_1pt, q4b_asqbi_forces, q4b_check_points, q4b_current, q4b_stable_block, &
-             q4b_block_minimum, q4b_scatter
+   public :: q4b_kinematics_2x2, q4b_kinematics_1pt, q4b_positive, q4b_forces_2x2, &
+             q4b_forces_1pt, q4b_asqbi_forces, q4b_check_points, q4b_stable_block, &
+             q4b_block_minimum
 
-   real(wp), parameter :: xin(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]   !< xi_a
-   real(wp), parameter :: etn(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]   !< eta_a
-   real(wp), parameter :: gq = 0.57735026918962576451_wp                 !< 1/sqrt(3)
-   !> Elements per block of the force kernels: the block's work arrays (about 90 values per
-   !> element) stay in the L1 cache, and its loops run over 32 elements (4 AVX-512 vectors).
-   integer, parameter, public :: NBLOCK = 32
 
 contains
-
-   !> First element with det J0 <= 0 at a corner of the reference mesh (det J0 is a linear
-   !> function of xi and eta on each edge, so its corner values bound it everywhere, Gauss
-   !> points included) or a non-positive area; 0 if none.
-   pure subroutine q4_check_reference(nel, nnode, conn, x0, ebad)
-      integer, intent(in) :: nel, nnode
-      integer, intent(in) :: conn(4, nel)
-      real(wp), intent(in) :: x0(2, nnode)
-      integer, intent(out) :: ebad
-      real(wp) :: xe(4), ye(4), dnx(4), dny(4), dj, a0
-      integer :: e, a
-
-      ebad = 0
-      do e = 1, nel
-         xe = x0(1, conn(:, e))
-         ye = x0(2, conn(:, e))
-         a0 = 0.5_wp*((xe(3) - xe(1))*(ye(4) - ye(2)) - (ye(3) - ye(1))*(xe(4) - xe(2)))
-         if (.not. a0 > 0.0_wp) then
-            ebad = e
-            return
-         end if
-         do a = 1, 4
-            call grad_at(xe, ye, xin(a), etn(a), dnx, dny, dj)
-            if (dj <= 0.0_wp) then
-               ebad = e
-               return
-            end if
-         end do
-      end do
-   end subroutine q4_check_reference
-
-   !> dN_a/dX, dN_a/dY and det J0 of the element (xe, ye) at natural point (xi, eta).
-   pure subroutine grad_at(xe, ye, xi, eta, dnx, dny, dj)
-      real(wp), intent(in) :: xe(4), ye(4), xi, eta
-      real(wp), intent(out) :: dnx(4), dny(4), dj
-      real(wp) :: dxi(4), deta(4), j11, j12, j21, j22, r
-      dxi = 0.25_wp*xin*(1.0_wp + etn*eta)
-      deta = 0.25_wp*etn*(1.0_wp + xin*xi)
-      j11 = sum(dxi*xe)
-      j12 = sum(dxi*ye)
-      j21 = sum(deta*xe)
-      j22 = sum(deta*ye)
-      dj = j11*j22 - j12*j21
-      r = 1.0_wp/merge(dj, 1.0_wp, dj /= 0.0_wp)
-      dnx = (j22*dxi - j12*deta)*r
-      dny = (j11*deta - j21*dxi)*r
-   end subroutine grad_at
 
    !> Internal force with 2x2 Gauss quadrature, f_ia += sum_g det J0 P_iJ(F_g) dN_a/dX_J, and the
    !> stable step of every element from the same gathered nodes (q4_stable_dt's estimate).
@@ -142,8 +98,8 @@ contains
       real(wp), intent(inout) :: f(2, nnode), wint, jmin, dt2min
       integer, intent(inout) :: ebad, emin, efold
       real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, js, wt, i11, i12, &
-                                        i21, i22, p11, p12, p21, p22, wq, fx, fy
-      real(wp) :: dt2(NBLOCK), good(NBLOCK), we(NBLOCK)
+                                        i21, i22, p11, p12, p21, p22, wq
+      real(wp) :: fp(2, NBLOCK, 4), dt2(NBLOCK), good(NBLOCK), we(NBLOCK)
       integer :: k
 
       call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
@@ -151,27 +107,28 @@ contains
       call positive(4*NBLOCK, jac, js)
       ! the law at every point of the block
       call nh_piola(4*NBLOCK, lambda, mu, f11, f12, f21, f22, js, wt, p11, p12, p21, p22, wq)
-      call forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
+      call forces_2x2_pairs(p11, p12, p21, p22, i11, i12, i21, i22, fp)
       do k = 1, NBLOCK
          we(k) = ((wq(k, 1) + wq(k, 2)) + wq(k, 3)) + wq(k, 4)
       end do
       wint = wint + lane_sum(nb, we)
       call check_points(nb, 4, off, jac, jmin, ebad)
-      ! the stable step at the current geometry
-      call current(xe, ye, uxe, uye)
-      call stable_block(2, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
+      ! the stable step at the current geometry x0 + u
+      call stable_block_u(2, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
-      call scatter(nb, nnode, conn, fx, fy, f)
+      call scatter_pairs(nb, nnode, conn, fp, f)
    end subroutine block_2x2
 
-   !> js = J where J > 0, else 1 (so that the law stays finite on an element the caller rejects).
+   !> js = J where J is a positive normal number, else 1 (so that the law stays finite on an
+   !> element the caller rejects: check_points rejects J < tiny, i.e. J <= 0 and the subnormal
+   !> J below 2.2e-308, whose logarithm the laws' ln_normal_block does not take).
    pure subroutine positive(n, jac, js)
       integer, intent(in) :: n
       real(wp), intent(in) :: jac(n)
       real(wp), intent(out) :: js(n)
       integer :: q
       do q = 1, n
-         js(q) = merge(jac(q), 1.0_wp, jac(q) > 0.0_wp)
+         js(q) = merge(jac(q), 1.0_wp, jac(q) >= tiny(1.0_wp))
       end do
    end subroutine positive
 
@@ -268,22 +225,41 @@ contains
    pure subroutine forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
       real(wp), intent(in), dimension(NBLOCK, 4) :: p11, p12, p21, p22, i11, i12, i21, i22
       real(wp), intent(out), dimension(NBLOCK, 4) :: fx, fy
-      real(wp) :: a(4), b(4), c(4), d(4)
-      integer :: k, g
-
+      integer :: k
       do k = 1, NBLOCK
-         do g = 1, 4
-            a(g) = p11(k, g)*i11(k, g) + p12(k, g)*i12(k, g)
-            b(g) = p11(k, g)*i21(k, g) + p12(k, g)*i22(k, g)
-            c(g) = p21(k, g)*i11(k, g) + p22(k, g)*i12(k, g)
-            d(g) = p21(k, g)*i21(k, g) + p22(k, g)*i22(k, g)
-         end do
-         call natural_forces(a(1), a(2), a(3), a(4), b(1), b(2), b(3), b(4), fx(k, 1), fx(k, 2), &
-                             fx(k, 3), fx(k, 4))
-         call natural_forces(c(1), c(2), c(3), c(4), d(1), d(2), d(3), d(4), fy(k, 1), fy(k, 2), &
-                             fy(k, 3), fy(k, 4))
+         call element_forces_2x2(k, p11, p12, p21, p22, i11, i12, i21, i22, fx(k, 1), fx(k, 2), &
+                                 fx(k, 3), fx(k, 4), fy(k, 1), fy(k, 2), fy(k, 3), fy(k, 4))
       end do
    end subroutine forces_2x2
+
+   !> forces_2x2 with the forces as (x, y) pairs fp(:, k, a), the layout scatter_pairs adds.
+   pure subroutine forces_2x2_pairs(p11, p12, p21, p22, i11, i12, i21, i22, fp)
+      real(wp), intent(in), dimension(NBLOCK, 4) :: p11, p12, p21, p22, i11, i12, i21, i22
+      real(wp), intent(out) :: fp(2, NBLOCK, 4)
+      integer :: k
+      do k = 1, NBLOCK
+         call element_forces_2x2(k, p11, p12, p21, p22, i11, i12, i21, i22, fp(1, k, 1), fp(1, k, 2), &
+                                 fp(1, k, 3), fp(1, k, 4), fp(2, k, 1), fp(2, k, 2), fp(2, k, 3), fp(2, k, 4))
+      end do
+   end subroutine forces_2x2_pairs
+
+   !> The nodal forces (fx1..fx4, fy1..fy4) of element k of forces_2x2.
+   pure subroutine element_forces_2x2(k, p11, p12, p21, p22, i11, i12, i21, i22, fx1, fx2, fx3, fx4, &
+                                      fy1, fy2, fy3, fy4)
+      integer, intent(in) :: k
+      real(wp), intent(in), dimension(NBLOCK, 4) :: p11, p12, p21, p22, i11, i12, i21, i22
+      real(wp), intent(out) :: fx1, fx2, fx3, fx4, fy1, fy2, fy3, fy4
+      real(wp) :: a(4), b(4), c(4), d(4)
+      integer :: g
+      do g = 1, 4
+         a(g) = p11(k, g)*i11(k, g) + p12(k, g)*i12(k, g)
+         b(g) = p11(k, g)*i21(k, g) + p12(k, g)*i22(k, g)
+         c(g) = p21(k, g)*i11(k, g) + p22(k, g)*i12(k, g)
+         d(g) = p21(k, g)*i21(k, g) + p22(k, g)*i22(k, g)
+      end do
+      call natural_forces(a(1), a(2), a(3), a(4), b(1), b(2), b(3), b(4), fx1, fx2, fx3, fx4)
+      call natural_forces(c(1), c(2), c(3), c(4), d(1), d(2), d(3), d(4), fy1, fy2, fy3, fy4)
+   end subroutine element_forces_2x2
 
    !> One force component at the four nodes from Q_i1 = a_g and Q_i2 = b_g at the Gauss points.
    pure subroutine natural_forces(a1, a2, a3, a4, b1, b2, b3, b4, f1, f2, f3, f4)
@@ -360,6 +336,7 @@ contains
       integer, intent(inout) :: ebad, emin, efold
       real(wp), intent(in), optional :: v(2, nnode)
       real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy, hx, hy
+      real(wp) :: fp(2, NBLOCK, 4)
       real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, jac, js, a0, r0, p11, p12, p21, p22, wq, eh, &
                                      dt2, good, ob
       integer :: a, k
@@ -370,7 +347,8 @@ contains
       ! the law at every centroid of the block, weighted by the reference areas
       call nh_piola(NBLOCK, lambda, mu, f11, f12, f21, f22, js, a0, p11, p12, p21, p22, wq)
       if (phys) then
-         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fx, fy, eh)
+         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fp, eh)
+         call split_pairs(fp, fx, fy)
          call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, lambda, mu, hg, hx, hy, eh)
          do a = 1, 4
             do k = 1, NBLOCK
@@ -379,21 +357,29 @@ contains
             end do
          end do
       else
-         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, hg*(lambda + 2.0_wp*mu), fx, fy, eh)
+         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, hg*(lambda + 2.0_wp*mu), fp, eh)
       end if
       wint = wint + lane_sum(nb, wq)
       call check_points(nb, 1, off, jac, jmin, ebad)
-      call current(xe, ye, uxe, uye)
       if (phys) then
+         call current(xe, ye, uxe, uye)
          ! r0 is no longer needed: reused as the weight 1 of the plane element
          r0 = 1.0_wp
          call corner_barrier(NBLOCK, xe, ye, uxe, uye, r0, lambda, mu, rho0, fx, fy, eh, ob)
+         whg = whg + lane_sum(nb, eh)
+         call stable_block(1, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
+         call barrier_limit(NBLOCK, nb, nnode, conn, uxe, uye, ob, dt2, v)
+      else
+         whg = whg + lane_sum(nb, eh)
+         ! the stable step at the current geometry x0 + u
+         call stable_block_u(1, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
       end if
-      whg = whg + lane_sum(nb, eh)
-      call stable_block(1, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
-      if (phys) call barrier_limit(NBLOCK, nb, nnode, conn, uxe, uye, ob, dt2, v)
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
-      call scatter(nb, nnode, conn, fx, fy, f)
+      if (phys) then
+         call scatter(nb, nnode, conn, fx, fy, f)
+      else
+         call scatter_pairs(nb, nnode, conn, fp, f)
+      end if
    end subroutine block_1pt
 
    !> Mean deformation gradient of a block of one-point elements: F = 1 + sum_a u_a (x) b_a/A0,
@@ -423,14 +409,14 @@ contains
       end do
    end subroutine kinematics_1pt
 
-   !> Mean and hourglass forces fx, fy and hourglass energies eh of a block of one-point
+   !> Mean and hourglass forces fp (as (x, y) pairs) and hourglass energies eh of a block of one-point
    !> elements from their weighted stresses p = A0 P, r0 = 1/A0 and the hourglass stiffness
    !> factor kh = hg (lambda + 2 mu) (q4_force_1pt; b_3 = -b_1, b_4 = -b_2).
-   pure subroutine forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
+   pure subroutine forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fp, eh)
       real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
       real(wp), intent(in), dimension(NBLOCK) :: r0, p11, p12, p21, p22
       real(wp), intent(in) :: kh
-      real(wp), intent(out), dimension(NBLOCK, 4) :: fx, fy
+      real(wp), intent(out) :: fp(2, NBLOCK, 4)   !< (x, y) pairs, the layout of scatter_pairs
       real(wp), intent(out) :: eh(NBLOCK)
       real(wp) :: bx1, bx2, by1, by2, hx, hy, t1, t2, g1, g2, g3, g4, kk, qx, qy, m1, m2
       integer :: k
@@ -458,16 +444,16 @@ contains
          ! mean part: (p b)/A0 with p = A0 P
          m1 = (p11(k)*bx1 + p12(k)*by1)*r0(k)
          m2 = (p11(k)*bx2 + p12(k)*by2)*r0(k)
-         fx(k, 1) = m1 + qx*g1
-         fx(k, 2) = m2 + qx*g2
-         fx(k, 3) = qx*g3 - m1
-         fx(k, 4) = qx*g4 - m2
+         fp(1, k, 1) = m1 + qx*g1
+         fp(1, k, 2) = m2 + qx*g2
+         fp(1, k, 3) = qx*g3 - m1
+         fp(1, k, 4) = qx*g4 - m2
          m1 = (p21(k)*bx1 + p22(k)*by1)*r0(k)
          m2 = (p21(k)*bx2 + p22(k)*by2)*r0(k)
-         fy(k, 1) = m1 + qy*g1
-         fy(k, 2) = m2 + qy*g2
-         fy(k, 3) = qy*g3 - m1
-         fy(k, 4) = qy*g4 - m2
+         fp(2, k, 1) = m1 + qy*g1
+         fp(2, k, 2) = m2 + qy*g2
+         fp(2, k, 3) = qy*g3 - m1
+         fp(2, k, 4) = qy*g4 - m2
       end do
    end subroutine forces_1pt
 
@@ -557,90 +543,9 @@ contains
    end subroutine asqbi_forces
 
 
-   !> The reference coordinates and displacements of nb elements, (element, local node); lanes
-   !> nb + 1 .. NBLOCK repeat element nb. A node's (x, y) pairs are copied as pairs (one 16-byte
-   !> load and store each) into (component, element, local node) arrays, which a vectorized loop
-   !> then splits into the x and y arrays: half the scalar loads and stores of copying value by value.
-   pure subroutine gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
-      integer, intent(in) :: nb, nnode
-      integer, intent(in) :: conn(4, nb)
-      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
-      real(wp), intent(out), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
-      real(wp), dimension(2, NBLOCK, 4) :: p0, pu
-      integer :: k, a, n
-      ! pairs by scalar index: faster here than the vector gather instructions (measured)
-      !GCC$ novector
-      do k = 1, nb
-         do a = 1, 4
-            n = conn(a, k)
-            p0(1, k, a) = x0(1, n)
-            p0(2, k, a) = x0(2, n)
-            pu(1, k, a) = u(1, n)
-            pu(2, k, a) = u(2, n)
-         end do
-      end do
-      do a = 1, 4
-         do k = 1, nb
-            xe(k, a) = p0(1, k, a)
-            ye(k, a) = p0(2, k, a)
-            uxe(k, a) = pu(1, k, a)
-            uye(k, a) = pu(2, k, a)
-         end do
-      end do
-      do a = 1, 4
-         do k = nb + 1, NBLOCK
-            xe(k, a) = xe(nb, a)
-            ye(k, a) = ye(nb, a)
-            uxe(k, a) = uxe(nb, a)
-            uye(k, a) = uye(nb, a)
-         end do
-      end do
-   end subroutine gather
-
-   !> Current coordinates in place of the displacements: ux <- x0 + u, uy <- y0 + v (the same
-   !> sums as the stepper's positions, hence the same bits).
-   pure subroutine current(xe, ye, uxe, uye)
-      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye
-      real(wp), intent(inout), dimension(NBLOCK, 4) :: uxe, uye
-      integer :: k, a
-      do a = 1, 4
-         do k = 1, NBLOCK
-            uxe(k, a) = xe(k, a) + uxe(k, a)
-            uye(k, a) = ye(k, a) + uye(k, a)
-         end do
-      end do
-   end subroutine current
-
-   !> f(:, conn(a, k)) += (fx(k, a), fy(k, a)) for the block's nb elements, in order. The forces
-   !> are interleaved into (x, y) pairs first (a vectorized loop), so that each node takes one
-   !> 16-byte load, addition and store: the same additions in the same order as value by value.
-   pure subroutine scatter(nb, nnode, conn, fx, fy, f)
-      integer, intent(in) :: nb, nnode
-      integer, intent(in) :: conn(4, nb)
-      real(wp), intent(in), dimension(NBLOCK, 4) :: fx, fy
-      real(wp), intent(inout) :: f(2, nnode)
-      real(wp) :: fp(2, NBLOCK, 4), t1, t2
-      integer :: k, a, n
-      do a = 1, 4
-         do k = 1, NBLOCK
-            fp(1, k, a) = fx(k, a)
-            fp(2, k, a) = fy(k, a)
-         end do
-      end do
-      !GCC$ novector
-      do k = 1, nb
-         do a = 1, 4
-            n = conn(a, k)
-            t1 = f(1, n) + fp(1, k, a)
-            t2 = f(2, n) + fp(2, k, a)
-            f(1, n) = t1
-            f(2, n) = t2
-         end do
-      end do
-   end subroutine scatter
-
    !> jmin over the points jac(NBLOCK, np) of the block's nb elements; ebad (when 0) becomes the
-   !> first element off + k with J <= 0 at a point.
+   !> first element off + k with J <= 0 at a point (or a subnormal J > 0, below tiny = 2.2e-308:
+   !> an element crushed that far is rejected as inverted, see positive).
    pure subroutine check_points(nb, np, off, jac, jmin, ebad)
       integer, intent(in) :: nb, np, off
       real(wp), intent(in) :: jac(NBLOCK, np)
@@ -655,9 +560,9 @@ contains
          end do
       end do
       jmin = min(jmin, m)
-      if (ebad /= 0 .or. m > 0.0_wp) return
+      if (ebad /= 0 .or. m >= tiny(1.0_wp)) return
       do k = 1, nb
-         if (any(jac(k, :) <= 0.0_wp)) then
+         if (any(jac(k, :) < tiny(1.0_wp))) then
             ebad = off + k
             return
          end if
@@ -677,13 +582,49 @@ contains
       real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, xc, yc
       real(wp), intent(in) :: lambda, mu, rho0
       real(wp), intent(out), dimension(NBLOCK) :: dt2, good
-      real(wp), parameter :: s3 = 0.57735026918962576451_wp
-      !> a corner triangle within FLAT of the area is flat (three nodes on a line to round-off), not folded
-      real(wp), parameter :: FLAT = 1.0e-10_wp
-      real(wp), dimension(NBLOCK) :: num, den, jr, c2, ok
-      real(wp) :: c0, c1, d1x, d1y, d2x, d2y, a2, a02, t2, pa, ph, ex(4), ey(4)
+      real(wp), dimension(NBLOCK) :: num, den, jr, ok
+      real(wp) :: c0, c1, xcl(4), ycl(4)
+      integer :: k
+
+      call taper_factors(nq, c0, c1)
+      do k = 1, NBLOCK
+         xcl = xc(k, :)
+         ycl = yc(k, :)
+         call corner_estimate(c0, c1, xr(k, 1), xr(k, 2), xr(k, 3), xr(k, 4), yr(k, 1), yr(k, 2), &
+                              yr(k, 3), yr(k, 4), xcl, ycl, good(k), ok(k), num(k), den(k), jr(k))
+      end do
+      call stable_finish(lambda, mu, rho0, num, den, jr, ok, dt2)
+   end subroutine stable_block
+
+   !> stable_block from the reference corners (xr, yr) and the displacements (ux, uy) of the
+   !> block: the current corners xr + ux, yr + uy (the sums of `current`) are formed in the loop
+   !> instead of being stored and loaded again.
+   pure subroutine stable_block_u(nq, xr, yr, ux, uy, lambda, mu, rho0, dt2, good)
+      integer, intent(in) :: nq
+      real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, ux, uy
+      real(wp), intent(in) :: lambda, mu, rho0
+      real(wp), intent(out), dimension(NBLOCK) :: dt2, good
+      real(wp), dimension(NBLOCK) :: num, den, jr, ok
+      real(wp) :: c0, c1, xcl(4), ycl(4)
       integer :: k, a
 
+      call taper_factors(nq, c0, c1)
+      do k = 1, NBLOCK
+         do a = 1, 4
+            xcl(a) = xr(k, a) + ux(k, a)
+            ycl(a) = yr(k, a) + uy(k, a)
+         end do
+         call corner_estimate(c0, c1, xr(k, 1), xr(k, 2), xr(k, 3), xr(k, 4), yr(k, 1), yr(k, 2), &
+                              yr(k, 3), yr(k, 4), xcl, ycl, good(k), ok(k), num(k), den(k), jr(k))
+      end do
+      call stable_finish(lambda, mu, rho0, num, den, jr, ok, dt2)
+   end subroutine stable_block_u
+
+   !> c0, c1 of phi^2 = c0 + c1 t for the rule nq (q4_stable_dt).
+   pure subroutine taper_factors(nq, c0, c1)
+      integer, intent(in) :: nq
+      real(wp), intent(out) :: c0, c1
+      real(wp), parameter :: s3 = 0.57735026918962576451_wp
       if (nq == 1) then
          c0 = 2.0_wp/3.0_wp
          c1 = 2.0_wp/3.0_wp
@@ -691,36 +632,56 @@ contains
          c0 = 1.0_wp - s3
          c1 = 2.0_wp*s3
       end if
-      ! masks as reals (1 or 0), so that the loop vectorizes
-      do k = 1, NBLOCK
-         a02 = (xr(k, 3) - xr(k, 1))*(yr(k, 4) - yr(k, 2)) - (yr(k, 3) - yr(k, 1))*(xr(k, 4) - xr(k, 2))
-         d1x = xc(k, 3) - xc(k, 1)
-         d1y = yc(k, 3) - yc(k, 1)
-         d2x = xc(k, 4) - xc(k, 2)
-         d2y = yc(k, 4) - yc(k, 2)
-         a2 = d1x*d2y - d1y*d2x
-         ! edges a -> a+1; the corner triangle (a-1, a, a+1) is e_(a-1) x e_a / 2
-         do a = 1, 4
-            ex(a) = xc(k, modulo(a, 4) + 1) - xc(k, a)
-            ey(a) = yc(k, modulo(a, 4) + 1) - yc(k, a)
-         end do
-         t2 = min(min(ex(4)*ey(1) - ey(4)*ex(1), ex(1)*ey(2) - ey(1)*ex(2)), &
-                  min(ex(2)*ey(3) - ey(2)*ex(3), ex(3)*ey(4) - ey(3)*ex(4)))
-         pa = merge(1.0_wp, 0.0_wp, a2 > 0.0_wp)
-         good(k) = pa*merge(1.0_wp, 0.0_wp, t2 > -FLAT*a2)
-         ph = c0*a2 + c1*t2
-         ok(k) = pa*merge(1.0_wp, 0.0_wp, ph > 0.0_wp)
-         num(k) = ph*a2
-         den(k) = 4.0_wp*max(d1x*d1x + d1y*d1y, d2x*d2x + d2y*d2y)
-         ! J = A/A0, or 1 where the estimate is 0 (a0/a0: a division under a condition would
-         ! stop the vectorizer)
-         jr(k) = merge(a2, a02, ok(k) > 0.0_wp)/a02
+   end subroutine taper_factors
+
+   !> One element of stable_block: reference corners (xr1..4, yr1..4), current corners (xc, yc);
+   !> good, ok (1 or 0), the numerator ph A and denominator D of dt^2 c^2 and the volume ratio jr.
+   pure subroutine corner_estimate(c0, c1, xr1, xr2, xr3, xr4, yr1, yr2, yr3, yr4, xc, yc, good, ok, &
+                                   num, den, jr)
+      real(wp), intent(in) :: c0, c1, xr1, xr2, xr3, xr4, yr1, yr2, yr3, yr4, xc(4), yc(4)
+      real(wp), intent(out) :: good, ok, num, den, jr
+      !> a corner triangle within FLAT of the area is flat (three nodes on a line to round-off), not folded
+      real(wp), parameter :: FLAT = 1.0e-10_wp
+      real(wp) :: d1x, d1y, d2x, d2y, a2, a02, t2, pa, ph, ex(4), ey(4)
+      integer :: a
+
+      a02 = (xr3 - xr1)*(yr4 - yr2) - (yr3 - yr1)*(xr4 - xr2)
+      d1x = xc(3) - xc(1)
+      d1y = yc(3) - yc(1)
+      d2x = xc(4) - xc(2)
+      d2y = yc(4) - yc(2)
+      a2 = d1x*d2y - d1y*d2x
+      ! edges a -> a+1; the corner triangle (a-1, a, a+1) is e_(a-1) x e_a / 2
+      do a = 1, 4
+         ex(a) = xc(modulo(a, 4) + 1) - xc(a)
+         ey(a) = yc(modulo(a, 4) + 1) - yc(a)
       end do
+      t2 = min(min(ex(4)*ey(1) - ey(4)*ex(1), ex(1)*ey(2) - ey(1)*ex(2)), &
+               min(ex(2)*ey(3) - ey(2)*ex(3), ex(3)*ey(4) - ey(3)*ex(4)))
+      ! masks as reals (1 or 0), so that the callers' loops vectorize
+      pa = merge(1.0_wp, 0.0_wp, a2 > 0.0_wp)
+      good = pa*merge(1.0_wp, 0.0_wp, t2 > -FLAT*a2)
+      ph = c0*a2 + c1*t2
+      ok = pa*merge(1.0_wp, 0.0_wp, ph > 0.0_wp)
+      num = ph*a2
+      den = 4.0_wp*max(d1x*d1x + d1y*d1y, d2x*d2x + d2y*d2y)
+      ! J = A/A0, or 1 where the estimate is 0 (a0/a0: a division under a condition would
+      ! stop the vectorizer); at least tiny, the smallest normal number (nh_wave_speed2_block)
+      jr = max(merge(a2, a02, ok > 0.0_wp)/a02, tiny(1.0_wp))
+   end subroutine corner_estimate
+
+   !> dt2 = num/(den c^2) where ok, else 0, with c^2 the wave speed at the volume ratio jr.
+   pure subroutine stable_finish(lambda, mu, rho0, num, den, jr, ok, dt2)
+      real(wp), intent(in) :: lambda, mu, rho0
+      real(wp), intent(in), dimension(NBLOCK) :: num, den, jr, ok
+      real(wp), intent(out) :: dt2(NBLOCK)
+      real(wp) :: c2(NBLOCK)
+      integer :: k
       call nh_wave_speed2_block(NBLOCK, lambda, mu, rho0, jr, c2)
       do k = 1, NBLOCK
          dt2(k) = merge(num(k)/merge(den(k)*c2(k), 1.0_wp, ok(k) > 0.0_wp), 0.0_wp, ok(k) > 0.0_wp)
       end do
-   end subroutine stable_block
+   end subroutine stable_finish
 
    !> dt2min/emin: the smallest dt2 of the block's nb elements (first element off + k on ties)
    !> if below dt2min; efold (when 0): the first folded element (good = 0, stable_block).
@@ -744,42 +705,6 @@ contains
          end if
       end do
    end subroutine block_minimum
-
-   !> Row-sum lumped mass m_a = rho integral N_a dA0 (2x2 Gauss, exact for the bilinear
-   !> element), accumulated into mass(nnode). The element masses sum to rho A0 exactly.
-   !> axi (GLOBal AXISymmetric): m_a = rho integral N_a R dA0, the ring mass per radian
-   !> (doc/axisymmetry.md, (A5); 2x2 Gauss is exact for it too).
-   pure subroutine q4_lumped_mass(nel, nnode, conn, x0, rho, mass, axi)
-      integer, intent(in) :: nel, nnode
-      integer, intent(in) :: conn(4, nel)
-      real(wp), intent(in) :: x0(2, nnode)
-      real(wp), intent(in) :: rho
-      real(wp), intent(inout) :: mass(nnode)
-      logical, intent(in), optional :: axi
-      real(wp) :: xe(4), ye(4), dnx(4), dny(4), dj, xi, eta, me(4), rg
-      integer :: e, g
-      logical :: ax
-
-      ax = .false.
-      if (present(axi)) ax = axi
-      do e = 1, nel
-         xe = x0(1, conn(:, e))
-         ye = x0(2, conn(:, e))
-         me = 0.0_wp
-         do g = 1, 4
-            xi = gq*xin(g)
-            eta = gq*etn(g)
-            call grad_at(xe, ye, xi, eta, dnx, dny, dj)
-            if (ax) then
-               rg = 0.25_wp*sum((1.0_wp + xin*xi)*(1.0_wp + etn*eta)*xe)
-               me = me + (rho*dj*0.25_wp*rg)*(1.0_wp + xin*xi)*(1.0_wp + etn*eta)
-            else
-               me = me + (rho*dj*0.25_wp)*(1.0_wp + xin*xi)*(1.0_wp + etn*eta)
-            end if
-         end do
-         mass(conn(:, e)) = mass(conn(:, e)) + me
-      end do
-   end subroutine q4_lumped_mass
 
    !> Smallest critical time step of the elements from the current geometry x(2, nnode) (the same
    !> estimate, to the bit, as the force kernels compute at x = x0 + u):
@@ -889,15 +814,6 @@ contains
       end do
    end subroutine q4_stress
 
-   !> gather for q4_general.f90.
-   pure subroutine q4b_gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
-      integer, intent(in) :: nb, nnode
-      integer, intent(in) :: conn(4, nb)
-      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
-      real(wp), intent(out), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
-      call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
-   end subroutine q4b_gather
-
    !> kinematics_2x2 for q4_general.f90.
    pure subroutine q4b_kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
       real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
@@ -927,14 +843,16 @@ contains
       call forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
    end subroutine q4b_forces_2x2
 
-   !> forces_1pt for q4_general.f90.
+   !> forces_1pt for q4_general.f90, the forces split into fx, fy.
    pure subroutine q4b_forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
       real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
       real(wp), intent(in), dimension(NBLOCK) :: r0, p11, p12, p21, p22
       real(wp), intent(in) :: kh
       real(wp), intent(out), dimension(NBLOCK, 4) :: fx, fy
       real(wp), intent(out) :: eh(NBLOCK)
-      call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
+      real(wp) :: fp(2, NBLOCK, 4)
+      call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fp, eh)
+      call split_pairs(fp, fx, fy)
    end subroutine q4b_forces_1pt
 
    !> asqbi_forces for q4_general.f90.
@@ -957,13 +875,6 @@ contains
       call check_points(nb, np, off, jac, jmin, ebad)
    end subroutine q4b_check_points
 
-   !> current for q4_general.f90.
-   pure subroutine q4b_current(xe, ye, uxe, uye)
-      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye
-      real(wp), intent(inout), dimension(NBLOCK, 4) :: uxe, uye
-      call current(xe, ye, uxe, uye)
-   end subroutine q4b_current
-
    !> stable_block for q4_general.f90.
    pure subroutine q4b_stable_block(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2, good)
       integer, intent(in) :: nq
@@ -981,15 +892,5 @@ contains
       integer, intent(inout) :: emin, efold
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
    end subroutine q4b_block_minimum
-
-   !> scatter for q4_general.f90.
-   pure subroutine q4b_scatter(nb, nnode, conn, fx, fy, f)
-      integer, intent(in) :: nb, nnode
-      integer, intent(in) :: conn(4, nb)
-      real(wp), intent(in), dimension(NBLOCK, 4) :: fx, fy
-      real(wp), intent(inout) :: f(2, nnode)
-      call scatter(nb, nnode, conn, fx, fy, f)
-   end subroutine q4b_scatter
-
 
 end module exic_element_quad4

@@ -20,10 +20,11 @@
 !> The kernels assume J > 0; callers check J first. nh_piola is the law for the internal forces
 !> (one kernel for every quadrature), nh_cauchy its Cauchy form for stress output,
 !> nh_wave_speed2_block the wave speed of the stable step. ln J is exic's own logarithm
-!> (src/exic/base/logarithm.f90), the same bits in vector and scalar code.
+!> (src/exic/base/logarithm.f90), the same bits in vector and scalar code; the block kernels
+!> take it with ln_normal_block, for J a positive normal number (>= tiny(1.0) = 2.2e-308).
 module exic_material_neohookean
    use exic_base_kinds, only: wp
-   use exic_base_logarithm, only: ln, ln_block
+   use exic_base_logarithm, only: ln, ln_normal_block
    implicit none
    private
 
@@ -58,9 +59,10 @@ contains
       w = 0.5_wp*lambda*lnj*lnj + 0.5_wp*mu*(b11 + b22 - 2.0_wp) - mu*lnj
    end subroutine nh_cauchy
 
-   !> First Piola-Kirchhoff stress and strain energy at n points whose J = det F > 0 the
-   !> caller has computed and checked, each times the point's weight wt (the quadrature weight x
-   !> reference volume it stands for; 1 for values per unit reference volume): the one kernel
+   !> First Piola-Kirchhoff stress and strain energy at n points whose J = det F the caller has
+   !> computed and checked to be a positive normal number (ln_normal_block), each times the
+   !> point's weight wt (the quadrature weight x reference volume it stands for; 1 for values
+   !> per unit reference volume): the one kernel
    !> of the law for forces, used by both quadratures of the element and by the tests.
    !>
    !>     P = lambda ln(J) F^-T + mu (F - F^-T) = mu F + (lambda ln J - mu)/J cof F
@@ -71,7 +73,7 @@ contains
       integer, intent(in) :: n                             !< number of points
       real(wp), intent(in) :: lambda, mu                   !< Lame constants
       real(wp), intent(in) :: f11(n), f12(n), f21(n), f22(n) !< in-plane deformation gradient
-      real(wp), intent(in) :: jac(n)                       !< J = det F > 0
+      real(wp), intent(in) :: jac(n)                       !< J = det F >= tiny(1.0)
       real(wp), intent(in) :: wt(n)                        !< weight of each point
       real(wp), intent(out) :: p11(n), p12(n), p21(n), p22(n) !< wt x first Piola-Kirchhoff stress
       real(wp), intent(out) :: w(n)                        !< wt x strain energy per reference volume
@@ -80,7 +82,7 @@ contains
 
       do q0 = 1, n, CHUNK
          m = min(CHUNK, n - q0 + 1)
-         call ln_block(m, jac(q0:q0 + m - 1), lnj)
+         call ln_normal_block(m, jac(q0:q0 + m - 1), lnj)
          do i = 1, m
             q = q0 + i - 1
             c = (lambda*lnj(i) - mu)/jac(q)
@@ -106,18 +108,19 @@ contains
       c2 = max(lambda + 2.0_wp*mu - 2.0_wp*lambda*ln(jac), mu)/rho0
    end function nh_wave_speed2
 
-   !> nh_wave_speed2 at n points: c2(q) = c^2 at volume ratio jac(q) > 0 (the same bits).
+   !> nh_wave_speed2 at n points: c2(q) = c^2 at volume ratio jac(q) >= tiny(1.0), a positive
+   !> normal number (ln_normal_block; the same bits as nh_wave_speed2).
    pure subroutine nh_wave_speed2_block(n, lambda, mu, rho0, jac, c2)
       integer, intent(in) :: n           !< number of points
       real(wp), intent(in) :: lambda, mu !< Lame constants
       real(wp), intent(in) :: rho0       !< reference density
-      real(wp), intent(in) :: jac(n)     !< volume ratios J > 0
+      real(wp), intent(in) :: jac(n)     !< volume ratios J >= tiny(1.0)
       real(wp), intent(out) :: c2(n)
       real(wp) :: lnj(CHUNK)
       integer :: q0, m, i
       do q0 = 1, n, CHUNK
          m = min(CHUNK, n - q0 + 1)
-         call ln_block(m, jac(q0:q0 + m - 1), lnj)
+         call ln_normal_block(m, jac(q0:q0 + m - 1), lnj)
          do i = 1, m
             c2(q0 + i - 1) = max(lambda + 2.0_wp*mu - 2.0_wp*lambda*lnj(i), mu)/rho0
          end do
