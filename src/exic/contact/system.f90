@@ -11,8 +11,13 @@
 !>
 !> Steps with up to `dense_limit` candidates keep S dense and factorise it with LAPACK
 !> (dense_spd_t); larger ones keep it in compressed columns with the full pattern and use
-!> SuiteSparse LDL' with AMD ordering (sparse_ldl_t), whose symbolic analysis is reused while the
-!> pattern is unchanged. A factorisation leaves out the candidates a `drop` mask names (the
+!> SuiteSparse LDL' (sparse_ldl_t), whose symbolic analysis is reused while the pattern and the
+!> order are unchanged. S is block diagonal over the connected components of the candidates
+!> (candidates that share a node, a free rigid body or a massless face; exic_contact_components,
+!> doc/contact-detection.md eq. D.10-D.12): when there are several and none holds more than
+!> `natural_limit` candidates, the elimination takes the components one after the other, each
+!> in candidate order, which factorises every block on its own without an AMD ordering; with
+!> one component (or a larger one) AMD orders S as a whole. A factorisation leaves out the candidates a `drop` mask names (the
 !> pivoting passes of an active-set solve) and removes redundant ones (dependent columns of G),
 !> which carry a zero solution. A factorisation of the same assembly with the same mask as the
 !> last one is not repeated (a solve reuses it).
@@ -31,6 +36,7 @@ module exic_contact_system
    use exic_linalg_dense_spd, only: dense_spd_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
    use exic_contact_massless_face, only: massless_face_t
+   use exic_contact_components, only: components_t
    implicit none
    private
 
@@ -39,6 +45,10 @@ module exic_contact_system
    !> S of the m candidates of a step (dense or in compressed columns) and its factorisation.
    type :: system_t
       integer :: dense_limit = 30            !< steps with up to this many candidates factorize S densely (measured crossover)
+      integer :: natural_limit = 64          !< components of up to this many candidates are eliminated in candidate order
+      logical :: split = .true.              !< eliminate component by component when they allow it (else AMD)
+      integer :: ncomp = 0                   !< components of the last sparse assembly (0: not sought)
+      type(components_t) :: comp             !< those components
       type(sparse_ldl_t) :: sparse
       type(dense_spd_t) :: dense
       integer :: nsolves = 0, ndense = 0, nsparse = 0   !< factorisations made (statistics)
@@ -80,6 +90,8 @@ contains
       along_t = .false.
       if (present(tangent)) along_t = tangent
       self%factored = .false.
+      self%ncomp = 0
+      if (m > self%dense_limit) call choose_order(self, m, node, w, nnode, nstart, nlist, rb, face)
       if (m <= self%dense_limit) then
          if (allocated(self%s)) then
             if (size(self%s, 1) < m) deallocate (self%s)
@@ -170,6 +182,44 @@ contains
          end if
       end subroutine add_entry
    end subroutine system_assemble
+
+   !> The elimination order of the sparse factorisation (eq. D.12): the components of the
+   !> candidates one after the other, each in candidate order, when there are several and none
+   !> holds more than natural_limit candidates; otherwise AMD's. Arguments as system_assemble.
+   subroutine choose_order(self, m, node, w, nnode, nstart, nlist, rb, face)
+      type(system_t), intent(inout) :: self
+      integer, intent(in) :: m, nnode
+      integer, intent(in) :: node(3, m), nstart(nnode + 1), nlist(:)
+      real(wp), intent(in) :: w(3, m)
+      type(rigid_dofs_t), intent(in), optional :: rb
+      type(massless_face_t), intent(in), optional :: face
+      integer :: b, j, first, largest
+      call self%sparse%set_order(0, [integer ::])
+      if (.not. self%split) return
+      ! the components (eq. D.10): candidates joined through nodes, bodies and the face
+      call self%comp%reset(m)
+      call self%comp%join_nodes(m, node, w, nnode, nstart, nlist)
+      if (present(rb)) then
+         do b = 1, rb%nbody
+            call self%comp%join_list(rb%bcand(rb%bstart(b):rb%bstart(b + 1) - 1))
+         end do
+      end if
+      if (present(face)) then
+         first = 0
+         do j = 1, m
+            if (face%slot(j) == 0) cycle
+            if (first == 0) first = j
+            call self%comp%join(first, j)
+         end do
+      end if
+      call self%comp%label()
+      self%ncomp = self%comp%n
+      largest = 0
+      do b = 1, self%comp%n
+         largest = max(largest, self%comp%start(b + 1) - self%comp%start(b))
+      end do
+      if (self%comp%n > 1 .and. largest <= self%natural_limit) call self%sparse%set_order(m, self%comp%list)
+   end subroutine choose_order
 
    !> The weight of node `nd` in a candidate with nodes node(3) and weights w(3) (sum over its
    !> occurrences).
