@@ -57,6 +57,7 @@ module exic_contact_system
       real(wp), allocatable :: ax(:)         !< (nnz) values of S in compressed columns
       real(wp), allocatable :: s(:, :)       !< (m, m) S for the dense path
       integer, allocatable :: mark(:)        !< (m) last column that touched a row (assembly)
+      integer, allocatable :: pos(:)         !< (m) where that column holds the row's entry
       integer, allocatable :: bad(:)         !< (m) candidates the factorisation finds redundant
       ! the last factorisation, for reuse
       logical :: factored = .false.          !< the current assembly has been factorised
@@ -71,19 +72,20 @@ contains
 
    !> S = G^T M^-1 G over all m candidates (nodes node(3, m), weights w(3, m), directions
    !> dir(2, m)): dense (m <= dense_limit) or in compressed columns with the full pattern.
-   !> nstart(nnode + 1), nlist: node -> candidates incidence (compressed rows). With free rigid
+   !> nstart(nnode + 1), nlist: node -> candidates incidence (compressed rows), nweight: the
+   !> node's weight in each candidate of nlist (the sum over its occurrences). With free rigid
    !> bodies `rb`, each column gains the coupling of the bodies its candidate touches, through
    !> the body columns `rb%sgt` when `tangent`, else `rb%sg`. With massless faces `face` (normal
    !> problem only), each column of a candidate on the face gains the face's compliance (eq. I.6).
-   subroutine system_assemble(self, m, node, w, dir, nnode, minv, nstart, nlist, rb, tangent, face)
+   subroutine system_assemble(self, m, node, w, dir, nnode, minv, nstart, nlist, nweight, rb, tangent, face)
       class(system_t), intent(inout) :: self
       integer, intent(in) :: m, nnode
       integer, intent(in) :: node(3, m), nstart(nnode + 1), nlist(:)
-      real(wp), intent(in) :: w(3, m), dir(2, m), minv(2, nnode)
+      real(wp), intent(in) :: w(3, m), dir(2, m), minv(2, nnode), nweight(:)
       type(rigid_dofs_t), intent(in), optional :: rb
       logical, intent(in), optional :: tangent
       type(massless_face_t), intent(in), optional :: face
-      integer :: j, k, nd, q, i, nnz, first, l, cap
+      integer :: j, k, nd, q, i, nnz, first, cap
       real(wp) :: v
       logical :: along_t
 
@@ -101,6 +103,7 @@ contains
       end if
       call grow(self%ap, m + 1)
       call grow(self%mark, m)
+      call grow(self%pos, m)
       self%mark(1:m) = 0
       nnz = 0
       cap = 0
@@ -120,7 +123,7 @@ contains
             ! every candidate i that shares node nd with candidate j: S(i, j) += w_kj w_i(nd) d_j M^-1 d_i
             do q = nstart(nd), nstart(nd + 1) - 1
                i = nlist(q)
-               v = w(k, j)*node_weight(node(:, i), w(:, i), nd)* &
+               v = w(k, j)*nweight(q)* &
                    (dir(1, j)*minv(1, nd)*dir(1, i) + dir(2, j)*minv(2, nd)*dir(2, i))
                call add_entry(i, v)
             end do
@@ -169,15 +172,11 @@ contains
             if (self%mark(i) /= j) then
                self%mark(i) = j
                nnz = nnz + 1
+               self%pos(i) = nnz
                self%ai(nnz) = i
                self%ax(nnz) = v
             else
-               do l = first, nnz
-                  if (self%ai(l) == i) then
-                     self%ax(l) = self%ax(l) + v
-                     exit
-                  end if
-               end do
+               self%ax(self%pos(i)) = self%ax(self%pos(i)) + v
             end if
          end if
       end subroutine add_entry
@@ -220,18 +219,6 @@ contains
       end do
       if (self%comp%n > 1 .and. largest <= self%natural_limit) call self%sparse%set_order(m, self%comp%list)
    end subroutine choose_order
-
-   !> The weight of node `nd` in a candidate with nodes node(3) and weights w(3) (sum over its
-   !> occurrences).
-   pure real(wp) function node_weight(node, w, nd) result(wsum)
-      integer, intent(in) :: node(3), nd
-      real(wp), intent(in) :: w(3)
-      integer :: k
-      wsum = 0.0_wp
-      do k = 1, 3
-         if (node(k) == nd) wsum = wsum + w(k)
-      end do
-   end function node_weight
 
    !> Insertion sort of one short column by row index.
    pure subroutine sort_column(ai, ax)
