@@ -24,7 +24,7 @@ contains
 
    !> Three contact lines with no node in common, their candidates interleaved (candidate i on
    !> line mod(i - 1, 3) + 1): S is block diagonal with three blocks (doc/contact-detection.md
-   !> eq. D.10-D.12). The components are found and listed in candidate order, the sparse
+   !> eq. D.3-D.5). The components are found and listed in candidate order, the sparse
    !> factorisation eliminates them one after the other, and the multipliers agree with those
    !> of the same problem ordered by AMD as a whole to round-off, with the same active set, and
    !> solve the complementarity problem.

@@ -1,5 +1,5 @@
 !> Connected components of a step's contact candidates (doc/contact-detection.md, "Components
-!> of S", eq. D.10-D.11).
+!> of S", eq. D.3-D.4).
 !>
 !> S = G^T M^-1 G couples two candidates only through what both touch: a node (S(i, j) sums
 !> w_ki w_kj d_i . M^-1 d_j over their common nodes k), a free rigid body, or the massless

@@ -14,7 +14,7 @@
 !> SuiteSparse LDL' (sparse_ldl_t), whose symbolic analysis is reused while the pattern and the
 !> order are unchanged. S is block diagonal over the connected components of the candidates
 !> (candidates that share a node, a free rigid body or a massless face; exic_contact_components,
-!> doc/contact-detection.md eq. D.10-D.12): when there are several and none holds more than
+!> doc/contact-detection.md eq. D.3-D.5): when there are several and none holds more than
 !> `natural_limit` candidates, the elimination takes the components one after the other, each
 !> in candidate order, which factorises every block on its own without an AMD ordering; with
 !> one component (or a larger one) AMD orders S as a whole. A factorisation leaves out the candidates a `drop` mask names (the
@@ -182,7 +182,7 @@ contains
       end subroutine add_entry
    end subroutine system_assemble
 
-   !> The elimination order of the sparse factorisation (eq. D.12): the components of the
+   !> The elimination order of the sparse factorisation (eq. D.5): the components of the
    !> candidates one after the other, each in candidate order, when there are several and none
    !> holds more than natural_limit candidates; otherwise AMD's. Arguments as system_assemble.
    subroutine choose_order(self, m, node, w, nnode, nstart, nlist, rb, face)
@@ -195,7 +195,7 @@ contains
       integer :: b, j, first, largest
       call self%sparse%set_order(0, [integer ::])
       if (.not. self%split) return
-      ! the components (eq. D.10): candidates joined through nodes, bodies and the face
+      ! the components (eq. D.3): candidates joined through nodes, bodies and the face
       call self%comp%reset(m)
       call self%comp%join_nodes(m, node, w, nnode, nstart, nlist)
       if (present(rb)) then
