@@ -17,10 +17,10 @@
 !> doc/contact-detection.md eq. D.3-D.5): when there are several and none holds more than
 !> `natural_limit` candidates, the elimination takes the components one after the other, each
 !> in candidate order, which factorises every block on its own without an AMD ordering; with
-!> one component (or a larger one) AMD orders S as a whole. A factorisation leaves out the candidates a `drop` mask names (the
-!> pivoting passes of an active-set solve) and removes redundant ones (dependent columns of G),
-!> which carry a zero solution. A factorisation of the same assembly with the same mask as the
-!> last one is not repeated (a solve reuses it).
+!> one component (or a larger one) AMD orders S as a whole. A factorisation leaves out the
+!> candidates a `drop` mask names (the pivoting passes of an active-set solve) and removes
+!> redundant ones (dependent columns of G), which carry a zero solution. A factorisation of the
+!> same assembly with the same mask as the last one is not repeated (a solve reuses it).
 !>
 !> Massless contact faces (`LAGRange,ENERgy`, doc/impact.md eq. I.6) add their compliance
 !> (1/c) G_F,i^T K_FF^-1 G_F,j to the normal problem's S for every two candidates on the face
@@ -45,9 +45,9 @@ module exic_contact_system
    !> S of the m candidates of a step (dense or in compressed columns) and its factorisation.
    type :: system_t
       integer :: dense_limit = 30            !< steps with up to this many candidates factorize S densely (measured crossover)
-      integer :: natural_limit = 64          !< components of up to this many candidates are eliminated in candidate order
-      logical :: split = .true.              !< eliminate component by component when they allow it (else AMD)
-      integer :: ncomp = 0                   !< components of the last sparse assembly (0: not sought)
+      integer :: natural_limit = 64          !< largest component eliminated in candidate order
+      logical :: split = .true.              !< by components when they allow it (else AMD)
+      integer :: ncomp = 0                   !< components of the last sparse step (0: not sought)
       type(components_t) :: comp             !< those components
       type(sparse_ldl_t) :: sparse
       type(dense_spd_t) :: dense
@@ -77,7 +77,8 @@ contains
    !> bodies `rb`, each column gains the coupling of the bodies its candidate touches, through
    !> the body columns `rb%sgt` when `tangent`, else `rb%sg`. With massless faces `face` (normal
    !> problem only), each column of a candidate on the face gains the face's compliance (eq. I.6).
-   subroutine system_assemble(self, m, node, w, dir, nnode, minv, nstart, nlist, nweight, rb, tangent, face)
+   subroutine system_assemble(self, m, node, w, dir, nnode, minv, nstart, nlist, nweight, rb, &
+                              tangent, face)
       class(system_t), intent(inout) :: self
       integer, intent(in) :: m, nnode
       integer, intent(in) :: node(3, m), nstart(nnode + 1), nlist(:)
@@ -217,7 +218,8 @@ contains
       do b = 1, self%comp%n
          largest = max(largest, self%comp%start(b + 1) - self%comp%start(b))
       end do
-      if (self%comp%n > 1 .and. largest <= self%natural_limit) call self%sparse%set_order(m, self%comp%list)
+      if (self%comp%n > 1 .and. largest <= self%natural_limit) &
+         call self%sparse%set_order(m, self%comp%list)
    end subroutine choose_order
 
    !> Insertion sort of one short column by row index.

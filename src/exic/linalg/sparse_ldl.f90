@@ -99,8 +99,9 @@ contains
       end do
    end subroutine ldl_set_order
 
-   !> AMD ordering (or the order of `set_order`) and symbolic analysis of the n x n pattern (ap, ai), 1-based CSC with
-   !> the full symmetric pattern. Always re-analyzes; see `refactorize` for the lazy form.
+   !> AMD ordering (or the order of `set_order`) and symbolic analysis of the n x n pattern
+   !> (ap, ai), 1-based CSC with the full symmetric pattern. Always re-analyzes; see
+   !> `refactorize` for the lazy form.
    subroutine ldl_analyze(self, n, ap, ai, err)
       class(sparse_ldl_t), intent(inout) :: self
       integer, intent(in) :: n
