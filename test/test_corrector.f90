@@ -18,7 +18,84 @@ contains
       type(suite_t), intent(inout) :: s
       call section(s, 'corrector: complementarity of the multipliers')
       call corrector_complementarity(s)
+      call section(s, 'corrector: components of S')
+      call corrector_components(s)
    end subroutine run_corrector_tests
+
+   !> Three contact lines with no node in common, their candidates interleaved (candidate i on
+   !> line mod(i - 1, 3) + 1): S is block diagonal with three blocks (doc/contact-detection.md
+   !> eq. D.3-D.5). The components are found and listed in candidate order, the sparse
+   !> factorisation eliminates them one after the other, and the multipliers agree with those
+   !> of the same problem ordered by AMD as a whole to round-off, with the same active set, and
+   !> solve the complementarity problem.
+   subroutine corrector_components(s)
+      type(suite_t), intent(inout) :: s
+      integer, parameter :: nline = 3, nper = 20, m = nline*nper
+      type(constraints_t) :: cs, cs2
+      type(corrector_t) :: corr, whole
+      type(error_t), allocatable :: e, e2
+      real(wp), allocatable :: a(:, :), f(:, :), a2(:, :), f2(:, :), mi(:, :)
+      real(wp) :: alpha, gap, g, worst_g, diff, pmax
+      integer :: i, line, k, nnode, slave, master, base
+      integer(i8) :: seed
+      logical :: listed
+
+      ! line l: slaves base+1..base+nper above masters base+nper+1..base+2 nper+1
+      nnode = nline*(2*nper + 1)
+      seed = 777_i8
+      allocate (mi(2, nnode))
+      do i = 1, nnode
+         mi(:, i) = 0.5_wp + 1.5_wp*rnd(seed)
+      end do
+      call cs%reserve(m)
+      call cs2%reserve(m)
+      do i = 1, m
+         line = mod(i - 1, nline) + 1
+         k = (i - 1)/nline + 1
+         base = (line - 1)*(2*nper + 1)
+         slave = base + k
+         master = base + nper + k
+         alpha = 0.2_wp + 0.6_wp*rnd(seed)
+         gap = 2.0_wp*rnd(seed) - 1.2_wp
+         call cs%add(slave, master, master + 1, alpha, [0.0_wp, 1.0_wp], gap, 0.0_wp, 1)
+         call cs2%add(slave, master, master + 1, alpha, [0.0_wp, 1.0_wp], gap, 0.0_wp, 1)
+      end do
+      allocate (a(2, nnode), f(2, nnode), a2(2, nnode), f2(2, nnode), source=0.0_wp)
+      call corr%solve(cs, nnode, mi, 1.0_wp, a, f, e)
+      whole%split = .false.
+      call whole%solve(cs2, nnode, mi, 1.0_wp, a2, f2, e2)
+      listed = corr%ncomp == nline
+      if (listed) then
+         do line = 1, nline
+            do k = 1, nper
+               i = corr%comp%list(corr%comp%start(line) + k - 1)
+               if (i /= line + (k - 1)*nline .or. corr%comp%loc(i) /= k) listed = .false.
+            end do
+         end do
+      end if
+      call check(s, .not. allocated(e) .and. listed .and. corr%sparse%given .and. .not. whole%sparse%given, &
+                 'corrector: three contact lines are three components, each listed in candidate order', &
+                 'components '//itoa(corr%ncomp))
+      pmax = maxval(abs(cs2%p(1:m)))
+      diff = maxval(abs(cs%p(1:m) - cs2%p(1:m)))/pmax
+      call check(s, .not. allocated(e2) .and. pmax > 0.0_wp .and. diff <= 1.0e-12_wp .and. &
+                 all(cs%active(1:m) .eqv. cs2%active(1:m)), &
+                 'corrector: multipliers by components equal those of the AMD-ordered S to round-off', &
+                 'largest difference '//rtoa(diff)//' of the largest multiplier, active '// &
+                 itoa(count(cs%active(1:m)))//' of '//itoa(m))
+      ! corrected gaps g = g~ + c G^T a with a = M^-1 G p (c = 1)
+      worst_g = 0.0_wp
+      do i = 1, m
+         g = cs%gap(i)
+         do k = 1, 3
+            g = g + cs%w(k, i)*dot_product(cs%nrm(:, i), a(:, cs%node(k, i)))
+         end do
+         worst_g = max(worst_g, -g, abs(cs%p(i)*g)/pmax)
+      end do
+      call check(s, all(cs%p(1:m) >= 0.0_wp) .and. worst_g <= 1.0e-12_wp, &
+                 'corrector: multipliers by components solve the complementarity problem', &
+                 'largest violation '//rtoa(worst_g))
+   end subroutine corrector_components
 
    !> The corrector's multipliers solve the complementarity problem p >= 0, g = g~ + c S p >= 0,
    !> p g = 0 exactly. Instances: one where releasing every tensile multiplier at once and never

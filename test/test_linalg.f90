@@ -147,6 +147,28 @@ contains
       call sp%solve(b, x)
       call check(s, sp%nanalyze == 4, 'pattern change back and forth re-analyzes each time')
       call check_rel(s, residual(a, x, b), 1.0e-12_wp, 'back to n = 80: residual')
+
+      ! an elimination order given instead of AMD's: analyzed again, solved; kept while the
+      ! pattern and the order stay, analyzed again for another order and back to AMD
+      call sp%set_order(n, perm)
+      call check(s, .not. sp%same_pattern(n, a%ap, a%ai), 'same_pattern false once an order is given')
+      call sp%refactorize(n, a%ap, a%ai, a%ax, nbad, bad, err)
+      call sp%solve(b, x)
+      call check(s, .not. allocated(err) .and. sp%nanalyze == 5, 'given order: re-analyzed')
+      call check_rel(s, residual(a, x, b), 1.0e-12_wp, 'given order: residual')
+      call sp%set_order(n, perm)
+      call check(s, sp%same_pattern(n, a%ap, a%ai), 'same pattern and the same order: analysis kept')
+      call sp%set_order(n, [(k, k=n, 1, -1)])
+      call check(s, .not. sp%same_pattern(n, a%ap, a%ai), 'another order: analysis not kept')
+      call sp%refactorize(n, a%ap, a%ai, a%ax, nbad, bad, err)
+      call sp%solve(b, x)
+      call check_rel(s, residual(a, x, b), 1.0e-12_wp, 'reversed order: residual')
+      call sp%set_order(0, perm)
+      call check(s, .not. sp%same_pattern(n, a%ap, a%ai), 'back to AMD: analysis not kept')
+      call sp%refactorize(n, a%ap, a%ai, a%ax, nbad, bad, err)
+      call sp%solve(b, x)
+      call check(s, .not. allocated(err) .and. sp%nanalyze == 7, 'back to AMD: re-analyzed')
+      call check_rel(s, residual(a, x, b), 1.0e-12_wp, 'back to AMD: residual')
    end subroutine test_symbolic_reuse
 
    !> 3. Duplicated and combined constraints: one of each dependent group is flagged, and the

@@ -26,7 +26,7 @@ module exic_contact_contact
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
                                 DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t, spec_penalty_finite
    use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, node_normals, &
-                                 node_segments, slave_normals, normal_dofs
+                                 node_segments, normal_dofs
    use exic_contact_broad, only: broad_t, broad_search, broad_search_kept, drop_flat_fixed
    use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: contact_set_t, detect_contacts
@@ -65,7 +65,6 @@ module exic_contact_contact
       real(wp), allocatable :: nrm(:, :)       !< (2, nnode) node normals at t(n+1)
       integer :: nrm_stamp = -1                !< search whose positions nrm holds (all nodes)
       integer, allocatable :: nhead(:), nsegs(:) !< segments of each node (node_segments)
-      integer, allocatable :: sel(:)           !< work: node positions whose normals are needed
    end type surface_t
 
    !> One pass: the nodes of surface `slave` against the segments of surface `master`.
@@ -532,10 +531,17 @@ contains
             if (ps%auto) call drop_flat_fixed(ps%broad, nnode, x, minv, sl%nnode, sl%nodes, sl%seg, sl%nhead, &
                                               sl%nsegs)
             if (ps%broad%ncand == 0) cycle
-            call candidate_normals(self, sl, nnode, x, ps%broad%ncand, ps%broad%cand)
-            call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
-                                 sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
-                                 self%depth, FACING)
+            if (sl%nrm_stamp == self%stamp) then
+               ! this search formed every normal of the surface
+               call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
+                                    sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
+                                    self%depth, FACING)
+            else
+               ! the normals of the slaves that have a hit, formed by the narrow phase
+               call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
+                                    sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
+                                    self%depth, FACING, sl%seg, sl%nhead, sl%nsegs)
+            end if
             do j = 1, ps%hits%n
                node = ps%hits%slave(j)
                associate (m1 => ps%hits%master(1, j), m2 => ps%hits%master(2, j), &
@@ -646,19 +652,6 @@ contains
       sf%nrm_stamp = self%stamp
    end subroutine surface_normals
 
-   !> Node normals of sf at x for the slaves of cand (slave_normals), unless this search has them all.
-   subroutine candidate_normals(self, sf, nnode, x, ncand, cand)
-      type(contact_t), intent(in) :: self
-      type(surface_t), intent(inout) :: sf
-      integer, intent(in) :: nnode, ncand
-      real(wp), intent(in) :: x(2, nnode)
-      integer, intent(in) :: cand(:, :)
-      if (sf%nrm_stamp == self%stamp) return
-      call grow(sf%sel, ncand)
-      call slave_normals(nnode, x, sf%nseg, sf%seg, sf%nnode, sf%nhead, sf%nsegs, ncand, cand, sf%sel, &
-                         sf%nrm)
-   end subroutine candidate_normals
-
    !> Every node of every contact surface, once (cnodes).
    subroutine contact_nodes(self, nnode)
       type(contact_t), intent(inout) :: self
@@ -748,7 +741,8 @@ contains
    subroutine penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, dt_prev, fcon, nactive)
       type(contact_t), intent(inout) :: self
       type(pass_t), intent(inout) :: ps
-      type(surface_t), intent(in) :: sl, ms
+      type(surface_t), intent(inout) :: sl
+      type(surface_t), intent(in) :: ms
       integer, intent(in) :: nnode
       real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode), dt_prev
       real(wp), intent(inout) :: a(2, nnode), fcon(2, nnode)

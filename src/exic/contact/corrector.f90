@@ -83,6 +83,7 @@ module exic_contact_corrector
       logical, allocatable :: infeasible(:)         !< (m) candidates that switch sides
       real(wp), allocatable :: psafe(:)             !< (m) last pass's multipliers with none tensile
       integer, allocatable :: nstart(:), nlist(:)   !< node -> candidates incidence (CSR)
+      real(wp), allocatable :: nweight(:)           !< weight of the node in each candidate of nlist
    contains
       procedure :: solve => corrector_solve
       procedure :: prepare => corrector_prepare
@@ -234,7 +235,7 @@ contains
       call grow(self%psafe, m)
       if (present(rb)) call rb%prepare(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m))
       call self%assemble(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m), nnode, minv, &
-                         self%nstart, self%nlist, rb, face=face)
+                         self%nstart, self%nlist, self%nweight, rb, face=face)
    end subroutine corrector_prepare
 
    !> The normal problem of `prepare`d candidates for the predicted gaps gap0(m) (cs%gap, or
@@ -374,14 +375,17 @@ contains
       end do
    end function gap_change
 
-   !> Node -> candidates incidence in compressed rows (nstart, nlist).
+   !> Node -> candidates incidence in compressed rows (nstart, nlist), with the node's weight in
+   !> each candidate (nweight: the sum of its weights w over the node's occurrences).
    subroutine build_incidence(self, cs, nnode)
       type(corrector_t), intent(inout) :: self
       type(constraints_t), intent(in) :: cs
       integer, intent(in) :: nnode
-      integer :: i, k, nd
+      integer :: i, k, nd, kk
+      real(wp) :: wsum
       call grow(self%nstart, nnode + 1)
       call grow(self%nlist, 3*cs%n)
+      call grow(self%nweight, 3*cs%n)
       self%nstart(1:nnode + 1) = 0
       do i = 1, cs%n
          do k = 1, 3
@@ -400,6 +404,11 @@ contains
             if (cs%w(k, i) == 0.0_wp) cycle
             nd = cs%node(k, i)
             self%nlist(self%nstart(nd)) = i
+            wsum = 0.0_wp
+            do kk = 1, 3
+               if (cs%node(kk, i) == nd) wsum = wsum + cs%w(kk, i)
+            end do
+            self%nweight(self%nstart(nd)) = wsum
             self%nstart(nd) = self%nstart(nd) + 1
          end do
       end do

@@ -36,7 +36,7 @@
 module exic_contact_detect
    use exic_base_kinds, only: wp
    use exic_contact_spec, only: DETECT_SWEPT, DETECT_STATIC
-   use exic_mesh_boundary, only: segment_normal, average_normal
+   use exic_mesh_boundary, only: segment_normal, average_normal, some_node_normals
    implicit none
    private
 
@@ -231,19 +231,28 @@ contains
    !> a segment end is put at that end (alpha = 0 or 1, at_end true) and gets the master
    !> node normal: the normalized average of the segment's normal and that of its
    !> neighbour at that node, the neighbour counting only if it passes the facing test.
+   !>
+   !> With the slave surface's segments `sseg` and its node -> segments lists (`shead`, `ssegs`,
+   !> node_segments), snrm(:, s) is formed here at x0 (some_node_normals), for the slaves that
+   !> have a hit only, when their first hit needs it; without them snrm must hold every
+   !> candidate slave's normal.
    subroutine detect_pairs(mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, link, &
                            ncand, cand, depth, facing, ncon, cslave, cseg, cmaster, &
-                           cend, calpha, cnormal, ctau, cgap)
+                           cend, calpha, cnormal, ctau, cgap, sseg, shead, ssegs)
       integer, intent(in) :: mode, nnode, nslave, nseg, ncand
-      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), snrm(2, nslave), depth, facing
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), depth, facing
+      real(wp), intent(inout) :: snrm(2, nslave)
       integer, intent(in) :: slaves(nslave), seg(2, nseg), link(2, nseg), cand(2, ncand)
+      integer, intent(in), optional, contiguous :: sseg(:, :), shead(:), ssegs(:)
       integer, intent(out) :: ncon
       integer, intent(out) :: cslave(nslave), cseg(nslave), cmaster(2, nslave)
       logical, intent(out) :: cend(nslave)
       real(wp), intent(out) :: calpha(nslave), cnormal(2, nslave), ctau(nslave), cgap(nslave)
       integer :: j, j0, s, k, node, ma, mb, best, bkey(2), key(2)
       real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap, w
-      logical :: hit
+      logical :: hit, lazy, have_nrm
+
+      lazy = present(sseg) .and. present(shead) .and. present(ssegs)
 
       ncon = 0
       j0 = 1
@@ -252,6 +261,7 @@ contains
          node = slaves(s)
          best = 0
          btau = 0.0_wp; balpha = 0.0_wp; bgap = 0.0_wp; bkey = 0
+         have_nrm = .not. lazy
          j = j0
          do while (j <= ncand)
             if (cand(1, j) /= s) exit
@@ -269,6 +279,10 @@ contains
                call swept_pair(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
                                x1(:, mb), depth, hit, tau, alpha, nf)
                if (.not. hit) cycle
+            end if
+            if (.not. have_nrm) then
+               call some_node_normals(nnode, x0, size(sseg, 2), sseg, nslave, shead, ssegs, 1, [s], snrm)
+               have_nrm = .true.
             end if
             if (.not. faces(snrm(:, s), nf, facing)) cycle
             gap = dot_product(x1(:, node) - ((1.0_wp - alpha)*x1(:, ma) + alpha*x1(:, mb)), nf)
@@ -370,11 +384,13 @@ contains
    !> Narrow phase into a contact set (grown to nslave entries when needed); see
    !> detect_pairs for the arguments and the rules.
    subroutine detect_contacts(cs, mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, &
-                              link, ncand, cand, depth, facing)
+                              link, ncand, cand, depth, facing, sseg, shead, ssegs)
       type(contact_set_t), intent(inout) :: cs
       integer, intent(in) :: mode, nnode, nslave, nseg, ncand
-      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), snrm(2, nslave), depth, facing
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), depth, facing
+      real(wp), intent(inout) :: snrm(2, nslave)
       integer, intent(in) :: slaves(nslave), seg(2, nseg), link(2, nseg), cand(2, ncand)
+      integer, intent(in), optional, contiguous :: sseg(:, :), shead(:), ssegs(:)
       integer :: cap
 
       cap = 0
@@ -390,7 +406,7 @@ contains
       end if
       call detect_pairs(mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, link, ncand, &
                         cand, depth, facing, cs%n, cs%slave, cs%seg, cs%master, cs%at_end, &
-                        cs%alpha, cs%normal, cs%tau, cs%gap)
+                        cs%alpha, cs%normal, cs%tau, cs%gap, sseg, shead, ssegs)
    end subroutine detect_contacts
 
 end module exic_contact_detect

@@ -119,7 +119,7 @@ contains
       end do
       if (present(rb)) call rb%tangent_columns(m, cs%node(:, 1:m), cs%w(:, 1:m), self%tng(:, 1:m))
       call self%tt%assemble(m, cs%node(:, 1:m), cs%w(:, 1:m), self%tng(:, 1:m), nnode, minv, &
-                            corr%nstart, corr%nlist, rb, tangent=.true.)
+                            corr%nstart, corr%nlist, corr%nweight, rb, tangent=.true.)
       self%side(1:m) = 0
       self%geff(1:m) = cs%gap(1:m)
       do k = 1, FRICTION_SWEEPS

@@ -11,11 +11,16 @@
 !>
 !> Steps with up to `dense_limit` candidates keep S dense and factorise it with LAPACK
 !> (dense_spd_t); larger ones keep it in compressed columns with the full pattern and use
-!> SuiteSparse LDL' with AMD ordering (sparse_ldl_t), whose symbolic analysis is reused while the
-!> pattern is unchanged. A factorisation leaves out the candidates a `drop` mask names (the
-!> pivoting passes of an active-set solve) and removes redundant ones (dependent columns of G),
-!> which carry a zero solution. A factorisation of the same assembly with the same mask as the
-!> last one is not repeated (a solve reuses it).
+!> SuiteSparse LDL' (sparse_ldl_t), whose symbolic analysis is reused while the pattern and the
+!> order are unchanged. S is block diagonal over the connected components of the candidates
+!> (candidates that share a node, a free rigid body or a massless face; exic_contact_components,
+!> doc/contact-detection.md eq. D.3-D.5): when there are several and none holds more than
+!> `natural_limit` candidates, the elimination takes the components one after the other, each
+!> in candidate order, which factorises every block on its own without an AMD ordering; with
+!> one component (or a larger one) AMD orders S as a whole. A factorisation leaves out the
+!> candidates a `drop` mask names (the pivoting passes of an active-set solve) and removes
+!> redundant ones (dependent columns of G), which carry a zero solution. A factorisation of the
+!> same assembly with the same mask as the last one is not repeated (a solve reuses it).
 !>
 !> Massless contact faces (`LAGRange,ENERgy`, doc/impact.md eq. I.6) add their compliance
 !> (1/c) G_F,i^T K_FF^-1 G_F,j to the normal problem's S for every two candidates on the face
@@ -31,6 +36,7 @@ module exic_contact_system
    use exic_linalg_dense_spd, only: dense_spd_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
    use exic_contact_massless_face, only: massless_face_t
+   use exic_contact_components, only: components_t
    implicit none
    private
 
@@ -39,6 +45,10 @@ module exic_contact_system
    !> S of the m candidates of a step (dense or in compressed columns) and its factorisation.
    type :: system_t
       integer :: dense_limit = 30            !< steps with up to this many candidates factorize S densely (measured crossover)
+      integer :: natural_limit = 64          !< largest component eliminated in candidate order
+      logical :: split = .true.              !< by components when they allow it (else AMD)
+      integer :: ncomp = 0                   !< components of the last sparse step (0: not sought)
+      type(components_t) :: comp             !< those components
       type(sparse_ldl_t) :: sparse
       type(dense_spd_t) :: dense
       integer :: nsolves = 0, ndense = 0, nsparse = 0   !< factorisations made (statistics)
@@ -47,6 +57,7 @@ module exic_contact_system
       real(wp), allocatable :: ax(:)         !< (nnz) values of S in compressed columns
       real(wp), allocatable :: s(:, :)       !< (m, m) S for the dense path
       integer, allocatable :: mark(:)        !< (m) last column that touched a row (assembly)
+      integer, allocatable :: pos(:)         !< (m) where that column holds the row's entry
       integer, allocatable :: bad(:)         !< (m) candidates the factorisation finds redundant
       ! the last factorisation, for reuse
       logical :: factored = .false.          !< the current assembly has been factorised
@@ -61,25 +72,29 @@ contains
 
    !> S = G^T M^-1 G over all m candidates (nodes node(3, m), weights w(3, m), directions
    !> dir(2, m)): dense (m <= dense_limit) or in compressed columns with the full pattern.
-   !> nstart(nnode + 1), nlist: node -> candidates incidence (compressed rows). With free rigid
+   !> nstart(nnode + 1), nlist: node -> candidates incidence (compressed rows), nweight: the
+   !> node's weight in each candidate of nlist (the sum over its occurrences). With free rigid
    !> bodies `rb`, each column gains the coupling of the bodies its candidate touches, through
    !> the body columns `rb%sgt` when `tangent`, else `rb%sg`. With massless faces `face` (normal
    !> problem only), each column of a candidate on the face gains the face's compliance (eq. I.6).
-   subroutine system_assemble(self, m, node, w, dir, nnode, minv, nstart, nlist, rb, tangent, face)
+   subroutine system_assemble(self, m, node, w, dir, nnode, minv, nstart, nlist, nweight, rb, &
+                              tangent, face)
       class(system_t), intent(inout) :: self
       integer, intent(in) :: m, nnode
       integer, intent(in) :: node(3, m), nstart(nnode + 1), nlist(:)
-      real(wp), intent(in) :: w(3, m), dir(2, m), minv(2, nnode)
+      real(wp), intent(in) :: w(3, m), dir(2, m), minv(2, nnode), nweight(:)
       type(rigid_dofs_t), intent(in), optional :: rb
       logical, intent(in), optional :: tangent
       type(massless_face_t), intent(in), optional :: face
-      integer :: j, k, nd, q, i, nnz, first, l, cap
+      integer :: j, k, nd, q, i, nnz, first, cap
       real(wp) :: v
       logical :: along_t
 
       along_t = .false.
       if (present(tangent)) along_t = tangent
       self%factored = .false.
+      self%ncomp = 0
+      if (m > self%dense_limit) call choose_order(self, m, node, w, nnode, nstart, nlist, rb, face)
       if (m <= self%dense_limit) then
          if (allocated(self%s)) then
             if (size(self%s, 1) < m) deallocate (self%s)
@@ -89,6 +104,7 @@ contains
       end if
       call grow(self%ap, m + 1)
       call grow(self%mark, m)
+      call grow(self%pos, m)
       self%mark(1:m) = 0
       nnz = 0
       cap = 0
@@ -108,7 +124,7 @@ contains
             ! every candidate i that shares node nd with candidate j: S(i, j) += w_kj w_i(nd) d_j M^-1 d_i
             do q = nstart(nd), nstart(nd + 1) - 1
                i = nlist(q)
-               v = w(k, j)*node_weight(node(:, i), w(:, i), nd)* &
+               v = w(k, j)*nweight(q)* &
                    (dir(1, j)*minv(1, nd)*dir(1, i) + dir(2, j)*minv(2, nd)*dir(2, i))
                call add_entry(i, v)
             end do
@@ -157,31 +173,54 @@ contains
             if (self%mark(i) /= j) then
                self%mark(i) = j
                nnz = nnz + 1
+               self%pos(i) = nnz
                self%ai(nnz) = i
                self%ax(nnz) = v
             else
-               do l = first, nnz
-                  if (self%ai(l) == i) then
-                     self%ax(l) = self%ax(l) + v
-                     exit
-                  end if
-               end do
+               self%ax(self%pos(i)) = self%ax(self%pos(i)) + v
             end if
          end if
       end subroutine add_entry
    end subroutine system_assemble
 
-   !> The weight of node `nd` in a candidate with nodes node(3) and weights w(3) (sum over its
-   !> occurrences).
-   pure real(wp) function node_weight(node, w, nd) result(wsum)
-      integer, intent(in) :: node(3), nd
-      real(wp), intent(in) :: w(3)
-      integer :: k
-      wsum = 0.0_wp
-      do k = 1, 3
-         if (node(k) == nd) wsum = wsum + w(k)
+   !> The elimination order of the sparse factorisation (eq. D.5): the components of the
+   !> candidates one after the other, each in candidate order, when there are several and none
+   !> holds more than natural_limit candidates; otherwise AMD's. Arguments as system_assemble.
+   subroutine choose_order(self, m, node, w, nnode, nstart, nlist, rb, face)
+      type(system_t), intent(inout) :: self
+      integer, intent(in) :: m, nnode
+      integer, intent(in) :: node(3, m), nstart(nnode + 1), nlist(:)
+      real(wp), intent(in) :: w(3, m)
+      type(rigid_dofs_t), intent(in), optional :: rb
+      type(massless_face_t), intent(in), optional :: face
+      integer :: b, j, first, largest
+      call self%sparse%set_order(0, [integer ::])
+      if (.not. self%split) return
+      ! the components (eq. D.3): candidates joined through nodes, bodies and the face
+      call self%comp%reset(m)
+      call self%comp%join_nodes(m, node, w, nnode, nstart, nlist)
+      if (present(rb)) then
+         do b = 1, rb%nbody
+            call self%comp%join_list(rb%bcand(rb%bstart(b):rb%bstart(b + 1) - 1))
+         end do
+      end if
+      if (present(face)) then
+         first = 0
+         do j = 1, m
+            if (face%slot(j) == 0) cycle
+            if (first == 0) first = j
+            call self%comp%join(first, j)
+         end do
+      end if
+      call self%comp%label()
+      self%ncomp = self%comp%n
+      largest = 0
+      do b = 1, self%comp%n
+         largest = max(largest, self%comp%start(b + 1) - self%comp%start(b))
       end do
-   end function node_weight
+      if (self%comp%n > 1 .and. largest <= self%natural_limit) &
+         call self%sparse%set_order(m, self%comp%list)
+   end subroutine choose_order
 
    !> Insertion sort of one short column by row index.
    pure subroutine sort_column(ai, ax)

@@ -2,8 +2,10 @@
 !>
 !> S is symmetric positive semi-definite, one row per active contact constraint, very
 !> sparse (constraints couple only when they share a node). `sparse_ldl_t` orders S with
-!> AMD, keeps the symbolic analysis while the pattern is unchanged, factorizes with
-!> SuiteSparse LDL and flags redundant (linearly dependent) constraints from the pivots.
+!> AMD (or eliminates in an order the caller gives with `set_order`: the contact corrector's
+!> components of S one after the other), keeps the symbolic analysis while the pattern and
+!> the order are unchanged, factorizes with SuiteSparse LDL and flags redundant (linearly
+!> dependent) constraints from the pivots.
 !>
 !> Input format: compressed sparse columns, 1-based: column j holds rows ai(ap(j):ap(j+1)-1),
 !> values ax(ap(j):ap(j+1)-1), ap(1) = 1. The FULL symmetric pattern must be given (both
@@ -52,6 +54,10 @@ module exic_linalg_sparse_ldl
       integer :: n = 0, nnz = 0
       !> Number of symbolic analyses done so far (AMD + ldl_symbolic).
       integer :: nanalyze = 0
+      !> Eliminate in the order of `set_order` instead of AMD's.
+      logical :: given = .false.
+      !> The analysis used the given order.
+      logical, private :: analyzed_given = .false.
       !> Number of constraints removed by the last `factorize` (found redundant or dropped).
       integer :: nremoved = 0
       !> True when the last `factorize` ran the removal elimination (some pivot was rejected,
@@ -60,11 +66,12 @@ module exic_linalg_sparse_ldl
       logical :: analyzed = .false., factorized = .false.
       ! pattern copy (0-based), ordering and symbolic data, numeric factor, work arrays
       integer(c_int), allocatable, private :: ap(:), ai(:), perm(:), pinv(:), lp(:), parent(:)
-      integer(c_int), allocatable, private :: lnz(:), flag(:), pattern(:), li(:)
+      integer(c_int), allocatable, private :: lnz(:), flag(:), pattern(:), li(:), gperm(:)
       real(wp), allocatable, private :: lx(:), d(:), y(:), diag(:)
       logical, allocatable, private :: removed(:)
       real(c_double), private :: control(amd_control_size) = 0.0_wp, info(amd_info_size) = 0.0_wp
    contains
+      procedure :: set_order => ldl_set_order
       procedure :: analyze => ldl_analyze
       procedure :: same_pattern => ldl_same_pattern
       procedure :: factorize => ldl_factorize
@@ -76,8 +83,25 @@ module exic_linalg_sparse_ldl
 
 contains
 
-   !> AMD ordering and symbolic analysis of the n x n pattern (ap, ai), 1-based CSC with
-   !> the full symmetric pattern. Always re-analyzes; see `refactorize` for the lazy form.
+   !> Eliminate the n rows in the order order(1:n) (a permutation of 1..n: order(k) is the k-th
+   !> row eliminated) from the next analysis on, instead of ordering with AMD; n = 0 returns
+   !> to AMD.
+   subroutine ldl_set_order(self, n, order)
+      class(sparse_ldl_t), intent(inout) :: self
+      integer, intent(in) :: n
+      integer, intent(in) :: order(:)
+      integer :: k
+      self%given = n > 0
+      if (.not. self%given) return
+      call grow(self%gperm, n)
+      do k = 1, n
+         self%gperm(k) = int(order(k) - 1, c_int)
+      end do
+   end subroutine ldl_set_order
+
+   !> AMD ordering (or the order of `set_order`) and symbolic analysis of the n x n pattern
+   !> (ap, ai), 1-based CSC with the full symmetric pattern. Always re-analyzes; see
+   !> `refactorize` for the lazy form.
    subroutine ldl_analyze(self, n, ap, ai, err)
       class(sparse_ldl_t), intent(inout) :: self
       integer, intent(in) :: n
@@ -113,7 +137,10 @@ contains
       self%n = n
       self%nnz = nnz
       self%lp(1) = 0
-      if (n > 0) then
+      self%analyzed_given = self%given
+      if (n > 0 .and. self%given) then
+         self%perm(1:n) = self%gperm(1:n)
+      else if (n > 0) then
          call amd_defaults(self%control)
          status = amd_order(int(n, c_int), self%ap, self%ai, self%perm, self%control, self%info)
          if (status /= amd_ok .and. status /= amd_ok_but_jumbled) then
@@ -124,16 +151,17 @@ contains
             end if
             return
          end if
-         call ldl_symbolic(int(n, c_int), self%ap, self%ai, self%lp, self%parent, self%lnz, &
-                           self%flag, self%perm, self%pinv)
       end if
+      if (n > 0) call ldl_symbolic(int(n, c_int), self%ap, self%ai, self%lp, self%parent, &
+                                   self%lnz, self%flag, self%perm, self%pinv)
       call grow(self%li, max(1, int(self%lp(n + 1))))
       call grow(self%lx, max(1, int(self%lp(n + 1))))
       self%nanalyze = self%nanalyze + 1
       self%analyzed = .true.
    end subroutine ldl_analyze
 
-   !> True when (n, ap, ai) is exactly the analyzed pattern (same order, pointers, row indices).
+   !> True when (n, ap, ai) is exactly the analyzed pattern (same order, pointers, row indices)
+   !> and the analysis used the ordering asked for now (AMD's, or the same given order).
    !> Costs one pass over the pattern, far less than a factorization.
    logical function ldl_same_pattern(self, n, ap, ai) result(same)
       class(sparse_ldl_t), intent(in) :: self
@@ -143,6 +171,12 @@ contains
 
       same = .false.
       if (.not. self%analyzed .or. n /= self%n .or. size(ap) < n + 1) return
+      if (self%given .neqv. self%analyzed_given) return
+      if (self%given) then
+         do j = 1, n
+            if (self%gperm(j) /= self%perm(j)) return
+         end do
+      end if
       if (ap(n + 1) - 1 /= self%nnz .or. size(ai) < self%nnz) return
       do j = 1, n + 1
          if (ap(j) - 1 /= self%ap(j)) return

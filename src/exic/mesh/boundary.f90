@@ -20,7 +20,7 @@ module exic_mesh_boundary
 
    public :: free_edges, order_chains, surface_nodes, segment_links, locate_nodes
    public :: segment_normal, average_normal, node_normals, node_segments, some_node_normals, &
-             slave_normals, normal_dofs
+             normal_dofs
 
 contains
 
@@ -398,26 +398,6 @@ contains
          nrm(:, p) = unit_or_zero(nrm(:, p))
       end do
    end subroutine some_node_normals
-
-   !> some_node_normals for the slaves of the candidate list cand(1, 1:ncand) (sorted by slave,
-   !> as the broad phases give it); sel(>= ncand) is work space.
-   pure subroutine slave_normals(nnode, x, nseg, seg, nlist, head, segs, ncand, cand, sel, nrm)
-      integer, intent(in) :: nnode, nseg, nlist, ncand
-      real(wp), intent(in) :: x(2, nnode)
-      integer, intent(in) :: seg(2, nseg), head(nlist + 1), segs(:), cand(:, :)
-      integer, intent(inout) :: sel(:)
-      real(wp), intent(inout) :: nrm(2, nlist)
-      integer :: k, nsel
-      nsel = 0
-      do k = 1, ncand
-         if (k > 1) then
-            if (cand(1, k) == cand(1, k - 1)) cycle
-         end if
-         nsel = nsel + 1
-         sel(nsel) = cand(1, k)
-      end do
-      call some_node_normals(nnode, x, nseg, seg, nlist, head, segs, nsel, sel(1:nsel), nrm)
-   end subroutine slave_normals
 
    !> The dofs along the normals of segments seg(2, nseg) at positions x: dofs(d, i) is set for
    !> both ends i of a segment whose normal n has |n_d| >= |n_other| (a node where the surface
