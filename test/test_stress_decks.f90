@@ -24,6 +24,11 @@
 !>   nothing is put in and the strain energy is round-off (terms that cancel), which the energy
 !>   guard took as energy appearing from nothing and stopped on at step 1, writing a non-finite percentage in
 !>   <stem>.out. The guard now measures against the round-off scale ENERGY_FLOOR eps M c^2.
+!> - scene 454 of seed 20261201: a hollow POLAr ring thrown at an immovable rigid block closes
+!>   on itself (AUTOmatic contact is between bodies; no self contact was asked for): by
+!>   t = 0.42 25 of its boundary nodes lie inside its own elements, and the geometric check,
+!>   which tested nodes against other bodies only, said nothing. It now warns that the body has
+!>   passed through itself.
 !> - scene 86 of seed 20261125: two one-point blocks with HOURglass,PHYSical, a corner impact;
 !>   without the corner barrier (doc/hourglass.md section 5) element 106 folded at a corner at
 !>   step 156 (t = 0.1708, the release build of the commit before the barrier); with it the run
@@ -84,6 +89,15 @@ contains
       call section(s, 'stress decks: a block bouncing between frictionless rigid walls, 10^5 steps')
       call run_saved(s, 'flat_wall_bounce', out)
       call transverse_momentum(s, run_dir//'/flat_wall_bounce.his')
+      call section(s, 'stress decks: scene 454 of seed 20261201, a hollow ring closing on itself')
+      call run_saved(s, 'ring_self_20261201_0454', out)
+      call check(s, index(out, 'node(s) of region 2 are inside other elements of region 2 (the body has '// &
+                 'passed through itself') > 0, 'warned: nodes of the ring inside its own elements (not '// &
+                 'warned before)', line_with(out, 'warning: at t'))
+      call check(s, index(out, 'geometric penetration check: region 2 through itself past the limit at') > 0, &
+                 'the summary counts the checks that found the ring through itself', &
+                 line_with(out, 'through itself'))
+      call check_final_time(s, out, 1.1227209_wp, 'runs to its final time 1.1227')
    end subroutine run_stress_decks_tests
 
    !> The run's largest energy growth (<stem>.out) is below the warning limit of 1 %.

@@ -457,11 +457,11 @@ def _after_speed(data, prev, w):
       "(a rigid block and two POLAr rings) is warned of a node 0.20 edges inside another body at "
       "t = 0.137 and then stopped by the energy guard at t = 0.2216: the same with 84f031a. The 7 "
       "finished scenes with a node deeper than 0.1 edges inside another body (32, 279, 330, 332, 333, "
-      "444, 454; all impacts on or by POLAr rings or corners, each warned but 454) were run again with "
+      "444, 454; all impacts on or by POLAr rings or corners, each warned but 454 then) were run again with "
       "84f031a: six give the same `.his` to the byte, and scene 333 (five bodies, whose S now "
       "splits into groups, doc/decisions.md) ends 7.2 edges deep against 7.4 with 84f031a.\n")
     _draw_table(data, prev, w)
-    w("**One penetration not warned (open).** Scene 454 (`test/data/stress/scene_20261201_0454.inp`: a "
+    w("**One penetration not warned, now warned.** Scene 454 (`test/data/stress/scene_20261201_0454.inp`: a "
       "hollow POLAr ring thrown at an immovable rigid block) finishes with the geometric check's deepest "
       "node at 5.1e-6 edges, while the suite's check, which tests every node, finds ring node 232 0.125 "
       "edges inside the block at t = 0.5626. The ring closes on itself: AUTOmatic contact is between "
@@ -470,8 +470,11 @@ def _after_speed(data, prev, w):
       "ring, where its distance to the ring's boundary, the depth the geometric check measures, is "
       "small, and node 232 is an interior node, which the geometric check does not test (a body "
       "enters another through its boundary, unless it has passed through itself first). The run is "
-      "the same to the byte with 84f031a. What is missing is a warning for a body that passes through "
-      "itself without self contact; it is not built yet.\n")
+      "the same to the byte with 84f031a. The geometric check now also tests a body's boundary nodes "
+      "against its own elements (doc/decisions.md, \"Geometric penetration check\") and warns at "
+      "t = 0.4233 that 25 nodes of region 2 are inside other elements of region 2, the ring having "
+      "passed through itself (`test/data/stress/ring_self_20261201_0454.inp`, suite `stress_decks`); "
+      "the results are unchanged (no deck of inputs/ has a body through itself: none warns).\n")
 
 
 def _draw_table(data, prev, w):
@@ -883,7 +886,7 @@ def _saved_readme():
         return
     lines = ["# Decks saved by the stress suite", "",
              "Written by `make stress` (tools/stress/, doc/stability.md): the worst random scenes of each "
-             "kind of failure, the fuzzed decks that failed, and the decks of the long runs (flat_corner_*.inp and hourglass_*.inp are kept by hand: regression decks). Each deck's "
+             "kind of failure, the fuzzed decks that failed, and the decks of the long runs (flat_corner_*.inp, hourglass_*.inp, barrier_*.inp, rest_on_wall_*.inp and ring_self_*.inp are kept by hand: regression decks). Each deck's "
              "first comment line (`! stress...`) says what it showed when it was saved. Scenes and long "
              "runs are self-contained (`exic test/data/stress/NAME.inp -o out`); a fuzzed deck is a "
              "mutant of a deck of inputs/ and may INCLude that deck's `common/` files: copy it next to "

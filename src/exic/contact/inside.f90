@@ -1,4 +1,5 @@
-!> Geometric penetration check: nodes of one body that lie inside another body's elements.
+!> Geometric penetration check: nodes of one body that lie inside another body's elements, or
+!> inside elements of their own body.
 !>
 !> The contact passes measure penetration only over the node-segment pairs they detect; a node
 !> that went through a surface undetected (or whose pair was lost) is invisible to them. This
@@ -6,7 +7,10 @@
 !> enters another through its boundary) it finds the elements of every
 !> other body B (that contact covers) containing it, and measures how deep it is as the distance
 !> to B's free boundary, in lengths of the nearest boundary edge (doc/contact-detection.md,
-!> "Geometric penetration check").
+!> "Geometric penetration check"). A node inside an element of its own body A that does not
+!> have it as a corner means that A has passed through itself (a hollow ring closing on itself,
+!> with no self contact asked for): its depth is the distance to that element's nearest side,
+!> in lengths of that side.
 !>
 !> Cost per check O(nnode + nelem): a uniform grid over the bounding box of the mesh (cell = the
 !> mean element extent, at most about 4 nelem cells) holds the elements by the cells their boxes
@@ -191,7 +195,9 @@ contains
          do k = self%ehead(c), self%ehead(c + 1) - 1
             e = self%eitem(k)
             b = self%eb(e)
-            if (.not. self%pairs(a, b)) cycle
+            ! elements of other bodies the contact covers, and of the node's own body (which it
+            ! can be inside only when the body has passed through itself)
+            if (b /= a .and. .not. self%pairs(a, b)) cycle
             if (any(pb(1:np) == b)) cycle
             associate (box => self%ebox(:, e))
                if (x(1, n) < box(1) .or. x(1, n) > box(3) .or. x(2, n) < box(2) .or. x(2, n) > box(4)) cycle
@@ -204,7 +210,11 @@ contains
             if (.not. point_in_quad(x(:, n), q)) cycle
             np = np + 1
             pb(np) = b
-            call boundary_depth(self, x, x(:, n), b, d, rel)
+            if (b == a) then
+               call side_depth(x(:, n), q, d, rel)
+            else
+               call boundary_depth(self, x, x(:, n), b, d, rel)
+            end if
             if (rel > self%last%edges) self%last = inside_hit_t(d, rel, n, self%ids(a), self%ids(b), t)
             if (rel > self%fraction) then
                self%nover = self%nover + 1
@@ -221,7 +231,7 @@ contains
             if (self%over_checks(ib, jb) == 0) then
                if (len(warn) > 0) warn = warn//new_line('a')
                warn = warn//'warning: at t = '//rtoa(t)//' '//itoa(ncount(ib, jb))//' node(s) of region '// &
-                      itoa(self%ids(ib))//' are inside region '//itoa(self%ids(jb))//' deeper than '// &
+                      itoa(self%ids(ib))//' are inside '//inside_what(ib, jb)//' deeper than '// &
                       rtoa(self%fraction)//' element edges; deepest: node '//itoa(first(ib, jb)%node)// &
                       ', '//rtoa(first(ib, jb)%edges)//' edges ('//rtoa(first(ib, jb)%depth)// &
                       ') (geometric penetration check; later times are counted in <stem>.out)'
@@ -231,6 +241,18 @@ contains
          end do
       end do
       self%time_total = self%time_total + (wall_time() - t0)
+   contains
+      !> What the nodes of body ib are inside: body jb, or ib's own elements.
+      function inside_what(ib, jb) result(what)
+         integer, intent(in) :: ib, jb
+         character(len=:), allocatable :: what
+         if (ib == jb) then
+            what = 'other elements of region '//itoa(self%ids(ib))//' (the body has passed through '// &
+                   'itself; contact within one body is PAIR,id,SELF,s)'
+         else
+            what = 'region '//itoa(self%ids(jb))
+         end if
+      end function inside_what
    end subroutine inside_check
 
    !> Lines for <stem>.out: the deepest node over the run, the pairs of bodies past the warning
@@ -251,8 +273,14 @@ contains
       do jb = 1, self%nbody
          do ib = 1, self%nbody
             if (self%over_checks(ib, jb) == 0) cycle
-            text = text//new_line('a')//'geometric penetration check: region '//itoa(self%ids(ib))// &
-                   ' inside region '//itoa(self%ids(jb))//' past the limit at '//itoa(self%over_checks(ib, jb))// &
+            if (ib == jb) then
+               text = text//new_line('a')//'geometric penetration check: region '//itoa(self%ids(ib))// &
+                      ' through itself'
+            else
+               text = text//new_line('a')//'geometric penetration check: region '//itoa(self%ids(ib))// &
+                      ' inside region '//itoa(self%ids(jb))
+            end if
+            text = text//' past the limit at '//itoa(self%over_checks(ib, jb))// &
                    ' of the checks, at most '//itoa(self%over_max(ib, jb))//' nodes'
          end do
       end do
@@ -417,6 +445,26 @@ contains
       rel = 0.0_wp
       if (best < huge(1.0_wp)) rel = d/max(blen, tiny(1.0_wp))
    end subroutine boundary_depth
+
+   !> Depth of p inside the quadrilateral q(2, 4) of its own body: the distance to the nearest of
+   !> q's sides and, in lengths of that side, rel. A conforming mesh has no node inside an
+   !> element that does not have it as a corner; a node on a side (a tied seam) has depth 0.
+   pure subroutine side_depth(p, q, d, rel)
+      real(wp), intent(in) :: p(2), q(2, 4)
+      real(wp), intent(out) :: d, rel
+      real(wp) :: dist, len, blen
+      integer :: k
+      d = huge(1.0_wp)
+      blen = huge(1.0_wp)
+      do k = 1, 4
+         call segment_distance(p, q(:, k), q(:, mod(k, 4) + 1), dist, len)
+         if (dist < d .or. (dist == d .and. len < blen)) then
+            d = dist
+            blen = len
+         end if
+      end do
+      rel = d/max(blen, tiny(1.0_wp))
+   end subroutine side_depth
 
    !> Distance from p to the segment a-b, and the segment's length. Nearest at an end, the
    !> distance is that to the end itself, so that the two edges of a vertex tie exactly (the
