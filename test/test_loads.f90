@@ -59,7 +59,9 @@ contains
    !> The loading's nodal arrays exist only where a step reads them (doc/performance.md 6.2,
    !> "Bytes per element"): none for a free block; constant gravity is added to fext once and
    !> not kept (fext is the block's weight); a driven rigid body has lever arms and v(n) but no
-   !> free bodies' lumped masses; a free rigid body has those too.
+   !> free bodies' lumped masses; a free rigid body has those too. The stepper's work arrays
+   !> (x, du, a_old, v~, fcon_old) exist for the driven body, not for the free block, before or
+   !> after a plain step.
    subroutine lean_arrays(s)
       type(suite_t), intent(inout) :: s
       type(model_t) :: model
@@ -76,6 +78,13 @@ contains
                     allocated(ld%wlump) .or. allocated(ld%rb%r) .or. allocated(ld%fedge)), &
                     'free block: no nodal array of loads, v(n), dof functions or bodies')
       end associate
+      call check(s, .not. work_arrays(), 'free block: no stepper work arrays (x, du, a_old, v~, fcon_old)')
+      call stp%start(err)
+      if (.not. ok('free block start')) return
+      call stp%advance(err)
+      if (.not. ok('free block step')) return
+      call check(s, .not. work_arrays() .and. stp%st%step == 1, &
+                 'free block: a plain step allocates no work array either')
       call setup_stepper('lean_gravity', head//solid//blk//'GRAVity,0,-10'//nl//nl// &
                          batch('0.1', ''), model, stp, err)
       if (.not. ok('constant gravity')) return
@@ -88,6 +97,8 @@ contains
       if (.not. ok('driven body')) return
       call check(s, allocated(stp%ld%rb%r) .and. allocated(stp%ld%vold) .and. &
                  .not. allocated(stp%ld%wlump), 'driven body: lever arms and v(n), no free masses')
+      call check(s, work_arrays() .and. allocated(stp%du) .and. allocated(stp%a_old) .and. &
+                 allocated(stp%vt) .and. allocated(stp%fcon_old), 'driven body: the stepper''s work arrays')
       call setup_stepper('lean_body', head//solid//'MATErial,2'//nl//'  RIGId,FREE'//nl// &
                          '    DENSity 1'//nl//nl//blk//rigid//batch('0.1', ''), model, stp, err)
       if (.not. ok('free body')) return
@@ -99,6 +110,11 @@ contains
          ok = .not. allocated(err)
          if (.not. ok) call check(s, .false., what//': the deck reads and sets up', err%message)
       end function ok
+      !> Any of the stepper's work arrays is allocated.
+      logical function work_arrays()
+         work_arrays = allocated(stp%x) .or. allocated(stp%du) .or. allocated(stp%a_old) .or. &
+                       allocated(stp%vt) .or. allocated(stp%fcon_old)
+      end function work_arrays
    end subroutine lean_arrays
 
    !> Write `text` as run_dir/<name>.inp, read it and set up a stepper with its loads.

@@ -104,7 +104,7 @@ module exic_explicit_step
       !> "Energy guard"); the guard measures growth against the energy put in or this, the larger
       real(wp) :: energy_floor = 0.0_wp
       integer :: pass_limit_warnings = 0              !< corrector pass-limit warnings written
-      ! work arrays of a step, (2, nnode)
+      ! work arrays of a step, (2, nnode); allocated only for steps that are not plain (work_arrays)
       real(wp), allocatable :: x(:, :)                !< x(n+1) = x0 + u
       real(wp), allocatable :: du(:, :), a_old(:, :), vt(:, :), fcon_old(:, :)
       logical :: fcon_old_clean = .false.             !< fcon_old is zero everywhere
@@ -142,9 +142,9 @@ contains
       call self%ld%init(mesh, materials, self%st, self%sets, err, loads)
       if (allocated(err)) return
       n = self%st%nnode
-      allocate (self%x(2, n), self%du(2, n), self%a_old(2, n), self%vt(2, n), self%fcon_old(2, n), &
-                source=0.0_wp)
-      call positions(n, self%st%x0, self%st%u, self%x)
+      ! the work arrays of a step that is not plain (plain_step); contact_init reads x only when
+      ! the contact is active, which such a step is
+      if (spec%active .or. self%ld%active) call work_arrays(self)
       ! PENAlty,SCALe refers to the largest constrained modulus of the solids
       modulus = 0.0_wp
       do k = 1, size(materials)
@@ -153,8 +153,13 @@ contains
          if (materials(k)%rho > 0.0_wp) &
             self%c2max = max(self%c2max, (materials(k)%lambda + 2.0_wp*materials(k)%mu)/materials(k)%rho)
       end do
-      call self%contact%init(spec, n, self%st%x0, self%x, mesh%nelem, mesh%conn, mesh%region, mesh%mat, &
-                             modulus, err)
+      if (allocated(self%x)) then
+         call self%contact%init(spec, n, self%st%x0, self%x, mesh%nelem, mesh%conn, mesh%region, mesh%mat, &
+                                modulus, err)
+      else
+         call self%contact%init(spec, n, self%st%x0, self%st%x0, mesh%nelem, mesh%conn, mesh%region, &
+                                mesh%mat, modulus, err)
+      end if
       if (allocated(err)) return
       if (self%contact%energy) then
          ! LAGRange,ENERgy: massless contact faces (doc/impact.md, section 3)
@@ -188,6 +193,7 @@ contains
          return
       end if
       call self%ld%begin(self%st)
+      if (.not. plain_step(self)) call work_arrays(self)
       call forces_and_dt(self, err)
       if (allocated(err)) return
       associate (st => self%st)
@@ -229,7 +235,8 @@ contains
 
       t0 = wall_time()
       contact_on = self%has_contact()
-      plain = .not. (contact_on .or. self%ld%active .or. allocated(self%st%mass_dof))
+      plain = plain_step(self)
+      if (.not. plain) call work_arrays(self)
       associate (st => self%st)
          ! a step set between steps (BATCh DT) enters the kinetic correction (eq. E.4)
          call book_step_change(st)
@@ -256,8 +263,8 @@ contains
          if (plain) then
             ! no contact, loads or masses per dof: steps 4, 6 and 7 in one sweep over the nodes,
             ! which forms du and reads a(n) where the other steps store them (the same operations
-            ! in the same order); the corrector has nothing to do
-            call correct(self, self%vt, err)
+            ! in the same order); the corrector has nothing to do (and reads no v~)
+            call correct(self, st%v, err)
             if (allocated(err)) return
             call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%mass, st%a, st%v, &
                                  st%wext, st%kinetic, st%momentum)
@@ -318,6 +325,27 @@ contains
          call choose_dt(self, err, 'DT')
       end associate
    end subroutine forces_and_dt
+
+   !> True when a step has no contact, loads or masses per dof: it sweeps the nodes twice
+   !> (cd_displacement_plain, cd_update_plain) and reads none of the work arrays x, du, a_old, v~
+   !> and fcon_old.
+   pure logical function plain_step(self) result(plain)
+      type(stepper_t), intent(in) :: self
+      plain = .not. (self%has_contact() .or. self%ld%active .or. allocated(self%st%mass_dof))
+   end function plain_step
+
+   !> Allocate the work arrays of a step that is not plain (zero, x = x0 + u) if they are not yet:
+   !> at set-up with contact or loads, else at the first such step (a host's contact hook
+   !> attached later). 80 bytes per node that a plain run never touches.
+   subroutine work_arrays(self)
+      type(stepper_t), intent(inout) :: self
+      integer :: n
+      if (allocated(self%x)) return
+      n = self%st%nnode
+      allocate (self%x(2, n), self%du(2, n), self%a_old(2, n), self%vt(2, n), self%fcon_old(2, n), &
+                source=0.0_wp)
+      call positions(n, self%st%x0, self%st%u, self%x)
+   end subroutine work_arrays
 
    !> True when the step needs x and v~ at the contact surfaces' nodes only: exic's own contact
    !> (it reads no other node) and no loads, prescribed motion or rigid bodies (which read all),
@@ -431,8 +459,15 @@ contains
       real(wp), intent(out) :: dtmin
       integer, intent(out) :: emin
       integer :: efold
-      call positions(self%st%nnode, self%st%x0, self%st%u, self%x)
-      call stable_step(self%st, self%sets, self%x, dtmin, emin, efold)
+      real(wp), allocatable :: x(:, :)
+      if (allocated(self%x)) then
+         call positions(self%st%nnode, self%st%x0, self%st%u, self%x)
+         call stable_step(self%st, self%sets, self%x, dtmin, emin, efold)
+      else
+         allocate (x(2, self%st%nnode))
+         call positions(self%st%nnode, self%st%x0, self%st%u, x)
+         call stable_step(self%st, self%sets, x, dtmin, emin, efold)
+      end if
    end subroutine stepper_initial_stable_step
 
    !> Set dt(n+1): fixed (checked against the stable limit) or CFL x the stable limit, from the
