@@ -6,7 +6,7 @@
 !> check looks at the actual polygons: for every node on the free boundary of body A (a body
 !> enters another through its boundary) it finds the elements of every
 !> other body B (that contact covers) containing it, and measures how deep it is as the distance
-!> to B's free boundary, in lengths of the nearest boundary edge (doc/contact-detection.md,
+!> to B's free boundary, in lengths of the nearest boundary edge (doc/decisions.md,
 !> "Geometric penetration check"). A node inside an element of its own body A that does not
 !> have it as a corner means that A has passed through itself (a hollow ring closing on itself,
 !> with no self contact asked for): its depth is the distance to that element's nearest side,
