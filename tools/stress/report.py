@@ -413,53 +413,54 @@ def _barrier_rerun(w):
       "test/data/stress/barrier_20261125_0086.inp (a regression test). Section 1d measures a fresh draw.\n")
 
 
+def _draw_intro(data, w, section, title, jobs, setting, after):
+    """The heading of a fresh draw and its first paragraph: the command, the code it ran on
+    (`setting`), how many scenes ran to the end, then `after`."""
+    n = len(data["scenes"])
+    fin = sum(1 for r in data["scenes"] if r["class"] == "finished")
+    cores = "one core" if jobs == 1 else f"{'two' if jobs == 2 else jobs} cores"
+    w(f"## {section}. {title} (seed {data['seed']}, {n} scenes)\n")
+    w(f"`tools/stress/stress.py --only scenes --seed {data['seed']} --scenes {n} --jobs {jobs}` "
+      f"({data['seconds']:.0f} s on {cores}), {setting}, "
+      f"results in `doc/stability/scenes_{data['seed']}.json`: **{fin} of {n} run to the end "
+      f"({pct(fin, n)})**; " + after)
+
+
 def _fresh(data, prev, w):
     """Section 1d: a fresh campaign with the assumed-strain control and the corner barrier."""
-    n = len(data["scenes"])
-    fin = [r for r in data["scenes"] if r["class"] == "finished"]
-    w(f"## 1d. A fresh draw with the corner barrier (seed {data['seed']}, {n} scenes)\n")
-    w(f"`tools/stress/stress.py --only scenes --seed {data['seed']} --scenes {n} --jobs 2` "
-      f"({data['seconds']:.0f} s on two cores), with the assumed-strain control and the corner barrier "
-      "for every one-point body (`HOURglass,PHYSical`, the generator's choice, doc/hourglass.md) and "
-      "the flat immovable faces no longer slaves under AUTOmatic (doc/contact-detection.md; the same "
-      "draw before that change: 495 finished, 5 stops, 21 and 2 warned failures), "
-      f"results in `doc/stability/scenes_{data['seed']}.json`: **{len(fin)} of {n} run to the end "
-      f"({pct(len(fin), n)})**; every stop names its element, node or pair:\n")
+    _draw_intro(data, w, "1d", "A fresh draw with the corner barrier", 2,
+                "with the assumed-strain control and the corner barrier "
+                "for every one-point body (`HOURglass,PHYSical`, the generator's choice, doc/hourglass.md) and "
+                "the flat immovable faces no longer slaves under AUTOmatic (doc/contact-detection.md; the same "
+                "draw before that change: 495 finished, 5 stops, 21 and 2 warned failures)",
+                "every stop names its element, node or pair:\n")
     _draw_table(data, prev, w)
 
 
 def _final(data, prev, w):
     """Section 1e: a fresh draw on the code of the last stop of issue 10 and the speed work of
     issue 15 (kept broad-phase lists, two nodal sweeps, batched field output)."""
-    n = len(data["scenes"])
-    fin = [r for r in data["scenes"] if r["class"] == "finished"]
-    w(f"## 1e. A fresh draw on the final code (seed {data['seed']}, {n} scenes)\n")
-    w(f"`tools/stress/stress.py --only scenes --seed {data['seed']} --scenes {n} --jobs 2` "
-      f"({data['seconds']:.0f} s on two cores), main at 6288c1d (the energy guard's round-off floor, "
-      "non-finite values never written, the contact and step changes of doc/performance.md section 6), "
-      f"results in `doc/stability/scenes_{data['seed']}.json`: **{len(fin)} of {n} run to the end "
-      f"({pct(len(fin), n)})**; every stop names its element, node or pair, every finished scene with "
-      "energy growth over 1 % or a node deeper than 1e-3 edges inside another body was warned:\n")
+    _draw_intro(data, w, "1e", "A fresh draw on the final code", 2,
+                "main at 6288c1d (the energy guard's round-off floor, "
+                "non-finite values never written, the contact and step changes of doc/performance.md section 6)",
+                "every stop names its element, node or pair, every finished scene with "
+                "energy growth over 1 % or a node deeper than 1e-3 edges inside another body was warned:\n")
     _draw_table(data, prev, w)
 
 
 def _after_speed(data, prev, w):
     """Section 1f: a fresh draw on main with the element, contact and field-output changes of
     doc/performance.md sections 6.2, 6.4, 6.5 (after 84f031a), and what it found."""
-    n = len(data["scenes"])
-    fin = [r for r in data["scenes"] if r["class"] == "finished"]
-    w(f"## 1f. A fresh draw after the element, contact and output changes (seed {data['seed']}, {n} scenes)\n")
-    w(f"`tools/stress/stress.py --only scenes --seed {data['seed']} --scenes {n} --jobs 1` "
-      f"({data['seconds']:.0f} s on one core), main at 4c0f744 (S of the contact corrector factorised by "
-      "components, the element pass's logarithm for normal J, the field file closed without a copy), "
-      f"results in `doc/stability/scenes_{data['seed']}.json`: **{len(fin)} of {n} run to the end "
-      f"({pct(len(fin), n)})**; every stop names its element, or the energy guard its time. Scene 339 "
-      "(a rigid block and two POLAr rings) is warned of a node 0.20 edges inside another body at "
-      "t = 0.137 and then stopped by the energy guard at t = 0.2216: the same with 84f031a. The 7 "
-      "finished scenes with a node deeper than 0.1 edges inside another body (32, 279, 330, 332, 333, "
-      "444, 454; all impacts on or by POLAr rings or corners, each warned but 454 then) were run again with "
-      "84f031a: six give the same `.his` to the byte, and scene 333 (five bodies, whose S now "
-      "splits into groups, doc/decisions.md) ends 7.2 edges deep against 7.4 with 84f031a.\n")
+    _draw_intro(data, w, "1f", "A fresh draw after the element, contact and output changes", 1,
+                "main at 4c0f744 (S of the contact corrector factorised by "
+                "components, the element pass's logarithm for normal J, the field file closed without a copy)",
+                "every stop names its element, or the energy guard its time. Scene 339 "
+                "(a rigid block and two POLAr rings) is warned of a node 0.20 edges inside another body at "
+                "t = 0.137 and then stopped by the energy guard at t = 0.2216: the same with 84f031a. The 7 "
+                "finished scenes with a node deeper than 0.1 edges inside another body (32, 279, 330, 332, 333, "
+                "444, 454; all impacts on or by POLAr rings or corners, each warned but 454 then) were run again with "
+                "84f031a: six give the same `.his` to the byte, and scene 333 (five bodies, whose S now "
+                "splits into groups, doc/decisions.md) ends 7.2 edges deep against 7.4 with 84f031a.\n")
     _draw_table(data, prev, w)
     w("**One penetration not warned, now warned.** Scene 454 (`test/data/stress/scene_20261201_0454.inp`: a "
       "hollow POLAr ring thrown at an immovable rigid block) finishes with the geometric check's deepest "
