@@ -7,7 +7,7 @@ module exic_base_sums
    implicit none
    private
 
-   public :: lane_sum
+   public :: lane_sum, ordered_sum
 
    !> Interleaved partial sums of lane_sum (one AVX-512 vector of reals).
    integer, parameter :: LANES = 8
@@ -33,5 +33,16 @@ contains
       end do
       total = ((s(1) + s(2)) + (s(3) + s(4))) + ((s(5) + s(6)) + (s(7) + s(8)))
    end function lane_sum
+
+   !> Sum of p(1:m) from the first to the last (the per-chunk sums of a pass, chunks in order).
+   pure real(wp) function ordered_sum(m, p) result(total)
+      integer, intent(in) :: m
+      real(wp), intent(in) :: p(m)
+      integer :: j
+      total = 0.0_wp
+      do j = 1, m
+         total = total + p(j)
+      end do
+   end function ordered_sum
 
 end module exic_base_sums

@@ -17,7 +17,7 @@
 !> Meshes of fewer than PAR_MIN_NODES nodes run on one thread.
 module exic_explicit_central
    use exic_base_kinds, only: wp
-   use exic_base_sums, only: lane_sum
+   use exic_base_sums, only: lane_sum, ordered_sum
    implicit none
    private
 
@@ -131,7 +131,7 @@ contains
       logical, intent(in) :: with_contact
       real(wp), intent(in) :: fcon_old(2, n), fcon(2, n), minv(2, n)
       real(wp), intent(inout) :: v(2, n), wext, wcon
-      real(wp) :: se, sc, pe((n + CHUNK - 1)/CHUNK), pc((n + CHUNK - 1)/CHUNK)
+      real(wp) :: pe((n + CHUNK - 1)/CHUNK), pc((n + CHUNK - 1)/CHUNK)
       integer :: c, i0, m
       !$omp parallel do if (n >= PAR_MIN_NODES) default(none) &
       !$omp shared(n, dt, a_old, a, fext, du, with_contact, fcon_old, fcon, minv, v, pe, pc) &
@@ -145,14 +145,8 @@ contains
          call velocity_range(2*m, dt, a_old(1, i0), a(1, i0), fext(1, i0), du(1, i0), v(1, i0), pe(c))
       end do
       !$omp end parallel do
-      se = 0.0_wp
-      sc = 0.0_wp
-      do c = 1, (n + CHUNK - 1)/CHUNK
-         se = se + pe(c)
-         sc = sc + pc(c)
-      end do
-      wext = wext + se
-      if (with_contact) wcon = wcon + 0.5_wp*sc
+      wext = wext + ordered_sum(size(pe), pe)
+      if (with_contact) wcon = wcon + 0.5_wp*ordered_sum(size(pc), pc)
    end subroutine cd_velocity
 
    !> v = v + dt/2 (a_old + a) and se = sum F . du on m values.
@@ -240,7 +234,6 @@ contains
       real(wp), intent(inout) :: a(2, n), v(2, n), wext
       real(wp), intent(out) :: kinetic, momentum(2)
       real(wp), dimension((n + CHUNK - 1)/CHUNK) :: pe, pk, px, py
-      real(wp) :: se
       integer :: c, i0, m
       !$omp parallel do if (n >= PAR_MIN_NODES) default(none) &
       !$omp shared(n, dt, minv, fext, fint, mass, a, v, pe, pk, px, py) private(c, i0, m) schedule(dynamic)
@@ -251,11 +244,7 @@ contains
          call kinetic_range(m, mass(i0), v(1, i0), pk(c), px(c), py(c))
       end do
       !$omp end parallel do
-      se = 0.0_wp
-      do c = 1, (n + CHUNK - 1)/CHUNK
-         se = se + pe(c)
-      end do
-      wext = wext + se
+      wext = wext + ordered_sum(size(pe), pe)
       call kinetic_total((n + CHUNK - 1)/CHUNK, pk, px, py, kinetic, momentum)
    end subroutine cd_update_plain
 
@@ -313,18 +302,8 @@ contains
       integer, intent(in) :: nc
       real(wp), intent(in), dimension(nc) :: pk, px, py
       real(wp), intent(out) :: kinetic, momentum(2)
-      real(wp) :: k, p1, p2
-      integer :: c
-      k = 0.0_wp
-      p1 = 0.0_wp
-      p2 = 0.0_wp
-      do c = 1, nc
-         k = k + pk(c)
-         p1 = p1 + px(c)
-         p2 = p2 + py(c)
-      end do
-      kinetic = 0.5_wp*k
-      momentum = [p1, p2]
+      kinetic = 0.5_wp*ordered_sum(nc, pk)
+      momentum = [ordered_sum(nc, px), ordered_sum(nc, py)]
    end subroutine kinetic_total
 
    !> sum m |v|^2 and sum m v over m nodes (lane_sum).
@@ -390,10 +369,7 @@ contains
          call power_range(m, mass(i0), minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), pr(k))
       end do
       !$omp end parallel do
-      q = 0.0_wp
-      do k = 1, (n + CHUNK - 1)/CHUNK
-         q = q + pr(k)
-      end do
+      q = ordered_sum(size(pr), pr)
    end function cd_kinetic_power
 
    !> Q of cd_kinetic_power over m nodes (lane_sum).
