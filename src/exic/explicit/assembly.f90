@@ -17,6 +17,7 @@ module exic_explicit_assembly
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use exic_base_error, only: error_t, make_error
    use exic_base_strings, only: rtoa
+   use exic_base_threads, only: threaded
    use exic_mesh_mesh, only: mesh_t
    use exic_material_material, only: material_t, MAT_SOLID, MAT_RIGID
    use exic_explicit_state, only: state_t, element_set_t
@@ -33,7 +34,8 @@ module exic_explicit_assembly
    public :: set_ranges, NSIG
 
    !> Smallest set whose force pass runs on several threads (a parallel region costs a few
-   !> microseconds; below this the pass runs on the calling thread, with the same results).
+   !> microseconds; below this, or with one thread allowed, the pass runs on the calling thread
+   !> without entering OpenMP (exic_base_threads), with the same results).
    integer, parameter, public :: PAR_MIN_ELEMENTS = 2048
    !> Range length: nel/64 rounded up to whole blocks, between 256 and 2048 elements (fixed by
    !> the mesh, never by the number of threads).
@@ -275,39 +277,26 @@ contains
       integer, intent(out) :: eb, em, ef
       real(wp), dimension(s%nrange) :: pw, phg, pj, pd, pdw
       integer, dimension(s%nrange) :: pe, pm, pf
-      integer :: c, i, r, e1, n
+      integer :: c, i, r, e1
 
       pdw = 0.0_wp
-      !$omp parallel if (s%nel >= PAR_MIN_ELEMENTS) default(none) private(c, i, r, e1, n) &
-      !$omp shared(s, nnode, x0, u, v, dt, f, pw, phg, pj, pd, pe, pm, pf, pdw)
-      do c = 1, s%ncolour
-         !$omp do schedule(dynamic)
-         do i = s%cfirst(c), s%cfirst(c + 1) - 1
-            r = s%cranges(i)
-            e1 = s%rfirst(r)
-            n = s%rfirst(r + 1) - e1
-            if (s%general) then
-               if (s%solid%plastic) then
-                  call q4g_force(s%solid, n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, dt, &
-                                 s%hist(:, :, e1:e1 + n - 1), f, pw(r), phg(r), pdw(r), pj(r), pe(r), &
-                                 pd(r), pm(r), pf(r), v)
-               else
-                  call q4g_force(s%solid, n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, dt, s%hist, f, &
-                                 pw(r), phg(r), pdw(r), pj(r), pe(r), pd(r), pm(r), pf(r), v)
-               end if
-            else if (s%nq == 2) then
-               call q4_force_2x2(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%lambda, s%mu, s%rho, f, &
-                                 pw(r), pj(r), pe(r), pd(r), pm(r), pf(r))
-               phg(r) = 0.0_wp
-            else
-               call q4_force_1pt(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%lambda, s%mu, s%rho, &
-                                 s%hourglass, f, pw(r), phg(r), pj(r), pe(r), pd(r), pm(r), pf(r), &
-                                 s%hgkind, v)
-            end if
+      if (threaded(s%nel, PAR_MIN_ELEMENTS)) then
+         !$omp parallel default(none) private(c, i) shared(s)
+         do c = 1, s%ncolour
+            !$omp do schedule(dynamic)
+            do i = s%cfirst(c), s%cfirst(c + 1) - 1
+               call range_forces(s%cranges(i))
+            end do
+            !$omp end do
          end do
-         !$omp end do
-      end do
-      !$omp end parallel
+         !$omp end parallel
+      else
+         do c = 1, s%ncolour
+            do i = s%cfirst(c), s%cfirst(c + 1) - 1
+               call range_forces(s%cranges(i))
+            end do
+         end do
+      end if
       w = 0.0_wp
       whg = 0.0_wp
       wd = 0.0_wp
@@ -330,6 +319,32 @@ contains
          end if
       end do
       d = sqrt(d)
+   contains
+      !> The forces of range r of the set.
+      subroutine range_forces(r)
+         integer, intent(in) :: r
+         integer :: e1, n
+         e1 = s%rfirst(r)
+         n = s%rfirst(r + 1) - e1
+         if (s%general) then
+            if (s%solid%plastic) then
+               call q4g_force(s%solid, n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, dt, &
+                              s%hist(:, :, e1:e1 + n - 1), f, pw(r), phg(r), pdw(r), pj(r), pe(r), &
+                              pd(r), pm(r), pf(r), v)
+            else
+               call q4g_force(s%solid, n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, dt, s%hist, f, &
+                              pw(r), phg(r), pdw(r), pj(r), pe(r), pd(r), pm(r), pf(r), v)
+            end if
+         else if (s%nq == 2) then
+            call q4_force_2x2(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%lambda, s%mu, s%rho, f, &
+                              pw(r), pj(r), pe(r), pd(r), pm(r), pf(r))
+            phg(r) = 0.0_wp
+         else
+            call q4_force_1pt(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%lambda, s%mu, s%rho, &
+                              s%hourglass, f, pw(r), phg(r), pj(r), pe(r), pd(r), pm(r), pf(r), &
+                              s%hgkind, v)
+         end if
+      end subroutine range_forces
    end subroutine set_forces
 
    !> Smallest critical step over the deformable elements at the current coordinates

@@ -18,6 +18,7 @@
 module exic_explicit_central
    use exic_base_kinds, only: wp
    use exic_base_sums, only: lane_sum, ordered_sum
+   use exic_base_threads, only: threaded
    implicit none
    private
 
@@ -27,7 +28,9 @@ module exic_explicit_central
 
    !> Nodes per chunk (fixed: the order of the additions of a sum must not depend on threads).
    integer, parameter, public :: CHUNK = 1024
-   !> Smallest mesh whose nodal loops run on several threads.
+   !> Smallest mesh whose nodal loops run on several threads; smaller ones, and every mesh when
+   !> one thread is allowed, take each loop's serial branch, which does not enter OpenMP
+   !> (exic_base_threads) and makes the same operations in the same order.
    integer, parameter, public :: PAR_MIN_NODES = 4096
 
 contains
@@ -41,7 +44,11 @@ contains
       real(wp), intent(inout) :: u(2, n)
       real(wp), intent(out) :: du(2, n), a_old(2, n)
       integer :: c, i0, m
-      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) shared(n, dt, v, a, u, du, a_old) &
+      if (.not. threaded(n, PAR_MIN_NODES)) then
+         call displacement_range(2*n, dt, v, a, u, du, a_old)
+         return
+      end if
+      !$omp parallel do default(none) shared(n, dt, v, a, u, du, a_old) &
       !$omp private(c, i0, m) schedule(dynamic)
       do c = 1, (n + CHUNK - 1)/CHUNK
          i0 = (c - 1)*CHUNK + 1
@@ -78,7 +85,15 @@ contains
       logical, intent(in) :: with_vt
       real(wp), intent(inout) :: vt(2, n)
       integer :: c, i0, m
-      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) &
+      if (.not. threaded(n, PAR_MIN_NODES)) then
+         if (with_vt) then
+            call predictor_range(2*n, dt, minv, fext, fint, v, a_old, a, vt)
+         else
+            call acceleration_range(2*n, minv, fext, fint, a)
+         end if
+         return
+      end if
+      !$omp parallel do default(none) &
       !$omp shared(n, dt, minv, fext, fint, v, a_old, a, with_vt, vt) private(c, i0, m) schedule(dynamic)
       do c = 1, (n + CHUNK - 1)/CHUNK
          i0 = (c - 1)*CHUNK + 1
@@ -132,21 +147,32 @@ contains
       real(wp), intent(in) :: fcon_old(2, n), fcon(2, n), minv(2, n)
       real(wp), intent(inout) :: v(2, n), wext, wcon
       real(wp) :: pe((n + CHUNK - 1)/CHUNK), pc((n + CHUNK - 1)/CHUNK)
-      integer :: c, i0, m
-      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) &
-      !$omp shared(n, dt, a_old, a, fext, du, with_contact, fcon_old, fcon, minv, v, pe, pc) &
-      !$omp private(c, i0, m) schedule(dynamic)
-      do c = 1, (n + CHUNK - 1)/CHUNK
+      integer :: c
+      if (threaded(n, PAR_MIN_NODES)) then
+         !$omp parallel do default(none) shared(n) private(c) schedule(dynamic)
+         do c = 1, (n + CHUNK - 1)/CHUNK
+            call velocity_chunk(c)
+         end do
+         !$omp end parallel do
+      else
+         do c = 1, (n + CHUNK - 1)/CHUNK
+            call velocity_chunk(c)
+         end do
+      end if
+      wext = wext + ordered_sum(size(pe), pe)
+      if (with_contact) wcon = wcon + 0.5_wp*ordered_sum(size(pc), pc)
+   contains
+      !> The nodes of chunk c.
+      subroutine velocity_chunk(c)
+         integer, intent(in) :: c
+         integer :: i0, m
          i0 = (c - 1)*CHUNK + 1
          m = min(CHUNK, n - i0 + 1)
          pc(c) = 0.0_wp
          if (with_contact) call work_range(2*m, dt, fcon_old(1, i0), fcon(1, i0), du(1, i0), minv(1, i0), &
                                            v(1, i0), a_old(1, i0), a(1, i0), pc(c))
          call velocity_range(2*m, dt, a_old(1, i0), a(1, i0), fext(1, i0), du(1, i0), v(1, i0), pe(c))
-      end do
-      !$omp end parallel do
-      wext = wext + ordered_sum(size(pe), pe)
-      if (with_contact) wcon = wcon + 0.5_wp*ordered_sum(size(pc), pc)
+      end subroutine velocity_chunk
    end subroutine cd_velocity
 
    !> v = v + dt/2 (a_old + a) and se = sum F . du on m values.
@@ -195,7 +221,11 @@ contains
       real(wp), intent(in) :: v(2, n), a(2, n)
       real(wp), intent(inout) :: u(2, n)
       integer :: c, i0, m
-      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) shared(n, dt, v, a, u) &
+      if (.not. threaded(n, PAR_MIN_NODES)) then
+         call displacement_plain_range(2*n, dt, v, a, u)
+         return
+      end if
+      !$omp parallel do default(none) shared(n, dt, v, a, u) &
       !$omp private(c, i0, m) schedule(dynamic)
       do c = 1, (n + CHUNK - 1)/CHUNK
          i0 = (c - 1)*CHUNK + 1
@@ -234,18 +264,30 @@ contains
       real(wp), intent(inout) :: a(2, n), v(2, n), wext
       real(wp), intent(out) :: kinetic, momentum(2)
       real(wp), dimension((n + CHUNK - 1)/CHUNK) :: pe, pk, px, py
-      integer :: c, i0, m
-      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) &
-      !$omp shared(n, dt, minv, fext, fint, mass, a, v, pe, pk, px, py) private(c, i0, m) schedule(dynamic)
-      do c = 1, (n + CHUNK - 1)/CHUNK
+      integer :: c
+      if (threaded(n, PAR_MIN_NODES)) then
+         !$omp parallel do default(none) shared(n) private(c) schedule(dynamic)
+         do c = 1, (n + CHUNK - 1)/CHUNK
+            call update_chunk(c)
+         end do
+         !$omp end parallel do
+      else
+         do c = 1, (n + CHUNK - 1)/CHUNK
+            call update_chunk(c)
+         end do
+      end if
+      wext = wext + ordered_sum(size(pe), pe)
+      call kinetic_total((n + CHUNK - 1)/CHUNK, pk, px, py, kinetic, momentum)
+   contains
+      !> The nodes of chunk c.
+      subroutine update_chunk(c)
+         integer, intent(in) :: c
+         integer :: i0, m
          i0 = (c - 1)*CHUNK + 1
          m = min(CHUNK, n - i0 + 1)
          call update_plain_range(2*m, dt, minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), v(1, i0), pe(c))
          call kinetic_range(m, mass(i0), v(1, i0), pk(c), px(c), py(c))
-      end do
-      !$omp end parallel do
-      wext = wext + ordered_sum(size(pe), pe)
-      call kinetic_total((n + CHUNK - 1)/CHUNK, pk, px, py, kinetic, momentum)
+      end subroutine update_chunk
    end subroutine cd_update_plain
 
    !> cd_update_plain's velocity update on m values: displacement_range's du, acceleration_range's
@@ -276,25 +318,33 @@ contains
       real(wp), intent(out) :: kinetic, momentum(2)
       real(wp), intent(in), optional :: mass_dof(2, n)
       real(wp), dimension((n + CHUNK - 1)/CHUNK) :: pk, px, py
-      integer :: c, i0, m
-      if (present(mass_dof)) then
-         ! masses per dof (massless contact faces along their normals, doc/impact.md, 3.1)
+      integer :: c
+      if (threaded(n, PAR_MIN_NODES) .and. .not. present(mass_dof)) then
+         !$omp parallel do default(none) shared(n) private(c) schedule(dynamic)
          do c = 1, (n + CHUNK - 1)/CHUNK
-            i0 = (c - 1)*CHUNK + 1
-            m = min(CHUNK, n - i0 + 1)
-            call kinetic_range_dof(m, mass_dof(1, i0), v(1, i0), pk(c), px(c), py(c))
+            call kinetic_chunk(c)
          end do
+         !$omp end parallel do
       else
-      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) shared(n, mass, v, pk, px, py) &
-      !$omp private(c, i0, m) schedule(dynamic)
-      do c = 1, (n + CHUNK - 1)/CHUNK
-         i0 = (c - 1)*CHUNK + 1
-         m = min(CHUNK, n - i0 + 1)
-         call kinetic_range(m, mass(i0), v(1, i0), pk(c), px(c), py(c))
-      end do
-      !$omp end parallel do
+         do c = 1, (n + CHUNK - 1)/CHUNK
+            call kinetic_chunk(c)
+         end do
       end if
       call kinetic_total((n + CHUNK - 1)/CHUNK, pk, px, py, kinetic, momentum)
+   contains
+      !> The nodes of chunk c.
+      subroutine kinetic_chunk(c)
+         integer, intent(in) :: c
+         integer :: i0, m
+         i0 = (c - 1)*CHUNK + 1
+         m = min(CHUNK, n - i0 + 1)
+         if (present(mass_dof)) then
+            ! masses per dof (massless contact faces along their normals, doc/impact.md, 3.1)
+            call kinetic_range_dof(m, mass_dof(1, i0), v(1, i0), pk(c), px(c), py(c))
+         else
+            call kinetic_range(m, mass(i0), v(1, i0), pk(c), px(c), py(c))
+         end if
+      end subroutine kinetic_chunk
    end subroutine cd_kinetic
 
    !> Kinetic energy and momentum from the sums of nc chunks (kinetic_range), added in chunk order.
@@ -352,7 +402,7 @@ contains
       real(wp), intent(in), dimension(2, n) :: minv, fext, fint, a
       real(wp), intent(in), optional :: mass_dof(2, n)
       real(wp) :: q, pr((n + CHUNK - 1)/CHUNK)
-      integer :: k, i0, m
+      integer :: k
       if (present(mass_dof)) then
          ! masses per dof: r = 0 on a massless dof, whatever the node's other dof holds
          q = 0.0_wp
@@ -361,15 +411,27 @@ contains
          end do
          return
       end if
-      !$omp parallel do if (n >= PAR_MIN_NODES) default(none) shared(n, mass, minv, fext, fint, a, pr) &
-      !$omp private(k, i0, m) schedule(dynamic)
-      do k = 1, (n + CHUNK - 1)/CHUNK
-         i0 = (k - 1)*CHUNK + 1
-         m = min(CHUNK, n - i0 + 1)
-         call power_range(m, mass(i0), minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), pr(k))
-      end do
-      !$omp end parallel do
+      if (threaded(n, PAR_MIN_NODES)) then
+         !$omp parallel do default(none) shared(n) private(k) schedule(dynamic)
+         do k = 1, (n + CHUNK - 1)/CHUNK
+            call power_chunk(k)
+         end do
+         !$omp end parallel do
+      else
+         do k = 1, (n + CHUNK - 1)/CHUNK
+            call power_chunk(k)
+         end do
+      end if
       q = ordered_sum(size(pr), pr)
+   contains
+      !> The nodes of chunk c.
+      subroutine power_chunk(c)
+         integer, intent(in) :: c
+         integer :: i0, m
+         i0 = (c - 1)*CHUNK + 1
+         m = min(CHUNK, n - i0 + 1)
+         call power_range(m, mass(i0), minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), pr(c))
+      end subroutine power_chunk
    end function cd_kinetic_power
 
    !> Q of cd_kinetic_power over m nodes (lane_sum).
@@ -393,7 +455,11 @@ contains
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
       real(wp), intent(out) :: x(2, nnode)
       integer :: c, i0, m
-      !$omp parallel do if (nnode >= PAR_MIN_NODES) default(none) shared(nnode, x0, u, x) &
+      if (.not. threaded(nnode, PAR_MIN_NODES)) then
+         call add_range(2*nnode, x0, u, x)
+         return
+      end if
+      !$omp parallel do default(none) shared(nnode, x0, u, x) &
       !$omp private(c, i0, m) schedule(dynamic)
       do c = 1, (nnode + CHUNK - 1)/CHUNK
          i0 = (c - 1)*CHUNK + 1
@@ -450,7 +516,11 @@ contains
       integer, intent(in) :: n
       real(wp), intent(out) :: a(n)
       integer :: c, i0, m
-      !$omp parallel do if (n >= 2*PAR_MIN_NODES) default(none) shared(n, a) private(c, i0, m) &
+      if (.not. threaded(n, 2*PAR_MIN_NODES)) then
+         a = 0.0_wp
+         return
+      end if
+      !$omp parallel do default(none) shared(n, a) private(c, i0, m) &
       !$omp schedule(dynamic)
       do c = 1, (n + 2*CHUNK - 1)/(2*CHUNK)
          i0 = (c - 1)*2*CHUNK + 1
