@@ -12,6 +12,12 @@ time of the exic process (user + system of all its threads, os.wait4):
 
 output share = (shipped - no_output) / shipped, field share = (shipped - no_fields) / shipped.
 
+The floor: the processor time of writing the bytes that the new binary's run as shipped leaves
+(every file of its output directory, in pieces of 64 KiB, each file made as `<name>.tmp` and
+renamed over the one of the repetition before, as exic does), measured in this process between
+the runs; floor share = floor / (no_output + floor), the output share of a writer that cost
+nothing but its bytes.
+
     python3 bench/output_share.py --old OLD_EXIC --new NEW_EXIC [--reps 9] [--threads 1 2]
                                   [--json bench/results/output_share.json]
 
@@ -23,6 +29,7 @@ import argparse
 import json
 import os
 import platform
+import resource
 import re
 import shutil
 import statistics
@@ -63,10 +70,32 @@ def cpu_of(cmd, env, cwd):
     return ru.ru_utime + ru.ru_stime
 
 
+def write_floor(src, dst):
+    """Processor time of writing the files of directory `src` afresh into `dst` (see above)."""
+    os.makedirs(dst, exist_ok=True)
+    piece = 64*1024
+    total = 0.0
+    for name in sorted(os.listdir(src)):
+        size = os.path.getsize(os.path.join(src, name))
+        data = b"\x01"*piece
+        tmp, final = os.path.join(dst, name + ".tmp"), os.path.join(dst, name)
+        r0 = resource.getrusage(resource.RUSAGE_SELF)
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+        left = size
+        while left > 0:
+            left -= os.write(fd, data[:min(piece, left)])
+        os.close(fd)
+        os.rename(tmp, final)
+        r1 = resource.getrusage(resource.RUSAGE_SELF)
+        total += (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    return total
+
+
 def measure(binaries, decks, reps, threads, work):
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS=str(threads))
     names = ["version"] + list(decks)
     cpu = {b: {n: [] for n in names} for b in binaries}
+    floor = []
     for rep in range(reps):
         order = list(binaries) if rep % 2 == 0 else list(reversed(binaries))
         for n in names:
@@ -79,13 +108,16 @@ def measure(binaries, decks, reps, threads, work):
                     cmd = [binaries[b], "-q", decks[n], "-o", out]
                     cwd = os.path.dirname(decks[n])
                 cpu[b][n].append(cpu_of(cmd, env, cwd))
+        floor.append(write_floor(os.path.join(work, "out_new_shipped"), os.path.join(work, "floor")))
     res = {}
     for b in binaries:
         med = {n: statistics.median(v) for n, v in cpu[b].items()}
         med["output_share"] = (med["shipped"] - med["no_output"])/med["shipped"]
         med["field_share"] = (med["shipped"] - med["no_fields"])/med["shipped"]
         med["output_seconds"] = med["shipped"] - med["no_output"]
-        res[b] = {"median": med, "samples": cpu[b]}
+        med["floor"] = statistics.median(floor)
+        med["floor_share"] = med["floor"]/(med["no_output"] + med["floor"])
+        res[b] = {"median": med, "samples": cpu[b], "floor_samples": floor}
     return res
 
 
@@ -108,13 +140,14 @@ def main():
     print(f"load average before {result['load_before'][0]:.2f}, after {result['load_after'][0]:.2f}; "
           f"{args.reps} repetitions, medians of processor time (user + system)")
     print("| build | threads | --version | as shipped | without fields | without fields and histories "
-          "| output share |")
-    print("|---|---|---|---|---|---|---|")
+          "| output share | bytes alone (floor) |")
+    print("|---|---|---|---|---|---|---|---|")
     for th, res in result["threads"].items():
         for b in ("old", "new"):
             m = res[b]["median"]
             print(f"| {b} | {th} | {m['version']:.3f} s | {m['shipped']:.3f} s | {m['no_fields']:.3f} s "
-                  f"| {m['no_output']:.3f} s | {100*m['output_share']:.0f} % (fields {100*m['field_share']:.0f} %) |")
+                  f"| {m['no_output']:.3f} s | {100*m['output_share']:.0f} % (fields {100*m['field_share']:.0f} %) "
+                  f"| {1e3*m['floor']:.1f} ms, {100*m['floor_share']:.0f} % |")
     if args.json:
         with open(args.json, "w") as f:
             json.dump(result, f, indent=1)
