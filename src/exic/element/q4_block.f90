@@ -1,7 +1,8 @@
 !> The block layout of the quadrilateral's force kernels (quad4.f90, q4_general.f90): NBLOCK
 !> elements at a time as structure of arrays (NBLOCK, 4) (element, local node), the gather of
-!> node values into a block (as (x, y) pairs (2, NBLOCK, 4), or split into x and y arrays) and the scatter-add of a block's nodal forces, element by element
-!> in order (so that a node's sum does not depend on the block or thread that adds it).
+!> node values into a block (as (x, y) pairs (2, NBLOCK, 4), or split into x and y arrays) and
+!> the scatter-add of a block's nodal forces, element by element in order (so that a node's sum
+!> does not depend on the block or thread that adds it).
 module exic_element_q4_block
    use exic_base_kinds, only: wp
    implicit none
