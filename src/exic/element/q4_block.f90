@@ -1,13 +1,14 @@
 !> The block layout of the quadrilateral's force kernels (quad4.f90, q4_general.f90): NBLOCK
 !> elements at a time as structure of arrays (NBLOCK, 4) (element, local node), the gather of
-!> node values into a block and the scatter-add of a block's nodal forces, element by element
-!> in order (so that a node's sum does not depend on the block or thread that adds it).
+!> node values into a block (as (x, y) pairs (2, NBLOCK, 4), or split into x and y arrays) and
+!> the scatter-add of a block's nodal forces, element by element in order (so that a node's sum
+!> does not depend on the block or thread that adds it).
 module exic_element_q4_block
    use exic_base_kinds, only: wp
    implicit none
    private
 
-   public :: gather, current, scatter, scatter_pairs, split_pairs
+   public :: gather, gather_pairs, current, scatter, scatter_pairs, split_pairs
 
    !> Elements per block of the force kernels: the block's work arrays (about 90 values per
    !> element) stay in the L1 cache, and its loops run over 32 elements (4 AVX-512 vectors).
@@ -16,15 +17,28 @@ module exic_element_q4_block
 contains
 
    !> The reference coordinates and displacements of nb elements, (element, local node); lanes
-   !> nb + 1 .. NBLOCK repeat element nb. A node's (x, y) pairs are copied as pairs (one 16-byte
-   !> load and store each) into (component, element, local node) arrays, which a vectorized loop
-   !> then splits into the x and y arrays: half the scalar loads and stores of copying value by value.
+   !> nb + 1 .. NBLOCK repeat element nb. The pairs of gather_pairs, which a vectorized loop
+   !> splits into the x and y arrays: half the scalar loads and stores of copying value by value.
    pure subroutine gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
       integer, intent(in) :: nb, nnode
       integer, intent(in) :: conn(4, nb)
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
       real(wp), intent(out), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
       real(wp), dimension(2, NBLOCK, 4) :: p0, pu
+      call gather_pairs(nb, nnode, conn, x0, u, p0, pu)
+      call split_pairs(p0, xe, ye)
+      call split_pairs(pu, uxe, uye)
+   end subroutine gather
+
+   !> The reference coordinates p0(:, k, a) and displacements pu(:, k, a) of nb elements as
+   !> (x, y) pairs, each copied with one 16-byte load and store; lanes nb + 1 .. NBLOCK repeat
+   !> element nb. Kernels that read the pairs directly (their loops split them in registers)
+   !> save the stores and loads of a split.
+   pure subroutine gather_pairs(nb, nnode, conn, x0, u, p0, pu)
+      integer, intent(in) :: nb, nnode
+      integer, intent(in) :: conn(4, nb)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      real(wp), intent(out), dimension(2, NBLOCK, 4) :: p0, pu
       integer :: k, a, n
       ! pairs by scalar index: faster here than the vector gather instructions (measured)
       !GCC$ novector
@@ -38,22 +52,12 @@ contains
          end do
       end do
       do a = 1, 4
-         do k = 1, nb
-            xe(k, a) = p0(1, k, a)
-            ye(k, a) = p0(2, k, a)
-            uxe(k, a) = pu(1, k, a)
-            uye(k, a) = pu(2, k, a)
-         end do
-      end do
-      do a = 1, 4
          do k = nb + 1, NBLOCK
-            xe(k, a) = xe(nb, a)
-            ye(k, a) = ye(nb, a)
-            uxe(k, a) = uxe(nb, a)
-            uye(k, a) = uye(nb, a)
+            p0(:, k, a) = p0(:, nb, a)
+            pu(:, k, a) = pu(:, nb, a)
          end do
       end do
-   end subroutine gather
+   end subroutine gather_pairs
 
    !> Current coordinates in place of the displacements: ux <- x0 + u, uy <- y0 + v (the same
    !> sums as the stepper's positions, hence the same bits).

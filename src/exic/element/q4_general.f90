@@ -17,7 +17,7 @@ module exic_element_q4_general
    use exic_material_j2, only: j2_piola, j2_cauchy, j2_init_history
    use exic_material_neohookean, only: nh_wave_speed2_block
    use exic_material_material, only: HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
-   use exic_element_q4_block, only: NBLOCK, gather, current, scatter
+   use exic_element_q4_block, only: NBLOCK, gather, gather_pairs, split_pairs, current, scatter
    use exic_element_quad4, only: kinematics_2x2 => q4b_kinematics_2x2, &
                                  kinematics_1pt => q4b_kinematics_1pt, positive => q4b_positive, &
                                  forces_2x2 => q4b_forces_2x2, forces_1pt => q4b_forces_1pt, &
@@ -164,7 +164,8 @@ contains
                                         i21, i22, p11, p12, p21, p22, p33, wq, fx, fy, f33, rg, jchk, &
                                         b11, b12, b21, b22, b33, bj, al, dw, ys
       real(wp), dimension(NBLOCK, 4, 6) :: h
-      real(wp) :: dt2(NBLOCK), good(NBLOCK), we(NBLOCK), wd(NBLOCK), nn(4, 4)
+      real(wp) :: dt2(NBLOCK), good(NBLOCK), we(NBLOCK), wd(NBLOCK), nn(4, 4), p0(2, NBLOCK, 4), &
+                  pu(2, NBLOCK, 4)
       integer :: k, g, a
 
       do g = 1, 4
@@ -172,8 +173,10 @@ contains
             nn(a, g) = shape2(a, g)
          end do
       end do
-      call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
-      call kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+      call gather_pairs(nb, nnode, conn, x0, u, p0, pu)
+      call kinematics_2x2(p0, pu, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+      call split_pairs(p0, xe, ye)
+      call split_pairs(pu, uxe, uye)
       call hoop_2x2(o%axi, nn, xe, uxe, wt, rg, f33)
       call point_checks(4*NBLOCK, jac, f33, js, jchk)
       ! F of the law: F, or Fbar (A10)
@@ -532,7 +535,7 @@ contains
       real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, js, wt, i11, i12, &
                                         i21, i22, f33, rg, jchk, al, b11, b12, b21, b22, b33, bj
       real(wp), dimension(NBLOCK) :: a0, r0
-      real(wp) :: h(6), s(4), ys(1), nn(4, 4), r, fb(5)
+      real(wp) :: h(6), s(4), ys(1), nn(4, 4), r, fb(5), p0(2, NBLOCK, 4), pu(2, NBLOCK, 4)
       integer :: e0, nb, k, g, ng, e, a
 
       do g = 1, 4
@@ -544,9 +547,11 @@ contains
       r = 1.0_wp/real(ng, wp)
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
-         call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, xe, ye, uxe, uye)
+         call gather_pairs(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, p0, pu)
+         call split_pairs(p0, xe, ye)
+         call split_pairs(pu, uxe, uye)
          if (o%nq == 2) then
-            call kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+            call kinematics_2x2(p0, pu, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
             call hoop_2x2(o%axi, nn, xe, uxe, wt, rg, f33)
          else
             call kinematics_1pt(xe, ye, uxe, uye, f11(:, 1), f12(:, 1), f21(:, 1), f22(:, 1), &

@@ -33,7 +33,9 @@
 !> src/exic/material), so steps that can share a loop do: the plain 2x2 and one-point kernels
 !> write their nodal forces directly as the (x, y) pairs the scatter adds (forces_2x2_pairs,
 !> forces_1pt), and the stable step forms the current corners x0 + u in its own loop
-!> (stable_block_u) rather than in a pass that stores them (doc/performance.md, section 6.2).
+!> (stable_block_u, stable_block_pairs) rather than in a pass that stores them; the 2x2 kinematics
+!> and the plain 2x2 block's stable step read the gathered (x, y) pairs themselves (gather_pairs),
+!> so that no split copy of the corners is stored and loaded again (doc/performance.md, 6.2).
 module exic_element_quad4
    use exic_base_kinds, only: wp
    use exic_base_sums, only: lane_sum
@@ -41,7 +43,7 @@ module exic_element_quad4
    use exic_material_material, only: HOURGLASS_PHYSICAL
    use exic_element_q4_barrier, only: corner_barrier, barrier_limit
    use exic_element_q4_reference, only: q4_check_reference, q4_lumped_mass, gq
-   use exic_element_q4_block, only: NBLOCK, gather, current, scatter, scatter_pairs, split_pairs
+   use exic_element_q4_block, only: NBLOCK, gather, gather_pairs, current, scatter, scatter_pairs, split_pairs
    implicit none
    private
 
@@ -97,13 +99,14 @@ contains
       real(wp), intent(in) :: lambda, mu, rho0
       real(wp), intent(inout) :: f(2, nnode), wint, jmin, dt2min
       integer, intent(inout) :: ebad, emin, efold
-      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, js, wt, i11, i12, &
+      real(wp), dimension(NBLOCK, 4) :: f11, f12, f21, f22, jac, js, wt, i11, i12, &
                                         i21, i22, p11, p12, p21, p22, wq
-      real(wp) :: fp(2, NBLOCK, 4), dt2(NBLOCK), good(NBLOCK), we(NBLOCK)
+      real(wp) :: fp(2, NBLOCK, 4), p0(2, NBLOCK, 4), pu(2, NBLOCK, 4), dt2(NBLOCK), good(NBLOCK), &
+                  we(NBLOCK)
       integer :: k
 
-      call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
-      call kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+      call gather_pairs(nb, nnode, conn, x0, u, p0, pu)
+      call kinematics_2x2(p0, pu, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
       call positive(4*NBLOCK, jac, js)
       ! the law at every point of the block
       call nh_piola(4*NBLOCK, lambda, mu, f11, f12, f21, f22, js, wt, p11, p12, p21, p22, wq)
@@ -114,7 +117,7 @@ contains
       wint = wint + lane_sum(nb, we)
       call check_points(nb, 4, off, jac, jmin, ebad)
       ! the stable step at the current geometry x0 + u
-      call stable_block_u(2, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
+      call stable_block_pairs(2, p0, pu, lambda, mu, rho0, dt2, good)
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
       call scatter_pairs(nb, nnode, conn, fp, f)
    end subroutine block_2x2
@@ -133,10 +136,12 @@ contains
    end subroutine positive
 
    !> Gradients and Jacobians at the four Gauss points of a block (point (k, g): element k,
-   !> Gauss point g): F = 1 + grad0 u, J = det F, the weight det J0 and J0^-1 (i11 .. i22).
+   !> Gauss point g): F = 1 + grad0 u, J = det F, the weight det J0 and J0^-1 (i11 .. i22), from
+   !> the (x, y) pairs of gather_pairs: reference corners p0(:, k, a), displacements pu(:, k, a)
+   !> (the loop splits the pairs in registers, so no split array is stored and loaded again).
    !> The four reciprocals 1/det J0 of an element come from one division (of their product).
-   pure subroutine kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
-      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
+   pure subroutine kinematics_2x2(p0, pu, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+      real(wp), intent(in), dimension(2, NBLOCK, 4) :: p0, pu
       real(wp), intent(out), dimension(NBLOCK, 4) :: f11, f12, f21, f22, jac, wt, i11, i12, i21, i22
       real(wp) :: c1x, c2x, c3x, c1y, c2y, c3y, c1u, c2u, c3u, c1v, c2v, c3v, t
       real(wp) :: x1m, x1p, x2m, x2p, y1m, y1p, y2m, y2p, u1m, u1p, u2m, u2p, v1m, v1p, v2m, v2p
@@ -145,18 +150,18 @@ contains
 
       do k = 1, NBLOCK
          ! dv/dxi = c1 + c3 eta, dv/deta = c2 + c3 xi (module header)
-         c1x = 0.25_wp*((xe(k, 2) - xe(k, 1)) + (xe(k, 3) - xe(k, 4)))
-         c2x = 0.25_wp*((xe(k, 4) - xe(k, 1)) + (xe(k, 3) - xe(k, 2)))
-         c3x = 0.25_wp*((xe(k, 1) - xe(k, 2)) + (xe(k, 3) - xe(k, 4)))
-         c1y = 0.25_wp*((ye(k, 2) - ye(k, 1)) + (ye(k, 3) - ye(k, 4)))
-         c2y = 0.25_wp*((ye(k, 4) - ye(k, 1)) + (ye(k, 3) - ye(k, 2)))
-         c3y = 0.25_wp*((ye(k, 1) - ye(k, 2)) + (ye(k, 3) - ye(k, 4)))
-         c1u = 0.25_wp*((uxe(k, 2) - uxe(k, 1)) + (uxe(k, 3) - uxe(k, 4)))
-         c2u = 0.25_wp*((uxe(k, 4) - uxe(k, 1)) + (uxe(k, 3) - uxe(k, 2)))
-         c3u = 0.25_wp*((uxe(k, 1) - uxe(k, 2)) + (uxe(k, 3) - uxe(k, 4)))
-         c1v = 0.25_wp*((uye(k, 2) - uye(k, 1)) + (uye(k, 3) - uye(k, 4)))
-         c2v = 0.25_wp*((uye(k, 4) - uye(k, 1)) + (uye(k, 3) - uye(k, 2)))
-         c3v = 0.25_wp*((uye(k, 1) - uye(k, 2)) + (uye(k, 3) - uye(k, 4)))
+         c1x = 0.25_wp*((p0(1, k, 2) - p0(1, k, 1)) + (p0(1, k, 3) - p0(1, k, 4)))
+         c2x = 0.25_wp*((p0(1, k, 4) - p0(1, k, 1)) + (p0(1, k, 3) - p0(1, k, 2)))
+         c3x = 0.25_wp*((p0(1, k, 1) - p0(1, k, 2)) + (p0(1, k, 3) - p0(1, k, 4)))
+         c1y = 0.25_wp*((p0(2, k, 2) - p0(2, k, 1)) + (p0(2, k, 3) - p0(2, k, 4)))
+         c2y = 0.25_wp*((p0(2, k, 4) - p0(2, k, 1)) + (p0(2, k, 3) - p0(2, k, 2)))
+         c3y = 0.25_wp*((p0(2, k, 1) - p0(2, k, 2)) + (p0(2, k, 3) - p0(2, k, 4)))
+         c1u = 0.25_wp*((pu(1, k, 2) - pu(1, k, 1)) + (pu(1, k, 3) - pu(1, k, 4)))
+         c2u = 0.25_wp*((pu(1, k, 4) - pu(1, k, 1)) + (pu(1, k, 3) - pu(1, k, 2)))
+         c3u = 0.25_wp*((pu(1, k, 1) - pu(1, k, 2)) + (pu(1, k, 3) - pu(1, k, 4)))
+         c1v = 0.25_wp*((pu(2, k, 2) - pu(2, k, 1)) + (pu(2, k, 3) - pu(2, k, 4)))
+         c2v = 0.25_wp*((pu(2, k, 4) - pu(2, k, 1)) + (pu(2, k, 3) - pu(2, k, 2)))
+         c3v = 0.25_wp*((pu(2, k, 1) - pu(2, k, 2)) + (pu(2, k, 3) - pu(2, k, 4)))
          ! derivatives on the lines xi = -+1/sqrt(3) (m, p) and eta = -+1/sqrt(3)
          t = c3x*gq
          x1m = c1x - t
@@ -620,6 +625,30 @@ contains
       call stable_finish(lambda, mu, rho0, num, den, jr, ok, dt2)
    end subroutine stable_block_u
 
+   !> stable_block_u from the (x, y) pairs of gather_pairs: reference corners p0(:, k, a),
+   !> displacements pu(:, k, a); the same sums and operations.
+   pure subroutine stable_block_pairs(nq, p0, pu, lambda, mu, rho0, dt2, good)
+      integer, intent(in) :: nq
+      real(wp), intent(in), dimension(2, NBLOCK, 4) :: p0, pu
+      real(wp), intent(in) :: lambda, mu, rho0
+      real(wp), intent(out), dimension(NBLOCK) :: dt2, good
+      real(wp), dimension(NBLOCK) :: num, den, jr, ok
+      real(wp) :: c0, c1, xcl(4), ycl(4)
+      integer :: k, a
+
+      call taper_factors(nq, c0, c1)
+      do k = 1, NBLOCK
+         do a = 1, 4
+            xcl(a) = p0(1, k, a) + pu(1, k, a)
+            ycl(a) = p0(2, k, a) + pu(2, k, a)
+         end do
+         call corner_estimate(c0, c1, p0(1, k, 1), p0(1, k, 2), p0(1, k, 3), p0(1, k, 4), p0(2, k, 1), &
+                              p0(2, k, 2), p0(2, k, 3), p0(2, k, 4), xcl, ycl, good(k), ok(k), num(k), &
+                              den(k), jr(k))
+      end do
+      call stable_finish(lambda, mu, rho0, num, den, jr, ok, dt2)
+   end subroutine stable_block_pairs
+
    !> c0, c1 of phi^2 = c0 + c1 t for the rule nq (q4_stable_dt).
    pure subroutine taper_factors(nq, c0, c1)
       integer, intent(in) :: nq
@@ -758,15 +787,16 @@ contains
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
       real(wp), intent(out) :: fg(5, nq*nq, nel)
       real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22
-      real(wp) :: r0(NBLOCK)
+      real(wp) :: r0(NBLOCK), p0(2, NBLOCK, 4), pu(2, NBLOCK, 4)
       integer :: e0, nb, k, g
 
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
-         call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, xe, ye, uxe, uye)
          if (nq == 2) then
-            call kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+            call gather_pairs(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, p0, pu)
+            call kinematics_2x2(p0, pu, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
          else
+            call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, xe, ye, uxe, uye)
             call kinematics_1pt(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, r0)
          end if
          do k = 1, nb
@@ -814,11 +844,11 @@ contains
       end do
    end subroutine q4_stress
 
-   !> kinematics_2x2 for q4_general.f90.
-   pure subroutine q4b_kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
-      real(wp), intent(in), dimension(NBLOCK, 4) :: xe, ye, uxe, uye
+   !> kinematics_2x2 for q4_general.f90 (the pairs of gather_pairs).
+   pure subroutine q4b_kinematics_2x2(p0, pu, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+      real(wp), intent(in), dimension(2, NBLOCK, 4) :: p0, pu
       real(wp), intent(out), dimension(NBLOCK, 4) :: f11, f12, f21, f22, jac, wt, i11, i12, i21, i22
-      call kinematics_2x2(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+      call kinematics_2x2(p0, pu, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
    end subroutine q4b_kinematics_2x2
 
    !> kinematics_1pt for q4_general.f90.

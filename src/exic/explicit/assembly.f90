@@ -402,10 +402,19 @@ contains
 
    !> When the step to come differs from the one the correction was booked for: the sum of
    !> eq. E.4 takes (dt_new^2 - dt_old^2)/8 Q(n) (called at t(n) with the state of t(n)).
-   subroutine book_step_change(st)
+   !> qnodes: the nodes' part of Q when the caller has formed it from this state already
+   !> (cd_update_plain's power), so that no pass over the nodes forms it again.
+   subroutine book_step_change(st, qnodes)
       type(state_t), intent(inout) :: st
+      real(wp), intent(in), optional :: qnodes
+      real(wp) :: q
       if (st%dt == st%dt_booked) return
-      st%dt_residual = st%dt_residual + 0.125_wp*(st%dt*st%dt - st%dt_booked*st%dt_booked)*kinetic_power(st)
+      if (present(qnodes)) then
+         q = qnodes + st%body_power
+      else
+         q = kinetic_power(st)
+      end if
+      st%dt_residual = st%dt_residual + 0.125_wp*(st%dt*st%dt - st%dt_booked*st%dt_booked)*q
       st%dt_booked = st%dt
    end subroutine book_step_change
 

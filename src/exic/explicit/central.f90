@@ -255,16 +255,21 @@ contains
    !> (cd_kinetic). a holds a(n) on entry, a(n+1) on return. The same operations in the same
    !> order as those passes, and the sums per chunk and the chunks in order as there: the same
    !> bits, with 3 of the 10 nodal arrays those passes stream (du, a_old and a's second reading)
-   !> neither stored nor read.
-   subroutine cd_update_plain(n, dt, minv, fext, fint, mass, a, v, wext, kinetic, momentum)
+   !> neither stored nor read. With `power` present, also Q of cd_kinetic_power at the new state
+   !> (a(n+1), fint(n+1)), chunk by chunk while the chunk's arrays are in the cache: the same
+   !> power_range per chunk and the same ordered_sum, so the same bits as cd_kinetic_power's pass.
+   subroutine cd_update_plain(n, dt, minv, fext, fint, mass, a, v, wext, kinetic, momentum, power)
       integer, intent(in) :: n
       real(wp), intent(in) :: dt
       real(wp), intent(in), dimension(2, n) :: minv, fext, fint
       real(wp), intent(in) :: mass(n)
       real(wp), intent(inout) :: a(2, n), v(2, n), wext
       real(wp), intent(out) :: kinetic, momentum(2)
-      real(wp), dimension((n + CHUNK - 1)/CHUNK) :: pe, pk, px, py
+      real(wp), intent(out), optional :: power
+      real(wp), dimension((n + CHUNK - 1)/CHUNK) :: pe, pk, px, py, pr
       integer :: c
+      logical :: with_power
+      with_power = present(power)
       if (threaded(n, PAR_MIN_NODES)) then
          !$omp parallel do default(none) shared(n) private(c) schedule(dynamic)
          do c = 1, (n + CHUNK - 1)/CHUNK
@@ -278,6 +283,7 @@ contains
       end if
       wext = wext + ordered_sum(size(pe), pe)
       call kinetic_total((n + CHUNK - 1)/CHUNK, pk, px, py, kinetic, momentum)
+      if (with_power) power = ordered_sum(size(pr), pr)
    contains
       !> The nodes of chunk c.
       subroutine update_chunk(c)
@@ -287,6 +293,7 @@ contains
          m = min(CHUNK, n - i0 + 1)
          call update_plain_range(2*m, dt, minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), v(1, i0), pe(c))
          call kinetic_range(m, mass(i0), v(1, i0), pk(c), px(c), py(c))
+         if (with_power) call power_range(m, mass(i0), minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), pr(c))
       end subroutine update_chunk
    end subroutine cd_update_plain
 

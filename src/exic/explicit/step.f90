@@ -230,12 +230,13 @@ contains
    subroutine stepper_advance(self, err)
       class(stepper_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
-      real(wp) :: t0, t1
-      logical :: contact_on, work_con, plain
+      real(wp) :: t0, t1, qnodes
+      logical :: contact_on, work_con, plain, power_q
 
       t0 = wall_time()
       contact_on = self%has_contact()
       plain = plain_step(self)
+      power_q = .false.
       if (.not. plain) call work_arrays(self)
       associate (st => self%st)
          ! a step set between steps (BATCh DT) enters the kinetic correction (eq. E.4)
@@ -266,8 +267,16 @@ contains
             ! in the same order); the corrector has nothing to do (and reads no v~)
             call correct(self, st%v, err)
             if (allocated(err)) return
-            call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%mass, st%a, st%v, &
-                                 st%wext, st%kinetic, st%momentum)
+            ! when dt(n+1) differs from the booked step (step 7), Q of eq. E.3 comes from the same
+            ! sweep, chunk by chunk, instead of another pass over the nodes (the same bits)
+            power_q = st%dt /= st%dt_booked
+            if (power_q) then
+               call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%mass, st%a, st%v, &
+                                    st%wext, st%kinetic, st%momentum, qnodes)
+            else
+               call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%mass, st%a, st%v, &
+                                    st%wext, st%kinetic, st%momentum)
+            end if
          else
             ! 4. predictor, eq. 4.3-4.4 (v~ only when there is contact to search; exic's own
             ! contact without loads reads it at its surface nodes only)
@@ -298,7 +307,11 @@ contains
       ! 7. energies and health; the step dt(n+1) enters the kinetic correction (eq. E.4)
       if (.not. plain) call kinetic_energy(self%st)
       if (self%ld%active) call self%ld%energy(self%st)
-      call book_step_change(self%st)
+      if (plain .and. power_q) then
+         call book_step_change(self%st, qnodes)
+      else
+         call book_step_change(self%st)
+      end if
       self%time_steps = self%time_steps + (wall_time() - t0)
       call check_health(self, err)
    end subroutine stepper_advance
