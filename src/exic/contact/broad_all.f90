@@ -22,6 +22,7 @@
 module exic_contact_broad_all
    use exic_base_kinds, only: wp, i8
    use exic_base_grow, only: grow
+   use exic_base_sort, only: sort_perm_int
    use exic_contact_broad, only: broad_t, broad_search, boxes_overlap
    implicit none
    private
@@ -36,6 +37,7 @@ module exic_contact_broad_all
       integer, allocatable :: nodes(:)        !< every surface's nodes, surface after surface
       integer, allocatable :: seg_first(:)    !< (nsurf + 1) CSR into seg
       integer, allocatable :: seg(:, :)       !< (2, :) every surface's segments
+      integer, allocatable :: segw(:, :)      !< (2, :) their ends as indices into nodes
       ! result of the last search
       integer :: ngroup = 0                   !< pairs of surfaces with candidates
       integer, allocatable :: gslave(:), gmaster(:)  !< (ngroup) surface numbers (1..nsurf)
@@ -58,7 +60,9 @@ module exic_contact_broad_all
       real(wp) :: skin = 0.0_wp
       integer :: nkept = 0
       integer :: nkept_nodes = 0, nkept_segs = 0   !< entries of lnodes, lseg of the kept search
-      integer, allocatable :: keep(:, :)      !< (2, nkept) indices into lnodes, lseg, grouped
+      integer, allocatable :: keep(:, :)      !< (2, nkept) indices into nodes and lseg, grouped
+      integer, allocatable :: ksegw(:, :)     !< (2, nkept_segs) ends of the kept lseg as indices into nodes
+      real(wp), allocatable :: nbox(:, :)     !< (4, size(nodes)) swept box of every surface node this step
       integer, allocatable :: kloc(:, :)      !< (2, nkept) the same as indices within the surfaces
       integer :: nkgroup = 0                  !< groups of the kept list
       integer, allocatable :: kgslave(:), kgmaster(:), kgfirst(:)  !< its groups (CSR into keep)
@@ -92,11 +96,37 @@ contains
       call grow(self%seg_first, self%nsurf + 1)
       call grow(self%nodes, n0 + size(nodes))
       call grow(self%seg, s0 + size(seg, 2), 2)
+      call grow(self%segw, s0 + size(seg, 2), 2)
       self%nodes(n0 + 1:n0 + size(nodes)) = nodes
       self%seg(:, s0 + 1:s0 + size(seg, 2)) = seg
+      call locate_ends(size(nodes), nodes, size(seg, 2), seg, n0, self%segw(:, s0 + 1:s0 + size(seg, 2)))
       self%node_first(self%nsurf + 1) = n0 + size(nodes) + 1
       self%seg_first(self%nsurf + 1) = s0 + size(seg, 2) + 1
    end subroutine broad_all_add_surface
+
+   !> Position (plus n0) in nodes(1:n) of each end of the segments seg(2, 1:m), which are all nodes of
+   !> the list (by a binary search of the sorted list).
+   pure subroutine locate_ends(n, nodes, m, seg, n0, where)
+      integer, intent(in) :: n, nodes(n), m, seg(2, m), n0
+      integer, intent(out) :: where(2, m)
+      integer :: perm(n), k, j, lo, hi, mid
+      call sort_perm_int(n, nodes, perm)
+      do k = 1, m
+         do j = 1, 2
+            lo = 1
+            hi = n
+            do while (lo < hi)
+               mid = (lo + hi)/2
+               if (nodes(perm(mid)) < seg(j, k)) then
+                  lo = mid + 1
+               else
+                  hi = mid
+               end if
+            end do
+            where(j, k) = n0 + perm(lo)
+         end do
+      end do
+   end subroutine locate_ends
 
    !> Every candidate (slave node of surface i, segment of surface j /= i) whose swept boxes
    !> overlap over x0 -> x1, the segment's box grown by margin: grouped by (i, j) in the order
@@ -226,20 +256,18 @@ contains
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
       real(wp), parameter :: SKIN_SHARE = 0.2_wp, SKIN_STEPS = 10.0_wp, SKIN_USE = 0.75_wp
       real(wp) :: d, mv, lsum
-      integer :: k, node, nn
+      integer :: k, l, node, nn
 
       self%ngroup = 0
       self%ntests = 0
       if (self%nsurf < 2) return
       nn = self%node_first(self%nsurf + 1) - 1
       d = huge(1.0_wp)
+      call grow(self%nbox, max(nn, 1), 4)
       if (self%kept) then
-         d = 0.0_wp
-         do k = 1, nn
-            node = self%nodes(k)
-            d = max(d, abs(x0(1, node) - self%xw(1, k)), abs(x0(2, node) - self%xw(2, k)), &
-                    abs(x1(1, node) - self%xw(3, k)), abs(x1(2, node) - self%xw(4, k)))
-         end do
+         ! the largest motion since the build and this step's boxes of every node (none if the
+         ! list is empty), in one pass
+         call moves_and_boxes(nnode, x0, x1, nn, self%nodes, self%xw, self%nkept > 0, self%nbox, d)
       end if
       ! a NaN position fails the test and builds again
       if (.not. (d <= SKIN_USE*self%skin)) then
@@ -267,13 +295,20 @@ contains
          self%nkept_segs = self%ns
          call grow(self%keep, max(self%nkept, 1), 2)
          call grow(self%kloc, max(self%nkept, 1), 2)
+         call grow(self%ksegw, max(self%nkept_segs, 1), 2)
+         ! the kept nodes as indices into nodes (their boxes in nbox), the kept segments' ends
+         do k = 1, self%nkept
+            l = self%gidx(1, k)
+            self%keep(1, k) = self%node_first(self%lnode_surf(l)) + self%lnode_loc(l) - 1
+            self%keep(2, k) = self%gidx(2, k)
+         end do
+         do k = 1, self%nkept_segs
+            self%ksegw(:, k) = self%segw(:, self%seg_first(self%lseg_surf(k)) + self%lseg_loc(k) - 1)
+         end do
          call grow(self%kgslave, max(self%nkgroup, 1))
          call grow(self%kgmaster, max(self%nkgroup, 1))
          call grow(self%kgfirst, self%nkgroup + 1)
-         if (self%nkept > 0) then
-            self%keep(:, 1:self%nkept) = self%gidx(:, 1:self%nkept)
-            self%kloc(:, 1:self%nkept) = self%gcand(:, 1:self%nkept)
-         end if
+         if (self%nkept > 0) self%kloc(:, 1:self%nkept) = self%gcand(:, 1:self%nkept)
          self%kgfirst(1) = 1
          if (self%nkgroup > 0) then
             self%kgslave(1:self%nkgroup) = self%gslave(1:self%nkgroup)
@@ -282,24 +317,24 @@ contains
          end if
          self%kept = .true.
          self%nbuilds = self%nbuilds + 1
+         call node_boxes(nnode, x0, x1, nn, self%nodes, self%nbox)
       else
          self%nkept_steps = self%nkept_steps + 1
       end if
       ! the kept candidates that pass the search's own test at this step, group by group in
-      ! their order: the boxes of the kept search's nodes and segments first (the segments'
-      ! grown by margin, as broad_search forms them), then four comparisons per candidate
-      ! (boxes_overlap with 0). Filtering the grouped kept list keeps regroup's order: its
-      ! groups are (slave surface, master surface) ascending, each sorted by slave then segment.
-      call grow(self%fine%sbox, max(self%nkept_nodes, 1), 4)
+      ! their order: the boxes of the kept search's segments first (from those of their ends,
+      ! grown by margin: the same values as broad_search forms, min and max being exact), then
+      ! four comparisons per candidate (boxes_overlap with 0). Filtering the grouped kept list
+      ! keeps regroup's order: its groups are (slave surface, master surface) ascending, each
+      ! sorted by slave then segment.
       call grow(self%fine%mbox, max(self%nkept_segs, 1), 4)
-      call node_boxes(nnode, x0, x1, self%nkept_nodes, self%lnodes, self%fine%sbox)
-      call segment_boxes(nnode, x0, x1, self%nkept_segs, self%lseg, margin, self%fine%mbox)
+      call segment_boxes_of(self%nkept_segs, self%ksegw, self%nbox, margin, self%fine%mbox)
       call grow(self%gcand, max(self%nkept, 1), 2)
       call grow(self%gslave, max(self%nkgroup, 1))
       call grow(self%gmaster, max(self%nkgroup, 1))
       call grow(self%gfirst, self%nkgroup + 1)
       call filter_kept(self%nkgroup, self%kgslave, self%kgmaster, self%kgfirst, self%keep, self%kloc, &
-                       self%nkept_nodes, self%fine%sbox, self%nkept_segs, self%fine%mbox, &
+                       nn, self%nbox, self%nkept_segs, self%fine%mbox, &
                        self%ngroup, self%gslave, self%gmaster, self%gfirst, self%gcand)
       self%ntests = self%nkept
    end subroutine broad_all_search_kept
@@ -317,17 +352,38 @@ contains
       end do
    end subroutine node_boxes
 
-   !> Swept boxes of segments seg(2, 1:n) over x0 -> x1 grown by margin, as broad_search forms them.
-   pure subroutine segment_boxes(nnode, x0, x1, n, seg, margin, box)
-      integer, intent(in) :: nnode, n, seg(2, n)
-      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+   !> d = the largest coordinate change of a node from its positions xw(1:2, k) at x0 and
+   !> xw(3:4, k) at x1 (the test of the kept list), and if `boxes` node_boxes of nodes(1:n).
+   pure subroutine moves_and_boxes(nnode, x0, x1, n, nodes, xw, boxes, box, d)
+      integer, intent(in) :: nnode, n, nodes(n)
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), xw(4, n)
+      logical, intent(in) :: boxes
+      real(wp), intent(inout) :: box(4, *)
+      real(wp), intent(out) :: d
+      integer :: k, node
+      d = 0.0_wp
+      do k = 1, n
+         node = nodes(k)
+         d = max(d, abs(x0(1, node) - xw(1, k)), abs(x0(2, node) - xw(2, k)), &
+                 abs(x1(1, node) - xw(3, k)), abs(x1(2, node) - xw(4, k)))
+         if (.not. boxes) cycle
+         box(1:2, k) = min(x0(:, node), x1(:, node))
+         box(3:4, k) = max(x0(:, node), x1(:, node))
+      end do
+   end subroutine moves_and_boxes
+
+   !> Swept boxes of segments grown by margin from the boxes nbox of their ends ends(2, 1:n):
+   !> the box broad_search forms over the four end positions, min and max being exact.
+   pure subroutine segment_boxes_of(n, ends, nbox, margin, box)
+      integer, intent(in) :: n, ends(2, n)
+      real(wp), intent(in) :: nbox(4, *), margin
       real(wp), intent(inout) :: box(4, *)
       integer :: m
       do m = 1, n
-         box(1:2, m) = min(x0(:, seg(1, m)), x1(:, seg(1, m)), x0(:, seg(2, m)), x1(:, seg(2, m))) - margin
-         box(3:4, m) = max(x0(:, seg(1, m)), x1(:, seg(1, m)), x0(:, seg(2, m)), x1(:, seg(2, m))) + margin
+         box(1:2, m) = min(nbox(1:2, ends(1, m)), nbox(1:2, ends(2, m))) - margin
+         box(3:4, m) = max(nbox(3:4, ends(1, m)), nbox(3:4, ends(2, m))) + margin
       end do
-   end subroutine segment_boxes
+   end subroutine segment_boxes_of
 
    !> The kept groups' candidates (keep: node and segment box indices; kloc: what a group
    !> holds) whose boxes overlap (sbox against mbox, the margin already in mbox), in their

@@ -65,6 +65,8 @@ module exic_contact_contact
       real(wp), allocatable :: nrm(:, :)       !< (2, nnode) node normals at t(n+1)
       integer :: nrm_stamp = -1                !< search whose positions nrm holds (all nodes)
       integer, allocatable :: nhead(:), nsegs(:) !< segments of each node (node_segments)
+      real(wp), allocatable :: sn(:, :)        !< (4, nseg) segment normals at x0, x1 (detect_pairs)
+      integer, allocatable :: sn_stamp(:)      !< search whose positions sn(:, k) holds
    end type surface_t
 
    !> One pass: the nodes of surface `slave` against the segments of surface `master`.
@@ -299,7 +301,8 @@ contains
             if (.not. allocated(sf%nodes)) call surface_nodes(sf%nseg, sf%seg, sf%nodes)
             sf%nnode = size(sf%nodes)
             call locate_nodes(sf%nseg, sf%seg, sf%nnode, sf%nodes, sf%where)
-            allocate (sf%nrm(2, sf%nnode))
+            allocate (sf%nrm(2, sf%nnode), sf%sn(4, sf%nseg), sf%sn_stamp(sf%nseg))
+            sf%sn_stamp = -1
             call node_segments(sf%nseg, sf%where, sf%nnode, sf%nhead, sf%nsegs)
          end associate
       end do
@@ -531,16 +534,19 @@ contains
             if (ps%auto) call drop_flat_fixed(ps%broad, nnode, x, minv, sl%nnode, sl%nodes, sl%seg, sl%nhead, &
                                               sl%nsegs)
             if (ps%broad%ncand == 0) cycle
+            if (ps%slave == ps%master) call surface_normals(self, sl, nnode, x)
             if (sl%nrm_stamp == self%stamp) then
                ! this search formed every normal of the surface
                call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                     sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
                                     self%depth, FACING)
             else
-               ! the normals of the slaves that have a hit, formed by the narrow phase
+               ! the normals of the slaves that have a hit and of the segments, formed by the
+               ! narrow phase once in this search (another surface than the master: above)
                call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                     sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
-                                    self%depth, FACING, sl%seg, sl%nhead, sl%nsegs)
+                                    self%depth, FACING, sl%seg, sl%nhead, sl%nsegs, &
+                                    self%stamp, ms%sn, ms%sn_stamp, sl%sn, sl%sn_stamp)
             end if
             do j = 1, ps%hits%n
                node = ps%hits%slave(j)

@@ -36,7 +36,7 @@
 module exic_contact_detect
    use exic_base_kinds, only: wp
    use exic_contact_spec, only: DETECT_SWEPT, DETECT_STATIC
-   use exic_mesh_boundary, only: segment_normal, average_normal, some_node_normals
+   use exic_mesh_boundary, only: segment_normal, average_normal, some_node_normals, node_normal_from
    implicit none
    private
 
@@ -83,9 +83,16 @@ contains
    pure subroutine coefficients_normals(xs0, xs1, xa0, xa1, xb0, xb1, a, b, c, g1, ni, nf)
       real(wp), intent(in) :: xs0(2), xs1(2), xa0(2), xa1(2), xb0(2), xb1(2)
       real(wp), intent(out) :: a, b, c, g1, ni(2), nf(2)
-      real(wp) :: dn(2), di(2), df(2), e(2)
       ni = segment_normal(xa0, xb0)
       nf = segment_normal(xa1, xb1)
+      call coefficients_given(xs0, xs1, xa0, xa1, ni, nf, a, b, c, g1)
+   end subroutine coefficients_normals
+
+   !> gap_coefficients with the segment's unit normals ni (at x0) and nf (at x1) given.
+   pure subroutine coefficients_given(xs0, xs1, xa0, xa1, ni, nf, a, b, c, g1)
+      real(wp), intent(in) :: xs0(2), xs1(2), xa0(2), xa1(2), ni(2), nf(2)
+      real(wp), intent(out) :: a, b, c, g1
+      real(wp) :: dn(2), di(2), df(2), e(2)
       dn = nf - ni
       di = xs0 - xa0
       df = xs1 - xa1
@@ -94,7 +101,7 @@ contains
       b = dot_product(e, ni) + dot_product(di, dn)
       c = dot_product(di, ni)
       g1 = dot_product(df, nf)
-   end subroutine coefficients_normals
+   end subroutine coefficients_given
 
    !> Smallest tau in [0, 1] at which g = a tau^2 + b tau + c, positive at tau = 0 (c > 0),
    !> becomes zero; g1 is g(1) evaluated directly. Uses the cancellation-free form
@@ -157,6 +164,10 @@ contains
       inside = .false.
       if (.not. (tt > 0.0_wp)) return
       alpha = dot_product(p - xa, t)/tt
+      ! within the segment: inside whatever the tolerance (tol > 0; a NaN coordinate gives a
+      ! NaN alpha or tt and never reaches here)
+      inside = alpha >= 0.0_wp .and. alpha <= 1.0_wp
+      if (inside) return
       tol = alpha_tolerance(sqrt(tt), max(abs(p(1)), abs(p(2)), abs(xa(1)), abs(xa(2)), abs(xb(1)), abs(xb(2))))
       inside = alpha >= -tol .and. alpha <= 1.0_wp + tol
    end subroutine project
@@ -173,11 +184,23 @@ contains
       logical, intent(out) :: hit
       real(wp), intent(out) :: tau, alpha
       real(wp), intent(out), optional :: nf(2)
-      real(wp) :: a, b, c, g1, ni(2), nend(2)
+      real(wp) :: ni(2), nend(2)
+
+      ni = segment_normal(xa0, xb0)
+      nend = segment_normal(xa1, xb1)
+      if (present(nf)) nf = nend
+      call swept_given(xs0, xs1, xa0, xa1, xb0, xb1, ni, nend, depth, hit, tau, alpha)
+   end subroutine swept_pair
+
+   !> swept_pair with the segment's unit normals ni (at x0) and nf (at x1) given.
+   pure subroutine swept_given(xs0, xs1, xa0, xa1, xb0, xb1, ni, nf, depth, hit, tau, alpha)
+      real(wp), intent(in) :: xs0(2), xs1(2), xa0(2), xa1(2), xb0(2), xb1(2), ni(2), nf(2), depth
+      logical, intent(out) :: hit
+      real(wp), intent(out) :: tau, alpha
+      real(wp) :: a, b, c, g1
 
       alpha = 0.0_wp
-      call coefficients_normals(xs0, xs1, xa0, xa1, xb0, xb1, a, b, c, g1, ni, nend)
-      if (present(nf)) nf = nend
+      call coefficients_given(xs0, xs1, xa0, xa1, ni, nf, a, b, c, g1)
       if (c > 0.0_wp) then
          call first_crossing(a, b, c, g1, hit, tau)
          if (.not. hit) return
@@ -189,7 +212,7 @@ contains
       end if
       call project(xs0 + tau*(xs1 - xs0), xa0 + tau*(xa1 - xa0), xb0 + tau*(xb1 - xb0), &
                    alpha, hit)
-   end subroutine swept_pair
+   end subroutine swept_given
 
    !> Static test at the end of the step only (tau = 1): gap g = (xs_f - xa_f) . n_f in
    !> [-depth, 0] and projection alpha within [-tol, 1 + tol].
@@ -236,23 +259,36 @@ contains
    !> node_segments), snrm(:, s) is formed here at x0 (some_node_normals), for the slaves that
    !> have a hit only, when their first hit needs it; without them snrm must hold every
    !> candidate slave's normal.
+   !>
+   !> Segment normals formed once per search (swept mode, with the lists above): `stamp` names
+   !> the search; mnrm(:, k) holds the unit normals of master segment k at x0 (1:2) and x1
+   !> (3:4) when mstamp(k) == stamp, snrm_seg and sstamp likewise for the slave surface's
+   !> segments (another surface: the two must not be the same arrays). A segment's normals are
+   !> formed here at its first use in the search, with segment_normal on the same positions, so
+   !> a candidate's arithmetic is that of swept_pair and the results are the same bits.
    subroutine detect_pairs(mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, link, &
                            ncand, cand, depth, facing, ncon, cslave, cseg, cmaster, &
-                           cend, calpha, cnormal, ctau, cgap, sseg, shead, ssegs)
+                           cend, calpha, cnormal, ctau, cgap, sseg, shead, ssegs, &
+                           stamp, mnrm, mstamp, snrm_seg, sstamp)
       integer, intent(in) :: mode, nnode, nslave, nseg, ncand
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), depth, facing
       real(wp), intent(inout) :: snrm(2, nslave)
       integer, intent(in) :: slaves(nslave), seg(2, nseg), link(2, nseg), cand(2, ncand)
       integer, intent(in), optional, contiguous :: sseg(:, :), shead(:), ssegs(:)
+      integer, intent(in), optional :: stamp
+      real(wp), intent(inout), optional, contiguous :: mnrm(:, :), snrm_seg(:, :)
+      integer, intent(inout), optional, contiguous :: mstamp(:), sstamp(:)
       integer, intent(out) :: ncon
       integer, intent(out) :: cslave(nslave), cseg(nslave), cmaster(2, nslave)
       logical, intent(out) :: cend(nslave)
       real(wp), intent(out) :: calpha(nslave), cnormal(2, nslave), ctau(nslave), cgap(nslave)
-      integer :: j, j0, s, k, node, ma, mb, best, bkey(2), key(2)
+      integer :: j, j0, s, k, node, ma, mb, best, bkey(2), key(2), q, ks
       real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap, w
-      logical :: hit, lazy, have_nrm
+      logical :: hit, lazy, have_nrm, cached
 
       lazy = present(sseg) .and. present(shead) .and. present(ssegs)
+      cached = lazy .and. mode == DETECT_SWEPT .and. present(stamp) .and. present(mnrm) .and. &
+               present(mstamp) .and. present(snrm_seg) .and. present(sstamp)
 
       ncon = 0
       j0 = 1
@@ -274,6 +310,15 @@ contains
                tau = 1.0_wp
                if (.not. hit) cycle
                nf = segment_normal(x1(:, ma), x1(:, mb))
+            else if (cached) then
+               if (mstamp(k) /= stamp) then
+                  call both_normals(nnode, x0, x1, ma, mb, mnrm(:, k))
+                  mstamp(k) = stamp
+               end if
+               call swept_given(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
+                                x1(:, mb), mnrm(1:2, k), mnrm(3:4, k), depth, hit, tau, alpha)
+               if (.not. hit) cycle
+               nf = mnrm(3:4, k)
             else
                ! nf: the normal of the segment at x1, as the swept test formed it
                call swept_pair(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
@@ -281,7 +326,17 @@ contains
                if (.not. hit) cycle
             end if
             if (.not. have_nrm) then
-               call some_node_normals(nnode, x0, size(sseg, 2), sseg, nslave, shead, ssegs, 1, [s], snrm)
+               if (cached) then
+                  do q = shead(s), shead(s + 1) - 1
+                     ks = ssegs(q)
+                     if (sstamp(ks) == stamp) cycle
+                     call both_normals(nnode, x0, x1, sseg(1, ks), sseg(2, ks), snrm_seg(:, ks))
+                     sstamp(ks) = stamp
+                  end do
+                  snrm(:, s) = node_normal_from(shead, ssegs, s, snrm_seg)
+               else
+                  call some_node_normals(nnode, x0, size(sseg, 2), sseg, nslave, shead, ssegs, 1, [s], snrm)
+               end if
                have_nrm = .true.
             end if
             if (.not. faces(snrm(:, s), nf, facing)) cycle
@@ -319,6 +374,15 @@ contains
                              cnormal(:, ncon), cgap(ncon))
       end do
    end subroutine detect_pairs
+
+   !> Unit normals of the segment ma -> mb at x0 (n(1:2)) and at x1 (n(3:4)).
+   pure subroutine both_normals(nnode, x0, x1, ma, mb, n)
+      integer, intent(in) :: nnode, ma, mb
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode)
+      real(wp), intent(out) :: n(4)
+      n(1:2) = segment_normal(x0(:, ma), x0(:, mb))
+      n(3:4) = segment_normal(x1(:, ma), x1(:, mb))
+   end subroutine both_normals
 
    !> Projection of xs1 on the segment xa1-xb1, clamped to it (alpha_c for a zero-length segment).
    pure real(wp) function end_point(xs1, xa1, xb1, alpha_c) result(alpha)
@@ -384,13 +448,17 @@ contains
    !> Narrow phase into a contact set (grown to nslave entries when needed); see
    !> detect_pairs for the arguments and the rules.
    subroutine detect_contacts(cs, mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, &
-                              link, ncand, cand, depth, facing, sseg, shead, ssegs)
+                              link, ncand, cand, depth, facing, sseg, shead, ssegs, &
+                              stamp, mnrm, mstamp, snrm_seg, sstamp)
       type(contact_set_t), intent(inout) :: cs
       integer, intent(in) :: mode, nnode, nslave, nseg, ncand
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), depth, facing
       real(wp), intent(inout) :: snrm(2, nslave)
       integer, intent(in) :: slaves(nslave), seg(2, nseg), link(2, nseg), cand(2, ncand)
       integer, intent(in), optional, contiguous :: sseg(:, :), shead(:), ssegs(:)
+      integer, intent(in), optional :: stamp
+      real(wp), intent(inout), optional, contiguous :: mnrm(:, :), snrm_seg(:, :)
+      integer, intent(inout), optional, contiguous :: mstamp(:), sstamp(:)
       integer :: cap
 
       cap = 0
@@ -406,7 +474,8 @@ contains
       end if
       call detect_pairs(mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, link, ncand, &
                         cand, depth, facing, cs%n, cs%slave, cs%seg, cs%master, cs%at_end, &
-                        cs%alpha, cs%normal, cs%tau, cs%gap, sseg, shead, ssegs)
+                        cs%alpha, cs%normal, cs%tau, cs%gap, sseg, shead, ssegs, &
+                        stamp, mnrm, mstamp, snrm_seg, sstamp)
    end subroutine detect_contacts
 
 end module exic_contact_detect

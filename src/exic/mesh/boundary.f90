@@ -20,7 +20,7 @@ module exic_mesh_boundary
 
    public :: free_edges, order_chains, surface_nodes, segment_links, locate_nodes
    public :: segment_normal, average_normal, node_normals, node_segments, some_node_normals, &
-             normal_dofs
+             node_normal_from, normal_dofs
 
 contains
 
@@ -398,6 +398,21 @@ contains
          nrm(:, p) = unit_or_zero(nrm(:, p))
       end do
    end subroutine some_node_normals
+
+   !> The normal of node position p as some_node_normals forms it, from the unit normals of the
+   !> surface's segments at the same positions already formed (sn(1:2, k) for segment k): the
+   !> same sum in the same order, so the same bits.
+   pure function node_normal_from(head, segs, p, sn) result(n)
+      integer, intent(in) :: head(:), segs(:), p
+      real(wp), intent(in) :: sn(:, :)
+      real(wp) :: n(2)
+      integer :: q
+      n = 0.0_wp
+      do q = head(p), head(p + 1) - 1
+         n = n + sn(1:2, segs(q))
+      end do
+      n = unit_or_zero(n)
+   end function node_normal_from
 
    !> The dofs along the normals of segments seg(2, nseg) at positions x: dofs(d, i) is set for
    !> both ends i of a segment whose normal n has |n_d| >= |n_other| (a node where the surface
