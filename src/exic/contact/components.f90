@@ -23,6 +23,7 @@ module exic_contact_components
       integer, allocatable :: start(:)       !< (n + 1) where each component's members begin in `list`
       integer, allocatable :: list(:)        !< (m) members, ascending within a component
       integer, allocatable :: loc(:)         !< (m) position of a candidate within its component
+      integer, allocatable :: id(:)          !< (m) component of a candidate
    contains
       procedure :: reset => components_reset
       procedure :: join => components_join
@@ -104,23 +105,24 @@ contains
       integer :: i, r, c, m
       m = self%m
       call grow(self%loc, m)
+      call grow(self%id, m)
       call grow(self%list, m)
-      ! loc(i) = component of i for now: a root is the smallest candidate of its component, so it
-      ! is labelled before every other member
+      ! a root is the smallest candidate of its component, so it is labelled before every other
+      ! member
       self%n = 0
       do i = 1, m
          r = find(self, i)
          if (r == i) then
             self%n = self%n + 1
-            self%loc(i) = self%n
+            self%id(i) = self%n
          else
-            self%loc(i) = self%loc(r)
+            self%id(i) = self%id(r)
          end if
       end do
       call grow(self%start, self%n + 1)
       self%start(1:self%n + 1) = 0
       do i = 1, m
-         c = self%loc(i)
+         c = self%id(i)
          self%start(c + 1) = self%start(c + 1) + 1
       end do
       self%start(1) = 1
@@ -129,7 +131,7 @@ contains
       end do
       ! fill in candidate order, start(c) running; then the position within the component
       do i = 1, m
-         c = self%loc(i)
+         c = self%id(i)
          self%list(self%start(c)) = i
          self%start(c) = self%start(c) + 1
       end do
