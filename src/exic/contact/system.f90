@@ -93,21 +93,22 @@ contains
 
    !> S = G^T M^-1 G over all m candidates (nodes node(3, m), weights w(3, m), directions
    !> dir(2, m)): dense (m <= dense_limit) or in compressed columns with the full pattern.
-   !> nstart(nnode + 1), nlist: node -> candidates incidence (compressed rows), nweight: the
-   !> node's weight in each candidate of nlist (the sum over its occurrences). With free rigid
+   !> lnode(3, m): the local number (1 ... nloc) of each node of a candidate (0 where its weight is
+   !> 0); nstart(nloc + 1), nlist: local node -> candidates incidence (compressed rows, candidate
+   !> order), nweight: the node's weight in each candidate of nlist (the sum over its occurrences). With free rigid
    !> bodies `rb`, each column gains the coupling of the bodies its candidate touches, through
    !> the body columns `rb%sgt` when `tangent`, else `rb%sg`. With massless faces `face` (normal
    !> problem only), each column of a candidate on the face gains the face's compliance (eq. I.6).
-   subroutine system_assemble(self, m, node, w, dir, nnode, minv, nstart, nlist, nweight, rb, &
-                              tangent, face)
+   subroutine system_assemble(self, m, node, lnode, w, dir, nnode, minv, nloc, nstart, nlist, &
+                              nweight, rb, tangent, face)
       class(system_t), intent(inout) :: self
-      integer, intent(in) :: m, nnode
-      integer, intent(in) :: node(3, m), nstart(nnode + 1), nlist(:)
+      integer, intent(in) :: m, nnode, nloc
+      integer, intent(in) :: node(3, m), lnode(3, m), nstart(nloc + 1), nlist(:)
       real(wp), intent(in) :: w(3, m), dir(2, m), minv(2, nnode), nweight(:)
       type(rigid_dofs_t), intent(in), optional :: rb
       logical, intent(in), optional :: tangent
       type(massless_face_t), intent(in), optional :: face
-      integer :: j, k, nd, q, i, nnz, first, cap, base, e, lj
+      integer :: j, k, nd, ln, q, i, nnz, first, cap, base, lj
       real(wp) :: v
       logical :: along_t, csc
 
@@ -116,14 +117,14 @@ contains
       self%factored = .false.
       self%ncomp = 0
       self%blocks = .false.
-      if (m > self%dense_limit) call choose_order(self, m, node, w, nnode, nstart, nlist, rb, face)
+      if (m > self%dense_limit) call choose_order(self, m, lnode, nloc, nstart, nlist, rb, face)
       csc = m > self%dense_limit .and. .not. self%blocks
       base = 0
       lj = 0
       if (self%blocks) then
          call size_blocks(self)
-         call block_entries(m, node, w, dir, nnode, minv, nstart, nlist, nweight, self%comp%loc, &
-                            self%comp%id, self%boff, self%bs, self%bnz)
+         call block_entries(m, node, lnode, w, dir, nnode, minv, nloc, nstart, nlist, nweight, &
+                            self%comp%loc, self%comp%id, self%boff, self%bs, self%bnz)
          ! free rigid bodies and massless faces: their entries by columns below
          if (.not. (present(rb) .or. present(face))) return
       end if
@@ -158,8 +159,9 @@ contains
             do k = 1, 3
                if (w(k, j) == 0.0_wp) cycle
                nd = node(k, j)
+               ln = lnode(k, j)
                ! every candidate i that shares node nd with candidate j: S(i, j) += w_kj w_i(nd) d_j M^-1 d_i
-               do q = nstart(nd), nstart(nd + 1) - 1
+               do q = nstart(ln), nstart(ln + 1) - 1
                   i = nlist(q)
                   v = w(k, j)*nweight(q)* &
                       (dir(1, j)*minv(1, nd)*dir(1, i) + dir(2, j)*minv(2, nd)*dir(2, i))
@@ -205,12 +207,18 @@ contains
       subroutine add_entry(i, v)
          integer, intent(in) :: i
          real(wp), intent(in) :: v
+         integer :: ie
          if (m <= self%dense_limit) then
             self%s(i, j) = self%s(i, j) + v
          else if (self%blocks) then
             if (self%comp%loc(i) > lj) return
-            self%bs(base + self%comp%loc(i)) = self%bs(base + self%comp%loc(i)) + v
-            self%bnz(base + self%comp%loc(i)) = .true.
+            ie = base + self%comp%loc(i)
+            if (self%bnz(ie)) then
+               self%bs(ie) = self%bs(ie) + v
+            else
+               self%bs(ie) = v
+               self%bnz(ie) = .true.
+            end if
          else
             if (self%mark(i) /= j) then
                self%mark(i) = j
@@ -228,11 +236,10 @@ contains
    !> The elimination order of the sparse factorisation (eq. D.5): the components of the
    !> candidates one after the other, each in candidate order, when there are several and none
    !> holds more than natural_limit candidates; otherwise AMD's. Arguments as system_assemble.
-   subroutine choose_order(self, m, node, w, nnode, nstart, nlist, rb, face)
+   subroutine choose_order(self, m, lnode, nloc, nstart, nlist, rb, face)
       type(system_t), intent(inout) :: self
-      integer, intent(in) :: m, nnode
-      integer, intent(in) :: node(3, m), nstart(nnode + 1), nlist(:)
-      real(wp), intent(in) :: w(3, m)
+      integer, intent(in) :: m, nloc
+      integer, intent(in) :: lnode(3, m), nstart(nloc + 1), nlist(:)
       type(rigid_dofs_t), intent(in), optional :: rb
       type(massless_face_t), intent(in), optional :: face
       integer :: b, j, first, largest
@@ -240,7 +247,7 @@ contains
       if (.not. self%split) return
       ! the components (eq. D.3): candidates joined through nodes, bodies and the face
       call self%comp%reset(m)
-      call self%comp%join_nodes(m, node, w, nnode, nstart, nlist)
+      call self%comp%join_nodes(m, lnode, nloc, nstart, nlist)
       if (present(rb)) then
          do b = 1, rb%nbody
             call self%comp%join_list(rb%bcand(rb%bstart(b):rb%bstart(b + 1) - 1))
@@ -270,7 +277,7 @@ contains
    end subroutine choose_order
 
    !> Offsets of the square blocks of the components (eq. D.4), room for their values, pattern
-   !> and L, and the values and pattern set to zero.
+   !> and L, and the pattern emptied.
    subroutine size_blocks(self)
       type(system_t), intent(inout) :: self
       integer :: c, nb, total, m, largest
@@ -299,7 +306,6 @@ contains
       self%bfactored = .false.
       call grow(self%biwork, 3*largest)
       call grow(self%bwork, largest)
-      self%bs(1:total) = 0.0_wp
       self%bnz(1:total) = .false.
    end subroutine size_blocks
 
@@ -307,15 +313,16 @@ contains
    !> candidate j (column loc(j) of block id(j), upper triangle packed from boff(id(j)) + 1) and
    !> every candidate i that shares a node nd with it and comes no later in the block,
    !> S(i, j) += w_kj w_i(nd) d_j M^-1 d_i, in the order and with the operations of the
-   !> compressed columns (system_assemble). Arguments as system_assemble; bs and bnz zero on entry.
-   pure subroutine block_entries(m, node, w, dir, nnode, minv, nstart, nlist, nweight, loc, id, &
-                                 boff, bs, bnz)
-      integer, intent(in) :: m, nnode
-      integer, intent(in) :: node(3, m), nstart(nnode + 1), nlist(:), loc(:), id(:), boff(:)
+   !> compressed columns (system_assemble): an entry's first term is stored, the next ones added.
+   !> Arguments as system_assemble; bnz false on entry.
+   pure subroutine block_entries(m, node, lnode, w, dir, nnode, minv, nloc, nstart, nlist, nweight, &
+                                 loc, id, boff, bs, bnz)
+      integer, intent(in) :: m, nnode, nloc
+      integer, intent(in) :: node(3, m), lnode(3, m), nstart(nloc + 1), nlist(:), loc(:), id(:), boff(:)
       real(wp), intent(in) :: w(3, m), dir(2, m), minv(2, nnode), nweight(:)
       real(wp), intent(inout) :: bs(:)
       logical, intent(inout) :: bnz(:)
-      integer :: j, k, nd, q, i, li, lj, base, e
+      integer :: j, k, nd, ln, q, i, li, lj, base, e
       real(wp) :: wk, a1, a2
       do j = 1, m
          lj = loc(j)
@@ -324,15 +331,20 @@ contains
             wk = w(k, j)
             if (wk == 0.0_wp) cycle
             nd = node(k, j)
+            ln = lnode(k, j)
             a1 = dir(1, j)*minv(1, nd)
             a2 = dir(2, j)*minv(2, nd)
-            do q = nstart(nd), nstart(nd + 1) - 1
+            do q = nstart(ln), nstart(ln + 1) - 1
                i = nlist(q)
                li = loc(i)
                if (li > lj) cycle
                e = base + li
-               bs(e) = bs(e) + wk*nweight(q)*(a1*dir(1, i) + a2*dir(2, i))
-               bnz(e) = .true.
+               if (bnz(e)) then
+                  bs(e) = bs(e) + wk*nweight(q)*(a1*dir(1, i) + a2*dir(2, i))
+               else
+                  bs(e) = wk*nweight(q)*(a1*dir(1, i) + a2*dir(2, i))
+                  bnz(e) = .true.
+               end if
             end do
          end do
       end do
