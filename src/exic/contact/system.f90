@@ -16,7 +16,10 @@
 !> (candidates that share a node, a free rigid body or a massless face; exic_contact_components,
 !> doc/contact-detection.md eq. D.3-D.5): when there are several and none holds more than
 !> `natural_limit` candidates, the elimination takes the components one after the other, each
-!> in candidate order, which factorises every block on its own without an AMD ordering; with
+!> in candidate order, which factorises every block on its own without an AMD ordering: each
+!> component is then assembled as a packed block of its own and factorised by
+!> exic_linalg_block_ldl with the operations, and so the bits, of the sparse LDL' of all of S in
+!> that order (eq. D.6; a pivoting pass refactorises only the blocks whose mask changed); with
 !> one component (or a larger one) AMD orders S as a whole. A factorisation leaves out the
 !> candidates a `drop` mask names (the pivoting passes of an active-set solve) and removes
 !> redundant ones (dependent columns of G), which carry a zero solution. A factorisation of the
@@ -53,7 +56,7 @@ module exic_contact_system
                                              !< the sparse LDL' in their order: the same bits)
       integer :: ncomp = 0                   !< components of the last sparse step (0: not sought)
       type(components_t) :: comp             !< those components
-      logical :: blocks = .false.            !< the last assembly is by components (dense blocks)
+      logical :: blocks = .false.            !< the last assembly is by components (packed blocks)
       ! S by components (eq. D.4-D.6): block c, of nb = comp%start(c+1) - comp%start(c)
       ! candidates, holds the upper triangles of its columns packed at boff(c) + 1 ...
       ! boff(c) + nb (nb + 1) / 2 of bs (values) and bnz (in the pattern), and its L by columns
@@ -92,12 +95,13 @@ module exic_contact_system
 contains
 
    !> S = G^T M^-1 G over all m candidates (nodes node(3, m), weights w(3, m), directions
-   !> dir(2, m)): dense (m <= dense_limit) or in compressed columns with the full pattern.
-   !> lnode(3, m): the local number (1 ... nloc) of each node of a candidate (0 where its weight is
-   !> 0); nstart(nloc + 1), nlist: local node -> candidates incidence (compressed rows, candidate
-   !> order), nweight: the node's weight in each candidate of nlist (the sum over its occurrences). With free rigid
-   !> bodies `rb`, each column gains the coupling of the bodies its candidate touches, through
-   !> the body columns `rb%sgt` when `tangent`, else `rb%sg`. With massless faces `face` (normal
+   !> dir(2, m)): dense (m <= dense_limit), by components as packed blocks (eq. D.6), or in
+   !> compressed columns with the full pattern. lnode(3, m): the local number (1 ... nloc) of
+   !> each node of a candidate (0 where its weight is 0); nstart(nloc + 1), nlist: local node ->
+   !> candidates incidence (compressed rows, candidate order), nweight: the node's weight in each
+   !> candidate of nlist (the sum over its occurrences). With free rigid bodies `rb`, each column
+   !> gains the coupling of the bodies its candidate touches, through the body columns `rb%sgt`
+   !> when `tangent`, else `rb%sg`. With massless faces `face` (normal
    !> problem only), each column of a candidate on the face gains the face's compliance (eq. I.6).
    subroutine system_assemble(self, m, node, lnode, w, dir, nnode, minv, nloc, nstart, nlist, &
                               nweight, rb, tangent, face)
@@ -276,8 +280,8 @@ contains
       end if
    end subroutine choose_order
 
-   !> Offsets of the square blocks of the components (eq. D.4), room for their values, pattern
-   !> and L, and the pattern emptied.
+   !> Offsets of the blocks of the components (eq. D.4), room for their values, pattern and L,
+   !> and the pattern emptied.
    subroutine size_blocks(self)
       type(system_t), intent(inout) :: self
       integer :: c, nb, total, m, largest
@@ -315,10 +319,11 @@ contains
    !> S(i, j) += w_kj w_i(nd) d_j M^-1 d_i, in the order and with the operations of the
    !> compressed columns (system_assemble): an entry's first term is stored, the next ones added.
    !> Arguments as system_assemble; bnz false on entry.
-   pure subroutine block_entries(m, node, lnode, w, dir, nnode, minv, nloc, nstart, nlist, nweight, &
-                                 loc, id, boff, bs, bnz)
+   pure subroutine block_entries(m, node, lnode, w, dir, nnode, minv, nloc, nstart, nlist, &
+                                 nweight, loc, id, boff, bs, bnz)
       integer, intent(in) :: m, nnode, nloc
-      integer, intent(in) :: node(3, m), lnode(3, m), nstart(nloc + 1), nlist(:), loc(:), id(:), boff(:)
+      integer, intent(in) :: node(3, m), lnode(3, m), nstart(nloc + 1), nlist(:)
+      integer, intent(in) :: loc(:), id(:), boff(:)
       real(wp), intent(in) :: w(3, m), dir(2, m), minv(2, nnode), nweight(:)
       real(wp), intent(inout) :: bs(:)
       logical, intent(inout) :: bnz(:)
@@ -351,14 +356,14 @@ contains
    end subroutine block_entries
 
    !> Factorise every block of S by components (eq. D.6) without the candidates drop(1:m)
-   !> names; the redundant ones are listed in self%bad(1:nbad), ascending.
+   !> names; the redundant ones are listed in self%bad(1:nbad), component by component.
    subroutine factor_blocks(self, m, drop, nbad, err)
       type(system_t), intent(inout) :: self
       integer, intent(in) :: m
       logical, intent(in) :: drop(:)
       integer, intent(out) :: nbad
       type(error_t), allocatable, intent(out) :: err
-      integer :: c, p0, nb, o, ol, p, i, status
+      integer :: c, p0, nb, o, ol, p, status
       logical :: same
       nbad = 0
       do c = 1, self%comp%n
@@ -387,17 +392,17 @@ contains
                                self%blx(ol + 1:), self%bd(p0:), self%biwork, self%bwork, status)
          if (status /= 0) then
             self%bfactored = .false.
-            call make_error(err, 'contact corrector: non-finite pivot in S (NaN or Inf), component of candidate '// &
-                            itoa(self%comp%list(p0)))
+            call make_error(err, 'contact corrector: non-finite pivot in S (NaN or Inf), '// &
+                            'component of candidate '//itoa(self%comp%list(p0)))
             return
          end if
       end do
       self%bfactored = .true.
-      do i = 1, m
-         p = self%comp%start(self%comp%id(i)) + self%comp%loc(i) - 1
-         if (self%bremoved(p) .and. .not. drop(i)) then
+      ! the redundant ones: removed and not dropped (listed by component)
+      do p = 1, m
+         if (self%bremoved(p) .and. .not. self%bdrop(p)) then
             nbad = nbad + 1
-            self%bad(nbad) = i
+            self%bad(nbad) = self%comp%list(p)
          end if
       end do
    end subroutine factor_blocks

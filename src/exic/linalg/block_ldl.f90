@@ -52,16 +52,14 @@ contains
       associate (parent => iwork(:, 1), flag => iwork(:, 2), pattern => iwork(:, 3))
       ! numeric factorisation (ldl_numeric_drop, identity order), with the elimination tree of
       ! ldl_symbolic formed on the way: the tree walk of row k from an entry (i, k) visits the
-      ! nodes ldl_symbolic's walk visits, and a node without a parent yet has k as its parent
-      do k = 1, nb
-         parent(k) = 0
-         flag(k) = 0
-         y(k) = 0.0_wp
-         lcnt(k) = 0
-      end do
+      ! nodes ldl_symbolic's walk visits, and a node without a parent yet has k as its parent.
+      ! Nothing is set beforehand: row k sets parent(k), lcnt(k), flag(k) and y(k) before any
+      ! later row reads them, and leaves every y(i), i <= k, it touched at zero again
       do k = 1, nb
          ! pattern of row k of L in topological order: the tree walk from each entry of
          ! column k in ascending row order, each walk kept in its order, later walks first
+         parent(k) = 0
+         lcnt(k) = 0
          y(k) = 0.0_wp
          top = nb + 1
          flag(k) = k
