@@ -327,11 +327,10 @@ contains
       real(wp), intent(in) :: w(3, m), dir(2, m), minv(2, nnode), nweight(:)
       real(wp), intent(inout) :: bs(:)
       logical, intent(inout) :: bnz(:)
-      integer :: j, k, nd, ln, q, i, li, lj, base, e
+      integer :: j, k, nd, ln, q, i, li, base, e
       real(wp) :: wk, a1, a2
       do j = 1, m
-         lj = loc(j)
-         base = boff(id(j)) + ((lj - 1)*lj)/2
+         base = boff(id(j)) + ((loc(j) - 1)*loc(j))/2
          do k = 1, 3
             wk = w(k, j)
             if (wk == 0.0_wp) cycle
@@ -339,10 +338,12 @@ contains
             ln = lnode(k, j)
             a1 = dir(1, j)*minv(1, nd)
             a2 = dir(2, j)*minv(2, nd)
+            ! the candidates at a node are of one component and listed in candidate order, in
+            ! which their positions in the block ascend: those after j are below the diagonal
             do q = nstart(ln), nstart(ln + 1) - 1
                i = nlist(q)
+               if (i > j) exit
                li = loc(i)
-               if (li > lj) cycle
                e = base + li
                if (bnz(e)) then
                   bs(e) = bs(e) + wk*nweight(q)*(a1*dir(1, i) + a2*dir(2, i))
