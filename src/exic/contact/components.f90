@@ -100,7 +100,7 @@ contains
    !> Number the components by their first candidate and list their members in candidate order.
    subroutine components_label(self)
       class(components_t), intent(inout) :: self
-      integer :: i, r, m
+      integer :: i, r, c, m
       m = self%m
       call grow(self%id, m)
       ! a root is the smallest candidate of its component, so it is labelled before every other
@@ -115,15 +115,6 @@ contains
             self%id(i) = self%id(r)
          end if
       end do
-      call list_members(self)
-   end subroutine components_label
-
-   !> From the component id(i) of every candidate: start, list (members in candidate order) and
-   !> loc (position of a candidate within its component).
-   subroutine list_members(self)
-      type(components_t), intent(inout) :: self
-      integer :: i, r, c, m
-      m = self%m
       call grow(self%loc, m)
       call grow(self%list, m)
       call grow(self%start, self%n + 1)
@@ -151,6 +142,6 @@ contains
             self%loc(self%list(r)) = r - self%start(c) + 1
          end do
       end do
-   end subroutine list_members
+   end subroutine components_label
 
 end module exic_contact_components
