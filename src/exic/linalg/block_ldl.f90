@@ -3,9 +3,9 @@
 !>
 !> The block is held by the upper triangles of its columns, packed (entry (i, k), i <= k, at
 !> k (k - 1) / 2 + i), with a structural mask: an entry is in the pattern when the assembly
-!> wrote it, whatever its value. The factorisation is the
-!> up-looking elimination of SuiteSparse LDL (Davis, "Algorithm 849: a concise sparse Cholesky
-!> factorization package", ACM TOMS 31, 2005; ldl_symbolic and ldl_numeric) with the removal
+!> wrote it, whatever its value. The factorisation is the up-looking elimination of
+!> SuiteSparse LDL (Davis, "Algorithm 849: a concise sparse Cholesky factorization package",
+!> ACM TOMS 31, 2005; ldl_symbolic and ldl_numeric) with the removal
 !> rule of exic_linalg_sparse_ldl (`ldl_numeric_drop`): the elimination tree, the pattern of
 !> each row of L in the topological order of its tree walk, the columns of L in the order their
 !> entries are appended, and every floating-point operation in the same order as that routine
