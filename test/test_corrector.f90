@@ -20,7 +20,108 @@ contains
       call corrector_complementarity(s)
       call section(s, 'corrector: components of S')
       call corrector_components(s)
+      call corrector_blocks(s)
    end subroutine run_corrector_tests
+
+   !> Components factorised as blocks of their own (exic_linalg_block_ldl, doc/contact-detection.md
+   !> eq. D.6) give the bits of the sparse LDL' of all of S in the components' order (eq. D.5):
+   !> 60 patches of 1 to 4 candidates on their own nodes, in random directions, interleaved in
+   !> the candidate list, each with a node-on-node pair (two candidates with the same column of
+   !> G, one node's slave on the other and back: the later one is removed as redundant) and gaps of both signs (passes that drop
+   !> candidates, with blocks whose mask is unchanged kept from the pass before).
+   subroutine corrector_blocks(s)
+      type(suite_t), intent(inout) :: s
+      integer, parameter :: npatch = 60, maxc = 5
+      type(constraints_t) :: cs, cs2
+      type(corrector_t) :: corr, ref
+      type(error_t), allocatable :: e, e2
+      real(wp), allocatable :: a(:, :), f(:, :), a2(:, :), f2(:, :), mi(:, :)
+      integer, allocatable :: nc(:), order(:)
+      real(wp) :: alpha, gap, ang, nrm(2)
+      integer :: i, j, c, k, nnode, m, base, t
+      integer(i8) :: seed
+      logical :: same
+
+      seed = 4242_i8
+      allocate (nc(npatch))
+      do c = 1, npatch
+         nc(c) = 1 + int(4.0_wp*rnd(seed))
+      end do
+      ! patch c: nodes base+1 ... base+maxc+2; candidate k of it: slave base+k against the
+      ! segment (base+k+1, base+k+2); its last one also the other way round, node on node
+      nnode = npatch*(maxc + 2)
+      allocate (mi(2, nnode))
+      do i = 1, nnode
+         mi(:, i) = 0.5_wp + 1.5_wp*rnd(seed)
+      end do
+      m = sum(nc) + npatch
+      ! the candidates of the patches interleaved: a random permutation of the list
+      allocate (order(m))
+      order = [(i, i=1, m)]
+      do i = m, 2, -1
+         j = 1 + int(real(i, wp)*rnd(seed))
+         j = min(j, i)
+         t = order(i)
+         order(i) = order(j)
+         order(j) = t
+      end do
+      call cs%reserve(m)
+      call cs2%reserve(m)
+      do j = 1, m
+         t = order(j)
+         ! t-th candidate of the patches in turn
+         do c = 1, npatch
+            if (t <= nc(c) + 1) exit
+            t = t - nc(c) - 1
+         end do
+         base = (c - 1)*(maxc + 2)
+         ang = 6.283185307179586_wp*rnd(seed)
+         nrm = [cos(ang), sin(ang)]
+         alpha = 0.1_wp + 0.8_wp*rnd(seed)
+         gap = 1.6_wp*rnd(seed) - 1.0_wp
+         if (t <= nc(c)) then
+            k = base + t
+            call cs%add(k, k + 1, k + 2, alpha, nrm, gap, 0.0_wp, 1)
+            call cs2%add(k, k + 1, k + 2, alpha, nrm, gap, 0.0_wp, 1)
+         else
+            ! node on node: slave base+2 on node base+1 (alpha 0), normal +y, the first
+            ! candidate of the patch from the other side (below): the same column of G
+            k = base + 1
+            call cs%add(k + 1, k, k + 3, 0.0_wp, [0.0_wp, 1.0_wp], gap, 0.0_wp, 1)
+            call cs2%add(k + 1, k, k + 3, 0.0_wp, [0.0_wp, 1.0_wp], gap, 0.0_wp, 1)
+         end if
+      end do
+      ! the first candidate of each patch: slave base+1 on node base+2 (alpha 0), normal -y
+      do j = 1, m
+         t = order(j)
+         do c = 1, npatch
+            if (t <= nc(c) + 1) exit
+            t = t - nc(c) - 1
+         end do
+         if (t /= 1) cycle
+         cs%w(2:3, j) = [-1.0_wp, 0.0_wp]
+         cs2%w(2:3, j) = [-1.0_wp, 0.0_wp]
+         cs%nrm(:, j) = [0.0_wp, -1.0_wp]
+         cs2%nrm(:, j) = [0.0_wp, -1.0_wp]
+      end do
+      allocate (a(2, nnode), f(2, nnode), a2(2, nnode), f2(2, nnode), source=0.0_wp)
+      call corr%solve(cs, nnode, mi, 1.0_wp, a, f, e)
+      ref%by_blocks = .false.
+      call ref%solve(cs2, nnode, mi, 1.0_wp, a2, f2, e2)
+      same = all(cs%p(1:m) == cs2%p(1:m)) .and. all(cs%active(1:m) .eqv. cs2%active(1:m)) .and. &
+             all(a == a2) .and. all(f == f2)
+      call check(s, .not. allocated(e) .and. .not. allocated(e2) .and. corr%blocks .and. &
+                 .not. ref%blocks .and. ref%sparse%given .and. corr%ncomp == npatch .and. &
+                 corr%nredundant > 0 .and. corr%passes > 1, &
+                 'corrector: a step of 60 patches with node-on-node pairs goes by blocks, removes '// &
+                 'redundant pairs and pivots', 'components '//itoa(corr%ncomp)//', candidates '// &
+                 itoa(m)//', redundant '//itoa(corr%nredundant)//', passes '//itoa(corr%passes)// &
+                 ', factorisations '//itoa(corr%nsolves))
+      call check(s, same .and. corr%nredundant == ref%nredundant .and. corr%passes == ref%passes, &
+                 'corrector: blocks factorised on their own give the bits of the sparse LDL'' in '// &
+                 'the components'' order', 'active '//itoa(count(cs%active(1:m)))//' of '//itoa(m)// &
+                 ', largest |p - p_ref| '//rtoa(maxval(abs(cs%p(1:m) - cs2%p(1:m)))))
+   end subroutine corrector_blocks
 
    !> Three contact lines with no node in common, their candidates interleaved (candidate i on
    !> line mod(i - 1, 3) + 1): S is block diagonal with three blocks (doc/contact-detection.md
@@ -73,7 +174,7 @@ contains
             end do
          end do
       end if
-      call check(s, .not. allocated(e) .and. listed .and. corr%sparse%given .and. .not. whole%sparse%given, &
+      call check(s, .not. allocated(e) .and. listed .and. corr%blocks .and. .not. whole%sparse%given, &
                  'corrector: three contact lines are three components, each listed in candidate order', &
                  'components '//itoa(corr%ncomp))
       pmax = maxval(abs(cs2%p(1:m)))

@@ -8,7 +8,6 @@
 !> Components are numbered by their first candidate and list their members in candidate order,
 !> so the split depends only on the candidates and their order.
 module exic_contact_components
-   use exic_base_kinds, only: wp
    use exic_base_grow, only: grow
    implicit none
    private
@@ -23,6 +22,7 @@ module exic_contact_components
       integer, allocatable :: start(:)       !< (n + 1) where each component's members begin in `list`
       integer, allocatable :: list(:)        !< (m) members, ascending within a component
       integer, allocatable :: loc(:)         !< (m) position of a candidate within its component
+      integer, allocatable :: id(:)          !< (m) component of a candidate
    contains
       procedure :: reset => components_reset
       procedure :: join => components_join
@@ -71,19 +71,18 @@ contains
       end if
    end subroutine components_join
 
-   !> Join the candidates that share a node: candidate i with nodes node(:, i) of nonzero weight
-   !> w(:, i) joins the first candidate of each of them in the incidence nstart(nnode + 1), nlist
-   !> (node -> candidates of nonzero weight at it, compressed rows).
-   subroutine components_join_nodes(self, m, node, w, nnode, nstart, nlist)
+   !> Join the candidates that share a node: candidate i with local nodes lnode(:, i) (0: a
+   !> node of weight 0) joins the first candidate of each of them in the incidence
+   !> nstart(nloc + 1), nlist (local node -> candidates of nonzero weight at it, compressed rows).
+   subroutine components_join_nodes(self, m, lnode, nloc, nstart, nlist)
       class(components_t), intent(inout) :: self
-      integer, intent(in) :: m, nnode
-      integer, intent(in) :: node(3, m), nstart(nnode + 1), nlist(:)
-      real(wp), intent(in) :: w(3, m)
+      integer, intent(in) :: m, nloc
+      integer, intent(in) :: lnode(3, m), nstart(nloc + 1), nlist(:)
       integer :: i, k
       do i = 1, m
          do k = 1, 3
-            if (w(k, i) == 0.0_wp) cycle
-            call self%join(i, nlist(nstart(node(k, i))))
+            if (lnode(k, i) == 0) cycle
+            call self%join(i, nlist(nstart(lnode(k, i))))
          end do
       end do
    end subroutine components_join_nodes
@@ -103,24 +102,25 @@ contains
       class(components_t), intent(inout) :: self
       integer :: i, r, c, m
       m = self%m
-      call grow(self%loc, m)
-      call grow(self%list, m)
-      ! loc(i) = component of i for now: a root is the smallest candidate of its component, so it
-      ! is labelled before every other member
+      call grow(self%id, m)
+      ! a root is the smallest candidate of its component, so it is labelled before every other
+      ! member
       self%n = 0
       do i = 1, m
          r = find(self, i)
          if (r == i) then
             self%n = self%n + 1
-            self%loc(i) = self%n
+            self%id(i) = self%n
          else
-            self%loc(i) = self%loc(r)
+            self%id(i) = self%id(r)
          end if
       end do
+      call grow(self%loc, m)
+      call grow(self%list, m)
       call grow(self%start, self%n + 1)
       self%start(1:self%n + 1) = 0
       do i = 1, m
-         c = self%loc(i)
+         c = self%id(i)
          self%start(c + 1) = self%start(c + 1) + 1
       end do
       self%start(1) = 1
@@ -129,7 +129,7 @@ contains
       end do
       ! fill in candidate order, start(c) running; then the position within the component
       do i = 1, m
-         c = self%loc(i)
+         c = self%id(i)
          self%list(self%start(c)) = i
          self%start(c) = self%start(c) + 1
       end do

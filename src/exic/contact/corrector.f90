@@ -82,8 +82,14 @@ module exic_contact_corrector
       logical, allocatable :: drop(:)               !< (m) left out of the pass's factorization
       logical, allocatable :: infeasible(:)         !< (m) candidates that switch sides
       real(wp), allocatable :: psafe(:)             !< (m) last pass's multipliers with none tensile
-      integer, allocatable :: nstart(:), nlist(:)   !< node -> candidates incidence (CSR)
+      ! node -> candidates incidence (CSR) over the nodes the candidates touch, numbered 1 ...
+      ! nloc in the order the candidates first touch them (`build_incidence`)
+      integer :: nloc = 0                           !< nodes the candidates touch
+      integer, allocatable :: lnode(:, :)           !< (3, m) local number of each candidate node (0: weight 0)
+      integer, allocatable :: nstart(:), nlist(:)   !< (nloc + 1), (3 m) candidates of each local node
       real(wp), allocatable :: nweight(:)           !< weight of the node in each candidate of nlist
+      integer, allocatable :: lid(:), stamp(:)      !< (nnode) local number of a node, the call that gave it
+      integer :: gen = 0                            !< calls of build_incidence (the stamp of this one)
    contains
       procedure :: solve => corrector_solve
       procedure :: prepare => corrector_prepare
@@ -234,8 +240,8 @@ contains
       call grow(self%sol, m)
       call grow(self%psafe, m)
       if (present(rb)) call rb%prepare(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m))
-      call self%assemble(m, cs%node(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m), nnode, minv, &
-                         self%nstart, self%nlist, self%nweight, rb, face=face)
+      call self%assemble(m, cs%node(:, 1:m), self%lnode(:, 1:m), cs%w(:, 1:m), cs%nrm(:, 1:m), &
+                         nnode, minv, self%nloc, self%nstart, self%nlist, self%nweight, rb, face=face)
    end subroutine corrector_prepare
 
    !> The normal problem of `prepare`d candidates for the predicted gaps gap0(m) (cs%gap, or
@@ -376,44 +382,73 @@ contains
    end function gap_change
 
    !> Node -> candidates incidence in compressed rows (nstart, nlist), with the node's weight in
-   !> each candidate (nweight: the sum of its weights w over the node's occurrences).
+   !> each candidate (nweight: the sum of its weights w over the node's occurrences), over the
+   !> nloc nodes the candidates touch with a nonzero weight, numbered in the order they are first
+   !> touched (lnode); each node lists its candidates in candidate order. Nothing is done per node
+   !> of the mesh: a node's local number is valid while its stamp is this call's.
    subroutine build_incidence(self, cs, nnode)
       type(corrector_t), intent(inout) :: self
       type(constraints_t), intent(in) :: cs
       integer, intent(in) :: nnode
-      integer :: i, k, nd, kk
+      integer :: i, k, nd, kk, ln, nloc
       real(wp) :: wsum
-      call grow(self%nstart, nnode + 1)
+      if (allocated(self%stamp)) then
+         if (size(self%stamp) /= nnode) deallocate (self%stamp, self%lid)
+      end if
+      if (.not. allocated(self%stamp)) then
+         allocate (self%stamp(nnode), self%lid(nnode))
+         self%stamp = 0
+         self%gen = 0
+      end if
+      if (self%gen == huge(self%gen)) then
+         self%stamp = 0
+         self%gen = 0
+      end if
+      self%gen = self%gen + 1
+      call grow(self%lnode, cs%n, 3)
+      call grow(self%nstart, 3*cs%n + 1)
       call grow(self%nlist, 3*cs%n)
       call grow(self%nweight, 3*cs%n)
-      self%nstart(1:nnode + 1) = 0
+      ! local numbers; nstart(ln + 1) counts the candidates of local node ln
+      nloc = 0
       do i = 1, cs%n
          do k = 1, 3
+            self%lnode(k, i) = 0
             if (cs%w(k, i) == 0.0_wp) cycle
             nd = cs%node(k, i)
-            self%nstart(nd + 1) = self%nstart(nd + 1) + 1
+            if (self%stamp(nd) /= self%gen) then
+               self%stamp(nd) = self%gen
+               nloc = nloc + 1
+               self%lid(nd) = nloc
+               self%nstart(nloc + 1) = 0
+            end if
+            ln = self%lid(nd)
+            self%lnode(k, i) = ln
+            self%nstart(ln + 1) = self%nstart(ln + 1) + 1
          end do
       end do
+      self%nloc = nloc
       self%nstart(1) = 1
-      do nd = 1, nnode
-         self%nstart(nd + 1) = self%nstart(nd + 1) + self%nstart(nd)
+      do ln = 1, nloc
+         self%nstart(ln + 1) = self%nstart(ln + 1) + self%nstart(ln)
       end do
       ! fill, using nstart as a running pointer, then shift back
       do i = 1, cs%n
          do k = 1, 3
-            if (cs%w(k, i) == 0.0_wp) cycle
+            ln = self%lnode(k, i)
+            if (ln == 0) cycle
             nd = cs%node(k, i)
-            self%nlist(self%nstart(nd)) = i
+            self%nlist(self%nstart(ln)) = i
             wsum = 0.0_wp
             do kk = 1, 3
                if (cs%node(kk, i) == nd) wsum = wsum + cs%w(kk, i)
             end do
-            self%nweight(self%nstart(nd)) = wsum
-            self%nstart(nd) = self%nstart(nd) + 1
+            self%nweight(self%nstart(ln)) = wsum
+            self%nstart(ln) = self%nstart(ln) + 1
          end do
       end do
-      do nd = nnode, 1, -1
-         self%nstart(nd + 1) = self%nstart(nd)
+      do ln = nloc, 1, -1
+         self%nstart(ln + 1) = self%nstart(ln)
       end do
       self%nstart(1) = 1
    end subroutine build_incidence

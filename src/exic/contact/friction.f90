@@ -118,8 +118,9 @@ contains
          end do
       end do
       if (present(rb)) call rb%tangent_columns(m, cs%node(:, 1:m), cs%w(:, 1:m), self%tng(:, 1:m))
-      call self%tt%assemble(m, cs%node(:, 1:m), cs%w(:, 1:m), self%tng(:, 1:m), nnode, minv, &
-                            corr%nstart, corr%nlist, corr%nweight, rb, tangent=.true.)
+      call self%tt%assemble(m, cs%node(:, 1:m), corr%lnode(:, 1:m), cs%w(:, 1:m), self%tng(:, 1:m), &
+                            nnode, minv, corr%nloc, corr%nstart, corr%nlist, corr%nweight, rb, &
+                            tangent=.true.)
       self%side(1:m) = 0
       self%geff(1:m) = cs%gap(1:m)
       do k = 1, FRICTION_SWEEPS
