@@ -1,4 +1,4 @@
-!> The explicit state of a problem and its element sets.
+!> The explicit state of a problem and its element sets, and plus_zero (is a nodal array +0 everywhere).
 module exic_explicit_state
    use exic_base_kinds, only: wp, i8
    use exic_element_q4_general, only: q4_solid_t
