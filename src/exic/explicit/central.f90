@@ -265,7 +265,8 @@ contains
    !> kernels take ZERO_FORCES, a chunk of +0 that stays in the cache, in its place (the same
    !> values in the same operations, so the same bits: 0 - fint, 0 (dt v + dt^2/2 a) are formed
    !> as before), 16 bytes per node less from memory.
-   subroutine cd_update_plain(n, dt, minv, fext, fext_zero, fint, mass, a, v, wext, kinetic, momentum, power)
+   subroutine cd_update_plain(n, dt, minv, fext, fext_zero, fint, mass, a, v, wext, kinetic, momentum, &
+                              power)
       integer, intent(in) :: n
       real(wp), intent(in) :: dt
       real(wp), intent(in), dimension(2, n) :: minv, fext, fint

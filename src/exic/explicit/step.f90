@@ -272,11 +272,11 @@ contains
             ! sweep, chunk by chunk, instead of another pass over the nodes (the same bits)
             power_q = st%dt /= st%dt_booked
             if (power_q) then
-               call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, st%a, st%v, &
-                                    st%wext, st%kinetic, st%momentum, qnodes)
+               call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, &
+                                    st%a, st%v, st%wext, st%kinetic, st%momentum, qnodes)
             else
-               call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, st%a, st%v, &
-                                    st%wext, st%kinetic, st%momentum)
+               call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, &
+                                    st%a, st%v, st%wext, st%kinetic, st%momentum)
             end if
          else
             ! 4. predictor, eq. 4.3-4.4 (v~ only when there is contact to search; exic's own
