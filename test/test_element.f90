@@ -3,10 +3,11 @@
 !> against the element's exact limit, and inversion flags.
 module test_element
    use exic_base_kinds, only: wp
+   use exic_base_strings, only: itoa
    use exic_material_material, only: lame_from_young
    use exic_material_neohookean, only: nh_cauchy, nh_piola, nh_wave_speed2
    use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
-                                 q4_stable_dt, q4_stress, q4_deformation, NBLOCK
+                                 q4_stable_dt, q4_stress, q4_deformation, NBLOCK, q4b_block_minimum
    use testing, only: suite_t, check, check_close, section, gradient_error
    use, intrinsic :: iso_fortran_env, only: output_unit, int64
    implicit none
@@ -50,6 +51,7 @@ contains
       call test_stable_dt(s)
       call test_fused(s)
       call test_inversion(s)
+      call test_block_minimum(s)
    end subroutine run_element_tests
 
    ! ---------------------------------------------------------------- helpers
@@ -736,5 +738,71 @@ contains
                     [1.0_wp], p11, p12, p21, p22, w1)
       w = w1(1)
    end function nh_w
+
+   !> The block minimum (smallest squared stable step of a block, its first element, the first
+   !> folded element) against the element-by-element scan it replaces, `if (dt2(k) < dt2min)`
+   !> for k = 1 .. nb: 4000 blocks of random values with ties, +0 and -0, NaN, +Inf and huge,
+   !> every nb from 1 to NBLOCK, incoming dt2min of huge, +0, a middle value or an earlier fold;
+   !> dt2min compared bit for bit (the sign of a zero included), emin and efold exactly.
+   subroutine test_block_minimum(s)
+      use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
+      type(suite_t), intent(inout) :: s
+      real(wp) :: dt2(NBLOCK), good(NBLOCK), pool(8), d0, dm, dr
+      integer(int64) :: seed
+      integer :: trial, k, nb, em, er, fm, fr, bad, e0, f0
+      call section(s, 'block minimum of the stable step')
+      pool = [0.25_wp, 0.5_wp, 0.0_wp, -0.0_wp, ieee_value(1.0_wp, ieee_quiet_nan), &
+              ieee_value(1.0_wp, ieee_positive_inf), huge(1.0_wp), 0.125_wp]
+      seed = 20240611_int64
+      bad = 0
+      do trial = 1, 4000
+         nb = 1 + mod(trial - 1, NBLOCK)
+         do k = 1, NBLOCK
+            if (rnd(seed) < 0.3_wp) then
+               dt2(k) = pool(1 + int(8*rnd(seed)))
+            else
+               dt2(k) = rnd(seed)
+            end if
+            good(k) = merge(0.0_wp, 1.0_wp, rnd(seed) < 0.05_wp)
+         end do
+         select case (mod(trial, 4))
+         case (0)
+            d0 = huge(1.0_wp)
+         case (1)
+            d0 = 0.0_wp
+         case (2)
+            d0 = 0.3_wp
+         case default
+            d0 = 0.6_wp
+         end select
+         e0 = mod(trial, 3)
+         f0 = merge(7, 0, mod(trial, 5) == 0)
+         ! the scan
+         dr = d0
+         er = e0
+         fr = f0
+         do k = 1, nb
+            if (dt2(k) < dr) then
+               dr = dt2(k)
+               er = 100 + k
+            end if
+         end do
+         if (fr == 0) then
+            do k = 1, nb
+               if (.not. good(k) > 0.0_wp) then
+                  fr = 100 + k
+                  exit
+               end if
+            end do
+         end if
+         dm = d0
+         em = e0
+         fm = f0
+         call q4b_block_minimum(nb, 100, dt2, good, dm, em, fm)
+         if (transfer(dm, 1_int64) /= transfer(dr, 1_int64) .or. em /= er .or. fm /= fr) bad = bad + 1
+      end do
+      call check(s, bad == 0, 'the scan''s minimum (same bits), element and fold on 4000 blocks', &
+                 'blocks that differ: '//itoa(bad))
+   end subroutine test_block_minimum
 
 end module test_element

@@ -5,12 +5,13 @@
 !> pressure), a rigid punch driven into a block, the nodal arrays kept only for decks whose
 !> steps read them, and the input errors with file:line.
 module test_loads
-   use exic_base_kinds, only: wp
+   use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
    use exic_explicit_step, only: stepper_t
+   use exic_explicit_state, only: plus_zero
    use exic_explicit_loads, only: prop_fn_t, prop_eval, prop_value, FN_TYPE1, FN_TABLE, FN_RAMP
    use testing, only: suite_t, check, check_close, section
    use deck_runner, only: run_dir, run_deck, read_table, column, write_text
@@ -52,6 +53,8 @@ contains
       call driven_region(s)
       call section(s, 'loads: nodal arrays only for the decks whose steps read them')
       call lean_arrays(s)
+      call section(s, 'loads: a step without external force does not read fext')
+      call zero_forces(s)
       call section(s, 'loads: input errors name file:line')
       call bad_input(s)
    end subroutine run_loads_tests
@@ -116,6 +119,81 @@ contains
                        allocated(stp%vt) .or. allocated(stp%fcon_old)
       end function work_arrays
    end subroutine lean_arrays
+
+   !> fext_zero (a plain step then reads +0 from the cache instead of fext, doc/performance.md
+   !> 6.2): plus_zero is true for +0 only (not -0, NaN or the smallest subnormal number); a free
+   !> block has the flag, a block under constant gravity not; and a deforming free block stepped
+   !> with the flag and without it (fext read) has the same bits in u, v, a, the works, the
+   !> energies and the momentum after 6 steps in which dt changes.
+   subroutine zero_forces(s)
+      use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+      type(suite_t), intent(inout) :: s
+      type(model_t) :: model
+      type(stepper_t) :: with, without
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: deck
+      real(wp) :: f(2, 3), dt
+      integer :: k, changes
+      f = 0.0_wp
+      call check(s, plus_zero(f), 'plus_zero: +0 everywhere')
+      f(2, 3) = -0.0_wp
+      call check(s, .not. plus_zero(f), 'plus_zero: not with a -0')
+      f(2, 3) = tiny(1.0_wp)*epsilon(1.0_wp)
+      call check(s, .not. plus_zero(f), 'plus_zero: not with the smallest subnormal number')
+      f(2, 3) = 0.0_wp
+      f(1, 2) = ieee_value(1.0_wp, ieee_quiet_nan)
+      call check(s, .not. plus_zero(f), 'plus_zero: not with a NaN')
+      deck = head//solid//block(2, 2, 1, 1, 1, 1, 0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp)// &
+             'INITial,VELOcity'//nl//'  2,0,0.01,0.002'//nl//'  3,0,0.02,0'//nl//'  5,0,0.01,0.003'//nl// &
+             '  6,0,0.02,0.001'//nl//'  8,0,0.01,-0.002'//nl//'  9,0,0.02,0'//nl//nl// &
+             batch('0.1', '')
+      call setup_stepper('zero_with', deck, model, with, err)
+      if (.not. ok('free block')) return
+      call check(s, with%st%fext_zero, 'free block: fext_zero after set-up')
+      call setup_stepper('zero_without', deck, model, without, err)
+      if (.not. ok('free block, second copy')) return
+      call with%start(err)
+      if (.not. ok('start')) return
+      call without%start(err)
+      if (.not. ok('start, second copy')) return
+      without%st%fext_zero = .false.
+      changes = 0
+      do k = 1, 6
+         dt = with%st%dt
+         call with%advance(err)
+         if (.not. ok('step')) return
+         if (with%st%dt /= dt) changes = changes + 1
+         call without%advance(err)
+         if (.not. ok('step, second copy')) return
+      end do
+      call check(s, with%st%fext_zero .and. with%st%step == 6 .and. changes > 0, &
+                 'free block: fext_zero after 6 plain steps, dt changed in some', itoa(changes)//' changes')
+      call check(s, same(with%st%u, without%st%u) .and. same(with%st%v, without%st%v) .and. &
+                 same(with%st%a, without%st%a) .and. any(with%st%a /= 0.0_wp), &
+                 'u, v, a: the same bits as with fext read')
+      call check(s, same(reshape([with%st%wext, with%st%kinetic, with%st%strain, with%st%hourglass, &
+                                  with%st%momentum, with%st%dt_residual], [7, 1]), &
+                         reshape([without%st%wext, without%st%kinetic, without%st%strain, without%st%hourglass, &
+                                  without%st%momentum, without%st%dt_residual], [7, 1])), &
+                 'works, energies, momentum and the kinetic correction: the same bits')
+      call setup_stepper('zero_gravity', head//solid//block(2, 2, 1, 1, 1, 1, 0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp)// &
+                         'GRAVity,0,-10'//nl//nl//batch('0.1', ''), model, with, err)
+      if (.not. ok('constant gravity')) return
+      call with%start(err)
+      if (.not. ok('constant gravity start')) return
+      call check(s, .not. with%st%fext_zero, 'constant gravity: no fext_zero')
+   contains
+      logical function ok(what)
+         character(len=*), intent(in) :: what
+         ok = .not. allocated(err)
+         if (.not. ok) call check(s, .false., what//': the deck reads and sets up', err%message)
+      end function ok
+      !> a and b have the same bits (signed zeros included).
+      logical function same(a, b)
+         real(wp), intent(in) :: a(:, :), b(:, :)
+         same = all(transfer(a, 1_i8, size(a)) == transfer(b, 1_i8, size(b)))
+      end function same
+   end subroutine zero_forces
 
    !> Write `text` as run_dir/<name>.inp, read it and set up a stepper with its loads.
    subroutine setup_stepper(name, text, model, stp, err)

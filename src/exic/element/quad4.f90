@@ -714,19 +714,34 @@ contains
 
    !> dt2min/emin: the smallest dt2 of the block's nb elements (first element off + k on ties)
    !> if below dt2min; efold (when 0): the first folded element (good = 0, stable_block).
+   !> What the scan k = 1 .. nb with `if (dt2(k) < dt2min)` gives, from the block's smallest
+   !> value m (a loop that vectorizes; a NaN, never below anything in the scan, counts as huge,
+   !> which is not below dt2min <= huge either) and, only when m < dt2min, the first k with
+   !> dt2(k) = m, whose value is taken (the scan keeps the first of -0 and +0 it meets). Every
+   !> element is good when the smallest good (0 or 1) is 1.
    pure subroutine block_minimum(nb, off, dt2, good, dt2min, emin, efold)
       integer, intent(in) :: nb, off
       real(wp), intent(in) :: dt2(NBLOCK), good(NBLOCK)
       real(wp), intent(inout) :: dt2min
       integer, intent(inout) :: emin, efold
+      real(wp) :: m, g
       integer :: k
+      m = dt2min
+      g = 1.0_wp
       do k = 1, nb
-         if (dt2(k) < dt2min) then
-            dt2min = dt2(k)
-            emin = off + k
-         end if
+         m = min(m, merge(dt2(k), huge(1.0_wp), dt2(k) == dt2(k)))
+         g = min(g, good(k))
       end do
-      if (efold /= 0 .or. all(good(1:nb) > 0.0_wp)) return
+      if (m < dt2min) then
+         do k = 1, nb
+            if (dt2(k) == m) then
+               dt2min = dt2(k)
+               emin = off + k
+               exit
+            end if
+         end do
+      end if
+      if (efold /= 0 .or. g > 0.0_wp) return
       do k = 1, nb
          if (.not. good(k) > 0.0_wp) then
             efold = off + k

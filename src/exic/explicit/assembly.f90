@@ -20,7 +20,7 @@ module exic_explicit_assembly
    use exic_base_threads, only: threaded
    use exic_mesh_mesh, only: mesh_t
    use exic_material_material, only: material_t, MAT_SOLID, MAT_RIGID
-   use exic_explicit_state, only: state_t, element_set_t
+   use exic_explicit_state, only: state_t, element_set_t, plus_zero
    use exic_explicit_central, only: cd_kinetic, cd_kinetic_power, cd_zero
    use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
                                  q4_stable_dt, q4_stress, NBLOCK
@@ -65,6 +65,7 @@ contains
       allocate (st%mass(nn), source=0.0_wp)
       allocate (st%active(nn), st%rigid(nn), source=.false.)
       st%fext = mesh%force
+      st%fext_zero = plus_zero(st%fext)
       st%axisymmetric = mesh%axisymmetric
 
       ! element sets, one per material in use

@@ -23,7 +23,7 @@ module exic_explicit_loading
    use exic_element_quad4, only: q4_lumped_mass
    use exic_element_q4_rigid, only: q4_mass_moments
    use exic_contact_rigid_dofs, only: rigid_dofs_t
-   use exic_explicit_state, only: state_t, element_set_t
+   use exic_explicit_state, only: state_t, element_set_t, plus_zero
    use exic_explicit_loads, only: load_spec_t, prop_value, edge_forces, FN_UNDEFINED
    use exic_explicit_rigid, only: rigid_body_t, RB_PLAIN, RB_DRIVEN, RB_FREE, rigid_place, &
                                   rigid_levers, rigid_gather, rigid_node_motion, rigid_fit_velocity
@@ -121,6 +121,7 @@ contains
          if (self%any_grav) st%fext = st%fext + self%fgrav
          if (allocated(self%fbody)) deallocate (self%fbody)
          if (allocated(self%fgrav)) deallocate (self%fgrav)
+         st%fext_zero = plus_zero(st%fext)
       else
          self%fnode = mesh%force
          allocate (self%fedge(2, n), self%fext_old(2, n), self%favg(2, n), source=0.0_wp)
@@ -532,6 +533,7 @@ contains
       integer :: i, k, g
       real(wp) :: f
       if (.not. self%varying) return
+      st%fext_zero = .false.
       self%fext_old = st%fext
       if (self%spec%nedge > 0) then
          self%fedge = 0.0_wp

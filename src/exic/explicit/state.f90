@@ -1,4 +1,4 @@
-!> The explicit state of a problem and its element sets.
+!> The explicit state of a problem and its element sets, and plus_zero (is a nodal array +0 everywhere).
 module exic_explicit_state
    use exic_base_kinds, only: wp, i8
    use exic_element_q4_general, only: q4_solid_t
@@ -6,7 +6,7 @@ module exic_explicit_state
    implicit none
    private
 
-   public :: element_set_t, state_t
+   public :: element_set_t, state_t, plus_zero
 
    !> The elements of one material set. Nothing is stored per element but its nodes: the force
    !> kernels recompute the reference gradients from the reference coordinates.
@@ -47,6 +47,11 @@ module exic_explicit_state
       real(wp), allocatable :: a(:, :)          !< (2, nnode) acceleration
       real(wp), allocatable :: fint(:, :)       !< (2, nnode) internal force P(u)
       real(wp), allocatable :: fext(:, :)       !< (2, nnode) external force F
+      !> every entry of fext is +0 (plus_zero), so that a plain step need not read it
+      !> (cd_update_plain). False unless shown: whoever writes fext sets it again (assembly_init,
+      !> loading_init, loading_forces, stepper_start, a restart); a host that writes fext
+      !> sets it to plus_zero(fext) or .false.
+      logical :: fext_zero = .false.
       real(wp), allocatable :: fcon(:, :)       !< (2, nnode) contact force of the last step (-G lambda)
       real(wp), allocatable :: mass(:)          !< (nnode) lumped mass (rigid nodes included)
       real(wp), allocatable :: minv(:, :)       !< (2, nnode) inverse mass per dof; 0: prescribed or rigid
@@ -76,5 +81,20 @@ module exic_explicit_state
       real(wp) :: jmin = 1.0_wp
       integer :: nactive = 0                    !< active contact constraints
    end type state_t
+
+contains
+
+   !> True when every entry of f is +0 (-0 is not: 0 - x and -0 - x differ for x = +0).
+   pure logical function plus_zero(f) result(yes)
+      real(wp), intent(in) :: f(:, :)
+      integer :: i, k
+      yes = .false.
+      do i = 1, size(f, 2)
+         do k = 1, size(f, 1)
+            if (f(k, i) /= 0.0_wp .or. sign(1.0_wp, f(k, i)) < 0.0_wp) return
+         end do
+      end do
+      yes = .true.
+   end function plus_zero
 
 end module exic_explicit_state

@@ -34,7 +34,7 @@ module exic_explicit_step
    use exic_material_material, only: material_t, MAT_SOLID
    use exic_contact_spec, only: contact_spec_t
    use exic_contact_contact, only: contact_t
-   use exic_explicit_state, only: state_t, element_set_t
+   use exic_explicit_state, only: state_t, element_set_t, plus_zero
    use exic_explicit_assembly, only: assembly_init, internal_forces, stable_step, kinetic_energy, &
                                      kinetic_correction, book_step_change
    use exic_explicit_central, only: cd_displacement, cd_predictor, cd_velocity, cd_displacement_plain, &
@@ -193,6 +193,7 @@ contains
          return
       end if
       call self%ld%begin(self%st)
+      self%st%fext_zero = plus_zero(self%st%fext)
       if (.not. plain_step(self)) call work_arrays(self)
       call forces_and_dt(self, err)
       if (allocated(err)) return
@@ -271,11 +272,11 @@ contains
             ! sweep, chunk by chunk, instead of another pass over the nodes (the same bits)
             power_q = st%dt /= st%dt_booked
             if (power_q) then
-               call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%mass, st%a, st%v, &
-                                    st%wext, st%kinetic, st%momentum, qnodes)
+               call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, &
+                                    st%a, st%v, st%wext, st%kinetic, st%momentum, qnodes)
             else
-               call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%mass, st%a, st%v, &
-                                    st%wext, st%kinetic, st%momentum)
+               call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, &
+                                    st%a, st%v, st%wext, st%kinetic, st%momentum)
             end if
          else
             ! 4. predictor, eq. 4.3-4.4 (v~ only when there is contact to search; exic's own

@@ -29,6 +29,7 @@ module exic_io_restart
    use exic_io_program, only: MAX_LOOP_DEPTH
    use exic_io_output, only: output_t
    use exic_explicit_step, only: stepper_t
+   use exic_explicit_state, only: plus_zero
    use exic_contact_contact, only: contact_t
    use exic_material_material, only: HOURGLASS_PHYSICAL
    implicit none
@@ -285,6 +286,7 @@ contains
          call ar%item('state.a', st%a)
          call ar%item('state.fint', st%fint)
          call ar%item('state.fext', st%fext)
+         if (.not. ar%saving) st%fext_zero = plus_zero(st%fext)
          call ar%item('state.fcon', st%fcon)
          call ar%item('state.mass', st%mass)
          call ar%item('state.minv', st%minv)
