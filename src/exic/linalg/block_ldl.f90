@@ -2,24 +2,24 @@
 !> natural order (doc/contact-detection.md, "Components of S", eq. D.4-D.6).
 !>
 !> The block is held by the upper triangles of its columns, packed (entry (i, k), i <= k, at
-!> k (k - 1) / 2 + i), with a structural mask: an entry is in the pattern when the assembly
-!> wrote it, whatever its value. The factorisation is the up-looking elimination of
-!> SuiteSparse LDL (Davis, "Algorithm 849: a concise sparse Cholesky factorization package",
-!> ACM TOMS 31, 2005; ldl_symbolic and ldl_numeric) with the removal
-!> rule of exic_linalg_sparse_ldl (`ldl_numeric_drop`): the elimination tree, the pattern of
-!> each row of L in the topological order of its tree walk, the columns of L in the order their
-!> entries are appended, and every floating-point operation in the same order as that routine
-!> and LDL's ldl_lsolve / ldl_dsolve / ldl_ltsolve. A block of a matrix whose P S P^T is block
-!> diagonal (eq. D.4) therefore gets the same L, D and solution, to the bit, as the sparse
-!> factorisation of the whole matrix in that order (eq. D.5), without its global index arrays,
-!> pattern checks and symbolic analysis of all of S.
+!> k(k-1)/2 + i), with a structural mask: an entry is in the pattern when the assembly wrote it,
+!> whatever its value. The factorisation is the up-looking elimination of SuiteSparse LDL (Davis,
+!> "Algorithm 849: a concise sparse Cholesky factorization package", ACM TOMS 31, 2005;
+!> ldl_symbolic and ldl_numeric) with the removal rule of exic_linalg_sparse_ldl
+!> (`ldl_numeric_drop`, the same `removal_rule`): the elimination tree, the pattern of each row of
+!> L in the topological order of its tree walk, the columns of L in the order their entries are
+!> appended, and every floating-point operation in the same order as that routine and LDL's
+!> ldl_lsolve / ldl_dsolve / ldl_ltsolve. A block of a matrix whose P S P^T is block diagonal
+!> (eq. D.4) therefore gets the same L, D and solution, to the bit, as the sparse factorisation of
+!> the whole matrix in that order (eq. D.5), without its global index arrays, pattern checks and
+!> symbolic analysis of all of S.
 !>
 !> Redundancy rule (as sparse_ldl): pivot k is removed when it is dropped by the caller or
 !> when D(k) <= tol * S(k, k); a removed pivot gets D(k) = 1, a zero row in L, and zero
 !> entries below it, and its unknown is 0 in the solve.
 module exic_linalg_block_ldl
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use exic_base_kinds, only: wp
+   use exic_linalg_sparse_ldl, only: removal_rule
    implicit none
    private
 
@@ -100,15 +100,9 @@ contains
             lrow(lcnt(i), i) = k
             lx(lcnt(i), i) = lki
          end do
-         if (.not. removed(k)) then
-            if (.not. ieee_is_finite(d(k))) then
-               status = 1
-               return
-            end if
-            removed(k) = (d(k) <= tol*sdiag)
-         end if
+         call removal_rule(tol, sdiag, d(k), removed(k), status)
+         if (status /= 0) return
          if (removed(k)) then
-            d(k) = 1.0_wp
             do t = top, nb
                i = pattern(t)
                lx(lcnt(i), i) = 0.0_wp

@@ -43,7 +43,7 @@ module exic_linalg_sparse_ldl
    implicit none
    private
 
-   public :: ldl_numeric_drop
+   public :: ldl_numeric_drop, removal_rule
 
    !> Sparse LDL' solver with AMD ordering, symbolic reuse and redundancy detection.
    !> All work arrays live here; they grow with n and nnz and are never shrunk.
@@ -409,15 +409,9 @@ contains
             lx(qend) = lki
             lnz(i) = lnz(i) + 1
          end do
-         if (.not. removed(k)) then
-            if (.not. ieee_is_finite(d(k))) then
-               status = 1
-               return
-            end if
-            removed(k) = (d(k) <= tol*sdiag)
-         end if
+         call removal_rule(tol, sdiag, d(k), removed(k), status)
+         if (status /= 0) return
          if (removed(k)) then
-            d(k) = 1.0_wp
             do t = top, n - 1
                i = pattern(t)
                lx(lp(i) + lnz(i) - 1) = 0.0_wp
@@ -478,6 +472,26 @@ contains
          end do
       end do
    end subroutine diagonal_of
+
+   !> The redundancy rule at pivot k of the removal elimination (ldl_numeric_drop and
+   !> exic_linalg_block_ldl): a pivot not dropped on entry is removed when its D(k) <= tol * S(k, k)
+   !> (sdiag); a removed pivot gets D(k) = 1. status = 1 (and nothing else done) when a pivot not
+   !> dropped is not finite, else 0.
+   pure subroutine removal_rule(tol, sdiag, dk, removed, status)
+      real(wp), intent(in) :: tol, sdiag
+      real(wp), intent(inout) :: dk
+      logical, intent(inout) :: removed
+      integer, intent(out) :: status
+      status = 0
+      if (.not. removed) then
+         if (.not. ieee_is_finite(dk)) then
+            status = 1
+            return
+         end if
+         removed = (dk <= tol*sdiag)
+      end if
+      if (removed) dk = 1.0_wp
+   end subroutine removal_rule
 
    !> True when every d(1:n) is finite.
    pure logical function all_finite(n, d) result(ok)
