@@ -274,11 +274,14 @@ contains
          lsum = 0.0_wp
          mv = 0.0_wp
          call grow(self%xw, max(nn, 1), 4)
+         ! the positions of the build (the kept list's reference) and this step's node boxes
          do k = 1, nn
             node = self%nodes(k)
             mv = max(mv, abs(x1(1, node) - x0(1, node)), abs(x1(2, node) - x0(2, node)))
             self%xw(1:2, k) = x0(:, node)
             self%xw(3:4, k) = x1(:, node)
+            self%nbox(1:2, k) = min(x0(:, node), x1(:, node))
+            self%nbox(3:4, k) = max(x0(:, node), x1(:, node))
          end do
          do k = 1, self%seg_first(self%nsurf + 1) - 1
             lsum = lsum + hypot(x0(1, self%seg(2, k)) - x0(1, self%seg(1, k)), &
@@ -317,7 +320,6 @@ contains
          end if
          self%kept = .true.
          self%nbuilds = self%nbuilds + 1
-         call node_boxes(nnode, x0, x1, nn, self%nodes, self%nbox)
       else
          self%nkept_steps = self%nkept_steps + 1
       end if
@@ -339,21 +341,9 @@ contains
       self%ntests = self%nkept
    end subroutine broad_all_search_kept
 
-   !> Swept boxes (xmin, ymin, xmax, ymax) of nodes(1:n) over x0 -> x1, as broad_search forms them.
-   pure subroutine node_boxes(nnode, x0, x1, n, nodes, box)
-      integer, intent(in) :: nnode, n, nodes(n)
-      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode)
-      real(wp), intent(inout) :: box(4, *)
-      integer :: l, node
-      do l = 1, n
-         node = nodes(l)
-         box(1:2, l) = min(x0(:, node), x1(:, node))
-         box(3:4, l) = max(x0(:, node), x1(:, node))
-      end do
-   end subroutine node_boxes
-
    !> d = the largest coordinate change of a node from its positions xw(1:2, k) at x0 and
-   !> xw(3:4, k) at x1 (the test of the kept list), and if `boxes` node_boxes of nodes(1:n).
+   !> xw(3:4, k) at x1 (the test of the kept list), and if `boxes` the swept boxes (xmin, ymin,
+   !> xmax, ymax) of nodes(1:n) over x0 -> x1, as broad_search forms them.
    pure subroutine moves_and_boxes(nnode, x0, x1, n, nodes, xw, boxes, box, d)
       integer, intent(in) :: nnode, n, nodes(n)
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), xw(4, n)
