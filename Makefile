@@ -2,8 +2,15 @@
 # They install what is missing (Debian packages, fpm in a local venv), build, and run.
 
 SHELL := /bin/bash
-APT_PACKAGES := gfortran liblapack-dev libopenblas-dev libsuitesparse-dev libhdf5-dev libgmsh-dev \
+APT_PACKAGES := gfortran liblapack-dev libopenblas-serial-dev libsuitesparse-dev libhdf5-dev libgmsh-dev \
                 pkg-config hdf5-tools python3-venv
+# LAPACK and BLAS from the single-threaded OpenBLAS, whatever Debian's alternatives point
+# libblas.so.3 and liblapack.so.3 at: the threaded OpenBLAS starts a pool of helper threads
+# when the library loads, and they spin for about 0.1 s of processor time in every process
+# (doc/decisions.md "Threads"). Found at link time (-L) and at run time (run path); fpm takes
+# the flags from FPM_LDFLAGS, which the tests' own fpm calls inherit.
+SERIAL_BLAS := /usr/lib/$(shell uname -m)-linux-gnu/openblas-serial
+export FPM_LDFLAGS := -L$(SERIAL_BLAS) -Wl,-rpath,$(SERIAL_BLAS) $(FPM_LDFLAGS)
 VENV    := .venv
 PYTHON  := $(VENV)/bin/python
 FPM     := $(VENV)/bin/fpm

@@ -19,9 +19,12 @@ the runs; floor share = floor / (no_output + floor), the output share of a write
 nothing but its bytes.
 
     python3 bench/output_share.py --old OLD_EXIC --new NEW_EXIC [--reps 9] [--threads 1 2]
+                                  [--default-env]
                                   [--json bench/results/output_share.json]
 
-OPENBLAS_NUM_THREADS=1; OMP_NUM_THREADS as given by --threads (one table per value). The load
+OPENBLAS_NUM_THREADS=1; OMP_NUM_THREADS as given by --threads (one table per value). With
+--default-env neither is set (the environment a user runs `exic deck.inp` in; one table,
+threads "default"; doc/performance.md 6.7). The load
 average before and after is printed: on a loaded machine the absolute figures are inflated and
 the differences between the binaries are what counts.
 """
@@ -92,7 +95,11 @@ def write_floor(src, dst):
 
 
 def measure(binaries, decks, reps, threads, work):
-    env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS=str(threads))
+    """Medians of every variant for both binaries; threads None: the default environment."""
+    if threads is None:
+        env = {k: v for k, v in os.environ.items() if k not in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS")}
+    else:
+        env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS=str(threads))
     names = ["version"] + list(decks)
     cpu = {b: {n: [] for n in names} for b in binaries}
     floor = []
@@ -127,6 +134,8 @@ def main():
     ap.add_argument("--new", required=True, help="the exic binary after it")
     ap.add_argument("--reps", type=int, default=9)
     ap.add_argument("--threads", type=int, nargs="+", default=[1, 2])
+    ap.add_argument("--default-env", action="store_true",
+                    help="run with OPENBLAS_NUM_THREADS and OMP_NUM_THREADS unset instead of --threads")
     ap.add_argument("--json", help="write the figures to this file")
     args = ap.parse_args()
     binaries = {"old": os.path.abspath(args.old), "new": os.path.abspath(args.new)}
@@ -134,8 +143,8 @@ def main():
               "load_before": os.getloadavg(), "threads": {}}
     with tempfile.TemporaryDirectory(prefix="exic_output_share_") as work:
         decks = make_variants(work)
-        for th in args.threads:
-            result["threads"][str(th)] = measure(binaries, decks, args.reps, th, work)
+        for th in ([None] if args.default_env else args.threads):
+            result["threads"]["default" if th is None else str(th)] = measure(binaries, decks, args.reps, th, work)
     result["load_after"] = os.getloadavg()
     print(f"load average before {result['load_before'][0]:.2f}, after {result['load_after'][0]:.2f}; "
           f"{args.reps} repetitions, medians of processor time (user + system)")
