@@ -1,7 +1,8 @@
 !> Tests of the geometric penetration check (src/exic/contact/inside.f90): depths of nodes
 !> inside another body against hand-computed values, the grid search against a brute-force
 !> search over every element and boundary edge (at a vertex nearest to two edges, the
-!> shorter one measures the depth), and the pairs that contact does not cover.
+!> shorter one measures the depth), the pairs that contact does not cover, and the AUTOmatic
+!> set kept per body (allow_auto) against `allow` on every ordered pair of surfaces.
 module test_inside
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
@@ -20,6 +21,7 @@ contains
       type(suite_t), intent(inout) :: s
       call test_two_blocks(s)
       call test_random_against_brute(s)
+      call test_auto_equals_pairs(s)
    end subroutine run_inside_tests
 
    !> Block A (4 x 4, h = 1) and block B (3 x 3, h = 0.5) from (3.8, 1.1): A's node (4, 2) is
@@ -58,7 +60,9 @@ contains
       call check_close(s, ins%last%edges, 0.4_wp, 1.0e-12_wp, 'depth of node 15 in B edges')
       call check(s, index(warn, 'region 7 are inside region 9') > 0 .and. index(warn, 'region 9 are') == 0, &
                  'second check warns only for the new pair', warn)
-      call check(s, ins%over_checks(2, 1) == 2 .and. ins%over_checks(1, 2) == 1, 'checks past the limit counted')
+      call check(s, index(ins%report(), 'region 9 inside region 7 past the limit at 2 of the checks') > 0 .and. &
+                 index(ins%report(), 'region 7 inside region 9 past the limit at 1 of the checks') > 0, &
+                 'checks past the limit counted', ins%report())
       ! moved apart: nothing inside, the worst of the run is kept
       x(1, 26:41) = x(1, 26:41) + 0.2_wp
       call ins%check(x, 1.0_wp, warn)
@@ -152,5 +156,75 @@ contains
          end if
       end subroutine seg_dist
    end subroutine test_random_against_brute
+
+   !> Eight blocks of 2 x 2 elements thrown at random into a small square (they overlap), the
+   !> last two sharing one surface (their nodes given together, as an AUTOmatic surface of a
+   !> region whose nodes another region numbers); a seventh surface of one block's nodes only.
+   !> allow_auto surface by surface must check exactly what `allow` on every ordered pair of
+   !> surfaces checks: the same deepest node, warnings and report over three checks, 30 scenes.
+   subroutine test_auto_equals_pairs(s)
+      type(suite_t), intent(inout) :: s
+      integer, parameter :: NB = 8, NPB = 9, NEB = 4
+      real(wp) :: x(2, NB*NPB)
+      integer :: conn(4, NB*NEB), body(NB*NEB), k, j, trial, b, first(8), last(8), nsurf
+      integer(8) :: state
+      type(inside_t) :: by_pairs, by_auto
+      type(error_t), allocatable :: err
+      character(len=:), allocatable :: w1, w2
+      logical :: ok
+      integer :: nwarn
+      call section(s, 'inside: AUTOmatic set per body equals every pair of surfaces')
+      state = 20261124_8
+      ok = .true.
+      nwarn = 0
+      ! surfaces: blocks 1-6 one each, blocks 7 and 8 together
+      nsurf = 7
+      first = [(1 + (k - 1)*NPB, k=1, 8)]
+      last = [(k*NPB, k=1, 8)]
+      last(7) = NB*NPB
+      do trial = 1, 30
+         do b = 1, NB
+            call block(2, 2, 3.0_wp*uniform(), 3.0_wp*uniform(), 0.5_wp, (b - 1)*NPB, x, &
+                       conn(:, (b - 1)*NEB + 1:b*NEB))
+            body((b - 1)*NEB + 1:b*NEB) = 10*b
+         end do
+         call by_pairs%init(NB*NPB, NB*NEB, conn, body, 1.0e-3_wp, err)
+         call by_auto%init(NB*NPB, NB*NEB, conn, body, 1.0e-3_wp, err)
+         do k = 1, nsurf
+            call by_auto%allow_auto(nodes_of(k))
+            do j = 1, nsurf
+               if (j /= k) call by_pairs%allow(nodes_of(k), nodes_of(j))
+            end do
+         end do
+         do k = 1, 3
+            call by_pairs%check(x, real(k, wp), w1)
+            call by_auto%check(x, real(k, wp), w2)
+            if (w1 /= w2 .or. by_pairs%last%node /= by_auto%last%node .or. &
+                by_pairs%last%edges /= by_auto%last%edges) ok = .false.
+            if (len(w1) > 0) nwarn = nwarn + 1
+            x(1, 1:NPB) = x(1, 1:NPB) + 0.1_wp
+         end do
+         ! the report without its first line (the wall time of the checks)
+         if (after_first(by_pairs%report()) /= after_first(by_auto%report())) ok = .false.
+      end do
+      call check(s, ok, '30 scenes: same deepest nodes, warnings and reports')
+      call check(s, nwarn > 0, 'the scenes overlap (warnings were given)')
+   contains
+      function after_first(text) result(rest)
+         character(len=*), intent(in) :: text
+         character(len=:), allocatable :: rest
+         rest = text(index(text, new_line('a')) + 1:)
+      end function after_first
+      function nodes_of(k) result(nodes)
+         integer, intent(in) :: k
+         integer, allocatable :: nodes(:)
+         integer :: i
+         nodes = [(i, i=first(k), last(k))]
+      end function nodes_of
+      real(wp) function uniform()
+         state = modulo(48271_8*state, 2147483647_8)
+         uniform = real(state, wp)/2147483647.0_wp
+      end function uniform
+   end subroutine test_auto_equals_pairs
 
 end module test_inside

@@ -22,10 +22,12 @@ module exic_contact_contact
    use exic_base_clock, only: wall_time
    use exic_base_grow, only: grow
    use exic_base_sort, only: sorted_unique
+   use exic_base_text_buffer, only: text_buffer_t
    use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, SURF_NODES, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
                                 DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t, spec_penalty_finite
-   use exic_mesh_boundary, only: free_edges, surface_nodes, segment_links, locate_nodes, node_normals, &
+   use exic_mesh_boundary, only: free_edges, free_edges_of, bodies_elements, &
+                                 surface_nodes, segment_links, locate_nodes, node_normals, &
                                  node_segments, normal_dofs
    use exic_contact_broad, only: broad_t, broad_search, broad_search_kept, drop_flat_fixed
    use exic_contact_broad_all, only: broad_all_t
@@ -244,15 +246,15 @@ contains
       integer, intent(in) :: nelem
       integer, intent(in) :: conn(4, nelem), region(nelem), mat(nelem)
       type(error_t), allocatable, intent(out) :: err
-      integer :: ns, nauto, k, r
-      integer, allocatable :: regions(:)
+      integer :: ns, nauto, k
+      integer, allocatable :: regions(:), rfirst(:), relems(:)
       logical, allocatable :: sel(:)
 
       ns = 0
       if (allocated(spec%surfaces)) ns = size(spec%surfaces)
       nauto = 0
       if (spec%automatic) then
-         regions = sorted_unique(region)
+         call bodies_elements(nelem, region, regions, rfirst, relems)
          nauto = size(regions)
       end if
       allocate (self%surfaces(ns + nauto))
@@ -285,11 +287,9 @@ contains
          end associate
       end do
       do k = 1, nauto
-         r = regions(k)
          associate (sf => self%surfaces(ns + k))
-            sf%id = -r - 1          ! automatic surface of region r
-            sel = region == r
-            call free_edges(nelem, conn, sel, sf%seg, err)
+            sf%id = -regions(k) - 1          ! automatic surface of region regions(k)
+            call free_edges_of(nelem, conn, relems(rfirst(k):rfirst(k + 1) - 1), sf%seg, err)
             if (allocated(err)) return
          end associate
       end do
@@ -418,7 +418,6 @@ contains
          if (self%passes(k)%k < 0.0_wp) self%passes(k)%k = -self%passes(k)%k*modulus
       end do
    end subroutine penalty_stiffness
-
 
    !> Index of the surface with deck id `id` (0 if none).
    integer function surface_index(self, id) result(k)
@@ -691,7 +690,6 @@ contains
       end do
    end subroutine predicted_positions
 
-
    !> At the start of a step with friction: the Coulomb work of the last step, whose interval
    !> has now been stepped, joins the dissipation (doc/friction.md, eq. F17); the step's
    !> friction results and forces start from zero.
@@ -867,6 +865,7 @@ contains
    function contact_summary(self) result(text)
       class(contact_t), intent(in) :: self
       character(len=:), allocatable :: text
+      type(text_buffer_t) :: buf
       integer :: k
       character(len=*), parameter :: methods(2) = ['Lagrange (implicit corrector)', 'penalty                      ']
       character(len=*), parameter :: detections(2) = ['swept ', 'static']
@@ -875,29 +874,29 @@ contains
          text = 'contact: none'
          return
       end if
-      text = ''
       do k = 1, size(self%surfaces)
          associate (sf => self%surfaces(k))
             if (sf%id >= 0) then
-               text = text//'contact surface '//itoa(sf%id)//': '//itoa(sf%nseg)//' segments, '// &
-                      itoa(sf%nnode)//' nodes'//nl
+               call buf%add('contact surface '//itoa(sf%id)//': '//itoa(sf%nseg)//' segments, '// &
+                            itoa(sf%nnode)//' nodes'//nl)
             else
-               text = text//'contact surface of region '//itoa(-sf%id - 1)//' (automatic): '// &
-                      itoa(sf%nseg)//' segments, '//itoa(sf%nnode)//' nodes'//nl
+               call buf%add('contact surface of region '//itoa(-sf%id - 1)//' (automatic): '// &
+                            itoa(sf%nseg)//' segments, '//itoa(sf%nnode)//' nodes'//nl)
             end if
          end associate
       end do
       do k = 1, self%nfixed
          associate (ps => self%passes(k))
-            text = text//'contact pass '//itoa(k)//' of pair '//itoa(self%results(ps%pair)%id)// &
-                   ': nodes of surface '//itoa(ps%slave)//' against segments of surface '// &
-                   itoa(ps%master)//', '//trim(methods(ps%method))//', '//trim(detections(ps%detection))
-            if (ps%energy) text = text//', massless faces (ENERgy)'
-            if (ps%friction) text = text//', Coulomb friction mus '//rtoa(ps%law(1))//' mud '// &
-                                    rtoa(ps%law(2))//' decay '//rtoa(ps%law(3))
-            if (k < self%nfixed) text = text//nl
+            call buf%add('contact pass '//itoa(k)//' of pair '//itoa(self%results(ps%pair)%id)// &
+                         ': nodes of surface '//itoa(ps%slave)//' against segments of surface '// &
+                         itoa(ps%master)//', '//trim(methods(ps%method))//', '//trim(detections(ps%detection)))
+            if (ps%energy) call buf%add(', massless faces (ENERgy)')
+            if (ps%friction) call buf%add(', Coulomb friction mus '//rtoa(ps%law(1))//' mud '// &
+                                          rtoa(ps%law(2))//' decay '//rtoa(ps%law(3)))
+            if (k < self%nfixed) call buf%add(nl)
          end associate
       end do
+      text = buf%text()
       if (self%auto_pass%auto) then
          associate (ps => self%auto_pass)
             if (self%nfixed > 0) text = text//nl

@@ -12,17 +12,23 @@
 !> with no self contact asked for): its depth is the distance to that element's nearest side,
 !> in lengths of that side.
 !>
+!> Which pairs of bodies are checked is kept per body (the AUTOmatic set) plus a sorted list of
+!> the pairs PAIR passes name, and the pairs past the limit in a sorted list: memory and set-up
+!> O(nbody + listed pairs), never nbody^2 (a scene of 4096 bodies needed 1 GB and 9 s before).
+!>
 !> Cost per check O(nnode + nelem): a uniform grid over the bounding box of the mesh (cell = the
 !> mean element extent, at most about 4 nelem cells) holds the elements by the cells their boxes
 !> touch; each node tests the elements of its own cell (box test, then the crossing-number test
 !> on the quadrilateral). Only nodes found inside compute a depth, by a ring search over a second
 !> grid holding B's boundary edges. Plain arrays in: positions, connectivity, body per element.
 module exic_contact_inside
-   use exic_base_kinds, only: wp
+   use exic_base_kinds, only: wp, i8
+   use exic_base_grow, only: grow
+   use exic_base_sort, only: sort_perm_i8
    use exic_base_error, only: error_t
    use exic_base_strings, only: itoa, rtoa
    use exic_base_clock, only: wall_time
-   use exic_mesh_boundary, only: free_edges
+   use exic_mesh_boundary, only: free_edges_of, bodies_elements
    implicit none
    private
 
@@ -44,7 +50,16 @@ module exic_contact_inside
       integer, allocatable :: eb(:)             !< (nelem) body index 1..nbody of each element
       integer, allocatable :: ids(:)            !< (nbody) body numbers (regions)
       integer, allocatable :: nb(:)             !< (nnode) body index of each boundary node (0: not tested)
-      logical, allocatable :: pairs(:, :)       !< (nbody, nbody): nodes of i checked against elements of j
+      ! the pairs (i, j) whose nodes of i are checked against elements of j (see `checked`):
+      logical, allocatable :: in_auto(:)        !< (nbody) the body has nodes on an AUTOmatic surface
+      integer, allocatable :: only(:)           !< (nbody) that surface if it is one only, else 0
+      integer :: nauto = 0                      !< AUTOmatic surfaces given to allow_auto
+      integer :: nlisted = 0                    !< pairs named by allow (PAIR passes)
+      integer, allocatable :: listed(:, :)      !< (2, nlisted) those pairs (i, j), i /= j
+      integer(i8), allocatable :: lkey(:)       !< their keys, sorted and unique (after settle)
+      logical :: settled = .false.              !< lkey and tested are up to date
+      logical, allocatable :: tested(:)         !< (nbody) some pair (i, :) is checked
+      logical, allocatable :: seen(:)           !< (nbody) work space of allow, all .false. between calls
       integer, allocatable :: edge(:, :)        !< (2, nedge) free boundary edges of all bodies
       integer, allocatable :: edge_body(:)      !< (nedge) body index of each edge
       real(wp) :: fraction = 1.0e-3_wp          !< warning limit, in edge lengths
@@ -52,8 +67,10 @@ module exic_contact_inside
       type(inside_hit_t) :: last                !< deepest of the last check
       type(inside_hit_t) :: worst               !< deepest over the run
       integer :: nover = 0                      !< nodes past `fraction` in the last check
-      integer, allocatable :: over_checks(:, :) !< (nbody, nbody) checks in which the pair had nodes past it
-      integer, allocatable :: over_max(:, :)    !< (nbody, nbody) most such nodes in one check
+      integer :: npast = 0                      !< pairs that have had nodes past it
+      integer(i8), allocatable :: past_key(:)   !< (npast) their keys (pair_key), ascending
+      integer, allocatable :: past_checks(:)    !< (npast) checks in which the pair had nodes past it
+      integer, allocatable :: past_max(:)       !< (npast) most such nodes in one check
       integer :: nchecks = 0
       real(wp) :: time_total = 0.0_wp           !< wall time of all checks
       ! work space of the grids
@@ -64,6 +81,7 @@ module exic_contact_inside
    contains
       procedure :: init => inside_init
       procedure :: allow => inside_allow
+      procedure :: allow_auto => inside_allow_auto
       procedure :: check => inside_check
       procedure :: report => inside_report
    end type inside_t
@@ -77,9 +95,9 @@ contains
       integer, intent(in) :: conn(4, nelem), body(nelem)
       real(wp), intent(in) :: fraction
       type(error_t), allocatable, intent(out) :: err
-      integer :: e, k, j, lo_id, hi_id
-      integer, allocatable :: map(:), seg(:, :)
-      logical, allocatable :: seen(:), on_boundary(:)
+      integer :: e, k, j, ne
+      integer, allocatable :: first(:), elems(:), seg(:, :)
+      logical, allocatable :: on_boundary(:)
 
       select type (self)
       type is (inside_t)
@@ -90,80 +108,189 @@ contains
       self%nelem = nelem
       self%conn = conn
       self%fraction = fraction
-      lo_id = minval(body)
-      hi_id = maxval(body)
-      allocate (seen(lo_id:hi_id), source=.false.)
-      seen(body) = .true.
-      self%nbody = count(seen)
-      allocate (self%ids(self%nbody), map(lo_id:hi_id), source=0)
-      k = 0
-      do j = lo_id, hi_id
-         if (.not. seen(j)) cycle
-         k = k + 1
-         self%ids(k) = j
-         map(j) = k
+      ! the bodies in ascending order of their numbers and the elements of each
+      call bodies_elements(nelem, body, self%ids, first, elems)
+      self%nbody = size(self%ids)
+      allocate (self%eb(nelem))
+      do k = 1, self%nbody
+         self%eb(elems(first(k):first(k + 1) - 1)) = k
       end do
-      self%eb = map(body)
       allocate (self%nb(nnode), source=0)
       do e = 1, nelem
          do j = 1, 4
             if (self%nb(conn(j, e)) == 0) self%nb(conn(j, e)) = self%eb(e)
          end do
       end do
-      allocate (self%pairs(self%nbody, self%nbody), source=.false.)
-      allocate (self%over_checks(self%nbody, self%nbody), self%over_max(self%nbody, self%nbody), source=0)
+      allocate (self%in_auto(self%nbody), self%tested(self%nbody), self%seen(self%nbody), source=.false.)
+      allocate (self%only(self%nbody), source=0)
+      allocate (self%listed(2, 0), self%lkey(0), self%past_key(0), self%past_checks(0), self%past_max(0))
+      ! the free boundary edges of each body, body after body
       allocate (self%edge(2, 0), self%edge_body(0))
+      ne = 0
       do k = 1, self%nbody
-         call free_edges(nelem, conn, self%eb == k, seg, err)
+         call free_edges_of(nelem, conn, elems(first(k):first(k + 1) - 1), seg, err)
          if (allocated(err)) return
-         self%edge = reshape([self%edge, seg], [2, size(self%edge, 2) + size(seg, 2)])
-         self%edge_body = [self%edge_body, spread(k, 1, size(seg, 2))]
+         call grow(self%edge, ne + size(seg, 2), 2)
+         call grow(self%edge_body, ne + size(seg, 2))
+         self%edge(:, ne + 1:ne + size(seg, 2)) = seg
+         self%edge_body(ne + 1:ne + size(seg, 2)) = k
+         ne = ne + size(seg, 2)
       end do
+      self%edge = self%edge(:, 1:ne)
+      self%edge_body = self%edge_body(1:ne)
       ! only nodes of a free boundary are tested: a body enters another through its boundary
       allocate (on_boundary(nnode), source=.false.)
       on_boundary(self%edge(1, :)) = .true.
       on_boundary(self%edge(2, :)) = .true.
       where (.not. on_boundary) self%nb = 0
+      self%settled = .true.
       self%active = .true.
    end subroutine inside_init
 
    !> Check the nodes of `slave(:)`'s bodies against the elements of `master(:)`'s bodies (the
-   !> nodes of a contact pass's two surfaces); nodes of the same body are never checked.
+   !> nodes of a contact pass's two surfaces); nodes of the same body are never checked. A call
+   !> costs its node lists and the pairs it names.
    subroutine inside_allow(self, slave, master)
       class(inside_t), intent(inout) :: self
       integer, intent(in) :: slave(:), master(:)
-      logical :: bs(self%nbody), bm(self%nbody)
-      integer :: ls(self%nbody), lm(self%nbody)
-      integer :: i, j, ns, nm
+      integer, allocatable :: ls(:), lm(:)
+      integer :: i, j
       if (.not. self%active) return
-      ! the distinct bodies of each side (a call costs its node lists and the pairs it names, not
-      ! nbody^2: AUTOmatic makes one call per ordered pair of surfaces)
-      bs = .false.
-      bm = .false.
-      call bodies_of(slave, bs, ls, ns)
-      call bodies_of(master, bm, lm, nm)
-      do j = 1, nm
-         do i = 1, ns
-            if (ls(i) /= lm(j)) self%pairs(ls(i), lm(j)) = .true.
+      call bodies_of(self, slave, ls)
+      call bodies_of(self, master, lm)
+      do j = 1, size(lm)
+         do i = 1, size(ls)
+            if (ls(i) == lm(j)) cycle
+            self%nlisted = self%nlisted + 1
+            call grow(self%listed, self%nlisted, 2)
+            self%listed(:, self%nlisted) = [ls(i), lm(j)]
          end do
       end do
-   contains
-      subroutine bodies_of(nodes, seen, list, n)
-         integer, intent(in) :: nodes(:)
-         logical, intent(inout) :: seen(:)
-         integer, intent(out) :: list(:), n
-         integer :: k, b
-         n = 0
-         do k = 1, size(nodes)
-            b = self%nb(nodes(k))
-            if (b == 0) cycle
-            if (seen(b)) cycle
-            seen(b) = .true.
-            n = n + 1
-            list(n) = b
-         end do
-      end subroutine bodies_of
+      self%settled = .false.
    end subroutine inside_allow
+
+   !> The nodes of one AUTOmatic surface, one call per surface: every pair of distinct bodies
+   !> with nodes on two different AUTOmatic surfaces is checked (what `allow` on every ordered
+   !> pair of the surfaces would name), kept per body: in_auto, and the surface when it is the
+   !> body's only one. O(size(nodes)) a call, nothing per pair of surfaces.
+   subroutine inside_allow_auto(self, nodes)
+      class(inside_t), intent(inout) :: self
+      integer, intent(in) :: nodes(:)
+      integer, allocatable :: lb(:)
+      integer :: i, b
+      if (.not. self%active) return
+      self%nauto = self%nauto + 1
+      call bodies_of(self, nodes, lb)
+      do i = 1, size(lb)
+         b = lb(i)
+         if (.not. self%in_auto(b)) then
+            self%in_auto(b) = .true.
+            self%only(b) = self%nauto
+         else if (self%only(b) /= self%nauto) then
+            self%only(b) = 0
+         end if
+      end do
+      self%settled = .false.
+   end subroutine inside_allow_auto
+
+   !> The distinct bodies (body indices) of the tested nodes among `nodes`, in order of first
+   !> appearance.
+   subroutine bodies_of(self, nodes, list)
+      type(inside_t), intent(inout) :: self
+      integer, intent(in) :: nodes(:)
+      integer, allocatable, intent(out) :: list(:)
+      integer :: k, b, n
+      allocate (list(min(size(nodes), self%nbody)))
+      n = 0
+      do k = 1, size(nodes)
+         b = self%nb(nodes(k))
+         if (b == 0) cycle
+         if (self%seen(b)) cycle
+         self%seen(b) = .true.
+         n = n + 1
+         list(n) = b
+      end do
+      list = list(1:n)
+      self%seen(list) = .false.
+   end subroutine bodies_of
+
+   !> Key of the ordered pair (nodes of body i, elements of body j); ascending keys run j, then i.
+   pure integer(i8) function pair_key(nbody, i, j) result(key)
+      integer, intent(in) :: nbody, i, j
+      key = int(j - 1, i8)*int(nbody, i8) + int(i, i8)
+   end function pair_key
+
+   !> After allow and allow_auto: the listed pairs sorted and unique, and `tested`.
+   subroutine settle(self)
+      type(inside_t), intent(inout) :: self
+      integer(i8), allocatable :: key(:)
+      integer, allocatable :: perm(:), nonly(:)
+      integer :: k, n, nin
+      if (allocated(self%lkey)) deallocate (self%lkey)
+      allocate (key(self%nlisted), perm(self%nlisted))
+      do k = 1, self%nlisted
+         key(k) = pair_key(self%nbody, self%listed(1, k), self%listed(2, k))
+      end do
+      call sort_perm_i8(self%nlisted, key, perm)
+      allocate (self%lkey(self%nlisted))
+      n = 0
+      do k = 1, self%nlisted
+         if (n > 0) then
+            if (key(perm(k)) == self%lkey(n)) cycle
+         end if
+         n = n + 1
+         self%lkey(n) = key(perm(k))
+      end do
+      self%lkey = self%lkey(1:n)
+      ! tested(i): a listed pair (i, :), or an AUTOmatic partner: any other body of the set when
+      ! i has nodes on several surfaces, else one that is not on i's surface alone
+      self%tested = .false.
+      do k = 1, self%nlisted
+         self%tested(self%listed(1, k)) = .true.
+      end do
+      nin = count(self%in_auto)
+      allocate (nonly(0:self%nauto), source=0)
+      do k = 1, self%nbody
+         if (self%in_auto(k)) nonly(self%only(k)) = nonly(self%only(k)) + 1
+      end do
+      do k = 1, self%nbody
+         if (.not. self%in_auto(k)) cycle
+         if (self%only(k) == 0) then
+            if (nin >= 2) self%tested(k) = .true.
+         else
+            if (nin - nonly(self%only(k)) >= 1) self%tested(k) = .true.
+         end if
+      end do
+      self%settled = .true.
+   end subroutine settle
+
+   !> True when nodes of body i are checked against the elements of body j /= i.
+   pure logical function checked(self, i, j) result(yes)
+      type(inside_t), intent(in) :: self
+      integer, intent(in) :: i, j
+      integer(i8) :: key
+      integer :: lo, hi, mid
+      yes = .false.
+      if (i == j) return
+      if (self%in_auto(i) .and. self%in_auto(j)) then
+         yes = self%only(i) == 0 .or. self%only(i) /= self%only(j)
+         if (yes) return
+      end if
+      key = pair_key(self%nbody, i, j)
+      lo = 1
+      hi = size(self%lkey)
+      do while (lo <= hi)
+         mid = (lo + hi)/2
+         if (self%lkey(mid) == key) then
+            yes = .true.
+            return
+         else if (self%lkey(mid) < key) then
+            lo = mid + 1
+         else
+            hi = mid - 1
+         end if
+      end do
+   end function checked
 
    !> Check the positions x(2, nnode) at time t. `last` gets the deepest node, `worst` the deepest
    !> over the run; a pair of bodies with a node deeper than `fraction` edges adds one warning to
@@ -173,23 +300,26 @@ contains
       real(wp), intent(in) :: x(:, :)
       real(wp), intent(in) :: t
       character(len=:), allocatable, intent(out) :: warn
-      integer :: n, a, c, k, e, b, ncount(self%nbody, self%nbody), pb(self%nbody)
-      integer :: ib, jb, np
+      integer :: n, a, c, k, e, b, pb(self%nbody), np
       real(wp) :: d, rel, t0, q(2, 4)
-      type(inside_hit_t) :: first(self%nbody, self%nbody)
+      ! the nodes past the limit of this check: their pair's key and their hit, in node order
+      integer(i8), allocatable :: hkey(:)
+      type(inside_hit_t), allocatable :: hit(:)
 
       warn = ''
       self%last = inside_hit_t(t=t)
       self%nover = 0
-      if (.not. (self%active .and. any(self%pairs))) return
+      if (.not. self%active) return
+      if (.not. self%settled) call settle(self)
+      if (.not. any(self%tested)) return
       t0 = wall_time()
       self%nchecks = self%nchecks + 1
       call build_grids(self, x)
-      ncount = 0
+      allocate (hkey(16), hit(16))
       do n = 1, self%nnode
          a = self%nb(n)
          if (a == 0) cycle
-         if (.not. any(self%pairs(a, :))) cycle
+         if (.not. self%tested(a)) cycle
          c = cell_of(self, x(:, n))
          np = 0
          do k = self%ehead(c), self%ehead(c + 1) - 1
@@ -197,7 +327,9 @@ contains
             b = self%eb(e)
             ! elements of other bodies the contact covers, and of the node's own body (which it
             ! can be inside only when the body has passed through itself)
-            if (b /= a .and. .not. self%pairs(a, b)) cycle
+            if (b /= a) then
+               if (.not. checked(self, a, b)) cycle
+            end if
             if (any(pb(1:np) == b)) cycle
             associate (box => self%ebox(:, e))
                if (x(1, n) < box(1) .or. x(1, n) > box(3) .or. x(2, n) < box(2) .or. x(2, n) > box(4)) cycle
@@ -218,49 +350,101 @@ contains
             if (rel > self%last%edges) self%last = inside_hit_t(d, rel, n, self%ids(a), self%ids(b), t)
             if (rel > self%fraction) then
                self%nover = self%nover + 1
-               ncount(a, b) = ncount(a, b) + 1
-               if (rel > first(a, b)%edges .or. ncount(a, b) == 1) &
-                  first(a, b) = inside_hit_t(d, rel, n, self%ids(a), self%ids(b), t)
+               if (self%nover > size(hkey)) then
+                  hkey = [hkey, hkey]
+                  hit = [hit, hit]
+               end if
+               hkey(self%nover) = pair_key(self%nbody, a, b)
+               hit(self%nover) = inside_hit_t(d, rel, n, self%ids(a), self%ids(b), t)
             end if
          end do
       end do
       if (self%last%edges > self%worst%edges) self%worst = self%last
-      do jb = 1, self%nbody
-         do ib = 1, self%nbody
-            if (ncount(ib, jb) == 0) cycle
-            if (self%over_checks(ib, jb) == 0) then
-               if (len(warn) > 0) warn = warn//new_line('a')
-               warn = warn//'warning: at t = '//rtoa(t)//' '//itoa(ncount(ib, jb))//' node(s) of region '// &
-                      itoa(self%ids(ib))//' are inside '//inside_what(ib, jb)//' deeper than '// &
-                      rtoa(self%fraction)//' element edges; deepest: node '//itoa(first(ib, jb)%node)// &
-                      ', '//rtoa(first(ib, jb)%edges)//' edges ('//rtoa(first(ib, jb)%depth)// &
-                      ') (geometric penetration check; later times are counted in <stem>.out)'
-            end if
-            self%over_checks(ib, jb) = self%over_checks(ib, jb) + 1
-            self%over_max(ib, jb) = max(self%over_max(ib, jb), ncount(ib, jb))
-         end do
-      end do
+      if (self%nover > 0) call book_past(self, self%nover, hkey, hit, t, warn)
       self%time_total = self%time_total + (wall_time() - t0)
-   contains
-      !> What the nodes of body ib are inside: body jb, or ib's own elements.
-      function inside_what(ib, jb) result(what)
-         integer, intent(in) :: ib, jb
-         character(len=:), allocatable :: what
-         if (ib == jb) then
-            what = 'other elements of region '//itoa(self%ids(ib))//' (the body has passed through '// &
-                   'itself; contact within one body is PAIR,id,SELF,s)'
-         else
-            what = 'region '//itoa(self%ids(jb))
-         end if
-      end function inside_what
    end subroutine inside_check
+
+   !> The nodes past the limit of one check (pair keys hkey, hits hit, in node order) booked per
+   !> pair in ascending key order: the count of the pair's checks and its most nodes, and for a
+   !> pair past the limit for the first time a warning naming its deepest node (the first of the
+   !> deepest in node order).
+   subroutine book_past(self, nh, hkey, hit, t, warn)
+      type(inside_t), intent(inout) :: self
+      integer, intent(in) :: nh
+      integer(i8), intent(in) :: hkey(:)
+      type(inside_hit_t), intent(in) :: hit(:)
+      real(wp), intent(in) :: t
+      character(len=:), allocatable, intent(inout) :: warn
+      integer :: perm(nh), p, q, k, count, ib, jb, lo, hi, mid, at
+      type(inside_hit_t) :: deep
+      call sort_perm_i8(nh, hkey(1:nh), perm)
+      p = 1
+      do while (p <= nh)
+         q = p
+         do while (q < nh)
+            if (hkey(perm(q + 1)) /= hkey(perm(p))) exit
+            q = q + 1
+         end do
+         count = q - p + 1
+         deep = hit(perm(p))
+         do k = p + 1, q
+            if (hit(perm(k))%edges > deep%edges) deep = hit(perm(k))
+         end do
+         ! the pair's place in the sorted list of pairs past the limit
+         lo = 1
+         hi = self%npast
+         at = 0
+         do while (lo <= hi)
+            mid = (lo + hi)/2
+            if (self%past_key(mid) == hkey(perm(p))) then
+               at = mid
+               exit
+            else if (self%past_key(mid) < hkey(perm(p))) then
+               lo = mid + 1
+            else
+               hi = mid - 1
+            end if
+         end do
+         if (at == 0) then
+            at = lo
+            self%npast = self%npast + 1
+            self%past_key = [self%past_key(1:at - 1), hkey(perm(p)), self%past_key(at:self%npast - 1)]
+            self%past_checks = [self%past_checks(1:at - 1), 0, self%past_checks(at:self%npast - 1)]
+            self%past_max = [self%past_max(1:at - 1), 0, self%past_max(at:self%npast - 1)]
+            ib = int(mod(hkey(perm(p)) - 1, int(self%nbody, i8))) + 1
+            jb = int((hkey(perm(p)) - 1)/int(self%nbody, i8)) + 1
+            if (len(warn) > 0) warn = warn//new_line('a')
+            warn = warn//'warning: at t = '//rtoa(t)//' '//itoa(count)//' node(s) of region '// &
+                   itoa(self%ids(ib))//' are inside '//inside_what(self, ib, jb)//' deeper than '// &
+                   rtoa(self%fraction)//' element edges; deepest: node '//itoa(deep%node)// &
+                   ', '//rtoa(deep%edges)//' edges ('//rtoa(deep%depth)// &
+                   ') (geometric penetration check; later times are counted in <stem>.out)'
+         end if
+         self%past_checks(at) = self%past_checks(at) + 1
+         self%past_max(at) = max(self%past_max(at), count)
+         p = q + 1
+      end do
+   end subroutine book_past
+
+   !> What the nodes of body ib are inside: body jb, or ib's own elements.
+   function inside_what(self, ib, jb) result(what)
+      type(inside_t), intent(in) :: self
+      integer, intent(in) :: ib, jb
+      character(len=:), allocatable :: what
+      if (ib == jb) then
+         what = 'other elements of region '//itoa(self%ids(ib))//' (the body has passed through '// &
+                'itself; contact within one body is PAIR,id,SELF,s)'
+      else
+         what = 'region '//itoa(self%ids(jb))
+      end if
+   end function inside_what
 
    !> Lines for <stem>.out: the deepest node over the run, the pairs of bodies past the warning
    !> limit, and the cost of the checks.
    function inside_report(self) result(text)
       class(inside_t), intent(in) :: self
       character(len=:), allocatable :: text
-      integer :: ib, jb
+      integer :: ib, jb, k
       text = 'geometric penetration check: '//itoa(self%nchecks)//' checks, '// &
              rtoa(self%time_total/max(self%nchecks, 1))//' s each; warning limit '//rtoa(self%fraction)// &
              ' element edges'
@@ -270,19 +454,18 @@ contains
                 rtoa(self%worst%depth)//') inside region '//itoa(self%worst%in_body)//' at t = '// &
                 rtoa(self%worst%t)
       end if
-      do jb = 1, self%nbody
-         do ib = 1, self%nbody
-            if (self%over_checks(ib, jb) == 0) cycle
-            if (ib == jb) then
-               text = text//new_line('a')//'geometric penetration check: region '//itoa(self%ids(ib))// &
-                      ' through itself'
-            else
-               text = text//new_line('a')//'geometric penetration check: region '//itoa(self%ids(ib))// &
-                      ' inside region '//itoa(self%ids(jb))
-            end if
-            text = text//' past the limit at '//itoa(self%over_checks(ib, jb))// &
-                   ' of the checks, at most '//itoa(self%over_max(ib, jb))//' nodes'
-         end do
+      do k = 1, self%npast
+         ib = int(mod(self%past_key(k) - 1, int(self%nbody, i8))) + 1
+         jb = int((self%past_key(k) - 1)/int(self%nbody, i8)) + 1
+         if (ib == jb) then
+            text = text//new_line('a')//'geometric penetration check: region '//itoa(self%ids(ib))// &
+                   ' through itself'
+         else
+            text = text//new_line('a')//'geometric penetration check: region '//itoa(self%ids(ib))// &
+                   ' inside region '//itoa(self%ids(jb))
+         end if
+         text = text//' past the limit at '//itoa(self%past_checks(k))// &
+                ' of the checks, at most '//itoa(self%past_max(k))//' nodes'
       end do
    end function inside_report
 

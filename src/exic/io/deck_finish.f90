@@ -16,6 +16,7 @@ module exic_io_deck_finish
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
    use exic_mesh_mesh, only: mesh_t
+   use exic_mesh_boundary, only: bodies_elements
    use exic_mesh_tie, only: tie_map, apply_tie
    use exic_material_material, only: MAT_UNDEFINED, MAT_RIGID, material_t
    use exic_contact_spec, only: contact_spec_t, SURF_REGION, SURF_MATERIAL, SURF_FACETS
@@ -459,8 +460,16 @@ contains
       type(builder_t), intent(in) :: b
       type(mesh_t), intent(inout) :: mesh
       type(error_t), allocatable, intent(out) :: err
-      integer :: k, e, n
+      integer :: k, e, n, i, j
       logical :: hit
+      ! the elements of each region and of each material (one sort each, not a pass over every
+      ! element per record: a deck may give thousands of bodies their own velocity)
+      integer, allocatable :: rid(:), rfirst(:), relems(:), mid(:), mfirst(:), melems(:)
+      if (b%ninit == 0) return
+      if (any(b%init(1:b%ninit)%kind == INIT_REGION)) &
+         call bodies_elements(mesh%nelem, mesh%region, rid, rfirst, relems)
+      if (any(b%init(1:b%ninit)%kind == INIT_MATERIAL)) &
+         call bodies_elements(mesh%nelem, mesh%mat, mid, mfirst, melems)
       do k = 1, b%ninit
          associate (it => b%init(k))
             select case (it%kind)
@@ -478,15 +487,30 @@ contains
                end if
                mesh%v0(:, n) = it%v
             case (INIT_REGION, INIT_MATERIAL)
-               hit = .false.
-               do e = 1, mesh%nelem
-                  if (it%kind == INIT_REGION .and. mesh%region(e) /= it%id) cycle
-                  if (it%kind == INIT_MATERIAL .and. mesh%mat(e) /= it%id) cycle
-                  hit = .true.
-                  do n = 1, 4
-                     mesh%v0(:, mesh%conn(n, e)) = it%v
-                  end do
-               end do
+               ! the record's elements in ascending order, as a pass over all of them meets them
+               if (it%kind == INIT_REGION) then
+                  j = locate(rid, it%id)
+                  hit = j > 0
+                  if (hit) then
+                     do i = rfirst(j), rfirst(j + 1) - 1
+                        e = relems(i)
+                        do n = 1, 4
+                           mesh%v0(:, mesh%conn(n, e)) = it%v
+                        end do
+                     end do
+                  end if
+               else
+                  j = locate(mid, it%id)
+                  hit = j > 0
+                  if (hit) then
+                     do i = mfirst(j), mfirst(j + 1) - 1
+                        e = melems(i)
+                        do n = 1, 4
+                           mesh%v0(:, mesh%conn(n, e)) = it%v
+                        end do
+                     end do
+                  end if
+               end if
                if (.not. hit) then
                   if (it%kind == INIT_REGION) then
                      call fail(rd, it%rec, 'INITial,VELOcity: region '//itoa(it%id)// &
@@ -500,6 +524,26 @@ contains
             end select
          end associate
       end do
+   contains
+      !> Position of id in the ascending list ids, 0 if absent.
+      pure integer function locate(ids, id) result(j)
+         integer, intent(in) :: ids(:), id
+         integer :: lo, hi, m
+         lo = 1
+         hi = size(ids)
+         j = 0
+         do while (lo <= hi)
+            m = (lo + hi)/2
+            if (ids(m) == id) then
+               j = m
+               return
+            else if (ids(m) < id) then
+               lo = m + 1
+            else
+               hi = m - 1
+            end if
+         end do
+      end function locate
    end subroutine apply_initial
 
    !> Regions and materials named by the contact surfaces exist; FACEts nodes are element nodes.

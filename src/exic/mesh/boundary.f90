@@ -18,7 +18,7 @@ module exic_mesh_boundary
    implicit none
    private
 
-   public :: free_edges, order_chains, surface_nodes, segment_links, locate_nodes
+   public :: free_edges, free_edges_of, bodies_elements, order_chains, surface_nodes, segment_links, locate_nodes
    public :: segment_normal, average_normal, node_normals, node_segments, some_node_normals, &
              node_normal_from, normal_dofs
 
@@ -31,7 +31,7 @@ contains
    !> `owner(k)` is the element that holds edge k. Degenerate edges (repeated node in a
    !> collapsed quadrilateral) are skipped. An edge shared by two selected elements in the
    !> same direction (inconsistent orientation) or by more than two elements is an error.
-   !> Cost: O(m log m) for m = 4 x (selected elements), by sorting integer edge keys.
+   !> Cost: O(nelem) for the selection, then that of free_edges_of.
    subroutine free_edges(nelem, conn, select, edges, err, chain, owner)
       integer, intent(in) :: nelem
       integer, intent(in) :: conn(4, nelem)
@@ -40,14 +40,30 @@ contains
       type(error_t), allocatable, intent(out) :: err
       integer, allocatable, intent(out), optional :: chain(:)
       integer, allocatable, intent(out), optional :: owner(:)
+      integer :: e
+      call free_edges_of(nelem, conn, pack([(e, e=1, nelem)], select), edges, err, chain, owner)
+   end subroutine free_edges
+
+   !> free_edges of the elements elems(:) (element numbers into conn, ascending), with the same
+   !> result as free_edges with those elements selected. Cost: O(m log m) for m = 4 size(elems),
+   !> by sorting integer edge keys, whatever nelem and the node numbers: a mesh of many bodies
+   !> forms the surface of each body from a list of its elements (bodies_elements).
+   subroutine free_edges_of(nelem, conn, elems, edges, err, chain, owner)
+      integer, intent(in) :: nelem
+      integer, intent(in) :: conn(4, nelem)
+      integer, intent(in) :: elems(:)
+      integer, allocatable, intent(out) :: edges(:, :)
+      type(error_t), allocatable, intent(out) :: err
+      integer, allocatable, intent(out), optional :: chain(:)
+      integer, allocatable, intent(out), optional :: owner(:)
       integer, allocatable :: ea(:), eb(:), eown(:), perm(:), fre(:, :), fown(:), ord(:), ch(:)
       integer(i8), allocatable :: key(:)
-      integer :: e, j, a, b, m, nmax, p, q, nfree
+      integer :: e, i, j, a, b, m, nmax, p, q, nfree
       character(len=160) :: msg
 
       nmax = 0
-      do e = 1, nelem
-         if (.not. select(e)) cycle
+      do i = 1, size(elems)
+         e = elems(i)
          if (any(conn(:, e) < 1)) then
             write (msg, '(a,i0,a)') 'element ', e, ' has a node number below 1'
             call make_error(err, trim(msg))
@@ -55,11 +71,11 @@ contains
          end if
          nmax = max(nmax, maxval(conn(:, e)))
       end do
-      m = 4*count(select)
+      m = 4*size(elems)
       allocate (ea(m), eb(m), eown(m), key(m))
       m = 0
-      do e = 1, nelem
-         if (.not. select(e)) cycle
+      do i = 1, size(elems)
+         e = elems(i)
          do j = 1, 4
             a = conn(j, e)
             b = conn(mod(j, 4) + 1, e)
@@ -106,7 +122,7 @@ contains
       edges = fre(:, ord)
       if (present(owner)) owner = fown(ord)
       if (present(chain)) call move_alloc(ch, chain)
-   end subroutine free_edges
+   end subroutine free_edges_of
 
    !> Order directed edges into chains that follow each other (edge k ends where k+1 starts).
    !>
@@ -120,25 +136,28 @@ contains
       integer, intent(in) :: edges(2, nedge)
       integer, intent(out) :: order(nedge)
       integer, allocatable, intent(out) :: chain(:)
-      integer, allocatable :: perm(:), first(:), nextpos(:), indeg(:), ptr(:)
+      integer, allocatable :: perm(:), first(:), nextpos(:), indeg(:), ptr(:), rk(:, :)
       logical, allocatable :: visited(:)
       integer(i8), allocatable :: key(:)
       integer :: nmax, k, p, v, nout, nchain, pass, cur
 
-      nmax = 0
-      if (nedge > 0) nmax = maxval(edges)
+      ! the nodes ranked 1..nmax in ascending order: the walk below compares node numbers only,
+      ! so it takes the same edges in the same order, with work arrays of the size of the edge
+      ! set rather than of the largest node number (a mesh of many bodies orders each body's
+      ! boundary on its own)
+      call rank_nodes(nedge, edges, rk, nmax)
       allocate (key(nedge), perm(nedge), first(nmax + 1), indeg(nmax), visited(nedge))
       allocate (ptr(nedge + 1), nextpos(nmax + 1))
       do k = 1, nedge
-         key(k) = int(edges(1, k), i8)*int(nmax + 1, i8) + int(edges(2, k), i8)
+         key(k) = int(rk(1, k), i8)*int(nmax + 1, i8) + int(rk(2, k), i8)
       end do
       call sort_perm_i8(nedge, key, perm)
       ! CSR of outgoing edges by start node, in sorted (start, end) order
       first = 0
       indeg = 0
       do k = 1, nedge
-         first(edges(1, k)) = first(edges(1, k)) + 1
-         indeg(edges(2, k)) = indeg(edges(2, k)) + 1
+         first(rk(1, k)) = first(rk(1, k)) + 1
+         indeg(rk(2, k)) = indeg(rk(2, k)) + 1
       end do
       p = 1
       do v = 1, nmax + 1
@@ -154,7 +173,7 @@ contains
          do p = 1, nedge
             k = perm(p)
             if (visited(k)) cycle
-            v = edges(1, k)
+            v = rk(1, k)
             if (pass == 1 .and. indeg(v) >= first(v + 1) - first(v)) cycle
             nchain = nchain + 1
             ptr(nchain) = nout + 1
@@ -163,7 +182,7 @@ contains
                visited(cur) = .true.
                nout = nout + 1
                order(nout) = cur
-               v = edges(2, cur)
+               v = rk(2, cur)
                do while (nextpos(v) < first(v + 1))
                   if (.not. visited(perm(nextpos(v)))) exit
                   nextpos(v) = nextpos(v) + 1
@@ -176,6 +195,59 @@ contains
       ptr(nchain + 1) = nout + 1
       chain = ptr(1:nchain + 1)
    end subroutine order_chains
+
+   !> rk(:, k): the rank of node edges(:, k) among the distinct end nodes of the edges, in
+   !> ascending order of node number (1..nrank).
+   pure subroutine rank_nodes(nedge, edges, rk, nrank)
+      integer, intent(in) :: nedge, edges(2, nedge)
+      integer, allocatable, intent(out) :: rk(:, :)
+      integer, intent(out) :: nrank
+      integer, allocatable :: ends(:), perm(:)
+      integer :: k, j
+      allocate (rk(2, nedge), perm(2*nedge))
+      ends = reshape(edges, [2*nedge])
+      call sort_perm_int(2*nedge, ends, perm)
+      nrank = 0
+      do k = 1, 2*nedge
+         j = perm(k)
+         if (k == 1) then
+            nrank = 1
+         else if (ends(j) /= ends(perm(k - 1))) then
+            nrank = nrank + 1
+         end if
+         rk(mod(j - 1, 2) + 1, (j - 1)/2 + 1) = nrank
+      end do
+   end subroutine rank_nodes
+
+   !> The elements of each body: elements first(b) .. first(b + 1) - 1 of elems are those with
+   !> body(e) = ids(b), ascending, for the distinct values ids(:) of body(:) in ascending order.
+   !> O(nelem log nelem): the per-body element lists that free_edges_of takes, without a pass
+   !> over every element per body.
+   subroutine bodies_elements(nelem, body, ids, first, elems)
+      integer, intent(in) :: nelem, body(nelem)
+      integer, allocatable, intent(out) :: ids(:), first(:), elems(:)
+      integer :: k, nb
+      allocate (elems(nelem))
+      call sort_perm_int(nelem, body, elems)
+      nb = 0
+      do k = 1, nelem
+         if (k > 1) then
+            if (body(elems(k)) == body(elems(k - 1))) cycle
+         end if
+         nb = nb + 1
+      end do
+      allocate (ids(nb), first(nb + 1))
+      nb = 0
+      do k = 1, nelem
+         if (k > 1) then
+            if (body(elems(k)) == body(elems(k - 1))) cycle
+         end if
+         nb = nb + 1
+         ids(nb) = body(elems(k))
+         first(nb) = k
+      end do
+      first(nb + 1) = nelem + 1
+   end subroutine bodies_elements
 
    !> Unique nodes of a set of edges, sorted ascending (the slave node list of a surface).
    subroutine surface_nodes(nedge, edges, nodes)

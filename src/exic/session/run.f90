@@ -97,22 +97,20 @@ contains
       type(run_t), intent(inout) :: r
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: err
-      integer :: k, j
+      integer :: k
       if (.not. r%stp%contact%active) return
       call r%inside%init(r%stp%st%nnode, size(model%mesh%conn, 2), model%mesh%conn, model%mesh%region, &
                          PENETRATION_WARN, err)
       if (allocated(err)) return
       associate (c => r%stp%contact)
          ! the passes of the PAIRs, and every pair of AUTOmatic surfaces (whose passes are made
-         ! per step for the surfaces found near)
+         ! per step for the surfaces found near), given surface by surface
          do k = 1, c%nfixed
             call r%inside%allow(c%surfaces(c%passes(k)%slave)%nodes, c%surfaces(c%passes(k)%master)%nodes)
          end do
          if (c%auto_pass%auto) then
             do k = c%auto_first + 1, size(c%surfaces)
-               do j = c%auto_first + 1, size(c%surfaces)
-                  if (j /= k) call r%inside%allow(c%surfaces(k)%nodes, c%surfaces(j)%nodes)
-               end do
+               call r%inside%allow_auto(c%surfaces(k)%nodes)
             end do
          end if
       end associate
