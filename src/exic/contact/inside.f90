@@ -297,7 +297,7 @@ contains
    !> `warn` the first time (node, bodies, depth, time, how many nodes), later ones are counted.
    subroutine inside_check(self, x, t, warn)
       class(inside_t), intent(inout) :: self
-      real(wp), intent(in) :: x(:, :)
+      real(wp), intent(in), contiguous :: x(:, :)
       real(wp), intent(in) :: t
       character(len=:), allocatable, intent(out) :: warn
       integer :: n, a, c, k, e, b, pb(self%nbody), np
@@ -474,7 +474,7 @@ contains
    !> node tests), boundary edges likewise.
    subroutine build_grids(self, x)
       type(inside_t), intent(inout) :: self
-      real(wp), intent(in) :: x(:, :)
+      real(wp), intent(in), contiguous :: x(:, :)
       real(wp) :: hi(2), ext, bl(2), bh(2)
       integer :: e, ncell, pass, ne
       integer, allocatable :: fill(:)
@@ -526,8 +526,11 @@ contains
          end do
          if (pass == 2) fill = self%ghead(1:ncell)
          do e = 1, ne
-            call bin(min(x(:, self%edge(1, e)), x(:, self%edge(2, e))), &
-                     max(x(:, self%edge(1, e)), x(:, self%edge(2, e))), e, self%ghead, self%gitem)
+            bl(1) = min(x(1, self%edge(1, e)), x(1, self%edge(2, e)))
+            bl(2) = min(x(2, self%edge(1, e)), x(2, self%edge(2, e)))
+            bh(1) = max(x(1, self%edge(1, e)), x(1, self%edge(2, e)))
+            bh(2) = max(x(2, self%edge(1, e)), x(2, self%edge(2, e)))
+            call bin(bl, bh, e, self%ghead, self%gitem)
          end do
       end do
    contains
@@ -597,7 +600,8 @@ contains
    !> search over the edge grid, stopped when the rings left are farther than the best found.
    subroutine boundary_depth(self, x, p, b, d, rel)
       type(inside_t), intent(in) :: self
-      real(wp), intent(in) :: x(:, :), p(2)
+      real(wp), intent(in), contiguous :: x(:, :)
+      real(wp), intent(in) :: p(2)
       integer, intent(in) :: b
       real(wp), intent(out) :: d, rel
       integer :: ci, cj, r, i, j, k, g
