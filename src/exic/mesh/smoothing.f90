@@ -19,14 +19,13 @@ contains
       integer, intent(in) :: conn(4, nelem)
       real(wp), intent(in) :: x(2, nnode), cell(ncomp, nelem)
       real(wp), intent(out) :: node(ncomp, nnode)
-      real(wp), allocatable :: weight(:), plain(:, :)
+      real(wp), allocatable :: weight(:)
       integer, allocatable :: count(:)
       real(wp) :: area
       integer :: e, k, n
 
-      allocate (weight(nnode), count(nnode), plain(ncomp, nnode))
+      allocate (weight(nnode), count(nnode))
       node = 0.0_wp
-      plain = 0.0_wp
       weight = 0.0_wp
       count = 0
       do e = 1, nelem
@@ -34,17 +33,27 @@ contains
          do k = 1, 4
             n = conn(k, e)
             node(:, n) = node(:, n) + area*cell(:, e)
-            plain(:, n) = plain(:, n) + cell(:, e)
             weight(n) = weight(n) + area
             count(n) = count(n) + 1
          end do
       end do
       do n = 1, nnode
-         if (weight(n) > 0.0_wp) then
-            node(:, n) = node(:, n)/weight(n)
-         else if (count(n) > 0) then
-            node(:, n) = plain(:, n)/real(count(n), wp)
-         end if
+         if (weight(n) > 0.0_wp) node(:, n) = node(:, n)/weight(n)
+      end do
+      ! nodes whose elements all have zero area: the plain mean, in a second pass only when
+      ! there are such nodes (or a weight that is not positive: the weighted sums are dropped)
+      if (.not. any(.not. (weight > 0.0_wp) .and. count > 0)) return
+      do n = 1, nnode
+         if (.not. (weight(n) > 0.0_wp)) node(:, n) = 0.0_wp
+      end do
+      do e = 1, nelem
+         do k = 1, 4
+            n = conn(k, e)
+            if (.not. (weight(n) > 0.0_wp)) node(:, n) = node(:, n) + cell(:, e)
+         end do
+      end do
+      do n = 1, nnode
+         if (.not. (weight(n) > 0.0_wp) .and. count(n) > 0) node(:, n) = node(:, n)/real(count(n), wp)
       end do
    end subroutine nodal_average
 
