@@ -460,7 +460,7 @@ contains
       type(builder_t), intent(in) :: b
       type(mesh_t), intent(inout) :: mesh
       type(error_t), allocatable, intent(out) :: err
-      integer :: k, e, n, i, j
+      integer :: k, n
       logical :: hit
       ! the elements of each region and of each material (one sort each, not a pass over every
       ! element per record: a deck may give thousands of bodies their own velocity)
@@ -489,27 +489,9 @@ contains
             case (INIT_REGION, INIT_MATERIAL)
                ! the record's elements in ascending order, as a pass over all of them meets them
                if (it%kind == INIT_REGION) then
-                  j = locate(rid, it%id)
-                  hit = j > 0
-                  if (hit) then
-                     do i = rfirst(j), rfirst(j + 1) - 1
-                        e = relems(i)
-                        do n = 1, 4
-                           mesh%v0(:, mesh%conn(n, e)) = it%v
-                        end do
-                     end do
-                  end if
+                  call set_velocity(rid, rfirst, relems, it%id, it%v, hit)
                else
-                  j = locate(mid, it%id)
-                  hit = j > 0
-                  if (hit) then
-                     do i = mfirst(j), mfirst(j + 1) - 1
-                        e = melems(i)
-                        do n = 1, 4
-                           mesh%v0(:, mesh%conn(n, e)) = it%v
-                        end do
-                     end do
-                  end if
+                  call set_velocity(mid, mfirst, melems, it%id, it%v, hit)
                end if
                if (.not. hit) then
                   if (it%kind == INIT_REGION) then
@@ -525,25 +507,34 @@ contains
          end associate
       end do
    contains
-      !> Position of id in the ascending list ids, 0 if absent.
-      pure integer function locate(ids, id) result(j)
-         integer, intent(in) :: ids(:), id
-         integer :: lo, hi, m
+      !> Velocity v at every node of the elements of group id (ids ascending, its elements
+      !> elems(first(j):first(j + 1) - 1)); hit: the group exists.
+      subroutine set_velocity(ids, first, elems, id, v, hit)
+         integer, intent(in) :: ids(:), first(:), elems(:), id
+         real(wp), intent(in) :: v(2)
+         logical, intent(out) :: hit
+         integer :: lo, hi, m, i
          lo = 1
          hi = size(ids)
-         j = 0
-         do while (lo <= hi)
+         hit = .false.
+         do while (lo <= hi .and. .not. hit)
             m = (lo + hi)/2
             if (ids(m) == id) then
-               j = m
-               return
+               hit = .true.
             else if (ids(m) < id) then
                lo = m + 1
             else
                hi = m - 1
             end if
          end do
-      end function locate
+         if (.not. hit) return
+         do i = first(m), first(m + 1) - 1
+            mesh%v0(:, mesh%conn(1, elems(i))) = v
+            mesh%v0(:, mesh%conn(2, elems(i))) = v
+            mesh%v0(:, mesh%conn(3, elems(i))) = v
+            mesh%v0(:, mesh%conn(4, elems(i))) = v
+         end do
+      end subroutine set_velocity
    end subroutine apply_initial
 
    !> Regions and materials named by the contact surfaces exist; FACEts nodes are element nodes.

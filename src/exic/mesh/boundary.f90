@@ -227,7 +227,8 @@ contains
       integer, intent(in) :: nelem, body(nelem)
       integer, allocatable, intent(out) :: ids(:), first(:), elems(:)
       integer :: k, nb
-      allocate (elems(nelem))
+      integer, allocatable :: starts(:)
+      allocate (elems(nelem), starts(nelem + 1))
       call sort_perm_int(nelem, body, elems)
       nb = 0
       do k = 1, nelem
@@ -235,18 +236,10 @@ contains
             if (body(elems(k)) == body(elems(k - 1))) cycle
          end if
          nb = nb + 1
+         starts(nb) = k
       end do
-      allocate (ids(nb), first(nb + 1))
-      nb = 0
-      do k = 1, nelem
-         if (k > 1) then
-            if (body(elems(k)) == body(elems(k - 1))) cycle
-         end if
-         nb = nb + 1
-         ids(nb) = body(elems(k))
-         first(nb) = k
-      end do
-      first(nb + 1) = nelem + 1
+      ids = body(elems(starts(1:nb)))
+      first = [starts(1:nb), nelem + 1]
    end subroutine bodies_elements
 
    !> Unique nodes of a set of edges, sorted ascending (the slave node list of a surface).
