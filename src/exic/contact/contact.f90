@@ -3,9 +3,9 @@
 !> Each PAIR becomes one pass (NTOS, SELF) or two (SYMMetric: each surface's nodes against the
 !> other's segments); AUTOmatic makes a surface of every region's free boundary and pairs every
 !> two of them: one search over all its surfaces per step makes the passes of the pairs found
-!> near (src/exic/contact/broad_all.f90), Lagrange or penalty. Per step and pass: predicted positions x~(n+2) (eq. 4.4), the
-!> broad phase on swept boxes, swept (or static) node-to-segment detection (eq. 6.1-6.6), and
-!> candidate constraints with the predicted gap of eq. 3.19 at t(n+2) and a frozen normal. All
+!> near (src/exic/contact/broad_all.f90), Lagrange or penalty. Per step and pass: predicted
+!> positions x~(n+2) (eq. 4.4), the broad phase on swept boxes, swept (or static)
+!> node-to-segment detection (eq. 6.1-6.6), and candidate constraints with the predicted gap of eq. 3.19 at t(n+2) and a frozen normal. All
 !> Lagrange candidates of all passes are solved together by the corrector (eq. 4.5-4.7), or,
 !> when a pair has Coulomb friction, by the frictional corrector (doc/friction.md, eq. F6-F15);
 !> penalty passes add k x penetration forces at t(n+1) instead (src/exic/contact/penalty.f90,
@@ -236,7 +236,7 @@ contains
                call ps%hist%init(nnode)
          end associate
       end do
-      ! the options of the Lagrange AUTOmatic passes (auto_passes copies them)
+      ! the options of the AUTOmatic passes (auto_passes copies them)
       self%auto_pass%friction = self%auto_pass%auto .and. self%auto_pass%law(1) > 0.0_wp
       if (self%auto_pass%friction) self%friction = .true.
       if (self%auto_pass%friction .and. self%auto_pass%method == METHOD_PENALTY .and. &
