@@ -6,9 +6,9 @@
 !> near (src/exic/contact/broad_all.f90), Lagrange or penalty. Per step and pass: predicted
 !> positions x~(n+2) (eq. 4.4), the broad phase on swept boxes, swept (or static)
 !> node-to-segment detection (eq. 6.1-6.6), and candidate constraints with the predicted gap
-!> of eq. 3.19 at t(n+2) and a frozen normal. All Lagrange candidates of all passes are solved together by the corrector (eq. 4.5-4.7), or,
-!> when a pair has Coulomb friction, by the frictional corrector (doc/friction.md, eq. F6-F15);
-!> penalty passes add k x penetration forces at t(n+1) instead (src/exic/contact/penalty.f90,
+!> of eq. 3.19 at t(n+2) and a frozen normal. All Lagrange candidates of all passes are solved
+!> together by the corrector (eq. 4.5-4.7), or, when a pair has Coulomb friction, by the
+!> frictional corrector (doc/friction.md, eq. F6-F15); penalty passes add k x penetration forces at t(n+1) instead (src/exic/contact/penalty.f90,
 !> with the regularised friction law F18).
 !>
 !> Everything comes in as plain arrays: the CONTact block's spec, the positions, the element
