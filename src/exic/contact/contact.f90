@@ -8,8 +8,8 @@
 !> node-to-segment detection (eq. 6.1-6.6), and candidate constraints with the predicted gap
 !> of eq. 3.19 at t(n+2) and a frozen normal. All Lagrange candidates of all passes are solved
 !> together by the corrector (eq. 4.5-4.7), or, when a pair has Coulomb friction, by the
-!> frictional corrector (doc/friction.md, eq. F6-F15); penalty passes add k x penetration forces at t(n+1) instead (src/exic/contact/penalty.f90,
-!> with the regularised friction law F18).
+!> frictional corrector (doc/friction.md, eq. F6-F15); penalty passes add k x penetration
+!> forces at t(n+1) instead (src/exic/contact/penalty.f90, with the regularised friction law F18).
 !>
 !> Everything comes in as plain arrays: the CONTact block's spec, the positions, the element
 !> connectivity with region and material numbers (for REGIon/MATErial and AUTOmatic surfaces),
