@@ -16,6 +16,7 @@ program exic_tests
    use test_viewers, only: run_viewers_tests
    use test_physics, only: run_physics_tests
    use test_contact, only: run_contact_tests
+   use test_contact_auto, only: run_contact_auto_tests
    use test_run_output, only: run_run_output_tests
    use test_console, only: run_console_tests
    use test_deck, only: run_deck_tests
@@ -57,6 +58,7 @@ program exic_tests
    call r%run('physics', run_physics_tests)
    call r%run('threads', run_threads_tests)
    call r%run('contact', run_contact_tests)
+   call r%run('contact_auto', run_contact_auto_tests)
    call r%run('run_output', run_run_output_tests)
    call r%run('restart', run_restart_tests)
    call r%run('console', run_console_tests)

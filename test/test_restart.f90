@@ -10,6 +10,7 @@ module test_restart
    use exic_base_strings, only: itoa, rtoa
    use testing, only: suite_t, check, section, skip, have_command
    use deck_runner, only: run_dir, write_text
+   use test_contact_auto, only: sliding_blocks_deck, blocks_contact
    implicit none
    private
 
@@ -40,6 +41,9 @@ contains
       call continued(s, exic, 'one_point', one_point_deck())
       call section(s, 'restart: plastic history and Coulomb friction across the restart point')
       call continued(s, exic, 'friction_plastic', friction_plastic_deck())
+      ! penalty friction under AUTOmatic: the tangential state kept per pair of surfaces
+      call continued(s, exic, 'penalty_auto_friction', sliding_blocks_deck(blocks_contact(.true.), &
+                     '  OUTPut,HDF5,0.02'//nl//'  SAVE,,0.2'//nl))
       call section(s, 'restart: massless contact faces (LAGRange,ENERgy) pressed across the restart point')
       call continued(s, exic, 'energy_face', energy_face_deck('  RIGId'))
       call continued(s, exic, 'energy_face_dofs', energy_face_deck('  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'))

@@ -1,14 +1,15 @@
 !> Contact in the time step: surfaces, passes, search and the implicit corrector (seed 3-6).
 !>
 !> Each PAIR becomes one pass (NTOS, SELF) or two (SYMMetric: each surface's nodes against the
-!> other's segments); AUTOmatic makes a surface of every region's free boundary and a symmetric
-!> pair of every two regions. Per step and pass: predicted positions x~(n+2) (eq. 4.4), the
-!> broad phase on swept boxes, swept (or static) node-to-segment detection (eq. 6.1-6.6), and
-!> candidate constraints with the predicted gap of eq. 3.19 at t(n+2) and a frozen normal. All
-!> Lagrange candidates of all passes are solved together by the corrector (eq. 4.5-4.7), or,
-!> when a pair has Coulomb friction, by the frictional corrector (doc/friction.md, eq. F6-F15);
-!> penalty passes add k x penetration forces at t(n+1) instead (src/exic/contact/penalty.f90,
-!> with the regularised friction law F18).
+!> other's segments); AUTOmatic makes a surface of every region's free boundary and pairs every
+!> two of them: one search over all its surfaces per step makes the passes of the pairs found
+!> near (src/exic/contact/broad_all.f90), Lagrange or penalty. Per step and pass: predicted
+!> positions x~(n+2) (eq. 4.4), the broad phase on swept boxes, swept (or static)
+!> node-to-segment detection (eq. 6.1-6.6), and candidate constraints with the predicted gap
+!> of eq. 3.19 at t(n+2) and a frozen normal. All Lagrange candidates of all passes are solved
+!> together by the corrector (eq. 4.5-4.7), or, when a pair has Coulomb friction, by the
+!> frictional corrector (doc/friction.md, eq. F6-F15); penalty passes add k x penetration
+!> forces at t(n+1) instead (src/exic/contact/penalty.f90, with the regularised friction law F18).
 !>
 !> Everything comes in as plain arrays: the CONTact block's spec, the positions, the element
 !> connectivity with region and material numbers (for REGIon/MATErial and AUTOmatic surfaces),
@@ -34,7 +35,9 @@ module exic_contact_contact
    use exic_contact_detect, only: contact_set_t, detect_contacts
    use exic_contact_corrector, only: constraints_t, corrector_t
    use exic_contact_friction, only: friction_t, coulomb_mu
-   use exic_contact_penalty, only: penalty_forces, penalty_history_t
+   use exic_contact_penalty, only: penalty_forces, penalty_history_t, smallest_mass, spring_dt, &
+                                   auto_spring_dt
+   use exic_contact_pair_history, only: pair_history_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
    use exic_contact_massless_face, only: massless_face_t
    implicit none
@@ -113,10 +116,14 @@ module exic_contact_contact
       logical :: any_penalty = .false.
       type(surface_t), allocatable :: surfaces(:)
       type(pass_t), allocatable :: passes(:)
-      !> passes in force: 1..nfixed those of the PAIR records (and of a penalty AUTOmatic), then
-      !> one per pair of AUTOmatic surfaces that the search over all surfaces found near
+      !> passes in force: 1..nfixed those of the PAIR records, then one per pair of AUTOmatic
+      !> surfaces that the search over all surfaces found near
       integer :: npass = 0, nfixed = 0
-      type(pass_t) :: auto_pass                !< options of the Lagrange AUTOmatic passes
+      type(pass_t) :: auto_pass                !< options of the AUTOmatic passes
+      !> penalty AUTOmatic with friction: the tangential state per pair of surfaces, and the
+      !> work history a pass runs on (src/exic/contact/pair_history.f90)
+      type(pair_history_t) :: auto_hist
+      type(penalty_history_t) :: hwork
       type(broad_all_t) :: auto                !< the AUTOmatic surfaces and their search
       integer :: auto_first = 0                !< surfaces(auto_first + r) is AUTOmatic surface r
       integer, allocatable :: cnodes(:)        !< every node of every contact surface
@@ -200,6 +207,7 @@ contains
       do k = 1, np
          if (self%passes(k)%method == METHOD_PENALTY) self%any_penalty = .true.
       end do
+      if (self%auto_pass%auto .and. self%auto_pass%method == METHOD_PENALTY) self%any_penalty = .true.
       call penalty_stiffness(self, modulus)
       call spec_penalty_finite(spec, modulus, err)
       if (allocated(err)) return
@@ -230,9 +238,11 @@ contains
                call ps%hist%init(nnode)
          end associate
       end do
-      ! the options of the Lagrange AUTOmatic passes (auto_passes copies them)
+      ! the options of the AUTOmatic passes (auto_passes copies them)
       self%auto_pass%friction = self%auto_pass%auto .and. self%auto_pass%law(1) > 0.0_wp
       if (self%auto_pass%friction) self%friction = .true.
+      if (self%auto_pass%friction .and. self%auto_pass%method == METHOD_PENALTY .and. &
+          .not. allocated(self%hwork%q)) call self%hwork%init(nnode)
       if (.not. self%friction) return
       if (.not. allocated(self%vslip)) allocate (self%vslip(nnode), source=-1.0_wp)
       if (.not. allocated(self%ffric)) allocate (self%ffric(2, nnode), source=0.0_wp)
@@ -308,22 +318,20 @@ contains
       end do
    end subroutine build_surfaces
 
-   !> Passes of the PAIR records (two for SYMMetric) and of AUTOmatic (two per region pair).
+   !> Passes of the PAIR records (two for SYMMetric); AUTOmatic's are made per step (auto_passes).
    subroutine build_passes(self, spec, err)
       type(contact_t), intent(inout) :: self
       type(contact_spec_t), intent(in) :: spec
       type(error_t), allocatable, intent(out) :: err
       integer :: npair, np, k, i, j, nauto, ns, maxid, npass
       type(pass_t), allocatable :: p(:)
-      logical :: auto_penalty
 
       npair = 0
       if (allocated(spec%pairs)) npair = size(spec%pairs)
       ns = 0
       if (allocated(spec%surfaces)) ns = size(spec%surfaces)
       nauto = size(self%surfaces) - ns
-      auto_penalty = spec%auto_options%method == METHOD_PENALTY
-      allocate (p(2*npair + merge(nauto*max(nauto - 1, 0), 1, auto_penalty)))
+      allocate (p(2*npair + 1))
       maxid = 0
       np = 0
       allocate (self%results(npair + merge(1, 0, nauto > 0)))
@@ -352,16 +360,9 @@ contains
             end select
          end associate
       end do
-      if (nauto > 0 .and. auto_penalty) then
-         self%results(npair + 1)%id = maxid + 1
-         do i = ns + 1, ns + nauto
-            do j = ns + 1, ns + nauto
-               if (i /= j) call add_pass(p, np, npair + 1, i, j, spec%auto_options)
-            end do
-         end do
-      else if (nauto > 0) then
-         ! Lagrange AUTOmatic: one search over all its surfaces per step makes the passes of
-         ! the pairs of surfaces found near (auto_passes), in the order of i, then j
+      if (nauto > 0) then
+         ! AUTOmatic: one search over all its surfaces per step makes the passes of the pairs
+         ! of surfaces found near (auto_passes), in the order of i, then j
          self%results(npair + 1)%id = maxid + 1
          call add_pass(p, np, npair + 1, 0, 0, spec%auto_options)
          self%auto_pass = p(np)
@@ -417,6 +418,7 @@ contains
       do k = 1, size(self%passes)
          if (self%passes(k)%k < 0.0_wp) self%passes(k)%k = -self%passes(k)%k*modulus
       end do
+      if (self%auto_pass%k < 0.0_wp) self%auto_pass%k = -self%auto_pass%k*modulus
    end subroutine penalty_stiffness
 
    !> Index of the surface with deck id `id` (0 if none).
@@ -518,7 +520,12 @@ contains
       if (self%friction) call friction_begin(self)
       self%cs%friction = self%friction
       call self%cs%reserve(64)
-      call auto_passes(self, nnode, x, self%xp, self%depth, kept=.true.)
+      if (self%auto_pass%method == METHOD_PENALTY) then
+         ! penalty: the springs act on the positions at t(n+1) (penalty_pass)
+         call auto_passes(self, nnode, x, x, self%depth, kept=.true.)
+      else
+         call auto_passes(self, nnode, x, self%xp, self%depth, kept=.true.)
+      end if
       do k = 1, self%npass
          associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
                     ms => self%surfaces(self%passes(k)%master))
@@ -599,7 +606,7 @@ contains
       self%fcon_clean = self%cs%n == 0 .and. .not. touched
    end subroutine contact_correct
 
-   !> The passes of Lagrange AUTOmatic contact for this search: one search over every AUTOmatic
+   !> The passes of AUTOmatic contact for this search: one search over every AUTOmatic
    !> surface (src/exic/contact/broad_all.f90) over x0 -> x1 with margin, then one pass per pair
    !> of surfaces with candidates, after the fixed passes, holding those candidates.
    subroutine auto_passes(self, nnode, x0, x1, margin, kept)
@@ -741,7 +748,9 @@ contains
 
    !> Penalty baseline of one pass (src/exic/contact/penalty.f90): static detection at t(n+1),
    !> forces k x penetration (plus damping) on the hits, with the regularised friction law when
-   !> the pass has friction; the pair's results.
+   !> the pass has friction; the pair's results. An AUTOmatic pass has its candidates from the
+   !> search over all surfaces (over x -> x with margin depth, as broad_search here) and its
+   !> tangential state from auto_hist, kept per pair of surfaces.
    subroutine penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, dt_prev, fcon, nactive)
       type(contact_t), intent(inout) :: self
       type(pass_t), intent(inout) :: ps
@@ -753,7 +762,7 @@ contains
       integer, intent(inout) :: nactive
       integer :: j, n
       real(wp) :: diss
-      call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, self%depth)
+      if (.not. ps%auto) call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, self%depth)
       if (ps%broad%ncand == 0) return
       call detect_contacts(ps%hits, DETECT_STATIC, nnode, x, x, sl%nnode, sl%nodes, &
                            sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
@@ -766,8 +775,15 @@ contains
       if (ps%friction) then
          call grow(ps%q, n)
          call grow(ps%state, n)
-         call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n), &
-                             ps%hist, ps%law, self%xold, dt_prev, self%ffric, ps%q(1:n), ps%state(1:n), diss)
+         if (ps%auto) then
+            call self%auto_hist%load(ps%slave, ps%master, self%hwork)
+            call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n), &
+                                self%hwork, ps%law, self%xold, dt_prev, self%ffric, ps%q(1:n), ps%state(1:n), diss)
+            call self%auto_hist%store(ps%slave, ps%master, self%hwork)
+         else
+            call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n), &
+                                ps%hist, ps%law, self%xold, dt_prev, self%ffric, ps%q(1:n), ps%state(1:n), diss)
+         end if
       else
          call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n))
       end if
@@ -792,7 +808,8 @@ contains
    end subroutine penalty_pass
 
    !> Critical step of the penalty springs: 1 / sqrt(k (1/m_s + 1/m_master)) over the slave
-   !> nodes (huge when no pass uses penalty). Lagrange contact never limits the step.
+   !> nodes, m_master the smallest mass of the pass's master nodes (huge when no pass uses
+   !> penalty). Lagrange contact never limits the step.
    !> The linear limit of a spring is 2/omega; half of it is taken because a spring that
    !> switches on and off within the step (impact, chatter) pumps energy at the linear limit:
    !> a bar struck at 0.9 x 2/omega gained 19 % energy, at 0.5 x 2/omega it held within 0.3 %.
@@ -800,24 +817,18 @@ contains
       class(contact_t), intent(in) :: self
       integer, intent(in) :: nnode
       real(wp), intent(in) :: minv(2, nnode)
-      integer :: k, j
-      real(wp) :: mmin, w2
+      integer :: k
       dt = huge(1.0_wp)
       if (.not. (self%active .and. self%any_penalty)) return
-      do k = 1, size(self%passes)
+      do k = 1, self%nfixed
          associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
                     ms => self%surfaces(self%passes(k)%master))
             if (ps%method /= METHOD_PENALTY) cycle
-            mmin = huge(1.0_wp)
-            do j = 1, ms%nnode
-               if (minv(1, ms%nodes(j)) > 0.0_wp) mmin = min(mmin, 1.0_wp/minv(1, ms%nodes(j)))
-            end do
-            do j = 1, sl%nnode
-               w2 = ps%k*(minv(1, sl%nodes(j)) + merge(1.0_wp/mmin, 0.0_wp, mmin < huge(1.0_wp)))
-               if (w2 > 0.0_wp) dt = min(dt, 1.0_wp/sqrt(w2))
-            end do
+            call spring_dt(ps%k, nnode, minv, sl%nnode, sl%nodes, smallest_mass(nnode, minv, ms%nnode, ms%nodes), dt)
          end associate
       end do
+      if (.not. (self%auto_pass%auto .and. self%auto_pass%method == METHOD_PENALTY)) return
+      call auto_spring_dt(self%auto_pass%k, nnode, minv, self%auto%nsurf, self%auto%node_first, self%auto%nodes, dt)
    end function contact_stable_dt
 
    !> A TPLOt `cont,pair,comp` value: 1 normal force, 2-3 force x, y on the slave side (normal
@@ -829,34 +840,16 @@ contains
       class(contact_t), intent(in) :: self
       integer, intent(in) :: pair, comp
       integer :: k
+      real(wp) :: vals(11)
       val = 0.0_wp
       if (.not. self%active) return
       do k = 1, size(self%results)
          if (self%results(k)%id /= pair) cycle
-         select case (comp)
-         case (1)
-            val = self%results(k)%fnormal
-         case (2)
-            val = self%results(k)%force(1)
-         case (3)
-            val = self%results(k)%force(2)
-         case (4)
-            val = real(self%results(k)%nactive, wp)
-         case (5)
-            val = self%results(k)%penetration
-         case (6)
-            val = self%results(k)%pmax
-         case (7)
-            val = self%results(k)%work
-         case (8)
-            val = self%results(k)%ftangent
-         case (9)
-            val = real(self%results(k)%nstick, wp)
-         case (10)
-            val = real(self%results(k)%nslip, wp)
-         case (11)
-            val = self%results(k)%dissipation
-         end select
+         associate (r => self%results(k))
+            vals = [r%fnormal, r%force(1), r%force(2), real(r%nactive, wp), r%penetration, r%pmax, r%work, &
+                    r%ftangent, real(r%nstick, wp), real(r%nslip, wp), r%dissipation]
+         end associate
+         if (comp >= 1 .and. comp <= size(vals)) val = vals(comp)
          return
       end do
    end function contact_pair_value

@@ -22,7 +22,7 @@ module exic_contact_penalty
    implicit none
    private
 
-   public :: penalty_forces, penalty_history_t
+   public :: penalty_forces, penalty_history_t, smallest_mass, spring_dt, auto_spring_dt
 
    !> Viscous damping of penalty contact as a fraction of critical (LS-DYNA's customary 10 %).
    real(wp), parameter :: PENALTY_DAMPING = 0.1_wp
@@ -137,5 +137,63 @@ contains
          a(:, m2) = a(:, m2) - minv(:, m2)*al*f(:, j)
       end do
    end subroutine penalty_forces
+
+   !> The smallest mass 1 / minv(1, node) of nodes(1:n) that have one (huge when none has).
+   pure real(wp) function smallest_mass(nnode, minv, n, nodes) result(m)
+      integer, intent(in) :: nnode, n, nodes(n)
+      real(wp), intent(in) :: minv(2, nnode)
+      integer :: j
+      m = huge(1.0_wp)
+      do j = 1, n
+         if (minv(1, nodes(j)) > 0.0_wp) m = min(m, 1.0_wp/minv(1, nodes(j)))
+      end do
+   end function smallest_mass
+
+   !> dt = min(dt, 1 / sqrt(k (1/m_s + 1/mmin))) over the slave nodes(1:n) of a spring of
+   !> stiffness k to a master node of mass mmin (huge: none, the master side adds nothing).
+   pure subroutine spring_dt(k, nnode, minv, n, nodes, mmin, dt)
+      real(wp), intent(in) :: k
+      integer, intent(in) :: nnode, n, nodes(n)
+      real(wp), intent(in) :: minv(2, nnode), mmin
+      real(wp), intent(inout) :: dt
+      integer :: j
+      real(wp) :: w2
+      do j = 1, n
+         w2 = k*(minv(1, nodes(j)) + merge(1.0_wp/mmin, 0.0_wp, mmin < huge(1.0_wp)))
+         if (w2 > 0.0_wp) dt = min(dt, 1.0_wp/sqrt(w2))
+      end do
+   end subroutine spring_dt
+
+   !> spring_dt of AUTOmatic contact: the nodes of each of nsurf surfaces (surface r: nodes(first(r)
+   !> : first(r + 1) - 1)) are the slaves of every other surface. Their stiffest spring is the one
+   !> to the lightest node of those: the smallest of the surfaces' smallest masses, or the second
+   !> smallest for the surface that has it. min and the spring's formula are monotone in rounding,
+   !> so dt is the one of a pass per ordered pair of surfaces, bit for bit, in O(nodes).
+   pure subroutine auto_spring_dt(k, nnode, minv, nsurf, first, nodes, dt)
+      real(wp), intent(in) :: k
+      integer, intent(in) :: nnode, nsurf, first(nsurf + 1), nodes(*)
+      real(wp), intent(in) :: minv(2, nnode)
+      real(wp), intent(inout) :: dt
+      integer :: r, r1
+      real(wp) :: m, m1, m2
+      if (nsurf < 2) return
+      m1 = huge(1.0_wp)
+      m2 = huge(1.0_wp)
+      r1 = 0
+      do r = 1, nsurf
+         m = smallest_mass(nnode, minv, first(r + 1) - first(r), nodes(first(r):first(r + 1) - 1))
+         if (m < m1) then
+            m2 = m1
+            m1 = m
+            r1 = r
+         else if (m < m2) then
+            m2 = m
+         end if
+      end do
+      do r = 1, nsurf
+         call spring_dt(k, nnode, minv, first(r + 1) - first(r), nodes(first(r):first(r + 1) - 1), &
+                        merge(m2, m1, r == r1), dt)
+      end do
+   end subroutine auto_spring_dt
 
 end module exic_contact_penalty

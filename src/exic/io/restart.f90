@@ -31,6 +31,7 @@ module exic_io_restart
    use exic_explicit_step, only: stepper_t
    use exic_explicit_state, only: plus_zero
    use exic_contact_contact, only: contact_t
+   use exic_contact_pair_history, only: pair_history_t
    use exic_material_material, only: HOURGLASS_PHYSICAL
    implicit none
    private
@@ -185,7 +186,8 @@ contains
                       'lambda, mu, rho, hourglass: the coefficient, or minus the scale of '// &
                       'HOURglass,PHYSical)', 8)
       np = -1
-      if (stp%contact%active) np = size(stp%contact%passes)
+      ! the passes of the PAIR records (AUTOmatic's are made per step, as many as the search finds)
+      if (stp%contact%active) np = stp%contact%nfixed
       call same_int(ar, 'model.contact_passes', np, 'the contact passes (CONTact block)')
       np = 0
       if (allocated(model%program)) np = size(model%program)
@@ -401,6 +403,7 @@ contains
                end if
             end associate
          end do
+         call visit_pair_history(ar, c%auto_hist)
       end if
       call ar%item('contact.max_penetration', c%max_penetration)
       call ar%item('contact.nredundant', c%nredundant)
@@ -423,6 +426,32 @@ contains
          if (.not. ar%saving .and. .not. allocated(ar%err)) call c%face%refactor(ar%err)
       end if
    end subroutine visit_contact
+
+   !> The tangential state of penalty friction under AUTOmatic, per pair of surfaces
+   !> (src/exic/contact/pair_history.f90): the sizes first, then the pairs and their entries.
+   subroutine visit_pair_history(ar, h)
+      type(archive_t), intent(inout) :: ar
+      type(pair_history_t), intent(inout) :: h
+      integer :: npair, ntot
+      integer, allocatable :: pairs(:, :), counts(:), nodes(:)
+      real(wp), allocatable :: q(:), vslip(:)
+      character(len=*), parameter :: p = 'contact.auto_penalty_friction.'
+      npair = h%npair
+      ntot = h%total()
+      call ar%item(p//'npair', npair)
+      call ar%item(p//'entries', ntot)
+      if (allocated(ar%err) .or. npair == 0) return
+      allocate (pairs(2, npair), counts(npair), nodes(ntot), q(ntot), vslip(ntot))
+      if (ar%saving) call h%flatten(pairs, counts, nodes, q, vslip)
+      call ar%item(p//'pairs', pairs)
+      call ar%item(p//'counts', counts)
+      if (ntot > 0) then
+         call ar%item(p//'nodes', nodes)
+         call ar%item(p//'q', q)
+         call ar%item(p//'vslip', vslip)
+      end if
+      if (.not. ar%saving .and. .not. allocated(ar%err)) call h%unflatten(npair, pairs, counts, nodes, q, vslip)
+   end subroutine visit_pair_history
 
    !> Loads, prescribed motion and rigid bodies (doc/loads.md): what changes during the run.
    subroutine visit_loading(ar, stp)
