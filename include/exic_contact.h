@@ -9,7 +9,7 @@
  * pair k. Node, body, surface and pair numbers are 1-based, as in Fortran.
  *
  * Link (the line of doc/api.md, "Install and link"; no HDF5, no Gmsh):
- * cc -O2 -I$PREFIX/include host.c -L$PREFIX/lib -lexic -lldl -lamd -llapack -lblas -lgfortran -lm
+ * cc -O2 -I$PREFIX/include host.c -L$PREFIX/lib -lexic -lldl -lamd -llapack -lblas -lgomp -lgfortran -lm
  */
 #ifndef EXIC_CONTACT_H
 #define EXIC_CONTACT_H

@@ -128,6 +128,7 @@ module exic_contact_contact
       integer :: auto_first = 0                !< surfaces(auto_first + r) is AUTOmatic surface r
       integer, allocatable :: cnodes(:)        !< every node of every contact surface
       integer :: stamp = 0                     !< searches made (normals are formed once per search)
+      integer :: nthreaded = 0                 !< searches whose narrow phase ran on the threads
       !> the caller passes the same fcon to every call and leaves it alone in between (the
       !> stepper): fcon is then zeroed only when the last call left forces in it
       logical :: keep_fcon = .false.
@@ -163,6 +164,16 @@ module exic_contact_contact
       procedure :: face_nodes => contact_face_nodes
       procedure :: face_dofs => contact_face_dofs
    end type contact_t
+
+   interface
+      !> The narrow phase of the Lagrange passes k1 ... k2, on the threads when there is enough
+      !> of it (src/exic/contact/narrow.f90).
+      module subroutine narrow_passes(self, nnode, x, minv, k1, k2)
+         type(contact_t), intent(inout) :: self
+         integer, intent(in) :: nnode, k1, k2
+         real(wp), intent(in) :: x(2, nnode), minv(2, nnode)
+      end subroutine narrow_passes
+   end interface
 
 contains
 
@@ -526,6 +537,9 @@ contains
       else
          call auto_passes(self, nnode, x, self%xp, self%depth, kept=.true.)
       end if
+      ! the narrow phase of every Lagrange pass at once (src/exic/contact/narrow.f90); with
+      ! penalty passes, which change node normals and forces, pass by pass in order
+      if (.not. self%any_penalty) call narrow_passes(self, nnode, x, minv, 1, self%npass)
       do k = 1, self%npass
          associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
                     ms => self%surfaces(self%passes(k)%master))
@@ -535,25 +549,8 @@ contains
                if (ps%broad%ncand > 0) touched = .true.
                cycle
             end if
-            if (.not. ps%auto) call broad_search_kept(ps%broad, nnode, x, self%xp, sl%nnode, sl%nodes, &
-                                                      ms%nseg, ms%seg, self%depth)
-            if (ps%auto) call drop_flat_fixed(ps%broad, nnode, x, minv, sl%nnode, sl%nodes, sl%seg, sl%nhead, &
-                                              sl%nsegs)
+            if (self%any_penalty) call narrow_passes(self, nnode, x, minv, k, k)
             if (ps%broad%ncand == 0) cycle
-            if (ps%slave == ps%master) call surface_normals(self, sl, nnode, x)
-            if (sl%nrm_stamp == self%stamp) then
-               ! this search formed every normal of the surface
-               call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
-                                    sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
-                                    self%depth, FACING)
-            else
-               ! the normals of the slaves that have a hit and of the segments, formed by the
-               ! narrow phase once in this search (another surface than the master: above)
-               call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
-                                    sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
-                                    self%depth, FACING, sl%seg, sl%nhead, sl%nsegs, &
-                                    self%stamp, ms%sn, ms%sn_stamp, sl%sn, sl%sn_stamp)
-            end if
             do j = 1, ps%hits%n
                node = ps%hits%slave(j)
                associate (m1 => ps%hits%master(1, j), m2 => ps%hits%master(2, j), &

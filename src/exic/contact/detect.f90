@@ -41,7 +41,7 @@ module exic_contact_detect
    private
 
    public :: gap_coefficients, first_crossing, swept_pair, static_pair, alpha_tolerance
-   public :: detect_pairs, detect_contacts, contact_set_t
+   public :: detect_pairs, detect_contacts, contact_set_t, candidate_normals
 
    !> Accepted contact points may lie this share of the segment length beyond either end;
    !> a contact point this close to an end is taken to be at the end (master node).
@@ -383,6 +383,25 @@ contains
       n(1:2) = segment_normal(x0(:, ma), x0(:, mb))
       n(3:4) = segment_normal(x1(:, ma), x1(:, mb))
    end subroutine both_normals
+
+   !> The unit normals of the segments of candidates cand(:, 1:ncand) at x0 (mnrm(1:2, k)) and
+   !> x1 (mnrm(3:4, k)) that search `stamp` has not formed yet, as detect_pairs forms them at
+   !> their first use: the segment-normal cache of detect_pairs filled beforehand, so that the
+   !> narrow phase of several passes can run concurrently and only read it (src/exic/contact/narrow.f90).
+   pure subroutine candidate_normals(nnode, x0, x1, nseg, seg, ncand, cand, stamp, mnrm, mstamp)
+      integer, intent(in) :: nnode, nseg, ncand, stamp
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode)
+      integer, intent(in) :: seg(2, nseg), cand(2, ncand)
+      real(wp), intent(inout) :: mnrm(4, nseg)
+      integer, intent(inout) :: mstamp(nseg)
+      integer :: j, k
+      do j = 1, ncand
+         k = cand(2, j)
+         if (mstamp(k) == stamp) cycle
+         call both_normals(nnode, x0, x1, seg(1, k), seg(2, k), mnrm(:, k))
+         mstamp(k) = stamp
+      end do
+   end subroutine candidate_normals
 
    !> Projection of xs1 on the segment xa1-xb1, clamped to it (alpha_c for a zero-length segment).
    pure real(wp) function end_point(xs1, xa1, xb1, alpha_c) result(alpha)

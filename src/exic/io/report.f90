@@ -148,6 +148,10 @@ contains
             call files%say('contact corrector: factorizations '//itoa(c%corr%nsolves)// &
                            ' (dense '//itoa(c%corr%ndense)//', sparse '//itoa(c%corr%nsparse)// &
                            '), sparse symbolic analyses '//itoa(c%corr%sparse%nanalyze))
+            ! the contact step on the threads (doc/decisions.md, "Threads")
+            if (c%nthreaded + c%corr%nthreaded > 0) &
+               call files%say('contact on the threads: narrow phase in '//itoa(c%nthreaded)// &
+                              ' searches, blocks of S in '//itoa(c%corr%nthreaded)//' factorizations')
             ! the frictional corrector (doc/friction.md, section 4)
             if (c%friction) call files%say('friction: steps solved with friction '//itoa(c%fr%ncalls)// &
                                            ', sweeps '//itoa(c%fr%nsweeps)//', steps at the sweep limit '// &
