@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """Threads in the contact step (doc/performance.md 6.3): the 256-body scene body_grid(16, 8)
-(60 steps) run with two exic binaries on 1 and 2 threads, interleaved (every repetition runs
+(60 steps; --side n: n x n bodies) run with two exic binaries on 1 and 2 threads, interleaved (every repetition runs
 old and new on 1 and 2 threads, the order of the binaries reversed every other repetition);
 medians of "time in steps" and its parts from <stem>.out (wall time), and the processor time
 of the process. The .his and .ene of every run must equal those of the old binary on one thread.
 
-    python3 bench/contact_threads.py --old OLD_EXIC --new NEW_EXIC [--reps 9]
+    python3 bench/contact_threads.py --old OLD_EXIC --new NEW_EXIC [--reps 9] [--side 16]
 """
 import argparse
 import filecmp
@@ -28,13 +28,14 @@ def main():
     ap.add_argument("--old", required=True)
     ap.add_argument("--new", required=True)
     ap.add_argument("--reps", type=int, default=9)
+    ap.add_argument("--side", type=int, default=16, help="bodies per side (16: the 256 bodies of section 6.4)")
     args = ap.parse_args()
     bins = {"old": os.path.abspath(args.old), "new": os.path.abspath(args.new)}
     res = {}
     with tempfile.TemporaryDirectory(prefix="exic_cthreads_") as work:
         deck = os.path.join(work, "bodies.inp")
         with open(deck, "w") as f:
-            f.write(decks.body_grid(16, 8, steps=60))
+            f.write(decks.body_grid(args.side, 8, steps=60))
         ref = None
         for r in range(args.reps):
             for th in (1, 2):
