@@ -45,10 +45,13 @@ contains
       do k = k1, k2
          if (self%passes(k)%method == METHOD_LAGRANGE) work = work + self%passes(k)%broad%ncand
       end do
-      ! the passes of each slave surface, and the swept ones of each master surface
-      call by_surface(self, k1, k2, .true., ns, sfirst, slist)
-      call by_surface(self, k1, k2, .false., nm, mfirst, mlist)
-      if (threaded(work, NARROW_MIN) .and. ns > 1) then
+      ns = 0
+      if (threaded(work, NARROW_MIN)) then
+         ! the passes of each slave surface, and the swept ones of each master surface
+         call by_surface(self, k1, k2, .true., ns, sfirst, slist)
+         call by_surface(self, k1, k2, .false., nm, mfirst, mlist)
+      end if
+      if (ns > 1) then
          self%nthreaded = self%nthreaded + 1
          !$omp parallel default(shared) private(k, g)
          !$omp do schedule(dynamic)
@@ -68,14 +71,11 @@ contains
          !$omp end do
          !$omp end parallel
       else
+         ! one thread: pass after pass, each detection forming the normals it needs as it goes
+         ! (the same values: sweeps 2 and 3 only split that work between tasks)
          do k = k1, k2
             call candidates(self, k, nnode, x, minv)
-         end do
-         do g = 1, nm
-            call master_normals(self, mlist(mfirst(g):mfirst(g + 1) - 1), nnode, x)
-         end do
-         do g = 1, ns
-            call slave_passes(self, slist(sfirst(g):sfirst(g + 1) - 1), nnode, x)
+            if (self%passes(k)%method == METHOD_LAGRANGE) call slave_passes(self, [k], nnode, x)
          end do
       end if
    end subroutine narrow_passes
