@@ -10,7 +10,7 @@ module test_contact_auto
    use exic_base_strings, only: itoa, rtoa
    use exic_contact_spec, only: contact_spec_t, METHOD_PENALTY
    use exic_contact_contact, only: contact_t
-   use testing, only: suite_t, check, section, file_text
+   use testing, only: suite_t, check, section, file_text, error_text
    use deck_runner, only: run_dir, run_deck, read_table, column
    implicit none
    private
@@ -63,7 +63,7 @@ contains
       spec%auto_options%penalty = k
       spec%auto_options%where = 'test'
       call c%init(spec, nnode, x, x, nbody, conn, region, mat, 1.0_wp, err)
-      call check(s, .not. allocated(err), 'penalty AUTOmatic over 36 bodies sets up', msg(err))
+      call check(s, .not. allocated(err), 'penalty AUTOmatic over 36 bodies sets up', error_text(err))
       if (allocated(err)) return
       vt = 0.0_wp
       a = 0.0_wp
@@ -185,11 +185,5 @@ contains
                  maxval(e(column(names, 'active'), :)) >= 3.0_wp, 'friction dissipates, springs on several pairs')
    end subroutine friction_pairs_test
 
-   function msg(err) result(text)
-      type(error_t), allocatable, intent(in) :: err
-      character(len=:), allocatable :: text
-      text = ''
-      if (allocated(err)) text = err%message
-   end function msg
 
 end module test_contact_auto

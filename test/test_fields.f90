@@ -11,7 +11,7 @@ module test_fields
    use exic_io_fields, only: field_writer_t
    use exic_io_posix, only: copy_file
    use testing, only: suite_t, check, check_close, section, skip, have_command, have_python_modules, &
-                      python_command
+                      python_command, error_text
    implicit none
    private
 
@@ -129,7 +129,7 @@ contains
       call section(s, 'fields: write 3 output times')
       call execute_command_line('mkdir -p '//DIR)
       call write_synthetic(w, stem, 3, err)
-      call check(s, .not. allocated(err), 'open and write 3 output times', err_text(err))
+      call check(s, .not. allocated(err), 'open and write 3 output times', error_text(err))
       call check(s, w%count() == 3 .and. w%is_open(), 'writer counts 3 output times and is open')
 
       call section(s, 'fields: h5dump reads the file while the writer still has it open')
@@ -139,7 +139,7 @@ contains
       call check_step_errors(s, w)
 
       call w%close(err)
-      call check(s, .not. allocated(err) .and. .not. w%is_open(), 'close', err_text(err))
+      call check(s, .not. allocated(err) .and. .not. w%is_open(), 'close', error_text(err))
 
       call section(s, 'fields: h5dump shapes and values after close')
       call check_h5dump_series(s, stem//'.h5', 3, '', 'closed')
@@ -226,7 +226,7 @@ contains
          ok = ok .and. w%count() == 20
          call w%close(err)
          call check(s, .not. allocated(err) .and. ok, 'batch '//trim(tag(i))//': 20 output times, in the '// &
-                    'file after each full batch and after flush', err_text(err))
+                    'file after each full batch and after flush', error_text(err))
       end do
       if (.not. have_command('h5dump')) then
          call skip(s, 'the files of different batches compared', 'h5dump', 4)
@@ -527,12 +527,12 @@ contains
       call check(s, allocated(err), 'u of the wrong shape is an error')
       call w%write_step(0.5_wp, step, u, v, a, sig, fcont, active, energies, ENERGY_NAMES, err)
       call check(s, has(err, 'must increase'), 'an output time not after the last is an error', &
-                 err_text(err))
+                 error_text(err))
       call w%write_step(t, step, u, v, a, sig, fcont, active, energies, ['kinetic', 'total  '], err)
-      call check(s, has(err, 'strain'), 'a changed energy name is an error naming it', err_text(err))
+      call check(s, has(err, 'strain'), 'a changed energy name is an error naming it', error_text(err))
       call closed%write_step(t, step, u, v, a, sig, fcont, active, energies, ENERGY_NAMES, err)
       call check(s, has(err, 'not open'), 'write_step on a writer never opened is an error', &
-                 err_text(err))
+                 error_text(err))
       call check(s, w%count() == 3, 'failed calls leave 3 output times')
    end subroutine check_step_errors
 
@@ -549,17 +549,17 @@ contains
       call w%open(missing//'.h5', missing//'.xdmf', NNODE_T, NELEM_T, x0, conn, region, mat, &
                   edges, err)
       call check(s, has(err, missing//'.h5') .and. .not. w%is_open(), &
-                 'creating a file in a missing directory is an error naming it', err_text(err))
+                 'creating a file in a missing directory is an error naming it', error_text(err))
       conn(3, 4) = NNODE_T + 1
       call w%open(DIR//'/bad.h5', DIR//'/bad.xdmf', NNODE_T, NELEM_T, x0, conn, region, mat, &
                   edges, err)
       call check(s, has(err, 'element 4'), 'a node number out of range is an error naming the element', &
-                 err_text(err))
+                 error_text(err))
       conn(3, 4) = 9
       call w%open(DIR//'/bad.h5', 'elsewhere/bad.xdmf', NNODE_T, NELEM_T, x0, conn, region, mat, &
                   edges, err)
       call check(s, has(err, 'one directory'), '.h5 and .xdmf in different directories is an error', &
-                 err_text(err))
+                 error_text(err))
    end subroutine check_open_errors
 
    !> Run test/field_writer_child: it writes 4 outputs, then waits; kill it with SIGKILL and read
@@ -620,7 +620,7 @@ contains
       if (.not. allocated(err)) call write_synthetic_steps(w, 1, 5, err)
       if (.not. allocated(err)) call w%flush(err)
       if (.not. allocated(err)) call copy_file(stem//'.h5', stem//'_running.h5', err)
-      call check(s, .not. allocated(err), 'open, copy, write 5 output times, copy', err_text(err))
+      call check(s, .not. allocated(err), 'open, copy, write 5 output times, copy', error_text(err))
       if (allocated(err)) return
       if (have_python_modules('h5py,numpy')) then
          code = run_python('tools/check_h5_frozen.py '//stem//'_created.h5 '//stem//'_running.h5 --times 5 > '// &
@@ -635,10 +635,10 @@ contains
       call write_synthetic_steps(w, 6, 20, err)
       if (.not. allocated(err)) call w%flush(err)
       if (.not. allocated(err)) call copy_file(stem//'.h5', stem//'_grown.h5', err)
-      call check(s, .not. allocated(err) .and. w%count() == 20, '20 output times in a room of 16', err_text(err))
+      call check(s, .not. allocated(err) .and. w%count() == 20, '20 output times in a room of 16', error_text(err))
       call check_h5dump_series(s, stem//'_grown.h5', 20, '', 'grown', capacity=32)
       call w%close(err)
-      call check(s, .not. allocated(err), 'close', err_text(err))
+      call check(s, .not. allocated(err), 'close', error_text(err))
       call check_h5dump_series(s, stem//'.h5', 20, '', 'grown and closed')
       if (have_python_modules('h5py,numpy')) then
          code = run_python('tools/check_h5_frozen.py '//stem//'_created.h5 '//stem//'.h5 > '// &
@@ -672,7 +672,7 @@ contains
          if (.not. allocated(err)) call w%flush(err)
          call execute_command_line('ln '//stem//'.h5 '//stem//'_link.h5', exitstat=code)
          if (.not. allocated(err)) call w%close(err)
-         call check(s, .not. allocated(err) .and. code == 0, tag//': open, write, link, close', err_text(err))
+         call check(s, .not. allocated(err) .and. code == 0, tag//': open, write, link, close', error_text(err))
          if (allocated(err)) return
          call check_h5dump_series(s, stem//'.h5', 6, '', tag//', closed')
          call execute_command_line('cmp -s '//stem//'.h5 '//stem//'_link.h5', exitstat=code)
@@ -804,17 +804,6 @@ contains
       has = allocated(err)
       if (has) has = index(err%message, text) > 0
    end function has
-
-   !> The message of err, or 'no error'.
-   function err_text(err) result(s)
-      type(error_t), allocatable, intent(in) :: err
-      character(len=:), allocatable :: s
-      if (allocated(err)) then
-         s = err%message
-      else
-         s = 'no error'
-      end if
-   end function err_text
 
    !> Up to 8 values as text.
    function list_text(x) result(s)

@@ -11,7 +11,7 @@ module test_friction
    use exic_base_error, only: error_t
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
-   use testing, only: suite_t, check, section, skip, have_command
+   use testing, only: suite_t, check, section, skip, have_command, error_text
    use test_fields, only: h5dump
    use deck_runner, only: run_dir, run_deck, read_table, column, write_text
    implicit none
@@ -423,7 +423,7 @@ contains
       call write_text(run_dir//'/fr_ok.inp', base//contact('  FRICtion,COULomb,0.5,0.3,2'//nl)// &
                       batch('1e-4', '0.1', ''))
       call read_deck(run_dir//'/fr_ok.inp', m, err)
-      call check(s, .not. allocated(err), 'FRICtion,COULomb,mus,mud,decay under a PAIR is read', msg(err))
+      call check(s, .not. allocated(err), 'FRICtion,COULomb,mus,mud,decay under a PAIR is read', error_text(err))
       if (.not. allocated(err)) then
          call check(s, m%contact%pairs(1)%mus == 0.5_wp .and. m%contact%pairs(1)%mud == 0.3_wp .and. &
                     m%contact%pairs(1)%decay == 2.0_wp, 'the law mus, mud, decay is kept')
@@ -431,7 +431,7 @@ contains
       call write_text(run_dir//'/fr_auto.inp', base//'CONTact'//nl//'  AUTOmatic'//nl// &
                       '  FRICtion,COULomb,0.25'//nl//'END CONTact'//nl//batch('1e-4', '0.1', ''))
       call read_deck(run_dir//'/fr_auto.inp', m, err)
-      call check(s, .not. allocated(err), 'FRICtion,COULomb,mu under AUTOmatic is read', msg(err))
+      call check(s, .not. allocated(err), 'FRICtion,COULomb,mu under AUTOmatic is read', error_text(err))
       if (.not. allocated(err)) call check(s, m%contact%auto_options%mus == 0.25_wp .and. &
                                            m%contact%auto_options%mud == 0.25_wp, 'AUTOmatic: mus = mud = mu')
       call bad('fr_pairfield', base//'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl// &
@@ -449,7 +449,7 @@ contains
       call write_text(run_dir//'/fr_energy0.inp', base//contact('  LAGRange,ENERgy'//nl// &
                                                                '  FRICtion,COULomb,0'//nl)//batch('1e-4', '0.1', ''))
       call read_deck(run_dir//'/fr_energy0.inp', m, err)
-      call check(s, .not. allocated(err), 'LAGRange,ENERgy with FRICtion,COULomb,0 (frictionless) is read', msg(err))
+      call check(s, .not. allocated(err), 'LAGRange,ENERgy with FRICtion,COULomb,0 (frictionless) is read', error_text(err))
       call bad('fr_mud', base//contact('  FRICtion,COULomb,0.3,0.5'//nl)//batch('1e-4', '0.1', ''), 'FRICtion', &
                'expected mud <= mus')
       call bad('fr_nomu', base//contact('  FRICtion,COULomb'//nl)//batch('1e-4', '0.1', ''), 'FRICtion', &
@@ -463,7 +463,7 @@ contains
       call write_text(run_dir//'/fr_warn.inp', replace(base//contact('')//batch('1e-4', '0.1', ''), &
                                                        'DT,,1e-4', 'DT,,1e-4,42'))
       call read_deck(run_dir//'/fr_warn.inp', m, err)
-      call check(s, .not. allocated(err), 'an unused field outside the contact block is not an error', msg(err))
+      call check(s, .not. allocated(err), 'an unused field outside the contact block is not an error', error_text(err))
       if (.not. allocated(err)) call check(s, index(m%warnings, 'fr_warn.inp:'// &
                                                     itoa(line_of(slurp(run_dir//'/fr_warn.inp'), 'DT,,'))// &
                                                     ': warning:') > 0 .and. index(m%warnings, '"42"') > 0, &
@@ -485,12 +485,6 @@ contains
       end subroutine bad
    end subroutine deck_records
 
-   function msg(err) result(text)
-      type(error_t), allocatable, intent(in) :: err
-      character(len=:), allocatable :: text
-      text = ''
-      if (allocated(err)) text = err%message
-   end function msg
 
    !> Line number of the first line of `text` that holds `record`.
    integer function line_of(text, record) result(line)

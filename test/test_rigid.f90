@@ -9,7 +9,7 @@ module test_rigid
    use exic_io_model, only: model_t
    use exic_explicit_step, only: stepper_t
    use exic_explicit_rigid, only: RB_FREE
-   use testing, only: suite_t, check, check_close, section
+   use testing, only: suite_t, check, check_close, section, error_text
    use test_loads, only: setup_stepper
    implicit none
    private
@@ -71,7 +71,7 @@ contains
       deck = head//'MATErial,1'//nl//'  RIGId,FREE'//nl//'    DENSity 2'//nl//nl//square(c, phi, 1, 1, 1)// &
              'GRAVity,0,-9.81'//nl//'END'//nl//'BATCh'//nl//'END'//nl//'STOP'
       call setup_stepper('flight', deck, model, stp, err)
-      call check(s, .not. allocated(err), 'free rigid block set up', msg(err))
+      call check(s, .not. allocated(err), 'free rigid block set up', error_text(err))
       if (allocated(err)) return
       associate (b => stp%ld%bodies(1))
          call check(s, b%kind == RB_FREE, 'region 1 is a free rigid body')
@@ -86,7 +86,7 @@ contains
       call stp%set_velocity(given, v)
       call stp%set_fixed_dt(1.0e-3_wp, 'test', err)
       if (.not. allocated(err)) call stp%start(err)
-      call check(s, .not. allocated(err), 'free rigid block starts', msg(err))
+      call check(s, .not. allocated(err), 'free rigid block starts', error_text(err))
       if (allocated(err)) return
       e0 = stp%st%kinetic
       call check_close(s, e0, 0.5_wp*(2.0_wp/6.0_wp)*om**2, 1.0e-13_wp, 'initial kinetic energy 1/2 I omega^2')
@@ -104,7 +104,7 @@ contains
             ee = max(ee, abs(st%kinetic - st%wext - e0))
          end associate
       end do
-      call check(s, .not. allocated(err), 'free flight runs', msg(err))
+      call check(s, .not. allocated(err), 'free flight runs', error_text(err))
       call check(s, ex <= 1.0e-12_wp, 'centroid falls as -g t^2/2', 'largest error '//rtoa(ex))
       call check(s, eth <= 1.0e-12_wp .and. eom <= 1.0e-13_wp, 'turns at constant omega: theta = omega t', &
                  rtoa(eth)//', '//rtoa(eom))
@@ -136,7 +136,7 @@ contains
              '    REGIon,2'//nl//'  PAIR,1,NTOS,1,2'//nl//'END CONTact'//nl//'END'//nl//'BATCh'//nl//'END'// &
              nl//'STOP'
       call setup_stepper('corner', deck, model, stp, err)
-      call check(s, .not. allocated(err), 'corner impact set up', msg(err))
+      call check(s, .not. allocated(err), 'corner impact set up', error_text(err))
       if (allocated(err)) return
       allocate (given(stp%st%nnode), v(2, stp%st%nnode))
       given = .false.
@@ -153,7 +153,7 @@ contains
          if (allocated(err)) exit
          if (stp%st%nactive > 0) touched = .true.
       end do
-      call check(s, .not. allocated(err) .and. touched, 'the corner strikes the floor by t = 0.05', msg(err))
+      call check(s, .not. allocated(err) .and. touched, 'the corner strikes the floor by t = 0.05', error_text(err))
       ! exact impulse (omega = 0 before impact, v_n = -1)
       rxn = r(1)
       vn = -1.0_wp
@@ -197,7 +197,7 @@ contains
              '    REGIon,2'//nl//'  PAIR,1,SYMMetric,1,2'//nl//'END CONTact'//nl//'END'//nl//'TIE,REGIon,2,2'// &
              nl//'BATCh'//nl//'END'//nl//'STOP'
       call setup_stepper('disk_bar', deck, model, stp, err)
-      call check(s, .not. allocated(err), 'disk and bar set up', msg(err))
+      call check(s, .not. allocated(err), 'disk and bar set up', error_text(err))
       if (allocated(err)) return
       ib = stp%ld%body_index(2)
       call check(s, ib > 0, 'region 2 is a rigid body')
@@ -230,7 +230,7 @@ contains
          worst_l = max(worst_l, abs(angular() - l0 - imp))
          if (stp%st%nactive > 0) touched = .true.
       end do
-      call check(s, .not. allocated(err) .and. touched, 'the disk strikes the bar', msg(err))
+      call check(s, .not. allocated(err) .and. touched, 'the disk strikes the bar', error_text(err))
       ldisk = disk_angular()
       call check(s, worst_p <= 1.0e-13_wp*norm2(p0), 'linear momentum of the pair conserved to round-off', &
                  'largest change '//rtoa(worst_p)//' of '//rtoa(norm2(p0)))
@@ -285,11 +285,5 @@ contains
                                               'a boundary code') > 0, 'the error names the node', err%message)
    end subroutine held_free_body
 
-   function msg(err) result(m)
-      type(error_t), allocatable, intent(in) :: err
-      character(len=:), allocatable :: m
-      m = ''
-      if (allocated(err)) m = err%message
-   end function msg
 
 end module test_rigid

@@ -12,7 +12,7 @@ module test_xdmf
    use exic_mesh_smoothing, only: nodal_average
    use exic_io_xdmf, only: xdmf_series_t, xdmf_write_t, append_writes, write_whole_file
    use testing, only: suite_t, check, check_close, section, skip, have_python_modules, python_command, &
-                      file_text
+                      file_text, error_text
    implicit none
    private
 
@@ -64,7 +64,7 @@ contains
       call series%create(path, HEAD, TAIL, err)
       if (.not. allocated(err)) call series%append(grid_text('t0', '0.0'), err)
       if (.not. allocated(err)) call series%append(grid_text('t1', '0.5'), err)
-      call check(s, .not. allocated(err), 'create a series and append two grids', msg(err))
+      call check(s, .not. allocated(err), 'create a series and append two grids', error_text(err))
       if (allocated(err)) return
       g = grid_text('t2', '1.0')
       free = series%next_offset()
@@ -72,7 +72,7 @@ contains
       w = append_writes(free, g)
       call series%append(g, err)
       after = file_text(path)
-      call check(s, .not. allocated(err), 'append the third grid', msg(err))
+      call check(s, .not. allocated(err), 'append the third grid', error_text(err))
       ! the writes, applied to the file as it was, give the file the append wrote
       state = before
       do j = 1, size(w)
@@ -102,7 +102,7 @@ contains
       call series%finish(err)
       call check(s, .not. allocated(err) .and. file_text(path) == HEAD//'    '//grid_text('t0', '0.0')// &
                  '  '//NL//'    '//grid_text('t1', '0.5')//'  '//NL//'    '//g//'  '//NL//TAIL, &
-                 'finish leaves head, the three grids and tail, without the reserve', msg(err))
+                 'finish leaves head, the three grids and tail, without the reserve', error_text(err))
    end subroutine torn_append_test
 
    !> 60 grids of about 2 kB go past the 64 kB reserve: every one is there, in order.
@@ -128,7 +128,7 @@ contains
          expect = expect//'    '//g//'  '//NL
          if (k == 30) inquire (file=path, size=size_at_30)
       end do
-      call check(s, .not. allocated(err), 'append 60 grids of '//itoa(len(g))//' bytes', msg(err))
+      call check(s, .not. allocated(err), 'append 60 grids of '//itoa(len(g))//' bytes', error_text(err))
       call check(s, size_at_30 > 65536_i8, 'the file outgrew its first reserve', 'size after 31 grids '// &
                  itoa(int(size_at_30)))
       text = file_text(path)
@@ -142,7 +142,7 @@ contains
       call check(s, in_order .and. index(text, TAIL) > 0, 'every grid is in the file before the tail')
       call series%finish(err)
       call check(s, .not. allocated(err) .and. file_text(path) == expect//TAIL, &
-                 'the finished file is head, the 60 grids in order and tail', msg(err))
+                 'the finished file is head, the 60 grids in order and tail', error_text(err))
    end subroutine growth_test
 
    !> A file in a missing directory: an error naming the temporary file, nothing left behind.
@@ -152,12 +152,12 @@ contains
       type(xdmf_series_t) :: series
       call write_whole_file(DIR//'/no/such/dir/run.xdmf', 'text', err)
       call check(s, has(err, DIR//'/no/such/dir/run.xdmf.tmp'), 'a missing directory is an error naming '// &
-                 'the file', msg(err))
+                 'the file', error_text(err))
       call series%append('  <Grid/>', err)
-      call check(s, has(err, 'not open'), 'appending to a series never created is an error', msg(err))
+      call check(s, has(err, 'not open'), 'appending to a series never created is an error', error_text(err))
       call series%create(DIR//'/dash_series.xdmf', HEAD, TAIL, err)
       if (.not. allocated(err)) call series%append('  <Grid Name="a--b"/>', err)
-      call check(s, has(err, "'--'"), 'a grid containing -- is refused (it would end the comment)', msg(err))
+      call check(s, has(err, "'--'"), 'a grid containing -- is refused (it would end the comment)', error_text(err))
       call series%abandon()
    end subroutine whole_file_error_test
 
@@ -227,13 +227,5 @@ contains
       has = allocated(err)
       if (has) has = index(err%message, text) > 0
    end function has
-
-   !> The message of err, or 'no error'.
-   function msg(err) result(text)
-      type(error_t), allocatable, intent(in) :: err
-      character(len=:), allocatable :: text
-      text = 'no error'
-      if (allocated(err)) text = err%message
-   end function msg
 
 end module test_xdmf

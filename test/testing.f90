@@ -8,13 +8,14 @@
 !> non-zero code on any failure.
 module testing
    use exic_base_kinds, only: wp
+   use exic_base_error, only: error_t
    use, intrinsic :: iso_fortran_env, only: output_unit
    implicit none
    private
 
    public :: suite_t, runner_t, suite_procedure, check, check_close, section, skip
    public :: have_command, have_python_modules, python_command, fpm_command, file_text
-   public :: energy_of, gradient_error
+   public :: energy_of, gradient_error, error_text
 
    !> Running totals of one test run.
    type :: suite_t
@@ -252,5 +253,13 @@ contains
       end do
       rel = maxval(abs(fd - f))/maxval(abs(f))
    end function gradient_error
+
+   !> The message of err, or 'no error' (the detail of a check on a call's error).
+   function error_text(err) result(text)
+      type(error_t), allocatable, intent(in) :: err
+      character(len=:), allocatable :: text
+      text = 'no error'
+      if (allocated(err)) text = err%message
+   end function error_text
 
 end module testing
