@@ -2,13 +2,20 @@
 !>
 !> The permutation sorts are stable merge sorts, so equal keys keep their input order and
 !> results never depend on the platform; `sort_short_int` sorts a short list in place without
-!> allocating (insertion sort), for per-step lists of a few entries.
+!> allocating (insertion sort), for per-step lists of a few entries; `search_sorted` finds a key
+!> in an increasing list by bisection.
 module exic_base_sort
    use exic_base_kinds, only: i8
    implicit none
    private
 
-   public :: sort_perm_i8, sort_perm_int, sort_short_int, sorted_unique
+   public :: sort_perm_i8, sort_perm_int, sort_short_int, sorted_unique, search_sorted
+
+   !> Position of `key` in the increasing array `keys`, or minus the position it would be
+   !> inserted at (-(size(keys) + 1) past the end) when it is absent.
+   interface search_sorted
+      module procedure search_sorted_int, search_sorted_i8
+   end interface search_sorted
 
 contains
 
@@ -91,5 +98,43 @@ contains
       end do
       u = pack([(i, i=lo, hi)], seen)
    end function sorted_unique
+
+   pure integer function search_sorted_int(keys, key) result(pos)
+      integer, intent(in) :: keys(:), key
+      integer :: lo, hi, mid
+      lo = 1
+      hi = size(keys)
+      do while (lo <= hi)
+         mid = (lo + hi)/2
+         if (keys(mid) == key) then
+            pos = mid
+            return
+         else if (keys(mid) < key) then
+            lo = mid + 1
+         else
+            hi = mid - 1
+         end if
+      end do
+      pos = -lo
+   end function search_sorted_int
+
+   pure integer function search_sorted_i8(keys, key) result(pos)
+      integer(i8), intent(in) :: keys(:), key
+      integer :: lo, hi, mid
+      lo = 1
+      hi = size(keys)
+      do while (lo <= hi)
+         mid = (lo + hi)/2
+         if (keys(mid) == key) then
+            pos = mid
+            return
+         else if (keys(mid) < key) then
+            lo = mid + 1
+         else
+            hi = mid - 1
+         end if
+      end do
+      pos = -lo
+   end function search_sorted_i8
 
 end module exic_base_sort

@@ -24,7 +24,7 @@
 module exic_contact_inside
    use exic_base_kinds, only: wp, i8
    use exic_base_grow, only: grow
-   use exic_base_sort, only: sort_perm_i8
+   use exic_base_sort, only: sort_perm_i8, search_sorted
    use exic_base_error, only: error_t
    use exic_base_strings, only: itoa, rtoa
    use exic_base_clock, only: wall_time
@@ -268,28 +268,13 @@ contains
    pure logical function checked(self, i, j) result(yes)
       type(inside_t), intent(in) :: self
       integer, intent(in) :: i, j
-      integer(i8) :: key
-      integer :: lo, hi, mid
       yes = .false.
       if (i == j) return
       if (self%in_auto(i) .and. self%in_auto(j)) then
          yes = self%only(i) == 0 .or. self%only(i) /= self%only(j)
          if (yes) return
       end if
-      key = pair_key(self%nbody, i, j)
-      lo = 1
-      hi = size(self%lkey)
-      do while (lo <= hi)
-         mid = (lo + hi)/2
-         if (self%lkey(mid) == key) then
-            yes = .true.
-            return
-         else if (self%lkey(mid) < key) then
-            lo = mid + 1
-         else
-            hi = mid - 1
-         end if
-      end do
+      yes = search_sorted(self%lkey, pair_key(self%nbody, i, j)) > 0
    end function checked
 
    !> Check the positions x(2, nnode) at time t. `last` gets the deepest node, `worst` the deepest
@@ -375,7 +360,7 @@ contains
       type(inside_hit_t), intent(in) :: hit(:)
       real(wp), intent(in) :: t
       character(len=:), allocatable, intent(inout) :: warn
-      integer :: perm(nh), p, q, k, count, ib, jb, lo, hi, mid, at
+      integer :: perm(nh), p, q, k, count, ib, jb, at
       type(inside_hit_t) :: deep
       call sort_perm_i8(nh, hkey(1:nh), perm)
       p = 1
@@ -391,22 +376,9 @@ contains
             if (hit(perm(k))%edges > deep%edges) deep = hit(perm(k))
          end do
          ! the pair's place in the sorted list of pairs past the limit
-         lo = 1
-         hi = self%npast
-         at = 0
-         do while (lo <= hi)
-            mid = (lo + hi)/2
-            if (self%past_key(mid) == hkey(perm(p))) then
-               at = mid
-               exit
-            else if (self%past_key(mid) < hkey(perm(p))) then
-               lo = mid + 1
-            else
-               hi = mid - 1
-            end if
-         end do
-         if (at == 0) then
-            at = lo
+         at = search_sorted(self%past_key(1:self%npast), hkey(perm(p)))
+         if (at < 0) then
+            at = -at
             self%npast = self%npast + 1
             self%past_key = [self%past_key(1:at - 1), hkey(perm(p)), self%past_key(at:self%npast - 1)]
             self%past_checks = [self%past_checks(1:at - 1), 0, self%past_checks(at:self%npast - 1)]

@@ -15,6 +15,7 @@
 module exic_io_deck_finish
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
+   use exic_base_sort, only: search_sorted
    use exic_mesh_mesh, only: mesh_t
    use exic_mesh_boundary, only: bodies_elements
    use exic_mesh_tie, only: tie_map, apply_tie
@@ -513,20 +514,9 @@ contains
          integer, intent(in) :: ids(:), first(:), elems(:), id
          real(wp), intent(in) :: v(2)
          logical, intent(out) :: hit
-         integer :: lo, hi, m, i
-         lo = 1
-         hi = size(ids)
-         hit = .false.
-         do while (lo <= hi .and. .not. hit)
-            m = (lo + hi)/2
-            if (ids(m) == id) then
-               hit = .true.
-            else if (ids(m) < id) then
-               lo = m + 1
-            else
-               hi = m - 1
-            end if
-         end do
+         integer :: m, i
+         m = search_sorted(ids, id)
+         hit = m > 0
          if (.not. hit) return
          do i = first(m), first(m + 1) - 1
             mesh%v0(:, mesh%conn(1, elems(i))) = v

@@ -20,6 +20,7 @@
 module exic_io_deck_gmsh
    use exic_base_kinds, only: wp, i8
    use exic_base_error, only: error_t
+   use exic_base_sort, only: search_sorted
    use exic_mesh_edge_set, only: orient_edges, add_edges
    use exic_io_records, only: keyword_is, to_lower, dirname
    use exic_io_reader, only: reader_t, next_in_set, field, word, has_field, int_field, fail, &
@@ -113,26 +114,6 @@ contains
       if (n >= 4) is_geo = to_lower(name(n - 3:n)) == '.geo'
    end function is_geo
 
-   !> Position of `key` in the increasing array `keys` (0 when absent).
-   pure integer function locate(keys, key)
-      integer(i8), intent(in) :: keys(:), key
-      integer :: lo, hi, mid
-      lo = 1
-      hi = size(keys)
-      locate = 0
-      do while (lo <= hi)
-         mid = (lo + hi)/2
-         if (keys(mid) == key) then
-            locate = mid
-            return
-         else if (keys(mid) < key) then
-            lo = mid + 1
-         else
-            hi = mid - 1
-         end if
-      end do
-   end function locate
-
    !> The nodes and quadrilaterals of a Gmsh mesh into the builder. On return node1 and elmt1
    !> are the numbers actually used.
    subroutine add_gmsh_mesh(rd, b, icmd, tag, gm, node1, elmt1, err)
@@ -153,8 +134,8 @@ contains
       used = .false.
       do q = 1, gm%nquad
          do k = 1, 4
-            j = locate(gm%node_tag, gm%quad(k, q))
-            if (j == 0) then
+            j = search_sorted(gm%node_tag, gm%quad(k, q))
+            if (j <= 0) then
                call fail(rd, icmd, tag//': quadrilateral '//itoa8(gm%quad_tag(q))//' uses node '// &
                          itoa8(gm%quad(k, q))//', which the file does not define', err)
                return
@@ -238,8 +219,8 @@ contains
          n = cv%nline
          allocate (line(2, n), edge(2, n), elem(n), other(n))
          do j = 1, n
-            if (locate(gm%node_tag, cv%line(1, j)) == 0 .or. &
-                locate(gm%node_tag, cv%line(2, j)) == 0) then
+            if (search_sorted(gm%node_tag, cv%line(1, j)) <= 0 .or. &
+                search_sorted(gm%node_tag, cv%line(2, j)) <= 0) then
                call fail(rd, icmd, tag//': Physical Curve '//itoa(cv%tag)//' uses a node the '// &
                          'file does not define', err)
                return
