@@ -2,7 +2,7 @@
 # They install what is missing (Debian packages, fpm in a local venv), build, and run.
 
 SHELL := /bin/bash
-APT_PACKAGES := gfortran liblapack-dev libopenblas-serial-dev libsuitesparse-dev libhdf5-dev libgmsh-dev \
+APT_PACKAGES := gfortran g++ liblapack-dev libopenblas-serial-dev libsuitesparse-dev libhdf5-dev libgmsh-dev \
                 pkg-config hdf5-tools python3-venv
 # LAPACK and BLAS from the single-threaded OpenBLAS, whatever Debian's alternatives point
 # libblas.so.3 and liblapack.so.3 at: the threaded OpenBLAS starts a pool of helper threads

@@ -381,7 +381,8 @@ contains
 
    !> The rows' own number formatting (exic_io_number) gives the characters of Fortran's
    !> `1x,es24.16e3` and `i12` editing: zeros, subnormals, the extremes, powers of ten and
-   !> their neighbours, and 300000 random bit patterns of every exponent.
+   !> their neighbours, 300000 random bit patterns of every exponent, and 200000 numbers whose
+   !> decimal expansion is a tie or nearly one at the 17th significant digit.
    subroutine row_text(s)
       type(suite_t), intent(inout) :: s
       character(len=REAL_WIDTH) :: want
@@ -416,6 +417,24 @@ contains
          call compare(x)
       end do
       call check(s, nbad == 0, 'row text of reals equals es24.16e3 editing (random bit patterns, powers of ten)', &
+                 trim(first))
+      ! m/2**j with m an odd integer of 50 to 53 bits and j = 1..6: decimal expansions of 17 to
+      ! 22 digits, many of them exact ties at the 17th (1000000000000000.25 -> ...0002E+015,
+      ! to even); ties are where a conversion that does not round exactly would differ
+      nbad = 0
+      first = ''
+      call compare(1000000000000000.25_wp)
+      call compare(1000000000000000.75_wp)
+      do k = 1, 100000
+         state = ieor(state, shiftl(state, 13))
+         state = ieor(state, shiftr(state, 7))
+         state = ieor(state, shiftl(state, 17))
+         bits = ior(shiftr(ibclr(state, 63), 10 + int(mod(ibclr(state, 63), 4_i8))), 1_i8)
+         x = scale(real(bits, wp), -1 - int(mod(shiftr(ibclr(state, 63), 20), 6_i8)))
+         call compare(x)
+         call compare(-x)
+      end do
+      call check(s, nbad == 0, 'row text of reals equals es24.16e3 editing at exact ties of the 17th digit', &
                  trim(first))
       iv = [0_i8, 7_i8, -3_i8, 123456789012_i8, 999999999999_i8, 1000000000000_i8]
       nbad = 0

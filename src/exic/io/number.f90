@@ -1,8 +1,9 @@
 !> Rows of numbers as text without Fortran's formatted-output machinery per value: reals as the
 !> `1x,es24.16e3` edit descriptor writes them (NUMBER_FORMAT of exic_io_history, the same
 !> characters), integers as `iw`. A row is assembled in a character buffer and written with one
-!> `(a)` record. The real's digits come from snprintf in src/exic/io/number_c.c (the same
-!> correctly rounded digits libgfortran uses); doc/performance.md, section 2, gives the saving.
+!> `(a)` record. The real's digits come from std::to_chars in src/exic/io/number_cxx.cpp (the
+!> same correctly rounded digits as the snprintf libgfortran uses); doc/performance.md, sections 2
+!> and 6.5, give the saving.
 module exic_io_number
    use, intrinsic :: iso_c_binding, only: c_double, c_char
    use exic_base_kinds, only: wp, i8
