@@ -52,6 +52,7 @@ contains
       call test_fused(s)
       call test_inversion(s)
       call test_block_minimum(s)
+      call test_stress_block(s)
    end subroutine run_element_tests
 
    ! ---------------------------------------------------------------- helpers
@@ -804,5 +805,56 @@ contains
       call check(s, bad == 0, 'the scan''s minimum (same bits), element and fold on 4000 blocks', &
                  'blocks that differ: '//itoa(bad))
    end subroutine test_block_minimum
+
+   !> q4_stress (the points' stresses as vector blocks, nh_cauchy_block) gives the bits of the
+   !> point-by-point form it replaced: nh_cauchy at each point of q4_deformation with J > 0, the
+   !> means over the points in the order g = 1, ..., ng, from +0. 37 elements (a full block and
+   !> a part of one), each on its own four nodes, displaced at random so far that some points
+   !> have J <= 0 (they contribute zero stress) and some elements are inverted everywhere.
+   subroutine test_stress_block(s)
+      type(suite_t), intent(inout) :: s
+      integer, parameter :: ne = 37
+      real(wp) :: x0(2, 4*ne), u(2, 4*ne), sig(7, ne), ref(7, ne), fg(5, 4, ne), sp(4), jac, w, r
+      integer :: conn(4, ne), e, a, g, nq, nneg
+      integer(int64) :: seed
+      real(wp), parameter :: cx(4) = [0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp], cy(4) = [0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp]
+      seed = 20261124_int64
+      do e = 1, ne
+         do a = 1, 4
+            conn(a, e) = 4*(e - 1) + a
+            x0(:, conn(a, e)) = [real(e, wp) + cx(a), cy(a)]
+            u(1, conn(a, e)) = 1.6_wp*(rnd(seed) - 0.5_wp)
+            u(2, conn(a, e)) = 1.6_wp*(rnd(seed) - 0.5_wp)
+         end do
+      end do
+      do nq = 1, 2
+         call q4_stress(nq, ne, 4*ne, conn, x0, u, lam0, mu0, sig)
+         call q4_deformation(nq, ne, 4*ne, conn, x0, u, fg(:, 1:nq*nq, :))
+         r = 1.0_wp/real(nq*nq, wp)
+         nneg = 0
+         do e = 1, ne
+            ref(:, e) = 0.0_wp
+            do g = 1, nq*nq
+               if (fg(5, g, e) > 0.0_wp) then
+                  call nh_cauchy(lam0, mu0, fg(1, g, e), fg(2, g, e), fg(3, g, e), fg(4, g, e), &
+                                 sp(1), sp(2), sp(3), sp(4), jac, w)
+                  ref(1:4, e) = ref(1:4, e) + r*sp
+               else
+                  nneg = nneg + 1
+               end if
+               ref(7, e) = ref(7, e) + r*fg(5, g, e)
+            end do
+            sp = ref(1:4, e)
+            ref(5, e) = -(sp(1) + sp(2) + sp(3))/3.0_wp
+            ref(6, e) = sqrt(0.5_wp*((sp(1) - sp(2))**2 + (sp(2) - sp(3))**2 + (sp(3) - sp(1))**2) &
+                             + 3.0_wp*sp(4)**2)
+         end do
+         call check(s, nneg > 0 .and. nneg < ne*nq*nq, 'stress block test has points with J <= 0 and J > 0 ('// &
+                    merge('2x2', '1pt', nq == 2)//')')
+         call check(s, all(transfer(sig, 1_int64, 7*ne) == transfer(ref, 1_int64, 7*ne)), &
+                    'q4_stress in vector blocks = nh_cauchy point by point, bit for bit ('// &
+                    merge('2x2', '1pt', nq == 2)//')')
+      end do
+   end subroutine test_stress_block
 
 end module test_element

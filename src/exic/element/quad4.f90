@@ -39,7 +39,7 @@
 module exic_element_quad4
    use exic_base_kinds, only: wp
    use exic_base_sums, only: lane_sum
-   use exic_material_neohookean, only: nh_piola, nh_cauchy, nh_wave_speed2_block
+   use exic_material_neohookean, only: nh_piola, nh_cauchy_block, nh_wave_speed2_block
    use exic_material_material, only: HOURGLASS_PHYSICAL
    use exic_element_q4_barrier, only: corner_barrier, barrier_limit
    use exic_element_q4_reference, only: q4_check_reference, q4_lumped_mass, gq
@@ -832,29 +832,45 @@ contains
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
       real(wp), intent(in) :: lambda, mu
       real(wp), intent(out) :: sig(7, nel)
-      real(wp) :: fg(5, nq*nq, NBLOCK), s(4), jac, w, r
+      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22, &
+                                        sxx, syy, szz, sxy
+      real(wp) :: r0(NBLOCK), p0(2, NBLOCK, 4), pu(2, NBLOCK, 4), a(NBLOCK, 5), s(4), r
       integer :: e, e0, nb, k, g, ng
 
       ng = nq*nq
       r = 1.0_wp/real(ng, wp)
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
-         call q4_deformation(nq, nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, fg)
+         if (nq == 2) then
+            call gather_pairs(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, p0, pu)
+            call kinematics_2x2(p0, pu, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+         else
+            call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, xe, ye, uxe, uye)
+            call kinematics_1pt(xe, ye, uxe, uye, f11(:, 1), f12(:, 1), f21(:, 1), f22(:, 1), jac(:, 1), &
+                                wt(:, 1), r0)
+         end if
+         ! the points' stresses as one block (a point with J <= 0 contributes zero stress), then
+         ! the means over the points in the order g = 1, ..., ng from +0, as point by point
+         do g = 1, ng
+            call nh_cauchy_block(nb, lambda, mu, f11(:, g), f12(:, g), f21(:, g), f22(:, g), jac(:, g), &
+                                 sxx(:, g), syy(:, g), szz(:, g), sxy(:, g))
+         end do
+         a(1:nb, :) = 0.0_wp
+         do g = 1, ng
+            a(1:nb, 1) = a(1:nb, 1) + r*sxx(1:nb, g)
+            a(1:nb, 2) = a(1:nb, 2) + r*syy(1:nb, g)
+            a(1:nb, 3) = a(1:nb, 3) + r*szz(1:nb, g)
+            a(1:nb, 4) = a(1:nb, 4) + r*sxy(1:nb, g)
+            a(1:nb, 5) = a(1:nb, 5) + r*jac(1:nb, g)
+         end do
          do k = 1, nb
             e = e0 + k - 1
-            sig(:, e) = 0.0_wp
-            do g = 1, ng
-               if (fg(5, g, k) > 0.0_wp) then
-                  call nh_cauchy(lambda, mu, fg(1, g, k), fg(2, g, k), fg(3, g, k), fg(4, g, k), &
-                                 s(1), s(2), s(3), s(4), jac, w)
-                  sig(1:4, e) = sig(1:4, e) + r*s
-               end if
-               sig(7, e) = sig(7, e) + r*fg(5, g, k)
-            end do
-            s = sig(1:4, e)
+            s = a(k, 1:4)
+            sig(1:4, e) = s
             sig(5, e) = -(s(1) + s(2) + s(3))/3.0_wp
             sig(6, e) = sqrt(0.5_wp*((s(1) - s(2))**2 + (s(2) - s(3))**2 + (s(3) - s(1))**2) &
                              + 3.0_wp*s(4)**2)
+            sig(7, e) = a(k, 5)
          end do
       end do
    end subroutine q4_stress

@@ -18,17 +18,18 @@
 !>     P = J sigma F^-T = lambda ln(J) F^-T + mu (F - F^-T)
 !>
 !> The kernels assume J > 0; callers check J first. nh_piola is the law for the internal forces
-!> (one kernel for every quadrature), nh_cauchy its Cauchy form for stress output,
-!> nh_wave_speed2_block the wave speed of the stable step. ln J is exic's own logarithm
-!> (src/exic/base/logarithm.f90), the same bits in vector and scalar code; the block kernels
-!> take it with ln_normal_block, for J a positive normal number (>= tiny(1.0) = 2.2e-308).
+!> (one kernel for every quadrature), nh_cauchy its Cauchy form for stress output (and
+!> nh_cauchy_block the same operations on a block of points), nh_wave_speed2_block the wave
+!> speed of the stable step. ln J is exic's own logarithm (src/exic/base/logarithm.f90), the
+!> same bits in vector and scalar code; the block kernels take it with ln_normal_block, for J a
+!> positive normal number (>= tiny(1.0) = 2.2e-308), nh_cauchy_block with ln_block.
 module exic_material_neohookean
    use exic_base_kinds, only: wp
-   use exic_base_logarithm, only: ln, ln_normal_block
+   use exic_base_logarithm, only: ln, ln_block, ln_normal_block
    implicit none
    private
 
-   public :: nh_piola, nh_cauchy, nh_wave_speed2, nh_wave_speed2_block
+   public :: nh_piola, nh_cauchy, nh_cauchy_block, nh_wave_speed2, nh_wave_speed2_block
 
    !> Points per pass of the block kernels (their ln J work array stays in the L1 cache).
    integer, parameter :: CHUNK = 128
@@ -58,6 +59,51 @@ contains
       sxy = mu*rj*b12
       w = 0.5_wp*lambda*lnj*lnj + 0.5_wp*mu*(b11 + b22 - 2.0_wp) - mu*lnj
    end subroutine nh_cauchy
+
+   !> The Cauchy stress of nh_cauchy at n points, vectorized: the same operations in the same
+   !> order (ln_block gives the bits of ln), so the same bits as nh_cauchy point by point. Where
+   !> the caller's volume ratio jk(q) is not positive the stress is zero and F is not used.
+   pure subroutine nh_cauchy_block(n, lambda, mu, f11, f12, f21, f22, jk, sxx, syy, szz, sxy)
+      integer, intent(in) :: n                             !< number of points
+      real(wp), intent(in) :: lambda, mu                   !< Lame constants
+      real(wp), intent(in) :: f11(n), f12(n), f21(n), f22(n) !< in-plane deformation gradient
+      real(wp), intent(in) :: jk(n)                        !< the caller's J of each point
+      real(wp), intent(out) :: sxx(n), syy(n), szz(n), sxy(n) !< Cauchy stress
+      real(wp) :: jac(CHUNK), lnj(CHUNK), rj, b11, b22, b12, p
+      integer :: q0, m, i, q
+
+      ! every value is formed for every point and selected in a loop of its own: gcc keeps a
+      ! floating-point operation under a condition (merge of a formed value) out of vector code
+      do q0 = 1, n, CHUNK
+         m = min(CHUNK, n - q0 + 1)
+         do i = 1, m
+            q = q0 + i - 1
+            jac(i) = f11(q)*f22(q) - f12(q)*f21(q)
+         end do
+         do i = 1, m
+            jac(i) = merge(jac(i), 1.0_wp, jk(q0 + i - 1) > 0.0_wp)
+         end do
+         call ln_block(m, jac, lnj)
+         do i = 1, m
+            q = q0 + i - 1
+            rj = 1.0_wp/jac(i)
+            b11 = f11(q)*f11(q) + f12(q)*f12(q)
+            b22 = f21(q)*f21(q) + f22(q)*f22(q)
+            b12 = f11(q)*f21(q) + f12(q)*f22(q)
+            p = lambda*lnj(i)*rj
+            sxx(q) = p + mu*rj*(b11 - 1.0_wp)
+            syy(q) = p + mu*rj*(b22 - 1.0_wp)
+            szz(q) = p
+            sxy(q) = mu*rj*b12
+         end do
+         do q = q0, q0 + m - 1
+            sxx(q) = merge(sxx(q), 0.0_wp, jk(q) > 0.0_wp)
+            syy(q) = merge(syy(q), 0.0_wp, jk(q) > 0.0_wp)
+            szz(q) = merge(szz(q), 0.0_wp, jk(q) > 0.0_wp)
+            sxy(q) = merge(sxy(q), 0.0_wp, jk(q) > 0.0_wp)
+         end do
+      end do
+   end subroutine nh_cauchy_block
 
    !> First Piola-Kirchhoff stress and strain energy at n points whose J = det F the caller has
    !> computed and checked to be a positive normal number (ln_normal_block), each times the
