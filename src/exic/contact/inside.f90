@@ -448,8 +448,8 @@ contains
       type(inside_t), intent(inout) :: self
       real(wp), intent(in), contiguous :: x(:, :)
       real(wp) :: hi(2), ext, bl(2), bh(2)
-      integer :: e, ncell, pass, ne
-      integer, allocatable :: fill(:)
+      integer :: e, ncell, ne
+      integer, allocatable :: erng(:, :), grng(:, :)
 
       self%lo = huge(1.0_wp)
       hi = -huge(1.0_wp)
@@ -477,63 +477,56 @@ contains
       self%nx = max(1, min(int((hi(1) - self%lo(1))/self%h) + 1, 4*self%nelem))
       self%ny = max(1, min(int((hi(2) - self%lo(2))/self%h) + 1, 4*self%nelem))
       ncell = self%nx*self%ny
-      ! elements, then edges: count, prefix sums, fill (two passes over the same loop)
+      ! the cells of every element's and edge's box once, then per grid: count, prefix sums, fill
       ne = size(self%edge, 2)
-      if (allocated(self%ehead)) deallocate (self%ehead)
-      if (allocated(self%ghead)) deallocate (self%ghead)
-      allocate (self%ehead(ncell + 1), self%ghead(ncell + 1), source=0)
-      if (.not. allocated(self%eitem)) allocate (self%eitem(0))
-      if (.not. allocated(self%gitem)) allocate (self%gitem(0))
-      do pass = 1, 2
-         if (pass == 2) then
-            call prefix(self%ehead)
-            call prefix(self%ghead)
-            if (allocated(self%eitem)) deallocate (self%eitem)
-            if (allocated(self%gitem)) deallocate (self%gitem)
-            allocate (self%eitem(self%ehead(ncell + 1) - 1), self%gitem(self%ghead(ncell + 1) - 1))
-            fill = self%ehead(1:ncell)
-         end if
-         do e = 1, self%nelem
-            call bin(self%ebox(1:2, e), self%ebox(3:4, e), e, self%ehead, self%eitem)
-         end do
-         if (pass == 2) fill = self%ghead(1:ncell)
-         do e = 1, ne
-            bl(1) = min(x(1, self%edge(1, e)), x(1, self%edge(2, e)))
-            bl(2) = min(x(2, self%edge(1, e)), x(2, self%edge(2, e)))
-            bh(1) = max(x(1, self%edge(1, e)), x(1, self%edge(2, e)))
-            bh(2) = max(x(2, self%edge(1, e)), x(2, self%edge(2, e)))
-            call bin(bl, bh, e, self%ghead, self%gitem)
-         end do
+      allocate (erng(4, self%nelem), grng(4, ne))
+      do e = 1, self%nelem
+         call cell_range(self, self%ebox(1:2, e), self%ebox(3:4, e), erng(1, e), erng(2, e), erng(3, e), erng(4, e))
       end do
+      do e = 1, ne
+         bl(1) = min(x(1, self%edge(1, e)), x(1, self%edge(2, e)))
+         bl(2) = min(x(2, self%edge(1, e)), x(2, self%edge(2, e)))
+         bh(1) = max(x(1, self%edge(1, e)), x(1, self%edge(2, e)))
+         bh(2) = max(x(2, self%edge(1, e)), x(2, self%edge(2, e)))
+         call cell_range(self, bl, bh, grng(1, e), grng(2, e), grng(3, e), grng(4, e))
+      end do
+      call bin_all(erng, self%ehead, self%eitem)
+      call bin_all(grng, self%ghead, self%gitem)
    contains
-      !> Pass 1: count item e in every cell its box bl-bh touches; pass 2: store it there.
-      subroutine bin(bl, bh, e, head, items)
-         real(wp), intent(in) :: bl(2), bh(2)
-         integer, intent(in) :: e
-         integer, intent(inout) :: head(:)
-         integer, intent(inout) :: items(:)
-         integer :: i0, i1, j0, j1, i, j, c
-         call cell_range(self, bl, bh, i0, i1, j0, j1)
-         do j = j0, j1
-            do i = i0, i1
-               c = i + (j - 1)*self%nx
-               if (pass == 1) then
+      !> head(1:ncell + 1) and items: item e in every cell of its range rng(:, e) (i0, i1, j0,
+      !> j1), the items of a cell in increasing e.
+      subroutine bin_all(rng, head, items)
+         integer, intent(in) :: rng(:, :)
+         integer, allocatable, intent(inout) :: head(:), items(:)
+         integer, allocatable :: fill(:)
+         integer :: e, i, j, c
+         if (allocated(head)) deallocate (head)
+         allocate (head(ncell + 1), source=0)
+         do e = 1, size(rng, 2)
+            do j = rng(3, e), rng(4, e)
+               do i = rng(1, e), rng(2, e)
+                  c = i + (j - 1)*self%nx
                   head(c + 1) = head(c + 1) + 1
-               else
-                  items(fill(c)) = e
-                  fill(c) = fill(c) + 1
-               end if
+               end do
             end do
          end do
-      end subroutine bin
-      subroutine prefix(head)
-         integer, intent(inout) :: head(:)
-         integer :: k
          head(1) = 1
-         do k = 2, size(head)
-            head(k) = head(k) + head(k - 1)
+         do c = 2, ncell + 1
+            head(c) = head(c) + head(c - 1)
          end do
-      end subroutine prefix
+         if (allocated(items)) deallocate (items)
+         allocate (items(head(ncell + 1) - 1))
+         fill = head(1:ncell)
+         do e = 1, size(rng, 2)
+            do j = rng(3, e), rng(4, e)
+               do i = rng(1, e), rng(2, e)
+                  c = i + (j - 1)*self%nx
+                  items(fill(c)) = e
+                  fill(c) = fill(c) + 1
+               end do
+            end do
+         end do
+      end subroutine bin_all
    end subroutine build_grids
 
    !> Cell indices (clamped to the grid) of the box bl-bh.

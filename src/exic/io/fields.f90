@@ -26,6 +26,7 @@
 !> its complete output times and XDMF files that parse and name only those.
 module exic_io_fields
    use exic_base_kinds, only: wp, i8
+   use exic_base_flat, only: copy_flat, sum_flat
    use exic_base_strings, only: itoa
    use exic_base_error, only: error_t, make_error
    use exic_mesh_smoothing, only: nodal_average
@@ -345,14 +346,14 @@ contains
       ! the output time into the next slot of the batch; the nodal averages of the element values
       ! over the current configuration
       j = self%npend + 1
-      self%bvec(:, :, j, 1) = u
-      self%bvec(:, :, j, 2) = v
-      self%bvec(:, :, j, 3) = a
-      self%bvec(:, :, j, 4) = fcont
-      if (self%nvec == 5) self%bvec(:, :, j, 5) = ffric
+      call copy_flat(2*self%nnode, u, self%bvec(:, :, j, 1))
+      call copy_flat(2*self%nnode, v, self%bvec(:, :, j, 2))
+      call copy_flat(2*self%nnode, a, self%bvec(:, :, j, 3))
+      call copy_flat(2*self%nnode, fcont, self%bvec(:, :, j, 4))
+      if (self%nvec == 5) call copy_flat(2*self%nnode, ffric, self%bvec(:, :, j, 5))
       self%bact(:, j) = active
-      self%bsig(:, :, j) = sig
-      self%x = self%x0 + u
+      call copy_flat(self%ncomp*self%nelem, sig, self%bsig(:, :, j))
+      call sum_flat(2*self%nnode, self%x0, u, self%x)
       call nodal_average(self%ncomp, self%nnode, self%nelem, self%conn, self%x, sig, self%bnod(:, :, j))
       self%ben(j, :) = energies
       self%btime(j) = t

@@ -5,7 +5,7 @@
 !> (`final`). Values come from the stepper's state; nothing here changes it.
 module exic_io_output
    use, intrinsic :: iso_fortran_env, only: error_unit
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use exic_base_flat, only: all_finite
    use exic_base_kinds, only: wp, i8
    use exic_base_constants, only: TIME_TOL
    use exic_base_error, only: error_t, make_error
@@ -460,9 +460,9 @@ contains
                      stp%contact%dissipation, st%plastic]
          ! non-finite values are never written as results: the run stops, naming where
          if (present(nonfinite)) nonfinite = .false.
-         if (.not. (all(ieee_is_finite(st%u)) .and. all(ieee_is_finite(st%v)) .and. all(ieee_is_finite(st%a)) &
-                    .and. all(ieee_is_finite(st%fcon)) .and. all(ieee_is_finite(sig)) .and. &
-                    all(ieee_is_finite(energies)))) then
+         if (.not. (all_finite(size(st%u), st%u) .and. all_finite(size(st%v), st%v) .and. &
+                    all_finite(size(st%a), st%a) .and. all_finite(size(st%fcon), st%fcon) .and. &
+                    all_finite(size(sig), sig) .and. all_finite(size(energies), energies))) then
             if (present(nonfinite)) nonfinite = .true.
             call make_error(err, 'a value is not finite at t = '//rtoa(st%t)//', step '//itoa(int(st%step))// &
                             ': '//first_nonfinite(stp))

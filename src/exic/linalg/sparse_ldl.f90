@@ -35,6 +35,7 @@ module exic_linalg_sparse_ldl
    use, intrinsic :: iso_c_binding, only: c_int, c_double
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use exic_base_kinds, only: wp
+   use exic_base_flat, only: all_finite
    use exic_base_error, only: error_t, make_error
    use exic_base_grow, only: grow
    use exic_linalg_suitesparse_c, only: ldl_symbolic, ldl_numeric, ldl_lsolve, ldl_dsolve, &
@@ -492,19 +493,5 @@ contains
       end if
       if (removed) dk = 1.0_wp
    end subroutine removal_rule
-
-   !> True when every d(1:n) is finite.
-   pure logical function all_finite(n, d) result(ok)
-      integer, intent(in) :: n
-      real(wp), intent(in) :: d(n)
-      integer :: k
-      ok = .true.
-      do k = 1, n
-         if (.not. ieee_is_finite(d(k))) then
-            ok = .false.
-            return
-         end if
-      end do
-   end function all_finite
 
 end module exic_linalg_sparse_ldl
