@@ -159,6 +159,24 @@ contains
       if (.not. allocated(err)) call series%append('  <Grid Name="a--b"/>', err)
       call check(s, has(err, "'--'"), 'a grid containing -- is refused (it would end the comment)', error_text(err))
       call series%abandon()
+      ! the test runs as one vector loop over neighbours: a pair at either end of a long grid,
+      ! a grid ending in '-', and single dashes everywhere (accepted)
+      call series%create(DIR//'/dash_series.xdmf', HEAD, TAIL, err)
+      if (.not. allocated(err)) call series%append('--'//repeat(' <Grid/>', 40), err)
+      call check(s, has(err, "'--'"), 'a grid starting with -- is refused', error_text(err))
+      call series%abandon()
+      call series%create(DIR//'/dash_series.xdmf', HEAD, TAIL, err)
+      if (.not. allocated(err)) call series%append(repeat(' <Grid/>', 41)//'--', err)
+      call check(s, has(err, "'--'"), 'a grid ending with -- is refused', error_text(err))
+      call series%abandon()
+      call series%create(DIR//'/dash_series.xdmf', HEAD, TAIL, err)
+      if (.not. allocated(err)) call series%append(repeat(' <Grid/>', 41)//'-', err)
+      call check(s, has(err, "'--'"), 'a grid ending with - is refused', error_text(err))
+      call series%abandon()
+      call series%create(DIR//'/dash_series.xdmf', HEAD, TAIL, err)
+      if (.not. allocated(err)) call series%append(repeat(' <Grid Name="a-b-c"/>-x', 17), err)
+      call check(s, .not. allocated(err), 'a grid with single dashes only is taken', error_text(err))
+      call series%abandon()
    end subroutine whole_file_error_test
 
    !> Two elements of areas 1 and 2 sharing an edge, an unused node and a flat element.
