@@ -37,21 +37,13 @@ module exic_io_hdf5_file
    public :: DTYPE_REAL, DTYPE_INT, DTYPE_INT64   ! (of exic_io_hdf5_types)
 
 
-   !> Target size of one chunk of a series made without a capacity, bytes (several slabs share
-   !> a chunk when slabs are small). Such a series is extended and written one slab at a time
-   !> through the chunk cache, and a flush writes every chunk that changed whole: a chunk of k
-   !> slabs is written k times while it fills. 4 kB (one page) keeps that rewrite small; with
-   !> 64 kB the seed's 7.2 deck (434 nodes, 7 kB slabs, 150 output times) wrote 80 MB for an
-   !> 11.6 MB file (doc/performance.md, section 2).
-   integer, parameter :: CHUNK_BYTES = 4096
-   !> Most slabs in one chunk of a series made without a capacity.
-   integer, parameter :: CHUNK_SLABS_MAX = 64
-   !> Largest chunk of a series made with a capacity, bytes. Such a series is written in place
-   !> (no chunk cache: a batch of slabs goes from memory to the file in one write per chunk it
-   !> touches), so its chunks are as large as this allows: the capacity in as few chunks of
-   !> equal size as fit under it (the seed's 7.2: one chunk per series, 253 writes of the file
-   !> instead of 1,235; doc/performance.md, section 6.5).
-   integer(i8), parameter :: CHUNK_BYTES_ROOM = 64_i8*1024_i8*1024_i8
+   !> Chunks of a series (doc/decisions.md, "HDF5 chunks"). Made with a capacity (the field
+   !> series: written in place without a chunk cache, one write per chunk a batch touches): the
+   !> capacity in as few equal chunks as fit under CHUNK_BYTES_ROOM (larger ones make a cut of
+   !> the series rewrite up to a whole chunk). Made without (extended and written a slab at a
+   !> time through the chunk cache, which writes a changed chunk whole): about CHUNK_BYTES.
+   integer, parameter :: CHUNK_BYTES = 4096, CHUNK_SLABS_MAX = 64
+   integer(i8), parameter :: CHUNK_BYTES_ROOM = 1024_i8*1024_i8
 
    !> One open HDF5 file.
    type :: hdf5_file_t
@@ -70,7 +62,6 @@ module exic_io_hdf5_file
       procedure :: create_series => file_create_series
       procedure :: series_length => file_series_length
       procedure :: create_series_view => file_create_series_view
-      procedure :: size_of => file_size_of
       procedure :: exists => file_exists
       procedure :: flush => file_flush
       procedure :: close => file_close
@@ -410,11 +401,10 @@ contains
    ! ---------------------------------------------------------------------------- series
 
    !> Create the extendible dataset `name` of Fortran shape (lead..., 0), unlimited in its last
-   !> dimension, chunked so that a chunk holds whole slabs (about CHUNK_BYTES, no compression).
-   !> With `capacity`, the dataset is created with `capacity` slabs at once in chunks of at most
-   !> CHUNK_BYTES_ROOM, allocated but not written (fill time "never": an unwritten slab holds no
-   !> output, doc/fields.md), and no object times: writing slabs into it later changes no
-   !> metadata.
+   !> dimension, in chunks of whole slabs (no compression). With `capacity`, the dataset has
+   !> `capacity` slabs at once, its chunks allocated but not written (fill time "never": an
+   !> unwritten slab holds no output, doc/fields.md), and no object times: writing slabs into it
+   !> later changes no metadata.
    subroutine file_create_series(self, name, dtype, lead, err, capacity)
       class(hdf5_file_t), intent(inout) :: self
       character(len=*), intent(in) :: name
@@ -425,7 +415,7 @@ contains
       integer(hsize_t) :: dims(size(lead) + 1), maxdims(size(lead) + 1), chunk(size(lead) + 1)
       integer(hid_t) :: space, dcpl, did
       integer :: st, rank
-      integer(i8) :: slab_bytes, per, nchunk
+      integer(i8) :: slab_bytes, nchunk
 
       if (.not. check_open(self, 'create series '//name, err)) return
       rank = size(lead) + 1
@@ -437,13 +427,9 @@ contains
       chunk(1:rank - 1) = int(max(lead, 1), hsize_t)
       slab_bytes = product(int(max(lead, 1), i8))*elem_bytes(dtype)
       chunk(rank) = int(max(1_i8, min(int(CHUNK_SLABS_MAX, i8), CHUNK_BYTES/slab_bytes)), hsize_t)
-      if (present(capacity)) then
-         if (capacity > 0) then
-            ! the room in nchunk chunks of equal size (the last one may hold fewer slabs)
-            per = max(1_i8, CHUNK_BYTES_ROOM/slab_bytes)
-            nchunk = (int(capacity, i8) + per - 1)/per
-            chunk(rank) = int((int(capacity, i8) + nchunk - 1)/nchunk, hsize_t)
-         end if
+      if (present(capacity) .and. dims(rank) > 0) then   ! nchunk equal chunks (the last may be short)
+         nchunk = (int(dims(rank), i8) - 1)/max(1_i8, CHUNK_BYTES_ROOM/slab_bytes) + 1
+         chunk(rank) = int((int(dims(rank), i8) - 1)/nchunk + 1, hsize_t)
       end if
       space = -1
       dcpl = -1
@@ -629,21 +615,6 @@ contains
       end block steps
       call close_handles(err, self, name, dset=did, space=fspace, space2=mspace)
    end subroutine append_raw
-
-   !> Number of elements of the dataset `name` (all dimensions).
-   subroutine file_size_of(self, name, n, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer(i8), intent(out) :: n
-      type(error_t), allocatable, intent(out) :: err
-      integer(hsize_t), allocatable :: dims(:)
-      integer(hid_t) :: did
-      n = 0
-      call series_dims(self, name, did, dims, err)
-      if (allocated(err)) return
-      n = product(int(dims, i8))
-      call close_handles(err, self, name, dset=did)
-   end subroutine file_size_of
 
    !> True when the link `name` (one level below an existing group, or at the root) exists.
    logical function file_exists(self, name) result(yes)
