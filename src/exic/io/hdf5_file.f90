@@ -43,7 +43,7 @@ module exic_io_hdf5_file
    !> the series rewrite up to a whole chunk). Made without (extended and written a slab at a
    !> time through the chunk cache, which writes a changed chunk whole): about CHUNK_BYTES.
    integer, parameter :: CHUNK_BYTES = 4096, CHUNK_SLABS_MAX = 64
-   integer(i8), parameter :: CHUNK_BYTES_ROOM = 1024_i8*1024_i8
+   integer(i8), parameter :: CHUNK_BYTES_ROOM = 256_i8*1024_i8
 
    !> One open HDF5 file.
    type :: hdf5_file_t
