@@ -1,12 +1,15 @@
 !> Tests of exic's own logarithm (src/exic/base/logarithm.f90): its error against a quad
 !> precision reference over the range of volume ratios J that occur (0.05 .. 20, densely, and
 !> the hard cases next to 1 and to the reduction's boundaries), exact values, and that the block
-!> kernel (vectorized) and the elemental function give the same bits.
+!> kernel (vectorized) and the elemental function give the same bits; and the flat-array kernels
+!> of src/exic/base/flat.f90.
 module test_math
    use exic_base_kinds, only: wp
    use exic_base_logarithm, only: ln, ln_block, ln_normal_block
+   use exic_base_flat, only: all_finite, copy_flat, sum_flat
    use, intrinsic :: iso_fortran_env, only: real128, int64
-   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan
+   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan, ieee_positive_inf, &
+                                             ieee_negative_inf, ieee_is_finite
    use testing, only: suite_t, check, section
    implicit none
    private
@@ -21,6 +24,7 @@ contains
       call test_accuracy(s)
       call test_exact(s)
       call test_block(s)
+      call test_flat(s)
    end subroutine run_math_tests
 
    !> Error of ln(x) in units in the last place of the exact logarithm (quad precision).
@@ -136,5 +140,38 @@ contains
       call check(s, ndiff == 0, 'ln_normal_block(x) = ln(x) to the bit at 1001 normal numbers (tiny, huge, '// &
                  'next to sqrt(2)/2 and sqrt(2), 2^-1000 .. 2^1000)')
    end subroutine test_block
+
+   !> base/flat.f90: all_finite agrees with ieee_is_finite on every value class at every
+   !> position of arrays of 1 to 37 values (the vector loop's body, its remainder, both ends);
+   !> copy_flat and sum_flat on a (2, n) array give the values of the array assignments.
+   subroutine test_flat(s)
+      type(suite_t), intent(inout) :: s
+      real(wp) :: v(10), x(37), a(2, 19), b(2, 19), c(2, 19)
+      integer :: n, k, j, nbad
+      call section(s, 'flat kernels: all_finite, copy_flat, sum_flat')
+      v = [0.0_wp, -0.0_wp, huge(1.0_wp), -huge(1.0_wp), tiny(1.0_wp), 4.9406564584124654e-324_wp, &
+           ieee_value(1.0_wp, ieee_quiet_nan), ieee_value(1.0_wp, ieee_positive_inf), &
+           ieee_value(1.0_wp, ieee_negative_inf), 1.5_wp]
+      nbad = 0
+      do n = 1, size(x)
+         do k = 1, n
+            do j = 1, size(v)
+               x(1:n) = 1.0_wp
+               x(k) = v(j)
+               if (all_finite(n, x) .neqv. all(ieee_is_finite(x(1:n)))) nbad = nbad + 1
+            end do
+         end do
+      end do
+      call check(s, nbad == 0, 'all_finite = all(ieee_is_finite) for NaN, +-Inf, +-huge, subnormal, +-0 '// &
+                 'anywhere in 1 to 37 values')
+      do k = 1, size(a, 2)
+         a(:, k) = [real(k, wp)/3.0_wp, -real(k, wp)*7.0_wp]
+         b(:, k) = [1.0_wp/real(k, wp), 0.1_wp*real(k, wp)]
+      end do
+      call copy_flat(size(a), a, c)
+      call check(s, all(c == a), 'copy_flat copies a (2, n) array')
+      call sum_flat(size(a), a, b, c)
+      call check(s, all(c == a + b), 'sum_flat adds two (2, n) arrays as a + b does')
+   end subroutine test_flat
 
 end module test_math
