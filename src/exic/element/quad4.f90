@@ -801,19 +801,12 @@ contains
       integer, intent(in) :: conn(4, nel)
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
       real(wp), intent(out) :: fg(5, nq*nq, nel)
-      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22
-      real(wp) :: r0(NBLOCK), p0(2, NBLOCK, 4), pu(2, NBLOCK, 4)
+      real(wp), dimension(NBLOCK, 4) :: f11, f12, f21, f22, jac
       integer :: e0, nb, k, g
 
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
-         if (nq == 2) then
-            call gather_pairs(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, p0, pu)
-            call kinematics_2x2(p0, pu, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
-         else
-            call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, xe, ye, uxe, uye)
-            call kinematics_1pt(xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, r0)
-         end if
+         call block_deformation(nq, nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, f11, f12, f21, f22, jac)
          do k = 1, nb
             do g = 1, nq*nq
                fg(:, g, e0 + k - 1) = [f11(k, g), f12(k, g), f21(k, g), f22(k, g), jac(k, g)]
@@ -821,6 +814,25 @@ contains
          end do
       end do
    end subroutine q4_deformation
+
+   !> F and J at the nq x nq points of the nb elements of one block (columns 1:nq*nq), from the
+   !> force kernels' gather and kinematics.
+   pure subroutine block_deformation(nq, nb, nnode, conn, x0, u, f11, f12, f21, f22, jac)
+      integer, intent(in) :: nq, nb, nnode
+      integer, intent(in) :: conn(4, nb)
+      real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
+      real(wp), dimension(NBLOCK, 4), intent(out) :: f11, f12, f21, f22, jac
+      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, wt, i11, i12, i21, i22
+      real(wp) :: r0(NBLOCK), p0(2, NBLOCK, 4), pu(2, NBLOCK, 4)
+      if (nq == 2) then
+         call gather_pairs(nb, nnode, conn, x0, u, p0, pu)
+         call kinematics_2x2(p0, pu, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
+      else
+         call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
+         call kinematics_1pt(xe, ye, uxe, uye, f11(:, 1), f12(:, 1), f21(:, 1), f22(:, 1), jac(:, 1), &
+                             wt(:, 1), r0)
+      end if
+   end subroutine block_deformation
 
    !> Element stress for output: sig(:, e) = sxx, syy, szz, sxy, pressure (-tr sigma/3),
    !> von Mises, J; the mean over the Gauss points for nq = 2, the centroid value for nq = 1.
@@ -832,23 +844,15 @@ contains
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
       real(wp), intent(in) :: lambda, mu
       real(wp), intent(out) :: sig(7, nel)
-      real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22, &
-                                        sxx, syy, szz, sxy
-      real(wp) :: r0(NBLOCK), p0(2, NBLOCK, 4), pu(2, NBLOCK, 4), a(NBLOCK, 5), s(4), r
+      real(wp), dimension(NBLOCK, 4) :: f11, f12, f21, f22, jac, sxx, syy, szz, sxy
+      real(wp) :: a(NBLOCK, 5), s(4), r
       integer :: e, e0, nb, k, g, ng
 
       ng = nq*nq
       r = 1.0_wp/real(ng, wp)
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
-         if (nq == 2) then
-            call gather_pairs(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, p0, pu)
-            call kinematics_2x2(p0, pu, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
-         else
-            call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, xe, ye, uxe, uye)
-            call kinematics_1pt(xe, ye, uxe, uye, f11(:, 1), f12(:, 1), f21(:, 1), f22(:, 1), jac(:, 1), &
-                                wt(:, 1), r0)
-         end if
+         call block_deformation(nq, nb, nnode, conn(:, e0:e0 + nb - 1), x0, u, f11, f12, f21, f22, jac)
          ! the points' stresses as one block (a point with J <= 0 contributes zero stress), then
          ! the means over the points in the order g = 1, ..., ng from +0, as point by point
          do g = 1, ng
