@@ -3,7 +3,7 @@
 !> logicals), doubling when it grows so that repeated small growth costs amortized O(1). Used by the per-step paths (contact search,
 !> corrector, sparse factorization), which allocate nothing once their arrays are sized.
 module exic_base_grow
-   use exic_base_kinds, only: wp
+   use exic_base_kinds, only: wp, i8
    implicit none
    private
 
@@ -11,7 +11,7 @@ module exic_base_grow
 
    !> Grow an allocatable array to at least n entries (or n columns), keeping its contents.
    interface grow
-      module procedure grow_int, grow_real, grow_logical, grow_real2, grow_int2
+      module procedure grow_int, grow_i8, grow_real, grow_logical, grow_real2, grow_int2
    end interface grow
 
 contains
@@ -34,6 +34,19 @@ contains
          call move_alloc(tmp, a)
       end if
    end subroutine grow_int
+
+   subroutine grow_i8(a, n)
+      integer(i8), allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      integer(i8), allocatable :: tmp(:)
+      if (.not. allocated(a)) then
+         allocate (a(new_size(0, n)), source=0_i8)
+      else if (size(a) < n) then
+         allocate (tmp(new_size(size(a), n)), source=0_i8)
+         tmp(1:size(a)) = a
+         call move_alloc(tmp, a)
+      end if
+   end subroutine grow_i8
 
    subroutine grow_real(a, n)
       real(wp), allocatable, intent(inout) :: a(:)

@@ -13,8 +13,9 @@
 !> that have had a state are held, each with its own nodes: nothing of the size of the number
 !> of pairs of surfaces.
 module exic_contact_pair_history
-   use exic_base_kinds, only: wp
+   use exic_base_kinds, only: wp, i8
    use exic_base_grow, only: grow
+   use exic_base_sort, only: search_sorted
    use exic_contact_penalty, only: penalty_history_t
    implicit none
    private
@@ -31,8 +32,10 @@ module exic_contact_pair_history
    !> The states of the pairs of surfaces that have one, found by (slave, master).
    type :: pair_history_t
       integer :: npair = 0
-      !> (npair) the pairs in the order (slave, master) and where each one's state is
-      integer, allocatable :: slave(:), master(:), at(:)
+      !> (npair) the pairs as increasing keys (`pair_key`: the order of (slave, master)) and
+      !> where each one's state is
+      integer(i8), allocatable :: key(:)
+      integer, allocatable :: at(:)
       type(held_t), allocatable :: held(:)
    contains
       procedure :: load => history_load
@@ -44,26 +47,19 @@ module exic_contact_pair_history
 
 contains
 
+   !> Key of pair (i, j): its order is that of (i, j), slave first (surface numbers are
+   !> positive and below 2^31).
+   elemental integer(i8) function pair_key(i, j) result(key)
+      integer, intent(in) :: i, j
+      key = shiftl(int(i, i8), 32) + int(j, i8)
+   end function pair_key
+
    !> Position of pair (i, j) in the sorted list, or minus the position it would be inserted at.
    integer function find(self, i, j) result(pos)
       type(pair_history_t), intent(in) :: self
       integer, intent(in) :: i, j
-      integer :: lo, hi, mid
-      lo = 1
-      hi = self%npair
-      do while (lo <= hi)
-         mid = (lo + hi)/2
-         if (self%slave(mid) == i .and. self%master(mid) == j) then
-            pos = mid
-            return
-         end if
-         if (self%slave(mid) < i .or. (self%slave(mid) == i .and. self%master(mid) < j)) then
-            lo = mid + 1
-         else
-            hi = mid - 1
-         end if
-      end do
-      pos = -lo
+      pos = -1
+      if (self%npair > 0) pos = search_sorted(self%key(1:self%npair), pair_key(i, j))
    end function find
 
    !> The state of pair (i, j) into h, a history with no state (every q 0, every vslip -1, n 0).
@@ -121,8 +117,7 @@ contains
       type(held_t), allocatable :: tmp(:)
       integer :: n, k
       n = self%npair + 1
-      call grow(self%slave, n)
-      call grow(self%master, n)
+      call grow(self%key, n)
       call grow(self%at, n)
       if (.not. allocated(self%held)) allocate (self%held(8))
       if (n > size(self%held)) then
@@ -132,11 +127,9 @@ contains
          end do
          call move_alloc(tmp, self%held)
       end if
-      self%slave(pos + 1:n) = self%slave(pos:n - 1)
-      self%master(pos + 1:n) = self%master(pos:n - 1)
+      self%key(pos + 1:n) = self%key(pos:n - 1)
       self%at(pos + 1:n) = self%at(pos:n - 1)
-      self%slave(pos) = i
-      self%master(pos) = j
+      self%key(pos) = pair_key(i, j)
       self%at(pos) = n
       self%npair = n
    end subroutine insert
@@ -170,7 +163,7 @@ contains
       do k = 1, self%npair
          associate (s => self%held(self%at(k)))
             n = s%n
-            pairs(:, k) = [self%slave(k), self%master(k)]
+            pairs(:, k) = [int(shiftr(self%key(k), 32)), int(iand(self%key(k), int(z'ffffffff', i8)))]
             counts(k) = n
             if (n == 0) cycle
             nodes(m + 1:m + n) = s%nodes(1:n)
@@ -187,14 +180,13 @@ contains
       integer, intent(in) :: npair, pairs(2, npair), counts(npair), nodes(:)
       real(wp), intent(in) :: q(:), vslip(:)
       integer :: k, m, n
-      if (allocated(self%held)) deallocate (self%held, self%slave, self%master, self%at)
-      allocate (self%held(max(npair, 8)), self%slave(npair), self%master(npair), self%at(npair))
+      if (allocated(self%held)) deallocate (self%held, self%key, self%at)
+      allocate (self%held(max(npair, 8)), self%key(npair), self%at(npair))
       self%npair = npair
       m = 0
       do k = 1, npair
          n = counts(k)
-         self%slave(k) = pairs(1, k)
-         self%master(k) = pairs(2, k)
+         self%key(k) = pair_key(pairs(1, k), pairs(2, k))
          self%at(k) = k
          associate (s => self%held(k))
             s%n = n
