@@ -82,52 +82,31 @@ contains
 
    !> The Lagrange passes among k1 ... k2 grouped by their slave surface (`slave`), or the swept
    !> ones whose slave is not their master grouped by master surface: n groups, group g the
-   !> passes list(first(g):first(g + 1) - 1) in pass order, groups in order of their surfaces.
+   !> passes list(first(g):first(g + 1) - 1) in pass order, groups in order of their surfaces
+   !> (mesh/boundary's bodies_elements, which groups any numbers the same way).
    subroutine by_surface(self, k1, k2, slave, n, first, list)
       type(contact_t), intent(in) :: self
       integer, intent(in) :: k1, k2
       logical, intent(in) :: slave
       integer, intent(out) :: n
       integer, allocatable, intent(out) :: first(:), list(:)
-      integer :: cnt(size(self%surfaces) + 1), surf(k1:k2)
-      integer :: k, s, nsurf, g
+      integer :: surf(k2 - k1 + 1), pass(k2 - k1 + 1)
+      integer, allocatable :: ids(:), members(:)
+      integer :: k, m
 
-      nsurf = size(self%surfaces)
-      cnt = 0
+      m = 0
       do k = k1, k2
-         surf(k) = 0
          associate (ps => self%passes(k))
             if (ps%method /= METHOD_LAGRANGE) cycle
-            if (slave) then
-               surf(k) = ps%slave
-            else if (ps%detection == DETECT_SWEPT .and. ps%slave /= ps%master) then
-               surf(k) = ps%master
-            end if
+            if (.not. slave .and. (ps%detection /= DETECT_SWEPT .or. ps%slave == ps%master)) cycle
+            m = m + 1
+            surf(m) = merge(ps%slave, ps%master, slave)
+            pass(m) = k
          end associate
-         if (surf(k) > 0) cnt(surf(k) + 1) = cnt(surf(k) + 1) + 1
       end do
-      ! groups of the surfaces with passes; first(g) where group g begins
-      n = count(cnt(2:) > 0)
-      allocate (first(n + 1), list(sum(cnt)))
-      g = 0
-      first(1) = 1
-      do s = 1, nsurf
-         if (cnt(s + 1) == 0) cycle
-         g = g + 1
-         first(g + 1) = first(g) + cnt(s + 1)
-         cnt(s + 1) = g
-      end do
-      ! cnt(s + 1) now numbers the group of surface s; fill each group in pass order
-      do k = k1, k2
-         if (surf(k) == 0) cycle
-         g = cnt(surf(k) + 1)
-         list(first(g)) = k
-         first(g) = first(g) + 1
-      end do
-      do g = n, 1, -1
-         first(g + 1) = first(g)
-      end do
-      first(1) = 1
+      call bodies_elements(m, surf(1:m), ids, first, members)
+      list = pass(members)
+      n = size(ids)
    end subroutine by_surface
 
    !> Sweep 1: the candidates of Lagrange pass k (its own broad phase).
