@@ -11,7 +11,7 @@ module test_friction
    use exic_base_error, only: error_t
    use exic_io_model, only: model_t
    use exic_io_deck, only: read_deck
-   use testing, only: suite_t, check, section, skip, have_command, error_text
+   use testing, only: suite_t, check, section, skip, have_command, error_text, file_text
    use test_fields, only: h5dump
    use deck_runner, only: run_dir, run_deck, read_table, column, write_text
    implicit none
@@ -223,11 +223,11 @@ contains
       call run_deck('mu_none', base//contact('')//batch('1e-4', '0.1', requests()), stage2, msg)
       call check(s, stage1 == 0 .and. stage2 == 0, 'mu = 0 and frictionless decks run', msg)
       if (stage1 /= 0 .or. stage2 /= 0) return
-      a = slurp(run_dir//'/mu_zero.his')
-      b = slurp(run_dir//'/mu_none.his')
+      a = file_text(run_dir//'/mu_zero.his')
+      b = file_text(run_dir//'/mu_none.his')
       call check(s, len(a) > 1000 .and. a == b, 'mu = 0: .his identical to the frictionless run')
-      a = slurp(run_dir//'/mu_zero.ene')
-      b = slurp(run_dir//'/mu_none.ene')
+      a = file_text(run_dir//'/mu_zero.ene')
+      b = file_text(run_dir//'/mu_none.ene')
       call check(s, len(a) > 1000 .and. a == b, 'mu = 0: .ene identical to the frictionless run')
    end subroutine zero_mu
 
@@ -465,7 +465,7 @@ contains
       call read_deck(run_dir//'/fr_warn.inp', m, err)
       call check(s, .not. allocated(err), 'an unused field outside the contact block is not an error', error_text(err))
       if (.not. allocated(err)) call check(s, index(m%warnings, 'fr_warn.inp:'// &
-                                                    itoa(line_of(slurp(run_dir//'/fr_warn.inp'), 'DT,,'))// &
+                                                    itoa(line_of(file_text(run_dir//'/fr_warn.inp'), 'DT,,'))// &
                                                     ': warning:') > 0 .and. index(m%warnings, '"42"') > 0, &
                                            'but a warning with file:line naming it', m%warnings)
    contains
@@ -506,17 +506,5 @@ contains
       out = text
       if (k > 0) out = text(:k - 1)//new//text(k + len(old):)
    end function replace
-
-   !> The whole file as one string.
-   function slurp(path) result(text)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable :: text
-      integer :: u, sz
-      open (newunit=u, file=path, access='stream', form='unformatted', status='old', action='read')
-      inquire (unit=u, size=sz)
-      allocate (character(len=sz) :: text)
-      if (sz > 0) read (u) text
-      close (u)
-   end function slurp
 
 end module test_friction

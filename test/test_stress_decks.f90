@@ -41,7 +41,7 @@ module test_stress_decks
    use exic_io_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
    use deck_runner, only: run_dir
-   use testing, only: suite_t, check, section
+   use testing, only: suite_t, check, section, file_text
    implicit none
    private
 
@@ -159,7 +159,7 @@ contains
       character(len=:), allocatable :: text
       character(len=*), parameter :: phys = 'HOURglass,PHYSical'
       integer :: u, k
-      text = slurp('test/data/stress/hourglass_20261124_0019.inp')
+      text = file_text('test/data/stress/hourglass_20261124_0019.inp')
       do
          k = index(text, phys)
          if (k == 0) exit
@@ -198,23 +198,8 @@ contains
       opts%quiet = .true.
       call run_model(m, opts, err)
       call check(s, .not. allocated(err), name//': runs to the end')
-      out = slurp(run_dir//'/'//name//'.out')
+      out = file_text(run_dir//'/'//name//'.out')
    end subroutine run_saved
-
-   !> The whole text of a file ('' when it cannot be read).
-   function slurp(path) result(text)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable :: text
-      integer :: u, n, ios
-      open (newunit=u, file=path, access='stream', form='unformatted', action='read', iostat=ios)
-      text = ''
-      if (ios /= 0) return
-      inquire (unit=u, size=n)
-      deallocate (text)
-      allocate (character(len=n) :: text)
-      read (u, iostat=ios) text
-      close (u)
-   end function slurp
 
    !> The number that follows the first `key` in text (-1 when absent or unreadable).
    real(wp) function number_after(text, key) result(v)
