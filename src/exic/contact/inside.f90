@@ -77,6 +77,7 @@ module exic_contact_inside
       integer, private :: nx = 0, ny = 0
       real(wp), private :: lo(2) = 0.0_wp, h = 1.0_wp
       integer, allocatable, private :: ehead(:), eitem(:), ghead(:), gitem(:)
+      logical, private :: edges_binned = .false.   !< ghead, gitem hold this check's edge grid
       real(wp), allocatable, private :: ebox(:, :)   !< (4, nelem) element boxes: x, y low, x, y high
    contains
       procedure :: init => inside_init
@@ -330,6 +331,7 @@ contains
             if (b == a) then
                call side_depth(x(:, n), q, d, rel)
             else
+               if (.not. self%edges_binned) call bin_edges(self, x)
                call boundary_depth(self, x, x(:, n), b, d, rel)
             end if
             if (rel > self%last%edges) self%last = inside_hit_t(d, rel, n, self%ids(a), self%ids(b), t)
@@ -443,13 +445,14 @@ contains
 
    !> Grid over the box of the used nodes: cell = mean element box extent, at most ~4 nelem
    !> cells; elements binned by the cells their boxes touch (the boxes kept in ebox for the
-   !> node tests), boundary edges likewise.
+   !> node tests). The boundary edges are binned on the same grid by bin_edges, when a node
+   !> inside another body first needs its depth (most checks find none).
    subroutine build_grids(self, x)
       type(inside_t), intent(inout) :: self
       real(wp), intent(in), contiguous :: x(:, :)
       real(wp) :: hi(2), ext, bl(2), bh(2)
-      integer :: e, ncell, ne
-      integer, allocatable :: erng(:, :), grng(:, :)
+      integer :: e
+      integer, allocatable :: erng(:, :)
 
       self%lo = huge(1.0_wp)
       hi = -huge(1.0_wp)
@@ -476,13 +479,24 @@ contains
       self%h = max(self%h, sqrt((hi(1) - self%lo(1))*(hi(2) - self%lo(2))/(4.0_wp*self%nelem)))
       self%nx = max(1, min(int((hi(1) - self%lo(1))/self%h) + 1, 4*self%nelem))
       self%ny = max(1, min(int((hi(2) - self%lo(2))/self%h) + 1, 4*self%nelem))
-      ncell = self%nx*self%ny
-      ! the cells of every element's and edge's box once, then per grid: count, prefix sums, fill
-      ne = size(self%edge, 2)
-      allocate (erng(4, self%nelem), grng(4, ne))
+      ! the cells of every element's box once, then count, prefix sums, fill
+      allocate (erng(4, self%nelem))
       do e = 1, self%nelem
          call cell_range(self, self%ebox(1:2, e), self%ebox(3:4, e), erng(1, e), erng(2, e), erng(3, e), erng(4, e))
       end do
+      call bin_all(self%nx, self%nx*self%ny, erng, self%ehead, self%eitem)
+      self%edges_binned = .false.
+   end subroutine build_grids
+
+   !> The boundary edges of this check's positions x binned on build_grids' grid (ghead, gitem).
+   subroutine bin_edges(self, x)
+      type(inside_t), intent(inout) :: self
+      real(wp), intent(in), contiguous :: x(:, :)
+      real(wp) :: bl(2), bh(2)
+      integer :: e, ne
+      integer, allocatable :: grng(:, :)
+      ne = size(self%edge, 2)
+      allocate (grng(4, ne))
       do e = 1, ne
          bl(1) = min(x(1, self%edge(1, e)), x(1, self%edge(2, e)))
          bl(2) = min(x(2, self%edge(1, e)), x(2, self%edge(2, e)))
@@ -490,44 +504,44 @@ contains
          bh(2) = max(x(2, self%edge(1, e)), x(2, self%edge(2, e)))
          call cell_range(self, bl, bh, grng(1, e), grng(2, e), grng(3, e), grng(4, e))
       end do
-      call bin_all(erng, self%ehead, self%eitem)
-      call bin_all(grng, self%ghead, self%gitem)
-   contains
-      !> head(1:ncell + 1) and items: item e in every cell of its range rng(:, e) (i0, i1, j0,
-      !> j1), the items of a cell in increasing e.
-      subroutine bin_all(rng, head, items)
-         integer, intent(in) :: rng(:, :)
-         integer, allocatable, intent(inout) :: head(:), items(:)
-         integer, allocatable :: fill(:)
-         integer :: e, i, j, c
-         if (allocated(head)) deallocate (head)
-         allocate (head(ncell + 1), source=0)
-         do e = 1, size(rng, 2)
-            do j = rng(3, e), rng(4, e)
-               do i = rng(1, e), rng(2, e)
-                  c = i + (j - 1)*self%nx
-                  head(c + 1) = head(c + 1) + 1
-               end do
+      call bin_all(self%nx, self%nx*self%ny, grng, self%ghead, self%gitem)
+      self%edges_binned = .true.
+   end subroutine bin_edges
+
+   !> head(1:ncell + 1) and items of a grid nx cells wide: item e in every cell of its range
+   !> rng(:, e) (i0, i1, j0, j1), the items of a cell in increasing e.
+   pure subroutine bin_all(nx, ncell, rng, head, items)
+      integer, intent(in) :: nx, ncell, rng(:, :)
+      integer, allocatable, intent(inout) :: head(:), items(:)
+      integer, allocatable :: fill(:)
+      integer :: e, i, j, c
+      if (allocated(head)) deallocate (head)
+      allocate (head(ncell + 1), source=0)
+      do e = 1, size(rng, 2)
+         do j = rng(3, e), rng(4, e)
+            do i = rng(1, e), rng(2, e)
+               c = i + (j - 1)*nx
+               head(c + 1) = head(c + 1) + 1
             end do
          end do
-         head(1) = 1
-         do c = 2, ncell + 1
-            head(c) = head(c) + head(c - 1)
-         end do
-         if (allocated(items)) deallocate (items)
-         allocate (items(head(ncell + 1) - 1))
-         fill = head(1:ncell)
-         do e = 1, size(rng, 2)
-            do j = rng(3, e), rng(4, e)
-               do i = rng(1, e), rng(2, e)
-                  c = i + (j - 1)*self%nx
-                  items(fill(c)) = e
-                  fill(c) = fill(c) + 1
-               end do
+      end do
+      head(1) = 1
+      do c = 2, ncell + 1
+         head(c) = head(c) + head(c - 1)
+      end do
+      if (allocated(items)) deallocate (items)
+      allocate (items(head(ncell + 1) - 1))
+      fill = head(1:ncell)
+      do e = 1, size(rng, 2)
+         do j = rng(3, e), rng(4, e)
+            do i = rng(1, e), rng(2, e)
+               c = i + (j - 1)*nx
+               items(fill(c)) = e
+               fill(c) = fill(c) + 1
             end do
          end do
-      end subroutine bin_all
-   end subroutine build_grids
+      end do
+   end subroutine bin_all
 
    !> Cell indices (clamped to the grid) of the box bl-bh.
    pure subroutine cell_range(self, bl, bh, i0, i1, j0, j1)
