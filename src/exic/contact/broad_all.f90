@@ -254,7 +254,9 @@ contains
       class(broad_all_t), intent(inout) :: self
       integer, intent(in) :: nnode
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
-      real(wp), parameter :: SKIN_SHARE = 0.2_wp, SKIN_STEPS = 10.0_wp, SKIN_USE = 0.75_wp
+      ! the skin: 0.4 of the mean segment length (fewer builds for a longer list than 0.2, which
+      ! PAIR lists keep; doc/contact-detection.md, "Kept broad-phase list"), or 10 steps' motion
+      real(wp), parameter :: SKIN_SHARE = 0.4_wp, SKIN_STEPS = 10.0_wp, SKIN_USE = 0.75_wp
       real(wp) :: d, mv, lsum
       integer :: k, l, node, nn
 
