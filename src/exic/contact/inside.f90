@@ -20,7 +20,8 @@
 !> mean element extent, at most about 4 nelem cells) holds the elements by the cells their boxes
 !> touch; each node tests the elements of its own cell (box test, then the crossing-number test
 !> on the quadrilateral). Only nodes found inside compute a depth, by a ring search over a second
-!> grid holding B's boundary edges. Plain arrays in: positions, connectivity, body per element.
+!> grid holding B's boundary edges, binned at the first such node of a check. Plain arrays in:
+!> positions, connectivity, body per element.
 module exic_contact_inside
    use exic_base_kinds, only: wp, i8
    use exic_base_grow, only: grow
