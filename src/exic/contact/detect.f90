@@ -255,10 +255,10 @@ contains
    !> node normal: the normalized average of the segment's normal and that of its
    !> neighbour at that node, the neighbour counting only if it passes the facing test.
    !>
-   !> With the slave surface's segments `sseg` and its node -> segments lists (`shead`, `ssegs`,
-   !> node_segments), snrm(:, s) is formed here at x0 (some_node_normals), for the slaves that
-   !> have a hit only, when their first hit needs it; without them snrm must hold every
-   !> candidate slave's normal.
+   !> With the slave surface's nsseg segments `sseg` and its node -> segments lists (`shead`,
+   !> `ssegs`, node_segments), snrm(:, s) is formed here at x0 (some_node_normals), for the
+   !> slaves that have a hit only, when their first hit needs it; without them snrm must hold
+   !> every candidate slave's normal.
    !>
    !> Segment normals formed once per search (swept mode, with the lists above): `stamp` names
    !> the search; mnrm(:, k) holds the unit normals of master segment k at x0 (1:2) and x1
@@ -268,16 +268,20 @@ contains
    !> a candidate's arithmetic is that of swept_pair and the results are the same bits.
    subroutine detect_pairs(mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, link, &
                            ncand, cand, depth, facing, ncon, cslave, cseg, cmaster, &
-                           cend, calpha, cnormal, ctau, cgap, sseg, shead, ssegs, &
+                           cend, calpha, cnormal, ctau, cgap, nsseg, sseg, shead, ssegs, &
                            stamp, mnrm, mstamp, snrm_seg, sstamp)
       integer, intent(in) :: mode, nnode, nslave, nseg, ncand
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), depth, facing
       real(wp), intent(inout) :: snrm(2, nslave)
       integer, intent(in) :: slaves(nslave), seg(2, nseg), link(2, nseg), cand(2, ncand)
-      integer, intent(in), optional, contiguous :: sseg(:, :), shead(:), ssegs(:)
+      ! the slave surface's nsseg segments and lists, the segment caches (module header): sizes
+      ! assumed, so that a pass hands over addresses (assumed-shape arrays cost a descriptor and
+      ! a contiguity check each, about 450 instructions a pass through detect_contacts)
+      integer, intent(in), optional :: nsseg
+      integer, intent(in), optional :: sseg(2, *), shead(*), ssegs(*)
       integer, intent(in), optional :: stamp
-      real(wp), intent(inout), optional, contiguous :: mnrm(:, :), snrm_seg(:, :)
-      integer, intent(inout), optional, contiguous :: mstamp(:), sstamp(:)
+      real(wp), intent(inout), optional :: mnrm(4, *), snrm_seg(4, *)
+      integer, intent(inout), optional :: mstamp(*), sstamp(*)
       integer, intent(out) :: ncon
       integer, intent(out) :: cslave(nslave), cseg(nslave), cmaster(2, nslave)
       logical, intent(out) :: cend(nslave)
@@ -286,7 +290,7 @@ contains
       real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap, w
       logical :: hit, lazy, have_nrm, cached
 
-      lazy = present(sseg) .and. present(shead) .and. present(ssegs)
+      lazy = present(nsseg) .and. present(sseg) .and. present(shead) .and. present(ssegs)
       cached = lazy .and. mode == DETECT_SWEPT .and. present(stamp) .and. present(mnrm) .and. &
                present(mstamp) .and. present(snrm_seg) .and. present(sstamp)
 
@@ -335,7 +339,7 @@ contains
                   end do
                   snrm(:, s) = node_normal_from(shead, ssegs, s, snrm_seg)
                else
-                  call some_node_normals(nnode, x0, size(sseg, 2), sseg, nslave, shead, ssegs, 1, [s], snrm)
+                  call some_node_normals(nnode, x0, nsseg, sseg, nslave, shead, ssegs, 1, [s], snrm)
                end if
                have_nrm = .true.
             end if
@@ -467,17 +471,18 @@ contains
    !> Narrow phase into a contact set (grown to nslave entries when needed); see
    !> detect_pairs for the arguments and the rules.
    subroutine detect_contacts(cs, mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, &
-                              link, ncand, cand, depth, facing, sseg, shead, ssegs, &
+                              link, ncand, cand, depth, facing, nsseg, sseg, shead, ssegs, &
                               stamp, mnrm, mstamp, snrm_seg, sstamp)
       type(contact_set_t), intent(inout) :: cs
       integer, intent(in) :: mode, nnode, nslave, nseg, ncand
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), depth, facing
       real(wp), intent(inout) :: snrm(2, nslave)
       integer, intent(in) :: slaves(nslave), seg(2, nseg), link(2, nseg), cand(2, ncand)
-      integer, intent(in), optional, contiguous :: sseg(:, :), shead(:), ssegs(:)
+      integer, intent(in), optional :: nsseg
+      integer, intent(in), optional :: sseg(2, *), shead(*), ssegs(*)
       integer, intent(in), optional :: stamp
-      real(wp), intent(inout), optional, contiguous :: mnrm(:, :), snrm_seg(:, :)
-      integer, intent(inout), optional, contiguous :: mstamp(:), sstamp(:)
+      real(wp), intent(inout), optional :: mnrm(4, *), snrm_seg(4, *)
+      integer, intent(inout), optional :: mstamp(*), sstamp(*)
       integer :: cap
 
       cap = 0
@@ -493,7 +498,7 @@ contains
       end if
       call detect_pairs(mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, link, ncand, &
                         cand, depth, facing, cs%n, cs%slave, cs%seg, cs%master, cs%at_end, &
-                        cs%alpha, cs%normal, cs%tau, cs%gap, sseg, shead, ssegs, &
+                        cs%alpha, cs%normal, cs%tau, cs%gap, nsseg, sseg, shead, ssegs, &
                         stamp, mnrm, mstamp, snrm_seg, sstamp)
    end subroutine detect_contacts
 

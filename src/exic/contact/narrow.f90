@@ -163,7 +163,7 @@ contains
                ! narrow phase once in this search (another surface than the master: above)
                call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                     sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
-                                    self%depth, FACING, sl%seg, sl%nhead, sl%nsegs, &
+                                    self%depth, FACING, sl%nseg, sl%seg, sl%nhead, sl%nsegs, &
                                     self%stamp, ms%sn, ms%sn_stamp, sl%sn, sl%sn_stamp)
             end if
          end associate

@@ -449,7 +449,7 @@ contains
    pure subroutine some_node_normals(nnode, x, nseg, seg, nlist, head, segs, nsel, sel, nrm)
       integer, intent(in) :: nnode, nseg, nlist, nsel
       real(wp), intent(in) :: x(2, nnode)
-      integer, intent(in) :: seg(2, nseg), head(nlist + 1), segs(:), sel(nsel)
+      integer, intent(in) :: seg(2, nseg), head(nlist + 1), segs(*), sel(nsel)
       real(wp), intent(inout) :: nrm(2, nlist)
       integer :: i, p, q, k
 
@@ -466,10 +466,11 @@ contains
 
    !> The normal of node position p as some_node_normals forms it, from the unit normals of the
    !> surface's segments at the same positions already formed (sn(1:2, k) for segment k): the
-   !> same sum in the same order, so the same bits.
+   !> same sum in the same order, so the same bits. sn(4, *): the normals at x0 in rows 1:2 (the
+   !> narrow phase's segment cache, src/exic/contact/detect.f90).
    pure function node_normal_from(head, segs, p, sn) result(n)
-      integer, intent(in) :: head(:), segs(:), p
-      real(wp), intent(in) :: sn(:, :)
+      integer, intent(in) :: head(*), segs(*), p
+      real(wp), intent(in) :: sn(4, *)
       real(wp) :: n(2)
       integer :: q
       n = 0.0_wp
