@@ -10,7 +10,7 @@ module exic_base_flat
    implicit none
    private
 
-   public :: all_finite, copy_flat, sum_flat
+   public :: all_finite, copy_flat, copy_flat_int, sum_flat
 
 contains
 
@@ -33,6 +33,14 @@ contains
       real(wp), intent(out) :: y(n)
       y = x
    end subroutine copy_flat
+
+   !> y(1:n) = x(1:n), integer values (a pass's candidate pairs, src/exic/contact/broad_all.f90).
+   pure subroutine copy_flat_int(n, x, y)
+      integer, intent(in) :: n
+      integer, intent(in) :: x(n)
+      integer, intent(out) :: y(n)
+      y = x
+   end subroutine copy_flat_int
 
    !> z(1:n) = x(1:n) + y(1:n).
    pure subroutine sum_flat(n, x, y, z)

@@ -272,6 +272,8 @@ contains
       real(wp) :: t1(2), t2(2)
       logical :: flat
 
+      ! most passes have no immovable slave: one quick look first
+      if (.not. any_immovable(bw%ncand, bw%cand, nslave, slaves, nnode, minv)) return
       n = 0
       do k = 1, bw%ncand
          s = bw%cand(1, k)
@@ -301,6 +303,22 @@ contains
       end do
       bw%ncand = n
    end subroutine drop_flat_fixed
+
+   !> True when the slave of some candidate cand(:, 1:n) has no inverse mass in either direction
+   !> (drop_flat_fixed's first test).
+   pure logical function any_immovable(n, cand, nslave, slaves, nnode, minv) result(any_fixed)
+      integer, intent(in) :: n, cand(2, *), nslave, slaves(nslave), nnode
+      real(wp), intent(in) :: minv(2, nnode)
+      integer :: k, node
+      any_fixed = .false.
+      do k = 1, n
+         node = slaves(cand(1, k))
+         if (minv(1, node) == 0.0_wp .and. minv(2, node) == 0.0_wp) then
+            any_fixed = .true.
+            return
+         end if
+      end do
+   end function any_immovable
 
    !> Cell index (0-based) of coordinate v on an axis starting at lo with n cells of size h.
    pure integer function cell_of(v, lo, h, n) result(i)

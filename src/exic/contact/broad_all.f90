@@ -22,6 +22,7 @@
 module exic_contact_broad_all
    use exic_base_kinds, only: wp, i8
    use exic_base_grow, only: grow
+   use exic_base_flat, only: copy_flat_int
    use exic_base_sort, only: sort_perm_int
    use exic_contact_broad, only: broad_t, broad_search, boxes_overlap
    implicit none
@@ -522,14 +523,13 @@ contains
       class(broad_all_t), intent(in) :: self
       integer, intent(in) :: g
       type(broad_t), intent(inout) :: bw
-      integer :: n, f, k
+      integer :: n, f
       f = self%gfirst(g)
       n = self%gfirst(g + 1) - f
       call grow(bw%cand, n, 2)
-      do k = 1, n
-         bw%cand(1, k) = self%gcand(1, f + k - 1)
-         bw%cand(2, k) = self%gcand(2, f + k - 1)
-      end do
+      ! one flat copy (element by element through the two components' descriptors it took 12
+      ! instructions a candidate)
+      if (n > 0) call copy_flat_int(2*n, self%gcand(1, f), bw%cand)
       bw%ncand = n
       bw%ntests = 0
    end subroutine broad_all_take
