@@ -360,8 +360,8 @@ contains
       !GCC$ novector
       do k = 1, n
          node = nodes(k)
-         ! the node's largest change first, then one max on the chain through d (four in a row
-         ! made the loop wait on their latency, about 16 cycles a node); max is exact
+         ! the node's largest change first, then one max on the chain through d (max is exact:
+         ! the same d as four in a row)
          dk = max(abs(x0(1, node) - xw(1, k)), abs(x0(2, node) - xw(2, k)), &
                   abs(x1(1, node) - xw(3, k)), abs(x1(2, node) - xw(4, k)))
          d = max(d, dk)
