@@ -14,7 +14,7 @@ module test_deck
    use exic_io_expression, only: param_table_t, set_param, evaluate
    use exic_io_records, only: record_t, split_fields, field_t
    use exic_io_deck, only: read_deck
-   use testing, only: suite_t, check, check_close, section
+   use testing, only: suite_t, check, check_close, section, error_text
    implicit none
    private
 
@@ -464,23 +464,16 @@ contains
       call write_lines(tmp//'ew.inp', [character(len=L) :: deck, ' SURFace,2', '  REGIon,2', &
                        ' PAIR,1,NTOS,1,2', '  LAGRange,ENERgy', 'END CONTact', '', 'END', 'BATCh', 'END', 'STOP'])
       call read_deck(tmp//'ew.inp', m, err)
-      call check(s, .not. allocated(err), 'ENERgy on a REGIon surface reads', msg(err))
+      call check(s, .not. allocated(err), 'ENERgy on a REGIon surface reads', error_text(err))
       call check(s, has(m%warnings, 'ew.inp:36: warning: PAIR 1 with LAGRange,ENERgy on SURFace 2'), &
                  'warning at the PAIR names the REGIon surface', m%warnings)
       deck(9:11) = [character(len=L) :: ' RIGId', '  DENSity 0.1', '']
       call write_lines(tmp//'ew.inp', [character(len=L) :: deck, ' SURFace,2', '  REGIon,2', &
                        ' PAIR,1,NTOS,1,2', '  LAGRange,ENERgy', 'END CONTact', '', 'END', 'BATCh', 'END', 'STOP'])
       call read_deck(tmp//'ew.inp', m, err)
-      call check(s, .not. allocated(err), 'ENERgy against a rigid REGIon surface reads', msg(err))
+      call check(s, .not. allocated(err), 'ENERgy against a rigid REGIon surface reads', error_text(err))
       call check(s, .not. has(m%warnings, 'ENERgy'), 'no warning for a rigid body''s REGIon surface', &
                  m%warnings)
-   contains
-      function msg(e) result(t)
-         type(error_t), allocatable, intent(in) :: e
-         character(len=:), allocatable :: t
-         t = ''
-         if (allocated(e)) t = e%message
-      end function msg
    end subroutine test_energy_warning
 
    !> HOURglass h (Flanagan-Belytschko coefficient) and HOURglass,PHYSical[,s] (doc/hourglass.md);
@@ -498,26 +491,27 @@ contains
               '  2,2,0', '  3,2,1', '  4,0,1', '', 'END', 'BATCh', 'END', 'STOP']
       call write_lines(tmp//'hg.inp', [character(len=L) :: head, '  HOURglass,PHYSical', tail])
       call read_deck(tmp//'hg.inp', m, err)
-      call check(s, .not. allocated(err), 'HOURglass,PHYSical reads', msg(err))
+      call check(s, .not. allocated(err), 'HOURglass,PHYSical reads', error_text(err))
       if (allocated(err)) return
       call check(s, m%materials(1)%hourglass_kind == HOURGLASS_PHYSICAL .and. &
                  m%materials(1)%hourglass == 1.0_wp, 'HOURglass,PHYSical: scale 1')
       call write_lines(tmp//'hg.inp', [character(len=L) :: head, '  HOURglass phys 0.5', tail])
       call read_deck(tmp//'hg.inp', m, err)
-      call check(s, .not. allocated(err), 'HOURglass phys 0.5 reads', msg(err))
+      call check(s, .not. allocated(err), 'HOURglass phys 0.5 reads', error_text(err))
       if (allocated(err)) return
       call check(s, m%materials(1)%hourglass_kind == HOURGLASS_PHYSICAL .and. &
                  m%materials(1)%hourglass == 0.5_wp, 'HOURglass phys 0.5: scale 0.5')
       call write_lines(tmp//'hg.inp', [character(len=L) :: head, '  HOURglass 0.2', tail])
       call read_deck(tmp//'hg.inp', m, err)
-      call check(s, .not. allocated(err), 'HOURglass 0.2 reads', msg(err))
+      call check(s, .not. allocated(err), 'HOURglass 0.2 reads', error_text(err))
       if (allocated(err)) return
       call check(s, m%materials(1)%hourglass_kind == HOURGLASS_STIFFNESS .and. &
                  m%materials(1)%hourglass == 0.2_wp, 'HOURglass 0.2: the Flanagan-Belytschko coefficient')
       call write_lines(tmp//'hg.inp', [character(len=L) :: head, tail])
       call read_deck(tmp//'hg.inp', m, err)
       call check(s, .not. allocated(err) .and. m%materials(1)%hourglass_kind == HOURGLASS_STIFFNESS &
-                 .and. m%materials(1)%hourglass == 0.1_wp, 'no HOURglass record: coefficient 0.1', msg(err))
+                 .and. m%materials(1)%hourglass == 0.1_wp, 'no HOURglass record: coefficient 0.1', &
+                 error_text(err))
       call bad('  HOURglass,PHYSical,2', 'expected a scale s with 0 < s <= 1')
       call bad('  HOURglass,PHYSical,0', 'expected a scale s with 0 < s <= 1')
       call bad('  HOURglass,VISCous', 'HOURglass h (a coefficient) or HOURglass,PHYSical[,s]')
@@ -531,12 +525,6 @@ contains
          if (allocated(err)) call check(s, has(err%message, 'hg.inp:7:') .and. has(err%message, want), &
                                         trim(line)//': file:line and what is expected', err%message)
       end subroutine bad
-      function msg(e) result(t)
-         type(error_t), allocatable, intent(in) :: e
-         character(len=:), allocatable :: t
-         t = ''
-         if (allocated(e)) t = e%message
-      end function msg
    end subroutine test_hourglass_records
 
    subroutine test_bar(s)

@@ -13,7 +13,7 @@ module test_loads
    use exic_explicit_step, only: stepper_t
    use exic_explicit_state, only: plus_zero
    use exic_explicit_loads, only: prop_fn_t, prop_eval, prop_value, FN_TYPE1, FN_TABLE, FN_RAMP
-   use testing, only: suite_t, check, check_close, section
+   use testing, only: suite_t, check, check_close, section, error_text
    use deck_runner, only: run_dir, run_deck, read_table, column, write_text
    implicit none
    private
@@ -555,7 +555,7 @@ contains
              nl//'STOP'
       call setup_stepper('edge_values', deck, model, stp, err)
       if (.not. allocated(err)) call stp%start(err)
-      call check(s, .not. allocated(err), 'edge values set up', merge_msg(err))
+      call check(s, .not. allocated(err), 'edge values set up', error_text(err))
       if (allocated(err)) return
       fy = 0.0_wp
       mz = 0.0_wp
@@ -655,7 +655,7 @@ contains
       call setup_stepper('stretched_edge', deck, model, stp, err)
       if (.not. allocated(err)) call stp%set_fixed_dt(1.0e-3_wp, 'test', err)
       if (.not. allocated(err)) call stp%start(err)
-      call check(s, .not. allocated(err), 'stretched block set up', merge_msg(err))
+      call check(s, .not. allocated(err), 'stretched block set up', error_text(err))
       if (allocated(err)) return
       worst = 0.0_wp
       worst_f = 0.0_wp
@@ -673,7 +673,7 @@ contains
             lmax = max(lmax, len)
          end associate
       end do
-      call check(s, .not. allocated(err), 'stretched block runs', merge_msg(err))
+      call check(s, .not. allocated(err), 'stretched block runs', error_text(err))
       call check(s, lmin < 1.85_wp .and. lmax > 2.15_wp, 'the edge length changes by +-10 %', &
                  rtoa(lmin)//' .. '//rtoa(lmax))
       call check(s, worst <= 1.0e-13_wp*p*lmax, 'edge pressure resultant = p x deformed length at every step', &
@@ -699,7 +699,7 @@ contains
              '    1,0,1,50'//nl//'    2,1,1,50'//nl//nl//'END'//nl//'BATCh'//nl//'END'//nl//'STOP'
       call setup_stepper('deforming_edge', deck, model, stp, err)
       if (.not. allocated(err)) call stp%start(err)
-      call check(s, .not. allocated(err), 'pressed block set up', merge_msg(err))
+      call check(s, .not. allocated(err), 'pressed block set up', error_text(err))
       if (allocated(err)) return
       worst = 0.0_wp
       bend = 0.0_wp
@@ -716,7 +716,7 @@ contains
             bend = max(bend, plen - norm2(chord))
          end associate
       end do
-      call check(s, .not. allocated(err), 'pressed block runs', merge_msg(err))
+      call check(s, .not. allocated(err), 'pressed block runs', error_text(err))
       call check(s, worst <= 1.0e-13_wp*p, 'edge resultant = -p R(chord) of the deformed edge at every step', &
                  'largest difference '//rtoa(worst)//' (the edge bends: length - chord up to '//rtoa(bend)//')')
    end subroutine deforming_edge
@@ -750,7 +750,7 @@ contains
              rtoa(ri)//',360'//nl//nl//'CSURface'//nl//'  NORMal'//nl//'  LINEar'//nl//pts//nl// &
              'END'//nl//'TIE'//nl//'BATCh'//nl//'END'//nl//'STOP'
       call setup_stepper('ring', deck, model, stp, err)
-      call check(s, .not. allocated(err), 'ring set up', merge_msg(err))
+      call check(s, .not. allocated(err), 'ring set up', error_text(err))
       if (allocated(err)) return
       call check(s, stp%ld%spec%nedge == ns, 'the pressure loads the 48 outer edges', itoa(stp%ld%spec%nedge))
       n = stp%st%nnode
@@ -780,7 +780,7 @@ contains
          lnow = ang_mom()
          worst_l = max(worst_l, abs(lnow - l0))
       end do
-      call check(s, .not. allocated(err), 'ring spins one revolution', merge_msg(err))
+      call check(s, .not. allocated(err), 'ring spins one revolution', error_text(err))
       wrev = stp%st%wext
       call check(s, worst_w <= 1.0e-12_wp*p*a0, 'pressure work = -p (A(t) - A(0)) at every step', &
                  'largest difference '//rtoa(worst_w))
@@ -951,13 +951,5 @@ contains
       kt = column(en, 'total')
       r = maxval(abs(e(kt, :) - e(kt, 1)))/maxval(e(column(en, 'kinetic'), :) + e(column(en, 'strain'), :))
    end function balance
-
-   !> An error's message, or ''.
-   function merge_msg(err) result(m)
-      type(error_t), allocatable, intent(in) :: err
-      character(len=:), allocatable :: m
-      m = ''
-      if (allocated(err)) m = err%message
-   end function merge_msg
 
 end module test_loads
