@@ -837,6 +837,11 @@ contains
                  'kept list: the groups and candidates of the search at each of 300 steps')
       call check(s, bk%nbuilds >= 5 .and. bk%nkept_steps >= 150, &
                  'kept list: reused between builds, built again past the skin')
+      call check(s, bk%ngroups_apart > 0, &
+                 'kept list: groups whose surfaces are apart skipped (the same candidates)')
+      call check(s, bk%nlazy_steps > 0 .and. bk%nlazy_steps < 300, &
+                 'kept list: segment boxes formed at first use in some steps, all at once in others', &
+                 'steps with boxes at first use: '//i8str(bk%nlazy_steps))
    end subroutine test_broad_all_kept
 
    function i8str(v) result(t)

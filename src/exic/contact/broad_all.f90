@@ -63,6 +63,10 @@ module exic_contact_broad_all
       integer :: nkept_nodes = 0, nkept_segs = 0   !< entries of lnodes, lseg of the kept search
       integer, allocatable :: keep(:, :)      !< (2, nkept) indices into nodes and lseg, grouped
       integer, allocatable :: ksegw(:, :)     !< (2, nkept_segs) ends of the kept lseg as indices into nodes
+      real(wp), allocatable :: sbox(:, :)     !< (4, nsurf) swept box of every surface this step
+      logical, allocatable :: glive(:)        !< (nkgroup) groups whose surfaces' boxes meet this step
+      integer, allocatable :: mstamp(:)       !< (nkept_segs) step whose box the segment's mbox holds
+      integer :: boxstamp = 0                 !< this step's stamp of mstamp
       real(wp), allocatable :: nbox(:, :)     !< (4, size(nodes)) swept box of every surface node this step
       integer, allocatable :: kloc(:, :)      !< (2, nkept) the same as indices within the surfaces
       integer :: nkgroup = 0                  !< groups of the kept list
@@ -70,6 +74,8 @@ module exic_contact_broad_all
       integer, allocatable :: gidx(:, :)      !< (2, :) regroup's placed candidates as lnodes, lseg indices
       real(wp), allocatable :: xw(:, :)       !< (4, size(nodes)) x0, x1 of every node at the build
       integer(i8) :: nbuilds = 0, nkept_steps = 0
+      integer(i8) :: ngroups_apart = 0        !< kept groups skipped by the surfaces' boxes, all steps
+      integer(i8) :: nlazy_steps = 0          !< steps that formed the segment boxes at first use
    contains
       procedure :: add_surface => broad_all_add_surface
       procedure :: search => broad_all_search
@@ -246,11 +252,12 @@ contains
    !> kept across steps, as `broad_search_kept` does for one pair (doc/contact-detection.md,
    !> "Kept broad-phase list"): the groups of a search with margin + 2 skin, valid while no
    !> surface node has moved more than SKIN_USE x skin from its positions at that search; each
-   !> step tests the kept candidates, group by group, with `search`'s own test and margin and
-   !> keeps the groups left with candidates (a filter keeps the order within and between the
-   !> groups, so nothing is regrouped). A candidate of now is in the kept list: its node and segment boxes lie
-   !> within their boxes of then grown by the skin, so at the build they overlapped with
-   !> margin + 2 skin, their surfaces' boxes too, and both passed the `reaches` tests.
+   !> step skips the groups whose two surfaces' boxes are apart, tests the kept candidates of
+   !> the others, group by group, with `search`'s own test and margin and keeps the groups left
+   !> with candidates (a filter keeps the order within and between the groups, so nothing is
+   !> regrouped). A candidate of now is in the kept list: its node and segment boxes lie within
+   !> their boxes of then grown by the skin, so at the build they overlapped with margin + 2
+   !> skin, their surfaces' boxes too, and both passed the `reaches` tests.
    subroutine broad_all_search_kept(self, nnode, x0, x1, margin)
       class(broad_all_t), intent(inout) :: self
       integer, intent(in) :: nnode
@@ -259,7 +266,7 @@ contains
       ! PAIR lists keep; doc/contact-detection.md, "Kept broad-phase list"), or 10 steps' motion
       real(wp), parameter :: SKIN_SHARE = 0.4_wp, SKIN_STEPS = 10.0_wp, SKIN_USE = 0.75_wp
       real(wp) :: d, mv, lsum
-      integer :: k, l, node, nn
+      integer :: k, l, node, nn, nlive
 
       self%ngroup = 0
       self%ntests = 0
@@ -267,25 +274,28 @@ contains
       nn = self%node_first(self%nsurf + 1) - 1
       d = huge(1.0_wp)
       call grow(self%nbox, max(nn, 1), 4)
+      call grow(self%sbox, self%nsurf, 4)
       if (self%kept) then
-         ! the largest motion since the build and this step's boxes of every node (none if the
-         ! list is empty), in one pass
-         call moves_and_boxes(nnode, x0, x1, nn, self%nodes, self%xw, self%nkept > 0, self%nbox, d)
+         ! the largest motion since the build and this step's boxes of every node and surface
+         ! (none if the list is empty), in one pass
+         call moves_and_boxes(nnode, x0, x1, self%nsurf, self%node_first, self%nodes, self%xw, &
+                              self%nkept > 0, self%nbox, self%sbox, d)
       end if
       ! a NaN position fails the test and builds again
       if (.not. (d <= SKIN_USE*self%skin)) then
          lsum = 0.0_wp
          mv = 0.0_wp
          call grow(self%xw, max(nn, 1), 4)
-         ! the positions of the build (the kept list's reference) and this step's node boxes
+         ! the positions of the build (the kept list's reference), then this step's node and
+         ! surface boxes
          do k = 1, nn
             node = self%nodes(k)
             mv = max(mv, abs(x1(1, node) - x0(1, node)), abs(x1(2, node) - x0(2, node)))
             self%xw(1:2, k) = x0(:, node)
             self%xw(3:4, k) = x1(:, node)
-            self%nbox(1:2, k) = min(x0(:, node), x1(:, node))
-            self%nbox(3:4, k) = max(x0(:, node), x1(:, node))
          end do
+         call moves_and_boxes(nnode, x0, x1, self%nsurf, self%node_first, self%nodes, self%xw, &
+                              .true., self%nbox, self%sbox, d)
          do k = 1, self%seg_first(self%nsurf + 1) - 1
             lsum = lsum + hypot(x0(1, self%seg(2, k)) - x0(1, self%seg(1, k)), &
                                 x0(2, self%seg(2, k)) - x0(2, self%seg(1, k)))
@@ -311,6 +321,9 @@ contains
          do k = 1, self%nkept_segs
             self%ksegw(:, k) = self%segw(:, self%seg_first(self%lseg_surf(k)) + self%lseg_loc(k) - 1)
          end do
+         call grow(self%mstamp, max(self%nkept_segs, 1))
+         self%mstamp(1:self%nkept_segs) = 0
+         self%boxstamp = 0
          call grow(self%kgslave, max(self%nkgroup, 1))
          call grow(self%kgmaster, max(self%nkgroup, 1))
          call grow(self%kgfirst, self%nkgroup + 1)
@@ -327,49 +340,65 @@ contains
          self%nkept_steps = self%nkept_steps + 1
       end if
       ! the kept candidates that pass the search's own test at this step, group by group in
-      ! their order: the boxes of the kept search's segments first (from those of their ends,
-      ! grown by margin: the same values as broad_search forms, min and max being exact), then
-      ! four comparisons per candidate (boxes_overlap with 0). Filtering the grouped kept list
-      ! keeps regroup's order: its groups are (slave surface, master surface) ascending, each
-      ! sorted by slave then segment.
-      call grow(self%fine%mbox, max(self%nkept_segs, 1), 4)
-      call segment_boxes_of(self%nkept_segs, self%ksegw, self%nbox, margin, self%fine%mbox)
+      ! their order. First the groups whose two surfaces' boxes (the slave's, the master's grown
+      ! by margin) meet: a candidate's node box lies in its surface's box and its segment's box
+      ! in its surface's box grown by margin (the rounding of `- margin` is monotone), so a group
+      ! whose surfaces' boxes are apart holds no candidate of this step. Then the boxes of the
+      ! kept segments (from those of their ends, grown by margin: the same values as
+      ! broad_search forms, min and max being exact): all of them, or, when the live groups hold
+      ! less than half of the kept candidates, each at its first use by one of those; and four
+      ! comparisons per candidate of the live groups (boxes_overlap with 0). Filtering the
+      ! grouped kept list keeps regroup's order: its groups are (slave surface, master surface)
+      ! ascending, each sorted by slave then segment.
       call grow(self%gcand, max(self%nkept, 1), 2)
       call grow(self%gslave, max(self%nkgroup, 1))
       call grow(self%gmaster, max(self%nkgroup, 1))
       call grow(self%gfirst, self%nkgroup + 1)
-      call filter_kept(self%nkgroup, self%kgslave, self%kgmaster, self%kgfirst, self%keep, self%kloc, &
-                       nn, self%nbox, self%nkept_segs, self%fine%mbox, &
-                       self%ngroup, self%gslave, self%gmaster, self%gfirst, self%gcand)
-      self%ntests = self%nkept
+      self%ntests = 0
+      if (self%nkept == 0) then
+         self%gfirst(1) = 1
+         return
+      end if
+      call grow(self%glive, self%nkgroup)
+      call live_groups(self%nkgroup, self%kgslave, self%kgmaster, self%kgfirst, self%nsurf, self%sbox, &
+                       margin, self%glive, nlive)
+      call grow(self%fine%mbox, max(self%nkept_segs, 1), 4)
+      if (2*nlive < self%nkept) then
+         self%nlazy_steps = self%nlazy_steps + 1
+         if (self%boxstamp == huge(self%boxstamp)) then
+            self%mstamp(1:self%nkept_segs) = 0
+            self%boxstamp = 0
+         end if
+         self%boxstamp = self%boxstamp + 1
+         call used_segment_boxes(self%nkgroup, self%kgfirst, self%glive, self%keep, self%nkept_segs, &
+                                 self%ksegw, self%nbox, margin, self%boxstamp, self%mstamp, self%fine%mbox)
+      else
+         call segment_boxes_of(self%nkept_segs, self%ksegw, self%nbox, margin, self%fine%mbox)
+      end if
+      call filter_kept(self%nkgroup, self%kgslave, self%kgmaster, self%kgfirst, self%glive, self%keep, &
+                       self%kloc, nn, self%nbox, self%nkept_segs, self%fine%mbox, &
+                       self%ngroup, self%gslave, self%gmaster, self%gfirst, self%gcand, self%ntests)
+      self%ngroups_apart = self%ngroups_apart + count(.not. self%glive(1:self%nkgroup))
    end subroutine broad_all_search_kept
 
-   !> d = the largest coordinate change of a node from its positions xw(1:2, k) at x0 and
-   !> xw(3:4, k) at x1 (the test of the kept list), and if `boxes` the swept boxes (xmin, ymin,
-   !> xmax, ymax) of nodes(1:n) over x0 -> x1, as broad_search forms them.
-   pure subroutine moves_and_boxes(nnode, x0, x1, n, nodes, xw, boxes, box, d)
-      integer, intent(in) :: nnode, n, nodes(n)
-      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), xw(4, n)
-      logical, intent(in) :: boxes
-      real(wp), intent(inout) :: box(4, *)
-      real(wp), intent(out) :: d
-      real(wp) :: dk
-      integer :: k, node
-      d = 0.0_wp
-      ! by scalar index, like segment_boxes_of
-      !GCC$ novector
-      do k = 1, n
-         node = nodes(k)
-         ! the node's largest change first, then one max on the chain through d (max is exact:
-         ! the same d as four in a row)
-         dk = max(abs(x0(1, node) - xw(1, k)), abs(x0(2, node) - xw(2, k)), &
-                  abs(x1(1, node) - xw(3, k)), abs(x1(2, node) - xw(4, k)))
-         d = max(d, dk)
-         if (.not. boxes) cycle
-         box(1:2, k) = min(x0(:, node), x1(:, node))
-         box(3:4, k) = max(x0(:, node), x1(:, node))
+   !> glive(g): the box of group g's slave surface meets that of its master surface grown by
+   !> margin (the test of filter_kept on the surfaces' boxes; a NaN never makes a group apart);
+   !> nlive: the kept candidates of the live groups (group g holds kgfirst(g) to kgfirst(g + 1) - 1).
+   pure subroutine live_groups(nkg, kgslave, kgmaster, kgfirst, nsurf, sbox, margin, glive, nlive)
+      integer, intent(in) :: nkg, kgslave(*), kgmaster(*), kgfirst(nkg + 1), nsurf
+      real(wp), intent(in) :: sbox(4, nsurf), margin
+      logical, intent(out) :: glive(nkg)
+      integer, intent(out) :: nlive
+      integer :: g, i, j
+      nlive = 0
+      do g = 1, nkg
+         i = kgslave(g)
+         j = kgmaster(g)
+         glive(g) = .not. (sbox(1, j) - margin > sbox(3, i) .or. sbox(1, i) > sbox(3, j) + margin .or. &
+                           sbox(2, j) - margin > sbox(4, i) .or. sbox(2, i) > sbox(4, j) + margin)
+         if (glive(g)) nlive = nlive + kgfirst(g + 1) - kgfirst(g)
       end do
-   end subroutine moves_and_boxes
+   end subroutine live_groups
 
    !> Swept boxes of segments grown by margin from the boxes nbox of their ends ends(2, 1:n):
    !> the box broad_search forms over the four end positions, min and max being exact.
@@ -387,28 +416,104 @@ contains
       end do
    end subroutine segment_boxes_of
 
-   !> The kept groups' candidates (keep: node and segment box indices; kloc: what a group
-   !> holds) whose boxes overlap (sbox against mbox, the margin already in mbox), in their
-   !> order; the groups left with candidates, in their order, into (ngroup, gslave, gmaster,
-   !> gfirst, gcand).
-   pure subroutine filter_kept(nkg, kgslave, kgmaster, kgfirst, keep, kloc, nsb, sbox, nmb, mbox, &
-                               ngroup, gslave, gmaster, gfirst, gcand)
+   !> The boxes (segment_boxes_of) of the kept segments that the candidates of the live groups
+   !> use, each once: mbox(:, m) is formed when mstamp(m) /= stamp, and mstamp(m) set.
+   pure subroutine used_segment_boxes(nkg, kgfirst, glive, keep, nmb, ends, nbox, margin, stamp, mstamp, mbox)
+      integer, intent(in) :: nkg, kgfirst(nkg + 1), keep(2, *), nmb, ends(2, nmb), stamp
+      logical, intent(in) :: glive(nkg)
+      real(wp), intent(in) :: nbox(4, *), margin
+      integer, intent(inout) :: mstamp(nmb)
+      real(wp), intent(inout) :: mbox(4, nmb)
+      integer :: g, k, m
+      do g = 1, nkg
+         if (.not. glive(g)) cycle
+         do k = kgfirst(g), kgfirst(g + 1) - 1
+            m = keep(2, k)
+            if (mstamp(m) == stamp) cycle
+            call segment_boxes_of(1, ends(1, m), nbox, margin, mbox(1, m))
+            mstamp(m) = stamp
+         end do
+      end do
+   end subroutine used_segment_boxes
+
+   !> d = the largest coordinate change of a node from its positions xw(1:2, k) at x0 and
+   !> xw(3:4, k) at x1 (the test of the kept list), and if `boxes` the swept boxes (xmin, ymin,
+   !> xmax, ymax) of the nodes over x0 -> x1, as broad_search forms them, and those of the nsurf
+   !> surfaces (nodes(node_first(r) : node_first(r + 1) - 1)). A surface's box is taken by
+   !> explicit comparisons, so that a node box holding a NaN (which fails every box test) is
+   !> left out and never hides the others: it holds every node box that can pass a test.
+   pure subroutine moves_and_boxes(nnode, x0, x1, nsurf, node_first, nodes, xw, boxes, box, sbox, d)
+      integer, intent(in) :: nnode, nsurf, node_first(nsurf + 1), nodes(*)
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), xw(4, *)
+      logical, intent(in) :: boxes
+      real(wp), intent(inout) :: box(4, *), sbox(4, nsurf)
+      real(wp), intent(out) :: d
+      real(wp) :: b(4)
+      integer :: k, r, node
+      d = 0.0_wp
+      if (.not. boxes) then
+         ! by scalar index, like segment_boxes_of
+         !GCC$ novector
+         do k = node_first(1), node_first(nsurf + 1) - 1
+            d = max(d, moved(k))
+         end do
+         return
+      end if
+      do r = 1, nsurf
+         b(1:2) = huge(1.0_wp)
+         b(3:4) = -huge(1.0_wp)
+         !GCC$ novector
+         do k = node_first(r), node_first(r + 1) - 1
+            d = max(d, moved(k))
+            node = nodes(k)
+            box(1:2, k) = min(x0(:, node), x1(:, node))
+            box(3:4, k) = max(x0(:, node), x1(:, node))
+            if (box(1, k) < b(1)) b(1) = box(1, k)
+            if (box(2, k) < b(2)) b(2) = box(2, k)
+            if (box(3, k) > b(3)) b(3) = box(3, k)
+            if (box(4, k) > b(4)) b(4) = box(4, k)
+         end do
+         sbox(:, r) = b
+      end do
+   contains
+      !> The largest change of node k's coordinates, before the one max on the chain through d
+      !> (max is exact: the same d as four in a row).
+      pure real(wp) function moved(k) result(dk)
+         integer, intent(in) :: k
+         integer :: node
+         node = nodes(k)
+         dk = max(abs(x0(1, node) - xw(1, k)), abs(x0(2, node) - xw(2, k)), &
+                  abs(x1(1, node) - xw(3, k)), abs(x1(2, node) - xw(4, k)))
+      end function moved
+   end subroutine moves_and_boxes
+
+   !> The candidates of the live kept groups (glive; keep: node and segment box indices; kloc:
+   !> what a group holds) whose boxes overlap (nbox against mbox), in their order; the groups
+   !> left with candidates, in their order, into (ngroup, gslave, gmaster, gfirst, gcand);
+   !> ntests the candidates tested; mbox(:, m): the box of kept segment m grown by margin.
+   pure subroutine filter_kept(nkg, kgslave, kgmaster, kgfirst, glive, keep, kloc, nsb, nbox, nmb, &
+                               mbox, ngroup, gslave, gmaster, gfirst, gcand, ntests)
       integer, intent(in) :: nkg, kgslave(*), kgmaster(*), kgfirst(nkg + 1), keep(2, *), kloc(2, *)
+      logical, intent(in) :: glive(nkg)
       integer, intent(in) :: nsb, nmb
-      real(wp), intent(in) :: sbox(4, nsb), mbox(4, nmb)
+      real(wp), intent(in) :: nbox(4, nsb), mbox(4, nmb)
       integer, intent(out) :: ngroup
       integer, intent(inout) :: gslave(*), gmaster(*), gfirst(*), gcand(2, *)
+      integer(i8), intent(out) :: ntests
       integer :: g, k, l, m, nc, c0
       nc = 0
       ngroup = 0
+      ntests = 0
       gfirst(1) = 1
       do g = 1, nkg
+         if (.not. glive(g)) cycle
+         ntests = ntests + (kgfirst(g + 1) - kgfirst(g))
          c0 = nc
          do k = kgfirst(g), kgfirst(g + 1) - 1
             l = keep(1, k)
             m = keep(2, k)
-            if (mbox(1, m) <= sbox(3, l) .and. sbox(1, l) <= mbox(3, m) .and. &
-                mbox(2, m) <= sbox(4, l) .and. sbox(2, l) <= mbox(4, m)) then
+            if (mbox(1, m) <= nbox(3, l) .and. nbox(1, l) <= mbox(3, m) .and. &
+                mbox(2, m) <= nbox(4, l) .and. nbox(2, l) <= mbox(4, m)) then
                nc = nc + 1
                gcand(1, nc) = kloc(1, k)
                gcand(2, nc) = kloc(2, k)
