@@ -14,11 +14,12 @@ export FPM_LDFLAGS := -L$(SERIAL_BLAS) -Wl,-rpath,$(SERIAL_BLAS) $(FPM_LDFLAGS)
 VENV    := .venv
 PYTHON  := $(VENV)/bin/python
 FPM     := $(VENV)/bin/fpm
-RELEASE := --profile release --flag "-O3 -march=native -funroll-loops -ffp-contract=off"
+RELEASE_FLAGS := -O3 -march=native -funroll-loops -ffp-contract=off
+RELEASE := --profile release --flag "$(RELEASE_FLAGS)"
 EXAMPLE ?= inputs/examples/impact.inp
 OUTDIR  ?= out
 
-.PHONY: all setup deps venv build run test test-viewers verify stress bench bench-peers taylor-ccx baseline plots install legacy-host clean help
+.PHONY: all setup deps venv build run test test-viewers serial verify stress bench bench-peers taylor-ccx baseline plots install legacy-host clean help
 
 all: build
 
@@ -28,6 +29,8 @@ help:
 	@echo "make stress   random scenes, fuzzed decks, CFL sweeps, long runs -> doc/stability.md"
 	@echo "              (about 30 minutes; STRESS_ARGS=--long for 10^6-step runs)"
 	@echo "make verify   run the decks of inputs/ and regenerate doc/verification.md"
+	@echo "make serial   build without OpenMP and check it gives the bits of the OpenMP build"
+	@echo "              (the decks of inputs/ and 256 bodies, two threads; a few minutes)"
 	@echo "make bench    run the benchmarks (against the baseline commit BASELINE, built once) and"
 	@echo "              regenerate doc/performance figures"
 	@echo "make bench-peers  install CalculiX (Debian) and run it on the bar on a rigid wall"
@@ -106,6 +109,11 @@ EXIC = $$($(FPM) run $(RELEASE) --runner echo exic 2>/dev/null | tail -n 1)
 
 verify: build
 	$(PYTHON) tools/verify.py --exic "$(EXIC)"
+
+# The sources compile without OpenMP (doc/decisions.md, "Build"): a copy of them without
+# fpm.toml's openmp dependency, built under build/serial, against the release build.
+serial: build
+	$(PYTHON) tools/check_serial.py --exic "$(EXIC)" --flags "$(RELEASE_FLAGS)"
 
 # Stress suite (doc/stability.md, doc/stability/): 500 random scenes, 2,000 fuzzed decks, CFL
 # sweeps of the seed's 7.2 and 7.3, long runs of 5e4-1e5 steps; two processes at a time, each
