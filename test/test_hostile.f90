@@ -26,7 +26,7 @@ module test_hostile
    use exic_io_number, only: put_real, put_int, REAL_WIDTH
    use exic_io_memory, only: mesh_memory_message
    use exic_io_posix, only: make_directories, file_kind, FILE_DIRECTORY, FILE_MISSING
-   use testing, only: suite_t, check, section
+   use testing, only: suite_t, check, section, file_text
    implicit none
    private
 
@@ -491,31 +491,14 @@ contains
                  '5.0000000E-01: the row is not written', 'the first refusal is kept', &
                  f%nonfinite_message)
       call f%close()
-      his = slurp(tmp//'nan.his')
-      ene = slurp(tmp//'nan.ene')
-      out = slurp(tmp//'nan.out')
+      his = file_text(tmp//'nan.his')
+      ene = file_text(tmp//'nan.ene')
+      out = file_text(tmp//'nan.out')
       call check(s, .not. (has(his, 'NaN') .or. has(his, 'Infinity') .or. has(ene, 'NaN') .or. &
                            has(ene, 'Infinity')), 'no NaN or Infinity in .his or .ene')
       call check(s, has(his, '1.0000000000000000E+000'), 'the finite row is there')
       call check(s, has(out, 'error: NaN in column velo(n1,1)'), '.out says so once')
    end subroutine nonfinite_rows
-
-   !> Whole file as one string (lines joined by new_line).
-   function slurp(path) result(text)
-      character(len=*), intent(in) :: path
-      character(len=:), allocatable :: text
-      character(len=1000) :: line
-      integer :: u, ios
-      text = ''
-      open (newunit=u, file=path, status='old', action='read', iostat=ios)
-      if (ios /= 0) return
-      do
-         read (u, '(a)', iostat=ios) line
-         if (ios /= 0) exit
-         text = text//trim(line)//nl
-      end do
-      close (u)
-   end function slurp
 
    !> Fields that no command reads were ignored silently.
    subroutine unused_fields(s)
