@@ -91,6 +91,7 @@ def write(load, figdir, doc, log):
         _after_speed(sc1201, sc30, w)
     if sc1202:
         _after_blocks(sc1202, sc1201, w)
+    _by_hand(w)
     if fz:
         _fuzz(fz, w)
     if cfl:
@@ -414,6 +415,18 @@ def _barrier_rerun(w):
     w("Of 60 finished scenes of the campaign (every eighth), rerun with the barrier: 60 finish, with the\n"
       "same failures (none new), largest energy growth 2.2 %. Scene 86 is saved as\n"
       "test/data/stress/barrier_20261125_0086.inp (a regression test). Section 1d measures a fresh draw.\n")
+
+
+def _by_hand(w):
+    """The sections written by hand (doc/stability/by_hand.md, without its leading comment): the
+    campaigns run again on later commits, which have no generator of their own."""
+    path = os.path.join(ROOT, "doc", "stability", "by_hand.md")
+    if not os.path.exists(path):
+        return
+    text = open(path, encoding="utf-8").read()
+    if text.startswith("<!--"):
+        text = text[text.index("-->") + 3:].lstrip("\n")
+    w(text)
 
 
 def _draw_intro(data, w, section, title, jobs, setting, after):
