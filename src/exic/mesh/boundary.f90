@@ -393,6 +393,9 @@ contains
             if (p > 0) nrm(:, p) = nrm(:, p) + n
          end do
       end do
+      ! scalar: a vectorized loop calls glibc's vector hypot (libmvec), whose results differ from
+      ! the scalar hypot that some_node_normals and node_normal_from use in the last bits
+      !GCC$ novector
       do p = 1, nlist
          nrm(:, p) = unit_or_zero(nrm(:, p))
       end do
