@@ -88,18 +88,19 @@ run: build
 
 # fpm 0.12 can leave a stale test executable when `fpm run` rebuilt the library first: relink it.
 # The legacy API tests install exic with this fpm (examples/legacy_host/build.sh).
+# $(call build_tests,ARGS): the test program built with the fpm build options ARGS, the stale
+# program and objects dropped first
+build_tests = find build -path '*/test/exic-test' -type f -delete 2>/dev/null || true; \
+	$(STALE); $(call fpm_build,$(1) --tests)
+
 test: setup
-	@find build -path '*/test/exic-test' -type f -delete 2>/dev/null || true
-	@$(STALE)
-	@$(call fpm_build,--tests)
+	@$(call build_tests,)
 	EXIC_FPM=$(abspath $(FPM)) $(FPM) test
 
 # The suite built as the release binary is (the vectorized loops, which the bounds-checked
 # build does not make): a result that depends on how a loop was compiled shows here.
 test-release: setup
-	@find build -path '*/test/exic-test' -type f -delete 2>/dev/null || true
-	@$(STALE)
-	@$(call fpm_build,$(RELEASE) --tests)
+	@$(call build_tests,$(RELEASE))
 	EXIC_FPM=$(abspath $(FPM)) $(FPM) test $(RELEASE)
 
 # Optional: the `viewers` suite (ParaView reads the field output headless), which `make test`
@@ -108,9 +109,7 @@ test-release: setup
 VIEWER_PACKAGES := paraview python3-paraview xvfb xauth
 test-viewers: setup
 	@$(call apt_install,$(VIEWER_PACKAGES))
-	@find build -path '*/test/exic-test' -type f -delete 2>/dev/null || true
-	@$(STALE)
-	@$(call fpm_build,--tests)
+	@$(call build_tests,)
 	$(FPM) test exic-test -- viewers
 
 # the release binary that `build` made
