@@ -354,9 +354,9 @@ contains
       call grow(self%gslave, max(self%nkgroup, 1))
       call grow(self%gmaster, max(self%nkgroup, 1))
       call grow(self%gfirst, self%nkgroup + 1)
-      self%ntests = 0
       if (self%nkept == 0) then
          self%gfirst(1) = 1
+         self%ntests = 0
          return
       end if
       call grow(self%glive, self%nkgroup)
