@@ -1,11 +1,13 @@
-!> Tests of exic's own logarithm (src/exic/base/logarithm.f90): its error against a quad
-!> precision reference over the range of volume ratios J that occur (0.05 .. 20, densely, and
-!> the hard cases next to 1 and to the reduction's boundaries), exact values, and that the block
-!> kernel (vectorized) and the elemental function give the same bits; and the flat-array kernels
-!> of src/exic/base/flat.f90.
+!> Tests of exic's own logarithm (src/exic/base/logarithm.f90) and cube root
+!> (src/exic/base/cube_root.f90): their errors against a quad precision reference over the range
+!> of volume ratios J that occur (0.05 .. 20, densely, and the hard cases next to 1 and to the
+!> reduction's boundaries; for the cube root also every exponent and random bit patterns), exact
+!> values, and that the block kernels (vectorized) and the elemental functions give the same
+!> bits; and the flat-array kernels of src/exic/base/flat.f90.
 module test_math
    use exic_base_kinds, only: wp
    use exic_base_logarithm, only: ln, ln_block, ln_normal_block
+   use exic_base_cube_root, only: cbrt, cbrt_block
    use exic_base_flat, only: all_finite, copy_flat, sum_flat
    use, intrinsic :: iso_fortran_env, only: real128, int64
    use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_is_nan, ieee_positive_inf, &
@@ -24,6 +26,7 @@ contains
       call test_accuracy(s)
       call test_exact(s)
       call test_block(s)
+      call test_cube_root(s)
       call test_flat(s)
    end subroutine run_math_tests
 
@@ -140,6 +143,87 @@ contains
       call check(s, ndiff == 0, 'ln_normal_block(x) = ln(x) to the bit at 1001 normal numbers (tiny, huge, '// &
                  'next to sqrt(2)/2 and sqrt(2), 2^-1000 .. 2^1000)')
    end subroutine test_block
+
+   !> Error of cbrt(x) in units in the last place of the exact cube root (quad precision).
+   real(wp) function cbrt_ulps(x)
+      real(wp), intent(in) :: x
+      real(real128) :: t
+      t = sign(abs(real(x, real128))**(1.0_real128/3.0_real128), real(x, real128))
+      cbrt_ulps = real(abs(real(cbrt(x), real128) - t)/real(spacing(real(t, wp)), real128), wp)
+   end function cbrt_ulps
+
+   !> exic's cube root (base/cube_root.f90): within 0.667 ulp (the bound of its Newton step)
+   !> over the volume ratios of the mean-dilatation elements, at every exponent of the normal and
+   !> subnormal numbers and at random bit patterns; exact cubes exact, the special values, and
+   !> cbrt_block (the vectorized loop, with its remainder) = cbrt to the bit.
+   subroutine test_cube_root(s)
+      type(suite_t), intent(inout) :: s
+      integer, parameter :: n = 20001, nr = 100003
+      real(wp) :: x(nr), y(nr), worst, wexp, wrand, nan, inf
+      integer(int64) :: r
+      character(len=120) :: buf
+      integer :: i, k, ndiff, nexact
+
+      call section(s, 'cube root: accuracy, exact values, block kernel')
+      worst = 0.0_wp
+      do i = 0, n - 1
+         worst = max(worst, cbrt_ulps(0.05_wp + 19.95_wp*real(i, wp)/real(n - 1, wp)))
+      end do
+      do k = 1, 2000
+         worst = max(worst, cbrt_ulps(1.0_wp + real(k, wp)*epsilon(1.0_wp)), &
+                     cbrt_ulps(1.0_wp - real(k, wp)*0.5_wp*epsilon(1.0_wp)))
+      end do
+      write (buf, '(a,f6.3,a)') 'volume ratios 0.05 .. 20 (20,001 points) and 1 +- k ulp: at most ', &
+         worst, ' ulp (bound 0.667)'
+      call check(s, worst <= 0.667_wp, trim(buf))
+      wexp = 0.0_wp
+      do k = -1074, 1023
+         ! 2^k, and 1.37 2^k and 1.999 2^k where they are representable
+         wexp = max(wexp, cbrt_ulps(scale(1.0_wp, k)), cbrt_ulps(-scale(1.0_wp, k)))
+         if (k > -1070) wexp = max(wexp, cbrt_ulps(1.37_wp*scale(1.0_wp, k)), &
+                                   cbrt_ulps(1.999_wp*scale(1.0_wp, k)))
+      end do
+      wexp = max(wexp, cbrt_ulps(huge(1.0_wp)), cbrt_ulps(tiny(1.0_wp)), cbrt_ulps(nearest(tiny(1.0_wp), -1.0_wp)))
+      write (buf, '(a,f6.3,a)') 'every exponent 2^-1074 .. 2^1023 (normal and subnormal, +-), huge, '// &
+         'tiny: at most ', wexp, ' ulp'
+      call check(s, wexp <= 0.667_wp, trim(buf))
+      ! random bit patterns of every finite double (xorshift64)
+      r = 88172645463325252_int64
+      do i = 1, nr
+         r = ieor(r, shiftl(r, 13)); r = ieor(r, shiftr(r, 7)); r = ieor(r, shiftl(r, 17))
+         x(i) = transfer(iand(r, int(z'7fefffffffffffff', int64)), 1.0_wp)
+         if (mod(i, 3) == 0) x(i) = -x(i)
+      end do
+      wrand = 0.0_wp
+      do i = 1, nr
+         wrand = max(wrand, cbrt_ulps(x(i)))
+      end do
+      write (buf, '(a,f6.3,a)') '100,003 random finite doubles of both signs: at most ', wrand, ' ulp'
+      call check(s, wrand <= 0.667_wp, trim(buf))
+      nexact = 0
+      do k = 1, 1000
+         if (cbrt(real(k, wp)**3) == real(k, wp)) nexact = nexact + 1
+      end do
+      do k = -340, 340
+         if (cbrt(2.0_wp**(3*k)) == 2.0_wp**k) nexact = nexact + 1
+      end do
+      call check(s, nexact == 1000 + 681, 'k^3 -> k for k = 1..1000 and 2^(3k) -> 2^k, k = -340..340, exactly')
+      nan = ieee_value(1.0_wp, ieee_quiet_nan)
+      inf = ieee_value(1.0_wp, ieee_positive_inf)
+      call check(s, cbrt(1.0_wp) == 1.0_wp .and. cbrt(-8.0_wp) == -2.0_wp .and. cbrt(inf) == inf &
+                 .and. cbrt(-inf) == -inf .and. ieee_is_nan(cbrt(nan)) .and. cbrt(0.0_wp) == 0.0_wp &
+                 .and. transfer(cbrt(-0.0_wp), 1_int64) == transfer(-0.0_wp, 1_int64), &
+                 'cbrt 1 = 1, cbrt -8 = -2, +-Inf, NaN and +-0 give themselves')
+      x(1) = 1.0_wp; x(2) = 0.0_wp; x(3) = -0.0_wp; x(4) = inf; x(5) = -inf; x(6) = nan
+      x(7) = tiny(1.0_wp)/3.0_wp; x(8) = huge(1.0_wp)
+      call cbrt_block(nr, x, y)
+      ndiff = 0
+      do i = 1, nr
+         if (transfer(y(i), 1_int64) /= transfer(cbrt(x(i)), 1_int64)) ndiff = ndiff + 1
+      end do
+      call check(s, ndiff == 0, 'cbrt_block(x) = cbrt(x) to the bit at 100,003 values (vector loop and '// &
+                 'remainder, special values)')
+   end subroutine test_cube_root
 
    !> base/flat.f90: all_finite agrees with ieee_is_finite on every value class at every
    !> position of arrays of 1 to 37 values (the vector loop's body, its remainder, both ends);

@@ -13,6 +13,7 @@
 module exic_element_q4_general
    use exic_base_kinds, only: wp
    use exic_base_sums, only: lane_sum
+   use exic_base_cube_root, only: cbrt_block
    use exic_material_j2_hardening, only: j2_param_t, j2_has_temperature, j2_static_yield, J2_MISES
    use exic_material_j2, only: j2_piola, j2_cauchy, j2_init_history
    use exic_material_neohookean, only: nh_wave_speed2_block
@@ -259,18 +260,24 @@ contains
 
    !> Fbar = alpha F, alpha = (Jbar/J)^(1/3) with Jbar the weighted mean of J = j F33 over the
    !> element's four points (A10); b.. hold F on entry and Fbar on exit, bj the in-plane j of Fbar.
+   !> The cube root is exic's (base/cube_root.f90): the same bits in vector and scalar loops.
    pure subroutine mean_dilatation(wt, js, f33, al, b11, b12, b21, b22, b33, bj)
       real(wp), intent(in), dimension(NBLOCK, 4) :: wt, js, f33
       real(wp), intent(out), dimension(NBLOCK, 4) :: al
       real(wp), intent(inout), dimension(NBLOCK, 4) :: b11, b12, b21, b22, b33, bj
-      real(wp) :: v0, jb
+      real(wp) :: v0, jb, ratio(NBLOCK, 4)
       integer :: k, g
       do k = 1, NBLOCK
          v0 = (wt(k, 1) + wt(k, 2)) + (wt(k, 3) + wt(k, 4))
          jb = ((wt(k, 1)*(js(k, 1)*f33(k, 1)) + wt(k, 2)*(js(k, 2)*f33(k, 2))) &
                + (wt(k, 3)*(js(k, 3)*f33(k, 3)) + wt(k, 4)*(js(k, 4)*f33(k, 4))))/v0
          do g = 1, 4
-            al(k, g) = (jb/(js(k, g)*f33(k, g)))**(1.0_wp/3.0_wp)
+            ratio(k, g) = jb/(js(k, g)*f33(k, g))
+         end do
+      end do
+      call cbrt_block(4*NBLOCK, ratio, al)
+      do k = 1, NBLOCK
+         do g = 1, 4
             b11(k, g) = al(k, g)*b11(k, g)
             b12(k, g) = al(k, g)*b12(k, g)
             b21(k, g) = al(k, g)*b21(k, g)
