@@ -443,62 +443,78 @@ contains
    !> The stable step of ring elements (A7)-(A9): dt2 holds the plane estimate dt_p^2 on entry
    !> (0: no step) and dt^2 = 1/(sqrt(R_max/rbar_min)/dt_p + omega_h/2)^2 on exit. (xr, yr):
    !> reference corners, (xc, yc): current ones.
+   !> Every loop runs over the block's elements innermost, so that gcc vectorizes it; each
+   !> element's operations are those of the point-by-point form, in its order (the sums over the
+   !> points g = 1..4 in turn), so the same bits. min and max stand for minval and maxval of
+   !> four values: the same result, for the values are positive and finite on a valid reference
+   !> element (q4_reference rejects the others).
    pure subroutine ring_step(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2)
       integer, intent(in) :: nq
       real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, xc, yc
       real(wp), intent(in) :: lambda, mu, rho0
       real(wp), intent(inout) :: dt2(NBLOCK)
-      real(wp), dimension(NBLOCK) :: jr, c2, sr, hm
-      real(wp) :: d(4), rg(4), m(4), mp(4), hh(4), nn, c1x, c2x, c3x, c1y, c2y, c3y, xi, eta, rmax, &
-                  rc, rcur, a0, a, dtp
+      real(wp), dimension(NBLOCK) :: jr, c2, sr, hm, c1x, c2x, c3x, c1y, c2y, c3y, rc, a0, rmax
+      real(wp), dimension(NBLOCK, 4) :: d, rg, m, mp, hh
+      real(wp) :: xi, eta, nn, rcur, a, dtp
       integer :: k, g, i
 
       do k = 1, NBLOCK
-         c1x = 0.25_wp*((xr(k, 2) - xr(k, 1)) + (xr(k, 3) - xr(k, 4)))
-         c2x = 0.25_wp*((xr(k, 4) - xr(k, 1)) + (xr(k, 3) - xr(k, 2)))
-         c3x = 0.25_wp*((xr(k, 1) - xr(k, 2)) + (xr(k, 3) - xr(k, 4)))
-         c1y = 0.25_wp*((yr(k, 2) - yr(k, 1)) + (yr(k, 3) - yr(k, 4)))
-         c2y = 0.25_wp*((yr(k, 4) - yr(k, 1)) + (yr(k, 3) - yr(k, 2)))
-         c3y = 0.25_wp*((yr(k, 1) - yr(k, 2)) + (yr(k, 3) - yr(k, 4)))
-         m = 0.0_wp
-         mp = 0.0_wp
-         hh = 0.0_wp
-         do g = 1, 4
-            xi = gq*xin(g)
-            eta = gq*etn(g)
-            d(g) = (c1x + c3x*eta)*(c2y + c3y*xi) - (c2x + c3x*xi)*(c1y + c3y*eta)
-            rg(g) = 0.0_wp
-            do i = 1, 4
-               rg(g) = rg(g) + shape2(i, g)*xr(k, i)
-            end do
-            do i = 1, 4
-               nn = shape2(i, g)
-               m(i) = m(i) + d(g)*nn*rg(g)
-               mp(i) = mp(i) + d(g)*nn
-               hh(i) = hh(i) + d(g)*nn/rg(g)
+         c1x(k) = 0.25_wp*((xr(k, 2) - xr(k, 1)) + (xr(k, 3) - xr(k, 4)))
+         c2x(k) = 0.25_wp*((xr(k, 4) - xr(k, 1)) + (xr(k, 3) - xr(k, 2)))
+         c3x(k) = 0.25_wp*((xr(k, 1) - xr(k, 2)) + (xr(k, 3) - xr(k, 4)))
+         c1y(k) = 0.25_wp*((yr(k, 2) - yr(k, 1)) + (yr(k, 3) - yr(k, 4)))
+         c2y(k) = 0.25_wp*((yr(k, 4) - yr(k, 1)) + (yr(k, 3) - yr(k, 2)))
+         c3y(k) = 0.25_wp*((yr(k, 1) - yr(k, 2)) + (yr(k, 3) - yr(k, 4)))
+         rc(k) = 0.25_wp*((xr(k, 1) + xr(k, 2)) + (xr(k, 3) + xr(k, 4)))
+         a0(k) = 0.5_wp*((xr(k, 3) - xr(k, 1))*(yr(k, 4) - yr(k, 2)) - (yr(k, 3) - yr(k, 1))*(xr(k, 4) - xr(k, 2)))
+      end do
+      m = 0.0_wp
+      mp = 0.0_wp
+      hh = 0.0_wp
+      do g = 1, 4
+         xi = gq*xin(g)
+         eta = gq*etn(g)
+         do k = 1, NBLOCK
+            d(k, g) = (c1x(k) + c3x(k)*eta)*(c2y(k) + c3y(k)*xi) - (c2x(k) + c3x(k)*xi)*(c1y(k) + c3y(k)*eta)
+            rg(k, g) = (((0.0_wp + shape2(1, g)*xr(k, 1)) + shape2(2, g)*xr(k, 2)) + shape2(3, g)*xr(k, 3)) &
+                       + shape2(4, g)*xr(k, 4)
+         end do
+         do i = 1, 4
+            nn = shape2(i, g)
+            do k = 1, NBLOCK
+               m(k, i) = m(k, i) + d(k, g)*nn*rg(k, g)
+               mp(k, i) = mp(k, i) + d(k, g)*nn
+               hh(k, i) = hh(k, i) + d(k, g)*nn/rg(k, g)
             end do
          end do
-         rc = 0.25_wp*((xr(k, 1) + xr(k, 2)) + (xr(k, 3) + xr(k, 4)))
-         a0 = 0.5_wp*((xr(k, 3) - xr(k, 1))*(yr(k, 4) - yr(k, 2)) - (yr(k, 3) - yr(k, 1))*(xr(k, 4) - xr(k, 2)))
-         if (nq == 1) then
-            rmax = rc
-            hh = a0/(4.0_wp*rc)
-         else
-            rmax = maxval(rg)
-         end if
-         sr(k) = sqrt(rmax/minval(m/mp))
-         hm(k) = maxval(hh/m)
+      end do
+      if (nq == 1) then
+         do k = 1, NBLOCK
+            rmax(k) = rc(k)
+            hh(k, :) = a0(k)/(4.0_wp*rc(k))
+         end do
+      else
+         do k = 1, NBLOCK
+            rmax(k) = max(max(max(rg(k, 1), rg(k, 2)), rg(k, 3)), rg(k, 4))
+         end do
+      end if
+      do k = 1, NBLOCK
+         sr(k) = sqrt(rmax(k)/min(min(min(m(k, 1)/mp(k, 1), m(k, 2)/mp(k, 2)), m(k, 3)/mp(k, 3)), &
+                                  m(k, 4)/mp(k, 4)))
+         hm(k) = max(max(max(hh(k, 1)/m(k, 1), hh(k, 2)/m(k, 2)), hh(k, 3)/m(k, 3)), hh(k, 4)/m(k, 4))
          rcur = 0.25_wp*((xc(k, 1) + xc(k, 2)) + (xc(k, 3) + xc(k, 4)))
          a = 0.5_wp*((xc(k, 3) - xc(k, 1))*(yc(k, 4) - yc(k, 2)) - (yc(k, 3) - yc(k, 1))*(xc(k, 4) - xc(k, 2)))
-         jr(k) = (a/a0)*(rcur/rc)
-         if (.not. jr(k) > 0.0_wp) jr(k) = 1.0_wp
+         jr(k) = (a/a0(k))*(rcur/rc(k))
+         jr(k) = merge(jr(k), 1.0_wp, jr(k) > 0.0_wp)
          jr(k) = max(jr(k), tiny(1.0_wp))   ! a normal number (nh_wave_speed2_block)
       end do
       call nh_wave_speed2_block(NBLOCK, lambda, mu, rho0, jr, c2)
+      ! dt2 >= 0 (stable_block's estimates, barrier_limit's bounds); no step, dt2 = +0, stays +0
+      ! through the formula itself (sr/0 = +Inf, 1/Inf = +0), so no selection is needed
       do k = 1, NBLOCK
-         if (.not. dt2(k) > 0.0_wp) cycle
          dtp = sqrt(dt2(k))
-         dt2(k) = (1.0_wp/(sr(k)/dtp + 0.5_wp*sqrt(c2(k)*hm(k))))**2
+         a = 1.0_wp/(sr(k)/dtp + 0.5_wp*sqrt(c2(k)*hm(k)))
+         dt2(k) = a*a
       end do
    end subroutine ring_step
 
