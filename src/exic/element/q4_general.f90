@@ -447,7 +447,8 @@ contains
    !> element's operations are those of the point-by-point form, in its order (the sums over the
    !> points g = 1..4 in turn), so the same bits. min and max stand for minval and maxval of
    !> four values: the same result, for the values are positive and finite on a valid reference
-   !> element (q4_reference rejects the others).
+   !> element (det J0 > 0, q4_check_reference; every node at r >= 0, the deck's
+   !> check_axisymmetric).
    pure subroutine ring_step(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2)
       integer, intent(in) :: nq
       real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, xc, yc
