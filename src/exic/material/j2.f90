@@ -71,8 +71,9 @@ contains
    !> Points go in chunks of CHUNK: (A) ln J by ln_block as in nh_piola (exic's logarithm: the
    !> same bits vectorized or not), Y(n) with its slope, scalar for exp and pow (glibc's vector
    !> functions differ from the scalar ones in the last bits); (B) the trial state of every
-   !> point, without branches; (C) the return at
-   !> the points that yield, updating their history; (D) stress and energy of every point from
+   !> point, without branches; (C) the return at the points that yield, gathered into a list
+   !> and returned in passes over it (plastic_points), updating their history; (D) stress and
+   !> energy of every point from
    !> F and the history of t(n+1), without branches (the one formula of (J7)/(J8)).
    pure subroutine j2_piola(n, lambda, mu, prm, dt, f11, f12, f21, f22, f33, jac, wt, a11, a12, &
                             a22, a33, ep, temp, p11, p12, p21, p22, p33, we, dwp, ys)
@@ -95,7 +96,7 @@ contains
       real(wp), dimension(CHUNK) :: jj, lnj, hn, th, x, d11, d22, d33, d12, qtr
       real(wp) :: g11, g12, g21, g22, g33, b11, b22, b33, c, chirc
       logical :: jc, heat, linear
-      integer :: q0, m, i, q
+      integer :: q0, m, i, q, ny, iy(CHUNK)
 
       jc = prm%law == J2_JOHNSON_COOK
       heat = prm%cheat > 0.0_wp
@@ -147,15 +148,16 @@ contains
             dwp(q) = 0.0_wp
          end do
          ! (C) the return at the points that yield
+         ny = 0
          do i = 1, m
-            q = q0 + i - 1
-            if (qtr(i) > ys(q)) then
-               call plastic_point(mu, prm, linear, dt, th(i), hn(i), chirc, x(i), d11(i), d22(i), &
-                                  d33(i), d12(i), qtr(i), f11(q), f12(q), f21(q), f22(q), f33(q), &
-                                  jac(q), a11(q), a12(q), a22(q), a33(q), ep(q), temp(q), dwp(q), &
-                                  ys(q))
+            if (qtr(i) > ys(q0 + i - 1)) then
+               ny = ny + 1
+               iy(ny) = i
             end if
          end do
+         if (ny > 0) call plastic_points(n, ny, iy, q0, mu, prm, linear, dt, th, hn, chirc, x, d11, &
+                                         d22, d33, d12, qtr, f11, f12, f21, f22, f33, jac, a11, a12, &
+                                         a22, a33, ep, temp, dwp, ys)
          ! (D) stress (J7) and energy (J8) from F and Cp^-1(n+1), times the weight; with
          ! Cp^-1 = 1 and F33 = 1 the operations of nh_piola in its order (doc/plasticity.md, (J9))
          do i = 1, m
@@ -179,65 +181,124 @@ contains
       end do
    end subroutine j2_piola
 
-   !> The return at one yielding point: dep (J21-J23), k, the spherical part (J24, J25), the new
-   !> Cp^-1 and ep (J26), dissipation (J27), heating (J17). x, d: trial spherical part and
-   !> deviator; qt: q_trial; th: thermal factor; hn: dY/dep at ep(n); chirc = chi/(rho c);
-   !> j = F11 F22 - F12 F21. ys holds Y(n) on entry and the flow stress of the step on exit; dwp
-   !> is the dissipation per unit reference volume (not weighted).
-   pure subroutine plastic_point(mu, prm, linear, dt, th, hn, chirc, x, d11, d22, d33, d12, qt, &
-                                 f11, f12, f21, f22, f33, j, a11, a12, a22, a33, ep, temp, dwp, ys)
-      real(wp), intent(in) :: mu
+   !> The return at the ny points iy(1:ny) of the chunk at q0 that yield: dep (J21-J23), k, the
+   !> spherical part (J24, J25), the new Cp^-1 and ep (J26), dissipation (J27), heating (J17).
+   !> x, d: trial spherical part and deviator; qtr: q_trial; th: thermal factor; hn: dY/dep at
+   !> ep(n) (chunk values, indexed by iy); chirc = chi/(rho c); jac = F11 F22 - F12 F21 (point
+   !> values, indexed by q0 + iy - 1). ys holds Y(n) on entry and the flow stress of the step on
+   !> exit; dwp is the dissipation per unit reference volume (not weighted). The points go
+   !> through passes that gcc vectorizes, each point's operations those of the one-point form
+   !> in its order (so the same bits whether a pass is vectorized or not): (1) J2, J3 and mubar
+   !> gathered; (2) dep and Y by (J22) for linear hardening, else by return_newton point by
+   !> point; (3) k and the spherical part by (J25) with its residual; (4) Newton on the
+   !> residual (spherical_newton) only at the points where it is not at round-off; (5) Cp^-1,
+   !> ep, the dissipation and Y, then scattered.
+   pure subroutine plastic_points(n, ny, iy, q0, mu, prm, linear, dt, th, hn, chirc, x, d11, d22, &
+                                  d33, d12, qtr, f11, f12, f21, f22, f33, jac, a11, a12, a22, a33, &
+                                  ep, temp, dwp, ys)
+      integer, intent(in) :: n, ny, iy(CHUNK), q0
+      real(wp), intent(in) :: mu, dt, chirc
       type(j2_param_t), intent(in) :: prm
       logical, intent(in) :: linear
-      real(wp), intent(in) :: dt, th, hn, chirc, x, d11, d22, d33, d12, qt, f11, f12, f21, f22, f33
-      real(wp), intent(in) :: j
-      real(wp), intent(inout) :: a11, a12, a22, a33, ep, temp
-      real(wp), intent(out) :: dwp
-      real(wp), intent(inout) :: ys
-      real(wp) :: sj2, sj3, mub, dep, y, omk, k, s0, rs0, h0, del, jac, dcp, xn, res, dxn
-      integer :: it
+      real(wp), intent(in), dimension(CHUNK) :: th, hn, x, d11, d22, d33, d12, qtr
+      real(wp), intent(in), dimension(n) :: f11, f12, f21, f22, f33, jac
+      real(wp), intent(inout), dimension(n) :: a11, a12, a22, a33, ep, temp, dwp, ys
+      real(wp), dimension(CHUNK) :: sj2, sj3, mub, qt, yn, dep, y, k, xn, jj, ok, c11, c12, c22, &
+                                    c33, dw
+      real(wp) :: omk, s0, rs0, h0, del, dcp, res
+      integer :: p, i, q
 
-      sj2 = 0.5_wp*(d11*d11 + d22*d22 + d33*d33 + 2.0_wp*(d12*d12))   ! J2 = d:d/2
-      sj3 = d33*(d11*d22 - d12*d12)                                  ! J3 = det d
-      mub = mu*x                                                ! mubar = mu tr(b_trial)/3 (J20)
+      ! (1) the trial values of the points that yield
+      do p = 1, ny
+         i = iy(p)
+         sj2(p) = 0.5_wp*(d11(i)*d11(i) + d22(i)*d22(i) + d33(i)*d33(i) + 2.0_wp*(d12(i)*d12(i)))   ! J2 = d:d/2
+         sj3(p) = d33(i)*(d11(i)*d22(i) - d12(i)*d12(i))                                         ! J3 = det d
+         mub(p) = mu*x(i)                                          ! mubar = mu tr(b_trial)/3 (J20)
+         qt(p) = qtr(i)
+         yn(p) = ys(q0 + i - 1)
+      end do
+      ! (2) dep and Y of the step
       if (linear) then
-         dep = (qt - ys)/(3.0_wp*mub + prm%hiso)                      ! (J22)
-         y = ys + prm%hiso*dep
+         do p = 1, ny
+            dep(p) = (qt(p) - yn(p))/(3.0_wp*mub(p) + prm%hiso)                 ! (J22)
+            y(p) = yn(p) + prm%hiso*dep(p)
+         end do
       else
-         call return_newton(prm, ep, dt, th, hn, qt, mub, ys, dep, y)
+         do p = 1, ny
+            i = iy(p)
+            call return_newton(prm, ep(q0 + i - 1), dt, th(i), hn(i), qt(p), mub(p), yn(p), dep(p), y(p))
+         end do
       end if
-      ! deviator s = k s_trial (J20), 1 - k computed directly
-      omk = 3.0_wp*mub*dep/qt
-      k = 1.0_wp - omk
-      ! spherical part xn = x - delta with det(xn 1 + k d) = J^2 (J24): delta_p, the small
-      ! root of h0 - s0 delta + 3 x delta^2 - delta^3 = 0 (J25a), by the root of the quadratic
-      ! part (stable form) and one Newton step for -delta^3 (J25b, relative error of order
-      ! (delta/x)^3), less the round-off of det Cp^-1(n) (J25c); accepted when
-      ! det(xn 1 + k d) - J^2 is at round-off, else Newton on that residual (large elastic
-      ! strains only: delta/x is of order (Y/mu)^2 for metals)
-      s0 = 3.0_wp*x*x - k*k*sj2
-      rs0 = 1.0_wp/s0
-      h0 = max(omk*(x*(1.0_wp + k)*sj2 - (1.0_wp + k + k*k)*sj3), 0.0_wp)
-      del = 2.0_wp*h0/(s0 + sqrt(max(s0*s0 - 12.0_wp*x*h0, 0.0_wp)))
-      del = del - del*del*del*rs0
-      jac = j*f33
-      dcp = (a11*a22 - a12*a12)*a33 - 1.0_wp
-      xn = x - del - jac*jac*dcp*rs0
+      ! (3) deviator s = k s_trial (J20), 1 - k computed directly; spherical part xn = x - delta
+      ! with det(xn 1 + k d) = J^2 (J24): delta_p, the small root of h0 - s0 delta + 3 x delta^2
+      ! - delta^3 = 0 (J25a), by the root of the quadratic part (stable form) and one Newton step
+      ! for -delta^3 (J25b, relative error of order (delta/x)^3), less the round-off of
+      ! det Cp^-1(n) (J25c); accepted (ok = 1) when det(xn 1 + k d) - J^2 is at round-off
+      do p = 1, ny
+         i = iy(p)
+         q = q0 + i - 1
+         omk = 3.0_wp*mub(p)*dep(p)/qt(p)
+         k(p) = 1.0_wp - omk
+         s0 = 3.0_wp*x(i)*x(i) - k(p)*k(p)*sj2(p)
+         rs0 = 1.0_wp/s0
+         h0 = max(omk*(x(i)*(1.0_wp + k(p))*sj2(p) - (1.0_wp + k(p) + k(p)*k(p))*sj3(p)), 0.0_wp)
+         del = 2.0_wp*h0/(s0 + sqrt(max(s0*s0 - 12.0_wp*x(i)*h0, 0.0_wp)))
+         del = del - del*del*del*rs0
+         jj(p) = jac(q)*f33(q)
+         dcp = (a11(q)*a22(q) - a12(q)*a12(q))*a33(q) - 1.0_wp
+         xn(p) = x(i) - del - jj(p)*jj(p)*dcp*rs0
+         res = (xn(p)*xn(p) - k(p)*k(p)*sj2(p))*xn(p) + (k(p)*k(p)*k(p)*sj3(p) - jj(p)*jj(p))
+         ok(p) = merge(1.0_wp, 0.0_wp, abs(res) <= 16.0_wp*EPS*jj(p)*jj(p))
+      end do
+      ! (4) else Newton on that residual (large elastic strains only: delta/x is of order
+      ! (Y/mu)^2 for metals)
+      do p = 1, ny
+         if (ok(p) == 0.0_wp) call spherical_newton(k(p), sj2(p), sj3(p), jj(p), xn(p))
+      end do
+      ! (5) Cp^-1 (J26), the dissipation (J27): D = -mu dgamma tr(b_e) tr(b_e^-1 n)/tr(b_e^-1)
+      ! at the returned b_e = xn 1 + k d
+      do p = 1, ny
+         i = iy(p)
+         q = q0 + i - 1
+         call pull_back(f11(q), f12(q), f21(q), f22(q), f33(q), jac(q), k(p)*d11(i) + xn(p), &
+                        k(p)*d12(i), k(p)*d22(i) + xn(p), k(p)*d33(i) + xn(p), c11(p), c12(p), &
+                        c22(p), c33(p))
+         dw(p) = y(p)*dep(p)*(3.0_wp*xn(p))*(xn(p)*sj2(p) - 1.5_wp*k(p)*sj3(p)) &
+                 /(sj2(p)*(3.0_wp*xn(p)*xn(p) - k(p)*k(p)*sj2(p)))
+      end do
+      do p = 1, ny
+         q = q0 + iy(p) - 1
+         a11(q) = c11(p)
+         a12(q) = c12(p)
+         a22(q) = c22(p)
+         a33(q) = c33(p)
+         ep(q) = ep(q) + dep(p)
+         dwp(q) = dw(p)
+         ys(q) = y(p)
+      end do
+      if (chirc > 0.0_wp) then
+         do p = 1, ny
+            q = q0 + iy(p) - 1
+            temp(q) = temp(q) + chirc*dwp(q)                       ! (J17)
+         end do
+      end if
+   end subroutine plastic_points
+
+   !> Newton on the residual det(xn 1 + k d) - J^2 of (J24) from xn, until it is at round-off
+   !> or the step is (at most 40 steps); jj = J.
+   pure subroutine spherical_newton(k, sj2, sj3, jj, xn)
+      real(wp), intent(in) :: k, sj2, sj3, jj
+      real(wp), intent(inout) :: xn
+      real(wp) :: res, dxn
+      integer :: it
       do it = 1, 40
-         res = (xn*xn - k*k*sj2)*xn + (k*k*k*sj3 - jac*jac)
-         if (abs(res) <= 16.0_wp*EPS*jac*jac) exit
+         res = (xn*xn - k*k*sj2)*xn + (k*k*k*sj3 - jj*jj)
+         if (abs(res) <= 16.0_wp*EPS*jj*jj) exit
          dxn = res/(3.0_wp*xn*xn - k*k*sj2)
          xn = xn - dxn
          if (abs(dxn) <= 2.0_wp*EPS*xn) exit
       end do
-      call pull_back(f11, f12, f21, f22, f33, j, k*d11 + xn, k*d12, k*d22 + xn, k*d33 + xn, &
-                     a11, a12, a22, a33)
-      ep = ep + dep
-      ! (J27): D = -mu dgamma tr(b_e) tr(b_e^-1 n)/tr(b_e^-1) at the returned b_e = xn 1 + k d
-      dwp = y*dep*(3.0_wp*xn)*(xn*sj2 - 1.5_wp*k*sj3)/(sj2*(3.0_wp*xn*xn - k*k*sj2))
-      ys = y
-      if (chirc > 0.0_wp) temp = temp + chirc*dwp                    ! (J17)
-   end subroutine plastic_point
+   end subroutine spherical_newton
 
    !> dep from (J21) by Newton, safeguarded by bisection on [0, dmax], dmax = the perfectly
    !> plastic step. Start: the step linearized at ep(n) (slope hn), a lower bound for concave
