@@ -164,13 +164,13 @@ def read_table(path):
 
 def energy_growth(ene_path):
     """Largest growth of the physical energy E = kinetic + strain (strain includes hourglass)
-    over the energy put in, E(0) + external work + work of prescribed motion (driven rigid
-    bodies), relative to |E(0)| + |W_ext| + |W_pm| (the measure of exic's energy guard):
-    (max growth, its time, final growth, rows)."""
+    + plastic dissipation over the energy put in, E(0) + external work + work of prescribed
+    motion (driven rigid bodies), relative to |E(0)| + |W_ext| + |W_pm| (the measure of exic's
+    energy guard): (max growth, its time, final growth, rows)."""
     e = read_table(ene_path)
     if not e or "kinetic" not in e:
         return None
-    phys = e["kinetic"] + e["strain"]
+    phys = e["kinetic"] + e["strain"] + e.get("plastic_work", 0.0)
     w = e["external_work"]
     wpm = e.get("prescribed_work", np.zeros_like(w))
     e0 = phys[0]

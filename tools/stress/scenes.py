@@ -12,6 +12,13 @@ bodies start apart (a gap of 0.1-1 of the smaller element size) and meet under A
 contact at speeds of 0.02-0.3 of the slower wave speed of the two, head on, oblique, grazing
 (1-10 degrees) or corner first. The run stops at a time that covers the approach and the
 first contact, bounded to about MAX_STEPS steps at the estimated stable step.
+
+Metals (METALS, from the campaigns after seed 20261210 on): each deformable body is, with
+probability 1/2, elastic-plastic (`PLAStic MISEs Y0` with Y0 = E 10^(-3..-2), and
+`PLAStic HARDening H 0` with H = E (0..0.05)), and a plastic or elastic body of QUADrature 2 is,
+with probability 1/2, MIXEd (mean dilatation). These choices come from a random stream of
+their own, so the geometry, speeds and elastic constants of a scene are those of the
+generator without metals (`stress.py --elastic-only` reproduces the earlier campaigns).
 """
 import math
 import random
@@ -24,6 +31,9 @@ MAX_STEPS = 6000
 #: bound on the elements of a scene
 MAX_ELEMENTS = 1500
 PATTERNS = ("impact", "grazing", "corner", "cluster", "walls")
+#: plastic and mean-dilatation bodies in the scenes (module header); False: the generator of the
+#: campaigns up to seed 20261210
+METALS = True
 
 
 @dataclass
@@ -33,6 +43,9 @@ class Material:
     rho: float
     quad: int = 2
     rigid: bool = False
+    y0: float = 0.0              # PLAStic MISEs (0: elastic)
+    hiso: float = 0.0            # PLAStic HARDening (linear isotropic)
+    mixed: bool = False          # MIXEd (QUADrature 2 only)
 
     @property
     def wave_speed(self):
@@ -173,6 +186,22 @@ def _material(rng, rigid=False):
     m = Material(young=10 ** rng.uniform(2.5, 3.5), nu=rng.uniform(0.0, 0.45),
                  rho=10 ** rng.uniform(-1.5, 1.5), quad=rng.choice((1, 2)), rigid=rigid)
     return m
+
+
+def _metals(rng, bodies):
+    """Make some deformable bodies elastic-plastic and some of QUADrature 2 MIXEd (module
+    header); three draws per body, rigid or not, so that each body's draws do not depend on the
+    others'."""
+    for b in bodies:
+        plastic, y_exp, h_frac, mixed = (rng.random() < 0.5, rng.uniform(-3.0, -2.0),
+                                         rng.uniform(0.0, 0.05), rng.random() < 0.5)
+        m = b.mat
+        if m.rigid:
+            continue
+        if plastic:
+            m.y0 = m.young * 10 ** y_exp
+            m.hiso = m.young * h_frac
+        m.mixed = mixed and m.quad == 2
 
 
 def _body(rng, h0, kind=None, size=None, rigid=False):
@@ -380,6 +409,10 @@ def _body_text(k, b):
     else:
         mat = (f"MATErial,{k}\n  SOLId\n    ELAStic NEOHookean {_fmt(m.young)} {_fmt(m.nu)}\n"
                f"    DENSity {_fmt(m.rho)}\n    QUADrature {m.quad}\n")
+        if m.y0 > 0.0:
+            mat += f"    PLAStic MISEs {_fmt(m.y0)}\n    PLAStic HARDening {_fmt(m.hiso)} 0\n"
+        if m.mixed:
+            mat += "    MIXEd\n"
         if m.quad == 1:
             mat += f"    {HOURGLASS}\n"
         mat += "\n"
@@ -447,6 +480,8 @@ def make_scene(seed, index):
               "walls": _walls}[pattern](rng, h0)
     for b in bodies:
         b.make_outline()
+    if METALS:
+        _metals(random.Random(seed * 1000003 + index + 7919 * 10**9), bodies)
     # time: approach over the largest gap at the body's speed, then contact (a few wave transits)
     cmax = max(b.mat.wave_speed for b in bodies)
     cmin = min((b.mat.wave_speed for b in bodies if not b.mat.rigid), default=cmax)
@@ -464,6 +499,7 @@ def make_scene(seed, index):
     sc.info = {
         "seed": seed, "index": index, "pattern": pattern, "t_end": t_end,
         "bodies": [{"kind": b.kind, "rigid": b.mat.rigid, "fixed": b.fixed, "quad": b.mat.quad,
+                    "plastic": b.mat.y0 > 0.0, "mixed": b.mat.mixed,
                     "rho": b.mat.rho, "young": b.mat.young, "nu": b.mat.nu, "h": b.h,
                     "elements": b.elements,
                     "speed_over_c": (math.hypot(*b.velocity) / cmin) if cmin > 0 else 0.0}

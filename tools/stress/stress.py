@@ -196,9 +196,13 @@ def main():
     ap.add_argument("--hourglass", default=None,
                     help='the hourglass record of one-point bodies (default: scenes.HOURGLASS; '
                          '"HOURglass 0.1" as in the campaigns up to seed 20261124)')
+    ap.add_argument("--elastic-only", action="store_true",
+                    help="scenes without plastic and MIXEd bodies, as in the campaigns up to seed 20261210")
     args = ap.parse_args()
     if args.hourglass:
         scenes.HOURGLASS = args.hourglass
+    if args.elastic_only:
+        scenes.METALS = False
     exic = os.path.abspath(args.exic or find_exic())
     if not os.path.exists(exic):
         sys.exit(f"stress: no exic at {exic}")
