@@ -120,10 +120,7 @@ contains
       x(17) = 1.0_wp
       x(18) = tiny(1.0_wp)/8.0_wp
       call ln_block(n, x, y)
-      ndiff = 0
-      do i = 1, n
-         if (transfer(y(i), 1_int64) /= transfer(ln(x(i)), 1_int64)) ndiff = ndiff + 1
-      end do
+      ndiff = bits_differ(y, ln(x))
       call check(s, ndiff == 0, 'ln_block(x) = ln(x) to the bit at 1001 points (vector loop and remainder)')
       ! ln_normal_block: every positive normal number, the reduction's boundaries and the ends
       x(18) = tiny(1.0_wp)
@@ -136,13 +133,16 @@ contains
          x(i) = 2.0_wp**(20*(i - 74))*(1.0_wp + 0.37_wp*real(i, wp)/124.0_wp)
       end do
       call ln_normal_block(n, x, y)
-      ndiff = 0
-      do i = 1, n
-         if (transfer(y(i), 1_int64) /= transfer(ln(x(i)), 1_int64)) ndiff = ndiff + 1
-      end do
+      ndiff = bits_differ(y, ln(x))
       call check(s, ndiff == 0, 'ln_normal_block(x) = ln(x) to the bit at 1001 normal numbers (tiny, huge, '// &
                  'next to sqrt(2)/2 and sqrt(2), 2^-1000 .. 2^1000)')
    end subroutine test_block
+
+   !> Number of places where y and z differ in any bit.
+   integer function bits_differ(y, z) result(nd)
+      real(wp), intent(in) :: y(:), z(:)
+      nd = count(transfer(y, [0_int64]) /= transfer(z, [0_int64]))
+   end function bits_differ
 
    !> Error of cbrt(x) in units in the last place of the exact cube root (quad precision).
    real(wp) function cbrt_ulps(x)
@@ -217,10 +217,7 @@ contains
       x(1) = 1.0_wp; x(2) = 0.0_wp; x(3) = -0.0_wp; x(4) = inf; x(5) = -inf; x(6) = nan
       x(7) = tiny(1.0_wp)/3.0_wp; x(8) = huge(1.0_wp)
       call cbrt_block(nr, x, y)
-      ndiff = 0
-      do i = 1, nr
-         if (transfer(y(i), 1_int64) /= transfer(cbrt(x(i)), 1_int64)) ndiff = ndiff + 1
-      end do
+      ndiff = bits_differ(y, cbrt(x))
       call check(s, ndiff == 0, 'cbrt_block(x) = cbrt(x) to the bit at 100,003 values (vector loop and '// &
                  'remainder, special values)')
    end subroutine test_cube_root
