@@ -87,7 +87,9 @@ contains
       t = transfer(shiftl(shiftr(hx*third_mul, 33) + b1, 32), t)
       r = (t*t)*(t/y)
       t = t*((p0 + r*(p1 + r*p2)) + ((r*r)*r)*(p3 + r*p4))
-      it = iand(transfer(t, it) + int(z'80000000', int64), -1073741824_int64)   ! -2^30: the bits ffffffffc0000000
+      ! rounded away from zero to 21 bits: + 2^31, then the low 30 bits cleared (-2^30 is
+      ! ffffffffc0000000)
+      it = iand(transfer(t, it) + int(z'80000000', int64), -1073741824_int64)
       t = transfer(it, t)
       s = t*t
       r = y/s

@@ -476,7 +476,8 @@ contains
          xi = gq*xin(g)
          eta = gq*etn(g)
          do k = 1, NBLOCK
-            d(k, g) = (c1x(k) + c3x(k)*eta)*(c2y(k) + c3y(k)*xi) - (c2x(k) + c3x(k)*xi)*(c1y(k) + c3y(k)*eta)
+            d(k, g) = (c1x(k) + c3x(k)*eta)*(c2y(k) + c3y(k)*xi) &
+                      - (c2x(k) + c3x(k)*xi)*(c1y(k) + c3y(k)*eta)
             rg(k, g) = (((0.0_wp + shape2(1, g)*xr(k, 1)) + shape2(2, g)*xr(k, 2)) + shape2(3, g)*xr(k, 3)) &
                        + shape2(4, g)*xr(k, 4)
          end do

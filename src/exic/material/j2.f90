@@ -211,9 +211,10 @@ contains
       ! (1) the trial values of the points that yield
       do p = 1, ny
          i = iy(p)
-         sj2(p) = 0.5_wp*(d11(i)*d11(i) + d22(i)*d22(i) + d33(i)*d33(i) + 2.0_wp*(d12(i)*d12(i)))   ! J2 = d:d/2
-         sj3(p) = d33(i)*(d11(i)*d22(i) - d12(i)*d12(i))                                         ! J3 = det d
-         mub(p) = mu*x(i)                                          ! mubar = mu tr(b_trial)/3 (J20)
+         ! J2 = d:d/2, J3 = det d, mubar = mu tr(b_trial)/3 (J20)
+         sj2(p) = 0.5_wp*(d11(i)*d11(i) + d22(i)*d22(i) + d33(i)*d33(i) + 2.0_wp*(d12(i)*d12(i)))
+         sj3(p) = d33(i)*(d11(i)*d22(i) - d12(i)*d12(i))
+         mub(p) = mu*x(i)
          qt(p) = qtr(i)
          yn(p) = ys(q0 + i - 1)
       end do
