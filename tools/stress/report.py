@@ -60,7 +60,7 @@ def write(load, figdir, doc, log):
       "`make stress STRESS_ARGS=--long` runs the long cases for 10^6 steps.\n")
     w("What is measured, and the limits used to call something a failure:\n")
     w("- **Energy growth** of a run: the largest over its rows of (E - E_in) / (|E(0)| + |W_ext| + |W_pm|), "
-      "E = kinetic + strain (with hourglass) energy from `<stem>.ene`, E_in = E(0) + W_ext + W_pm the energy "
+      "E = kinetic + strain (with hourglass) + plastic work from `<stem>.ene`, E_in = E(0) + W_ext + W_pm the energy "
       "put in by the initial state, the external forces and prescribed motion (the measure of exic's energy guard). Above 1 % (and 5 %) a finished run is a failure "
       "unless exic warned (a `warning: ... energy` line in `<stem>.out`). Impact losses make it negative.")
     w("- **Penetration**, measured by the harness itself: at every field output of `<stem>.h5` every "
