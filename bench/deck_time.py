@@ -11,22 +11,19 @@ import argparse
 import os
 import shutil
 import statistics
-import subprocess
 import tempfile
+
+from output_share import cpu_of
 
 
 def run_once(exic, deck, threads):
-    """Processor time (s) of one run of exic on a copy of deck's folder; raises on failure."""
+    """Processor time (s) of one run of exic on a copy of deck's folder (output_share's
+    cpu_of); stops on a failed run."""
     work = tempfile.mkdtemp(prefix="exic_deck_time_")
     try:
         shutil.copytree(os.path.dirname(os.path.abspath(deck)), work, dirs_exist_ok=True)
         env = dict(os.environ, OMP_NUM_THREADS=str(threads), OPENBLAS_NUM_THREADS="1")
-        proc = subprocess.Popen([exic, os.path.basename(deck)], cwd=work, env=env,
-                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        _, status, usage = os.wait4(proc.pid, 0)
-        if os.waitstatus_to_exitcode(status) != 0:
-            raise RuntimeError(f"{exic} {deck}: exit status {os.waitstatus_to_exitcode(status)}")
-        return usage.ru_utime + usage.ru_stime
+        return cpu_of([exic, os.path.basename(deck)], env, work)
     finally:
         shutil.rmtree(work, ignore_errors=True)
 

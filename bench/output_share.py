@@ -63,13 +63,16 @@ def make_variants(work):
 
 
 def cpu_of(cmd, env, cwd):
-    """Processor time (user + system) of one run of `cmd`; the run must succeed."""
-    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env, cwd=cwd)
-    _, status, ru = os.wait4(p.pid, 0)
-    err = p.stderr.read().decode(errors="replace")
-    p.stderr.close()
-    if os.waitstatus_to_exitcode(status) != 0:
-        raise SystemExit(f"{' '.join(cmd)} failed ({status}): {err}")
+    """Processor time (user + system) of one run of `cmd`; the run must succeed. Its standard
+    error goes to a file, read after the run (a pipe read only then would stop a run that
+    writes more than the pipe holds)."""
+    with tempfile.TemporaryFile() as errf:
+        p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=errf, env=env, cwd=cwd)
+        _, status, ru = os.wait4(p.pid, 0)
+        if os.waitstatus_to_exitcode(status) != 0:
+            errf.seek(0)
+            err = errf.read().decode(errors="replace")
+            raise SystemExit(f"{' '.join(cmd)} failed ({status}): {err}")
     return ru.ru_utime + ru.ru_stime
 
 
