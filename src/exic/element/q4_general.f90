@@ -486,6 +486,10 @@ contains
             do k = 1, NBLOCK
                m(k, i) = m(k, i) + d(k, g)*nn*rg(k, g)
                mp(k, i) = mp(k, i) + d(k, g)*nn
+            end do
+            ! the one-point element takes hh from its centre below
+            if (nq == 1) cycle
+            do k = 1, NBLOCK
                hh(k, i) = hh(k, i) + d(k, g)*nn/rg(k, g)
             end do
          end do
