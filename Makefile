@@ -3,7 +3,7 @@
 
 SHELL := /bin/bash
 APT_PACKAGES := gfortran g++ liblapack-dev libopenblas-serial-dev libsuitesparse-dev libhdf5-dev libgmsh-dev \
-                pkg-config hdf5-tools python3-venv
+                pkg-config hdf5-tools python3-venv libopenmpi-dev openmpi-bin libmetis-dev
 # LAPACK and BLAS from the single-threaded OpenBLAS, whatever Debian's alternatives point
 # libblas.so.3 and liblapack.so.3 at: the threaded OpenBLAS starts a pool of helper threads
 # when the library loads, and they spin for about 0.1 s of processor time in every process
@@ -11,6 +11,10 @@ APT_PACKAGES := gfortran g++ liblapack-dev libopenblas-serial-dev libsuitesparse
 # the flags from FPM_LDFLAGS, which the tests' own fpm calls inherit.
 SERIAL_BLAS := /usr/lib/$(shell uname -m)-linux-gnu/openblas-serial
 export FPM_LDFLAGS := -L$(SERIAL_BLAS) -Wl,-rpath,$(SERIAL_BLAS) $(FPM_LDFLAGS)
+# MPI (doc/parallel.md): every build compiles with OpenMPI's wrapper mpifort (gfortran with the
+# mpi_f08 module folder and libraries); fpm takes the compiler from FPM_FC, which the tests' and
+# tools' own fpm calls inherit. The build folders are build/mpifort_*.
+export FPM_FC := mpifort
 VENV    := .venv
 PYTHON  := $(VENV)/bin/python
 FPM     := $(VENV)/bin/fpm
@@ -76,7 +80,7 @@ setup: deps venv
 # every build.
 STALE = find build -path '*/exic/*' \( -name 'test_*' -o -name 'app_*' -o -name 'bench_*' -o -name 'libexic.a' \) -delete 2>/dev/null || true
 # $(call fpm_build,ARGS): fpm build ARGS; on failure remove every object and fail
-fpm_build = $(FPM) build $(1) || { rm -rf build/gfortran_*; exit 1; }
+fpm_build = $(FPM) build $(1) || { rm -rf build/gfortran_* build/mpifort_*; exit 1; }
 
 build: setup
 	@$(STALE)

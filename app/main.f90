@@ -2,6 +2,10 @@
 !>
 !> Threads are asked for with OMP_NUM_THREADS (the results do not depend on their number); when it
 !> is not set the command runs on one thread (doc/decisions.md, "Threads").
+!>
+!> Under mpirun (`mpirun -np P exic deck.inp`) the same program runs on P ranks (doc/parallel.md):
+!> rank 0 writes the run's files and the console; the others write theirs into a private scratch
+!> folder that is removed at the end. Started without mpirun it is one rank.
 program exic_main
    use exic_base_error, only: error_t, fatal_error
    use exic_io_model, only: model_t
@@ -9,6 +13,8 @@ program exic_main
    use exic_driver, only: run_options_t, run_model, RUN_INTERRUPTED
    use exic_base_signals, only: ignore_file_size_signal, signals_install
    use exic_io_posix, only: make_directories, exit_now
+   use exic_parallel_mpi, only: par_init, par_finalize, par_abort, par_rank, par_size
+   use exic_session_ranks, only: parallel_refusal, scratch_base, scratch_remove
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    !$ use omp_lib, only: omp_set_num_threads
    implicit none
@@ -16,9 +22,14 @@ program exic_main
    type(model_t) :: model
    type(run_options_t) :: opts
    type(error_t), allocatable :: err
-   character(len=:), allocatable :: deck, outdir, arg
-   integer :: i, n, nlen, status
+   character(len=:), allocatable :: deck, outdir, arg, refusal, scratch, stem
+   integer :: i, n, nlen, status, rank, nranks
 
+   ! MPI first (one rank without mpirun); only rank 0 speaks on the console
+   call par_init()
+   rank = par_rank()
+   nranks = par_size()
+   scratch = ''
    ! signals are recorded from here on (the run answers them after its steps, README): one that
    ! comes while the deck is read stops the run after its first step, with its files complete
    if (.not. signals_install()) write (error_unit, '(a)') 'exic: warning: cannot install the signal handlers'
@@ -34,10 +45,12 @@ program exic_main
       arg = argument(i)
       select case (arg)
       case ('-h', '--help')
-         call usage()
+         if (rank == 0) call usage()
+         call par_finalize()
          stop
       case ('--version')
-         write (output_unit, '(a)') 'exic 0.1.0'
+         if (rank == 0) write (output_unit, '(a)') 'exic 0.1.0'
+         call par_finalize()
          stop
       case ('-o')
          if (i == n) call die('-o needs a directory')
@@ -57,36 +70,63 @@ program exic_main
       i = i + 1
    end do
    if (len(deck) == 0) then
-      call usage()
+      if (rank == 0) call usage()
+      call par_finalize()
       stop 2, quiet=.true.
    end if
 
+   ! every rank reads the deck (doc/parallel.md, "Reading the deck")
    call read_deck(deck, model, err)
-   if (allocated(err)) call fatal_error(err, 2)
-   if (allocated(model%warnings)) then
+   if (allocated(err)) then
+      if (nranks == 1) call fatal_error(err, 2)
+      if (rank == 0) write (error_unit, '(a)') 'exic: error: '//err%message
+      call par_finalize()
+      stop 2, quiet=.true.
+   end if
+   if (allocated(model%warnings) .and. rank == 0) then
       if (len(model%warnings) > 0) write (error_unit, '(a)') model%warnings
    end if
+   refusal = parallel_refusal(model, nranks)
+   if (len(refusal) > 0) call die(refusal)
    opts%base = output_base(deck, outdir)
+   if (rank /= 0) then
+      ! the files of the other ranks go to their scratch folders
+      opts%quiet = .true.
+      stem = opts%base(index(opts%base, '/', back=.true.) + 1:)
+      call scratch_base(rank, stem, scratch, opts%base, err)
+      if (allocated(err)) then
+         write (error_unit, '(a)') 'exic: error: '//err%message
+         call par_abort(1)
+      end if
+   end if
    if (.not. opts%quiet) write (output_unit, '(a)') 'exic: '//deck//' -> '//opts%base//'.{his,ene,out}'
    ! SIGINT, SIGTERM, SIGUSR1, SIGUSR2 answered between steps (README); a write past the file
    ! size limit fails with EFBIG and is reported like a full disk instead of killing exic
    opts%signals = .true.
    call ignore_file_size_signal()
    call run_model(model, opts, err, status)
+   if (len(scratch) > 0) call scratch_remove(scratch, stem)
    if (allocated(err)) then
       ! every file of the run is closed (or its close failed and was reported): end without the
-      ! library exit handlers (see exit_now)
-      write (error_unit, '(a)') 'exic: error: '//err%message
+      ! library exit handlers (see exit_now); on several ranks every rank is stopped (MPI_Abort)
+      if (rank == 0) then
+         write (error_unit, '(a)') 'exic: error: '//err%message
+      else
+         write (error_unit, '(a)') 'exic: rank '//itoa_local(rank)//': error: '//err%message
+      end if
       flush (error_unit)
       flush (output_unit)
+      if (nranks > 1) call par_abort(1)
       call exit_now(1)
    end if
    if (status == RUN_INTERRUPTED) then
-      write (error_unit, '(a)') 'exic: interrupted; final state and restart file '//opts%base// &
+      if (rank == 0) write (error_unit, '(a)') 'exic: interrupted; final state and restart file '//opts%base// &
          '.rst written (continue with --restart '//opts%base//'.rst)'
+      call par_finalize()
       stop 3, quiet=.true.
    end if
    if (.not. opts%quiet) write (output_unit, '(a)') 'exic: done'
+   call par_finalize()
 
 contains
 
@@ -121,12 +161,23 @@ contains
       end if
    end function output_base
 
-   !> Print `msg` and stop with exit code 2.
+   !> Print `msg` (rank 0) and stop with exit code 2 (every rank comes here: the arguments and
+   !> the deck are the same on every rank).
    subroutine die(msg)
       character(len=*), intent(in) :: msg
-      write (error_unit, '(a)') 'exic: '//msg
+      if (rank == 0) write (error_unit, '(a)') 'exic: '//msg
+      call par_finalize()
       stop 2, quiet=.true.
    end subroutine die
+
+   !> k in decimal.
+   function itoa_local(k) result(s)
+      integer, intent(in) :: k
+      character(len=:), allocatable :: s
+      character(len=12) :: buf
+      write (buf, '(i0)') k
+      s = trim(buf)
+   end function itoa_local
 
    !> The --help text.
    subroutine usage()

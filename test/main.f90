@@ -19,6 +19,8 @@ program exic_tests
    use test_contact_auto, only: run_contact_auto_tests
    use test_run_output, only: run_run_output_tests
    use test_console, only: run_console_tests
+   use test_parallel, only: run_parallel_tests
+   use test_mpi, only: run_mpi_tests
    use test_deck, only: run_deck_tests
    use test_inputs, only: run_inputs_tests
    use test_legacy, only: run_legacy_tests
@@ -71,5 +73,7 @@ program exic_tests
    call r%run('hostile', run_hostile_tests)
    call r%run('stress_decks', run_stress_decks_tests)
    call r%run('legacy', run_legacy_tests)
+   call r%run('parallel', run_parallel_tests)
+   call r%run('mpi', run_mpi_tests)
    call r%finish()
 end program exic_tests

@@ -644,7 +644,7 @@ contains
       call check(s, len(file) > 0 .and. block == file, 'doc/api.md shows examples/legacy_host/skeleton.f whole')
       f77 = line_starting(doc, 'gfortran -O2 host.f ')
       cline = line_starting(doc, 'cc -O2 -I$PREFIX/include host.c ')
-      full = line_starting(doc, 'gfortran -O2 -fopenmp -I$PREFIX/include prog.f90 ')
+      full = line_starting(doc, 'mpifort -O2 -fopenmp -I$PREFIX/include prog.f90 ')
       call check(s, len(f77) > 0 .and. len(cline) > 0 .and. len(full) > 0, 'doc/api.md states the three link lines')
       call check(s, len(cline) > 0 .and. index(file_text('include/exic_contact.h'), ' * '//cline//nl) > 0, &
                  'include/exic_contact.h states the C link line of doc/api.md', cline)

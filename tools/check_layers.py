@@ -16,7 +16,7 @@ import sys
 #: run it drives, session/)
 LAYERS = {
     "base": 0,
-    "linalg": 1, "mesh": 1, "material": 1,
+    "linalg": 1, "mesh": 1, "material": 1, "parallel": 1,
     "element": 2, "contact": 2,
     "explicit": 3,
     "io": 4,

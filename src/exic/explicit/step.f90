@@ -43,6 +43,8 @@ module exic_explicit_step
    use exic_explicit_loads, only: load_spec_t
    use exic_explicit_loading, only: loading_t
    use exic_explicit_face, only: face_setup, face_refresh
+   use exic_explicit_decomposition, only: decomposition_t, decomposition_init, decomposition_forces, &
+                                          decomposition_summary
    implicit none
    private
 
@@ -79,6 +81,7 @@ module exic_explicit_step
       type(contact_t) :: contact                      !< exic's contact (inactive without CONTact)
       type(loading_t) :: ld                           !< loads, prescribed motion, rigid bodies
       class(contact_hook_t), pointer :: hook => null() !< a host's contact instead, when associated
+      type(decomposition_t) :: dd                     !< the element pass on several MPI ranks (doc/parallel.md)
       type(messages_t) :: messages                    !< warnings for the run's report
       logical :: started = .false.                    !< `start` has made the state at t = 0
       ! time-step control
@@ -140,6 +143,9 @@ contains
 
       call assembly_init(mesh, materials, self%st, self%sets, err)
       if (allocated(err)) return
+      call decomposition_init(self%dd, self%st, self%sets, mesh%conn, err)
+      if (allocated(err)) return
+      if (self%dd%active) call self%messages%add(decomposition_summary(self%dd))
       call self%ld%init(mesh, materials, self%st, self%sets, err, loads)
       if (allocated(err)) return
       n = self%st%nnode
@@ -334,7 +340,11 @@ contains
          else if (self%has_contact() .or. self%ld%active) then
             call positions(st%nnode, st%x0, st%u, self%x)
          end if
-         call internal_forces(st, self%sets, ebad, self%dt_elements, self%dt_elements_at, self%folded)
+         if (self%dd%active) then
+            call decomposition_forces(self%dd, st, self%sets, ebad, self%dt_elements, self%dt_elements_at, self%folded)
+         else
+            call internal_forces(st, self%sets, ebad, self%dt_elements, self%dt_elements_at, self%folded)
+         end if
          if (ebad /= 0) then
             call inverted_error(st, ebad, err)
             return

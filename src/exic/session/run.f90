@@ -12,6 +12,7 @@ module exic_session_run
    use exic_base_clock, only: wall_time
    use exic_base_progress, only: progress_t, clock_text
    use exic_base_strings, only: itoa, rtoa
+   use exic_parallel_mpi, only: par_or_bits
    use exic_base_signals, only: signals_take, SIG_BIT_INT, SIG_BIT_TERM, SIG_BIT_USR1, SIG_BIT_USR2
    use exic_io_model, only: model_t
    use exic_io_restart, only: run_position_t, write_restart, read_restart
@@ -185,6 +186,9 @@ contains
       end if
       bits = 0
       if (r%signals) bits = signals_take()
+      ! on several ranks every rank answers the signals that came to any of them, after the same
+      ! step (a logical or of integers: exact)
+      if (r%signals) bits = par_or_bits(bits)
       if (iand(bits, SIG_BIT_USR2) /= 0) call status_line(r)
       if (iand(bits, SIG_BIT_USR1) /= 0) due = .true.
       if (iand(bits, SIG_BIT_INT + SIG_BIT_TERM) /= 0) then

@@ -1,0 +1,200 @@
+!> The exic program on several MPI ranks (doc/parallel.md): a family of small scenes (AUTOmatic
+!> contact between bodies given in any order with gravity, Coulomb friction on a rigid floor,
+!> a free rigid disk striking a bar, one-point elements with no contact) run by `mpirun -np P`
+!> for P = 1, 2, 3, 4 must write .his and .ene files equal byte for byte to those of the same
+!> program run without mpirun (one rank); the report names the decomposition (a cut that is
+!> not empty: the partition boundaries cross the bodies and their contact surfaces); a deck
+!> with a feature not yet supported on several ranks is refused with its name.
+!>
+!> Skipped, with the reason, when mpirun is missing (the Makefile installs openmpi-bin).
+module test_mpi
+   use testing, only: suite_t, check, section, skip, have_command, file_text
+   use exic_base_strings, only: itoa
+   use deck_runner, only: run_dir, write_text
+   implicit none
+   private
+
+   public :: run_mpi_tests
+
+   character(len=*), parameter :: nl = new_line('a')
+   character(len=*), parameter :: MPIRUN = 'mpirun --oversubscribe --allow-run-as-root'
+   character(len=*), parameter :: HEAD = 'FEAP * * mpi scene'//nl//'0 0 0 2 2 4'//nl
+
+contains
+
+   subroutine run_mpi_tests(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: exic
+      character(len=*), parameter :: names(4) = [character(len=10) :: 'auto', 'friction', 'free_rigid', 'one_point']
+      integer :: k
+      call section(s, 'mpi: mpirun -np 1..4 writes the serial .his and .ene byte for byte')
+      exic = exic_program()
+      if (len(exic) == 0) then
+         call skip(s, 'decks on several ranks', 'the exic program next to the tests', 54)
+         return
+      end if
+      if (.not. have_command('mpirun')) then
+         call skip(s, 'decks on several ranks', 'mpirun (Debian openmpi-bin, which the Makefile installs)', 54)
+         return
+      end if
+      do k = 1, size(names)
+         call scene_test(s, exic, trim(names(k)))
+      end do
+      call refusal_test(s, exic)
+   end subroutine run_mpi_tests
+
+   !> The exic program built with the tests ('' when there is none).
+   function exic_program() result(path)
+      character(len=:), allocatable :: path
+      character(len=4096) :: argv0
+      logical :: exists
+      call get_command_argument(0, argv0)
+      path = argv0(1:index(argv0, '/', back=.true.))//'../app/exic'
+      inquire (file=path, exist=exists)
+      if (.not. exists) path = ''
+   end function exic_program
+
+   !> A scene of the family by name.
+   function scene(name) result(deck)
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable :: deck
+      character(len=*), parameter :: solid1 = 'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'// &
+                                              nl//'    DENSity 1'//nl
+      select case (name)
+      case ('auto')
+         ! three bodies, numbered right to left: a one-point bar (nu 0.3), a 2x2 bar (nu 0.45)
+         ! moving into it, a rigid wall; AUTOmatic contact and gravity
+         deck = HEAD//solid1//'    QUADrature 1'//nl//'    HOURglass 0.1'//nl//nl// &
+                'MATErial,2'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 2000 0.45'//nl//'    DENSity 1'//nl//nl// &
+                'MATErial,3'//nl//'  RIGId'//nl//'    DENSity 1'//nl//nl// &
+                'REGIon,1'//nl//block(12, 4, 1, 2.05, 0.0, 5.05, 1.0)// &
+                'REGIon,2'//nl//block(10, 4, 2, 0.0, 0.0, 2.0, 1.0)// &
+                'REGIon,3'//nl//block(1, 2, 3, 5.1, -1.0, 6.0, 2.0)// &
+                'INITial,VELOcity'//nl//'  REGIon,2,2,0'//nl//'  REGIon,1,0.5,0'//nl//nl// &
+                'CONTact'//nl//'  AUTOmatic'//nl//'END CONTact'//nl//nl//'GRAVity,0,-10'//nl//nl//'END'//nl// &
+                batch('0.3')//'  disp,5,1'//nl//'  velo,60,2'//nl//nl//'STOP'
+      case ('friction')
+         ! a 2x2 bar sliding on a rigid floor it touches at t = 0: NTOS with Coulomb friction
+         deck = HEAD//solid1//nl//'MATErial,2'//nl//'  RIGId'//nl//'    DENSity 1'//nl//nl// &
+                'REGIon,1'//nl//block(16, 3, 1, 0.0, 0.0, 4.0, 0.75)// &
+                'REGIon,2'//nl//block(2, 1, 2, -1.0, -0.5, 6.0, 0.0)// &
+                'INITial,VELOcity'//nl//'  REGIon,1,3,-1'//nl//nl// &
+                'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
+                '  PAIR,1,NTOS,1,2'//nl//'    FRICtion,COULomb,0.3'//nl//'END CONTact'//nl//nl// &
+                'GRAVity,0,-10'//nl//nl//'END'//nl//batch('0.15')//'  disp,3,1'//nl//'  cont,1,1'//nl//nl//'STOP'
+      case ('free_rigid')
+         ! a free rigid disk (three dofs) striking a free 2x2 bar, SYMMetric pair
+         deck = HEAD//solid1//nl//'MATErial,2'//nl//'  RIGId,FREE'//nl//'    DENSity 2'//nl//nl// &
+                'REGIon,1'//nl//block(16, 4, 1, 0.0, 0.0, 4.0, 1.0)// &
+                'SHIFt,4.52,0.8'//nl//'REGIon,2'//nl//'BLOCk'//nl//'  POLAr,2,32,0,0,2'//nl// &
+                '    1,0.1,0'//nl//'    2,0.5,0'//nl//'    3,0.5,360'//nl//'    4,0.1,360'//nl//nl// &
+                'INITial,VELOcity'//nl//'  REGIon,2,-2,0.5'//nl//nl// &
+                'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
+                '  PAIR,1,SYMMetric,1,2'//nl//'END CONTact'//nl//'END'//nl//'TIE,REGIon,2,2'//nl// &
+                batch('0.08')//'  disp,10,1'//nl//'  velo,80,2'//nl//nl//'STOP'
+      case default
+         ! one-point elements, no contact, no loads: the plain step
+         deck = HEAD//solid1//'    QUADrature 1'//nl//'    HOURglass 0.1'//nl//nl// &
+                'REGIon,1'//nl//block(20, 5, 1, 0.0, 0.0, 5.0, 1.25)// &
+                'INITial,VELOcity'//nl//'  REGIon,1,1,2'//nl//nl//'END'//nl//batch('0.05')// &
+                '  disp,7,1'//nl//'  velo,100,2'//nl//nl//'STOP'
+      end select
+   end function scene
+
+   !> A BLOCk of nx x ny elements of material mat on the box (x0, y0) - (x1, y1), then a blank line.
+   function block(nx, ny, mat, x0, y0, x1, y1) result(text)
+      integer, intent(in) :: nx, ny, mat
+      real, intent(in) :: x0, y0, x1, y1
+      character(len=:), allocatable :: text
+      text = 'BLOCk'//nl//'  CARTesian,'//itoa(nx)//','//itoa(ny)//',0,0,'//itoa(mat)//nl// &
+             '    1,'//r(x0)//','//r(y0)//nl//'    2,'//r(x1)//','//r(y0)//nl// &
+             '    3,'//r(x1)//','//r(y1)//nl//'    4,'//r(x0)//','//r(y1)//nl//nl
+   end function block
+
+   !> x as deck text.
+   function r(x) result(text)
+      real, intent(in) :: x
+      character(len=:), allocatable :: text
+      character(len=32) :: buf
+      write (buf, '(f0.3)') x
+      text = trim(buf)
+      if (text(1:1) == '.') text = '0'//text
+      if (text(1:2) == '-.') text = '-0'//text(2:)
+   end function r
+
+   !> The BATCh program to t = tend, histories every step.
+   function batch(tend) result(text)
+      character(len=*), intent(in) :: tend
+      character(len=:), allocatable :: text
+      text = 'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,100000'//nl//'    TIME,,'//tend//nl// &
+             '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl
+   end function batch
+
+   !> One scene: serial, then mpirun -np 1..4; .his and .ene equal to the serial bytes.
+   subroutine scene_test(s, exic, name)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: exic, name
+      character(len=:), allocatable :: dir, deck, his, ene, out
+      integer :: code, np
+      logical :: same
+      dir = run_dir//'/mpi_'//name
+      deck = dir//'.inp'
+      call execute_command_line('rm -rf '//dir)
+      call write_text(deck, scene(name))
+      call execute_command_line(exic//' -q '//deck//' -o '//dir//'/serial > '//dir//'_serial.log 2>&1', &
+                                exitstat=code)
+      call check(s, code == 0, name//': the serial run succeeds', file_text(dir//'_serial.log'))
+      if (code /= 0) return
+      his = file_text(dir//'/serial/mpi_'//name//'.his')
+      ene = file_text(dir//'/serial/mpi_'//name//'.ene')
+      call check(s, count_lines(ene) > 10, name//': the serial run wrote more than 10 energy rows')
+      do np = 1, 4
+         call execute_command_line(MPIRUN//' -np '//itoa(np)//' '//exic//' -q '//deck//' -o '//dir//'/np'// &
+                                   itoa(np)//' > '//dir//'_np'//itoa(np)//'.log 2>&1', exitstat=code)
+         call check(s, code == 0, name//': mpirun -np '//itoa(np)//' succeeds', file_text(dir//'_np'//itoa(np)//'.log'))
+         if (code /= 0) cycle
+         same = file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.his') == his .and. &
+                file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.ene') == ene
+         call check(s, same, name//': -np '//itoa(np)//': .his and .ene equal the serial files byte for byte')
+         if (np > 1) then
+            out = file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.out')
+            call check(s, index(out, 'MPI: '//itoa(np)//' ranks; METIS parts cut ') > 0 .and. &
+                       index(out, 'METIS parts cut 0 ') == 0, name//': -np '//itoa(np)// &
+                       ': the report names the decomposition, whose cut is not empty')
+         end if
+      end do
+   end subroutine scene_test
+
+   !> Newlines in text.
+   pure integer function count_lines(text) result(n)
+      character(len=*), intent(in) :: text
+      integer :: i
+      n = 0
+      do i = 1, len(text)
+         if (text(i:i) == nl) n = n + 1
+      end do
+   end function count_lines
+
+   !> A plastic deck on 2 ranks is refused at the start, naming PLAStic; on 1 rank it runs.
+   subroutine refusal_test(s, exic)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: exic
+      character(len=*), parameter :: deck = run_dir//'/mpi_plastic.inp'
+      character(len=:), allocatable :: log
+      integer :: code
+      call write_text(deck, HEAD//'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'//nl// &
+                      '    PLAStic MISEs 10'//nl//'    DENSity 1'//nl//nl//'REGIon,1'//nl// &
+                      block(4, 2, 1, 0.0, 0.0, 2.0, 1.0)//'INITial,VELOcity'//nl//'  REGIon,1,1,0'//nl//nl// &
+                      'END'//nl//batch('0.01')//nl//'STOP')
+      call execute_command_line(MPIRUN//' -np 2 '//exic//' -q '//deck//' -o '//run_dir//'/mpi_plastic > '// &
+                                run_dir//'/mpi_plastic.log 2>&1', exitstat=code)
+      log = file_text(run_dir//'/mpi_plastic.log')
+      call check(s, code /= 0 .and. index(log, 'PLAStic') > 0 .and. &
+                 index(log, 'not yet supported on several MPI ranks') > 0, &
+                 'a plastic deck on 2 ranks is refused naming PLAStic', log)
+      call execute_command_line(exic//' -q '//deck//' -o '//run_dir//'/mpi_plastic > '//run_dir// &
+                                '/mpi_plastic.log 2>&1', exitstat=code)
+      call check(s, code == 0, 'the same deck runs on one rank', file_text(run_dir//'/mpi_plastic.log'))
+   end subroutine refusal_test
+
+end module test_mpi
