@@ -19,7 +19,8 @@ module exic_legacy_problem
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use, intrinsic :: iso_fortran_env, only: int64
    use exic_base_kinds, only: wp
-   use exic_base_strings, only: itoa
+   use exic_base_strings, only: itoa, rtoa
+   use exic_mesh_smoothing, only: quad_area
    use exic_base_error, only: error_t
    use exic_contact_contact, only: contact_t
    use exic_contact_spec, only: SURF_REGION, SURF_FACETS, SURF_NODES, PAIR_NTOS, PAIR_SYMMETRIC, &
@@ -70,7 +71,7 @@ contains
             call fail(0, who//': body number of element '//itoa(e)//' is '//itoa(ibody(e))//' (must be >= 1)')
             return
          end if
-         if (quad_area(nnode, x0, ix(:, e)) <= 0.0_wp) then
+         if (quad_area(x0(:, ix(1, e)), x0(:, ix(2, e)), x0(:, ix(3, e)), x0(:, ix(4, e))) <= 0.0_wp) then
             call fail(0, who//': element '//itoa(e)//' is clockwise or degenerate in the reference mesh')
             return
          end if
@@ -971,29 +972,11 @@ contains
       ok = .true.
    end function pairs_ok
 
-   !> Signed area of a quadrilateral from its diagonals.
-   pure real(wp) function quad_area(nnode, x, q) result(area)
-      integer, intent(in) :: nnode, q(4)
-      real(wp), intent(in) :: x(2, nnode)
-      area = 0.5_wp*((x(1, q(3)) - x(1, q(1)))*(x(2, q(4)) - x(2, q(2))) &
-                     - (x(2, q(3)) - x(2, q(1)))*(x(1, q(4)) - x(1, q(2))))
-   end function quad_area
-
    !> Record a failure (see set_error).
    subroutine fail(h, msg)
       integer, intent(in) :: h
       character(len=*), intent(in) :: msg
       call set_error(h, msg)
    end subroutine fail
-
-   !> A real as text.
-   function rtoa(x) result(s)
-      real(wp), intent(in) :: x
-      character(len=:), allocatable :: s
-      character(len=32) :: b
-      ! three exponent digits where they are needed (es12.5 would drop the E: 1.23456-302)
-      write (b, merge('(es13.5e3)', '(es12.5)  ', abs(x) < 1.0e-98_wp .and. x /= 0.0_wp .or. abs(x) >= 1.0e99_wp))
-      s = trim(adjustl(b))
-   end function rtoa
 
 end module exic_legacy_problem
