@@ -8,8 +8,8 @@ module test_fields
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_fields, only: field_writer_t
-   use exic_io_posix, only: copy_file
+   use exic_output_fields, only: field_writer_t
+   use exic_base_posix, only: copy_file
    use testing, only: suite_t, check, check_close, section, skip, have_command, have_python_modules, &
                       python_command, error_text
    implicit none
