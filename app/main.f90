@@ -8,11 +8,11 @@
 !> folder that is removed at the end. Started without mpirun it is one rank.
 program exic_main
    use exic_base_error, only: error_t, fatal_error
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model, RUN_INTERRUPTED
    use exic_base_signals, only: ignore_file_size_signal, signals_install
-   use exic_io_posix, only: make_directories, exit_now
+   use exic_base_posix, only: make_directories, exit_now
    use exic_parallel_mpi, only: par_init, par_finalize, par_abort, par_rank, par_size
    use exic_session_ranks, only: parallel_refusal, scratch_base, scratch_remove
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit

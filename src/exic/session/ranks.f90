@@ -8,8 +8,8 @@ module exic_session_ranks
    use exic_base_error, only: error_t, make_error
    use exic_base_strings, only: itoa
    use exic_material_material, only: MAT_SOLID
-   use exic_io_model, only: model_t
-   use exic_io_posix, only: remove_file
+   use exic_model_model, only: model_t
+   use exic_base_posix, only: remove_file
    implicit none
    private
 
