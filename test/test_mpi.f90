@@ -158,12 +158,36 @@ contains
          call check(s, same, name//': -np '//itoa(np)//': .his and .ene equal the serial files byte for byte')
          if (np > 1) then
             out = file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.out')
-            call check(s, index(out, 'MPI: '//itoa(np)//' ranks; METIS parts cut ') > 0 .and. &
-                       index(out, 'METIS parts cut 0 ') == 0, name//': -np '//itoa(np)// &
-                       ': the report names the decomposition, whose cut is not empty')
+            call check(s, index(out, 'MPI: '//itoa(np)//' ranks; METIS parts of the element blocks cut ') > 0 .and. &
+                       owned_by_rank0(out) < total_blocks(out), name//': -np '//itoa(np)// &
+                       ': the report names the decomposition, and rank 0 owns only some of the blocks')
          end if
       end do
    end subroutine scene_test
+
+   !> O of 'rank 0 computes B blocks of N and owns O' in a report (huge when missing).
+   integer function owned_by_rank0(out) result(o)
+      character(len=*), intent(in) :: out
+      o = number_after(out, ' and owns ')
+   end function owned_by_rank0
+
+   !> N of 'rank 0 computes B blocks of N and owns O' in a report (-1 when missing).
+   integer function total_blocks(out) result(n)
+      character(len=*), intent(in) :: out
+      n = number_after(out, ' blocks of ')
+      if (n == huge(1)) n = -1
+   end function total_blocks
+
+   !> The integer after the first `word` in text (huge when missing or unreadable).
+   integer function number_after(text, word) result(n)
+      character(len=*), intent(in) :: text, word
+      integer :: k, ios
+      n = huge(1)
+      k = index(text, word)
+      if (k == 0) return
+      read (text(k + len(word):), *, iostat=ios) n
+      if (ios /= 0) n = huge(1)
+   end function number_after
 
    !> Newlines in text.
    pure integer function count_lines(text) result(n)

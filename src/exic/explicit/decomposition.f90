@@ -24,7 +24,7 @@ module exic_explicit_decomposition
    use exic_element_quad4, only: q4_force_2x2, q4_force_1pt, NBLOCK
    use exic_element_q4_general, only: q4g_force
    use exic_parallel_mpi, only: par_rank, par_size, par_allgatherv, par_allgather_int
-   use exic_parallel_partition, only: partition_elements, node_owners
+   use exic_parallel_partition, only: partition_mesh, node_owners
    use exic_explicit_state, only: state_t, element_set_t
    use exic_explicit_central, only: cd_zero
    implicit none
@@ -116,10 +116,6 @@ contains
       ne = st%nelem
       allocate (weight(ne), self%elem_owner(ne), self%node_owner(st%nnode))
       call element_weights(ne, sets, weight)
-      ! fewer elements than ranks: the last ranks own none (and compute nothing)
-      call partition_elements(ne, st%nnode, conn, weight, min(self%nrank, ne), self%elem_owner, self%cut, err)
-      if (allocated(err)) return
-      call node_owners(ne, st%nnode, conn, self%elem_owner, self%node_owner)
 
       ! global blocks: per solid set, blocks of NBLOCK from the start of each range
       allocate (self%set_block(self%nset + 1), self%set_elem(self%nset + 1), self%sb(self%nset))
@@ -142,8 +138,9 @@ contains
             self%set_elem(k + 1) = self%set_elem(k) + s%nel
          end associate
       end do
-      self%nblock = self%set_block(self%nset + 1) - 1
-      allocate (self%block_owner(self%nblock))
+      call partition_blocks(self, st%nnode, sets, weight, err)
+      if (allocated(err)) return
+      call node_owners(ne, st%nnode, conn, self%elem_owner, self%node_owner)
       allocate (mark(st%nnode))
       mark = self%node_owner == self%rank
       ncomp = 0
@@ -161,7 +158,6 @@ contains
                do e0 = s%rfirst(r), s%rfirst(r + 1) - 1, NBLOCK
                   nb = min(NBLOCK, s%rfirst(r + 1) - e0)
                   g = self%set_block(k) + (e0 - 1)/NBLOCK
-                  self%block_owner(g) = self%elem_owner(s%elems(e0))
                   take = .false.
                   do j = e0, e0 + nb - 1
                      if (self%elem_owner(s%elems(j)) == self%rank) take = .true.
@@ -210,12 +206,64 @@ contains
       allocate (self%bsend(self%rec_counts(self%rank + 1)), self%brecv(p), self%bval(3, self%nblock))
    end subroutine decomposition_init
 
+   !> The blocks of every solid set as the parts' units (doc/parallel.md, "Partition"): METIS's
+   !> parts of the mesh whose elements are the blocks (each with its distinct nodes, weighted by
+   !> its elements' cost), in min(nrank, nblock) parts; every element takes its block's owner
+   !> (the elements of rigid sets, which have no block, huge: they own no node).
+   subroutine partition_blocks(self, nnode, sets, weight, err)
+      type(decomposition_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      type(element_set_t), intent(in) :: sets(:)
+      integer, intent(in) :: weight(:)
+      type(error_t), allocatable, intent(out) :: err
+      integer, allocatable :: eptr(:), eind(:), bw(:), seen(:)
+      integer :: k, g, e0, j, a, n, nb
+      self%nblock = self%set_block(self%nset + 1) - 1
+      allocate (self%block_owner(self%nblock), eptr(self%nblock + 1), eind(4*NBLOCK*self%nblock), &
+                bw(self%nblock), seen(nnode))
+      seen = 0
+      eptr(1) = 0
+      n = 0
+      do k = 1, self%nset
+         associate (s => sets(k))
+            do g = self%set_block(k), self%set_block(k + 1) - 1
+               e0 = 1 + (g - self%set_block(k))*NBLOCK
+               nb = min(NBLOCK, s%nel - e0 + 1)
+               bw(g) = sum(weight(s%elems(e0:e0 + nb - 1)))
+               do j = e0, e0 + nb - 1
+                  do a = 1, 4
+                     if (seen(s%conn(a, j)) == g) cycle
+                     seen(s%conn(a, j)) = g
+                     n = n + 1
+                     eind(n) = s%conn(a, j)
+                  end do
+               end do
+               eptr(g + 1) = n
+            end do
+         end associate
+      end do
+      call partition_mesh(self%nblock, nnode, eptr, eind(1:n), bw, min(self%nrank, self%nblock), &
+                          self%block_owner, self%cut, err)
+      if (allocated(err)) return
+      self%elem_owner = huge(1)
+      do k = 1, self%nset
+         associate (s => sets(k))
+            do g = self%set_block(k), self%set_block(k + 1) - 1
+               e0 = 1 + (g - self%set_block(k))*NBLOCK
+               nb = min(NBLOCK, s%nel - e0 + 1)
+               self%elem_owner(s%elems(e0:e0 + nb - 1)) = self%block_owner(g)
+            end do
+         end associate
+      end do
+   end subroutine partition_blocks
+
    !> One line for the report: ranks, the cut, elements and nodes per rank, this rank's blocks.
    function decomposition_summary(self) result(text)
       type(decomposition_t), intent(in) :: self
       character(len=:), allocatable :: text
       integer :: r
-      text = 'MPI: '//itoa(self%nrank)//' ranks; METIS parts cut '//itoa(self%cut)//' element edges; elements '// &
+      text = 'MPI: '//itoa(self%nrank)//' ranks; METIS parts of the element blocks cut '//itoa(self%cut)// &
+             ' block edges; elements '// &
              'per rank'
       do r = 0, self%nrank - 1
          text = text//' '//itoa(count(self%elem_owner == r))

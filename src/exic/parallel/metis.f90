@@ -5,7 +5,7 @@
 !> METIS is deterministic for given input and options: the seed is set explicitly
 !> (METIS_OPTION_SEED = 1), so that every rank, given the same mesh, computes the same parts.
 module exic_parallel_metis
-   use, intrinsic :: iso_c_binding, only: c_int32_t, c_float, c_ptr, c_null_ptr, c_loc
+   use, intrinsic :: iso_c_binding, only: c_int32_t, c_ptr, c_null_ptr
    use exic_base_error, only: error_t, make_error
    use exic_base_strings, only: itoa
    implicit none
@@ -43,17 +43,18 @@ module exic_parallel_metis
 
 contains
 
-   !> part(e) in 0 .. nparts - 1 for the nelem quadrilaterals conn(4, nelem) (nodes 1 .. nnode),
-   !> weights weight(e) >= 1; nparts >= 2 and nparts <= nelem. cut: the edges of the dual graph
-   !> that the parts cut (METIS's objval).
-   subroutine metis_part_mesh_dual(nelem, nnode, conn, weight, nparts, part, cut, err)
+   !> part(e) in 0 .. nparts - 1 for the nelem elements of a mesh of nnode nodes, element e with
+   !> the nodes eind(eptr(e) + 1 : eptr(e + 1)) (eptr(1) = 0; any number of nodes per element),
+   !> weights weight(e) >= 1; nparts >= 2 and nparts <= nelem. Two elements are neighbours when
+   !> they share two nodes (ncommon = 2: an edge). cut: the edges of the dual graph that the
+   !> parts cut (METIS's objval).
+   subroutine metis_part_mesh_dual(nelem, nnode, eptr, eind, weight, nparts, part, cut, err)
       integer, intent(in) :: nelem, nnode, nparts
-      integer, intent(in) :: conn(4, nelem), weight(nelem)
+      integer, intent(in) :: eptr(nelem + 1), eind(:), weight(nelem)
       integer, intent(out) :: part(nelem), cut
       type(error_t), allocatable, intent(out) :: err
-      integer(c_int32_t), allocatable :: eptr(:), eind(:), vwgt(:), epart(:), npart(:)
+      integer(c_int32_t), allocatable :: ep(:), ei(:), vwgt(:), epart(:), npart(:)
       integer(c_int32_t) :: options(METIS_NOPTIONS), objval, status
-      integer :: e
 
       part = 0
       cut = 0
@@ -61,14 +62,14 @@ contains
          call make_error(err, 'METIS: '//itoa(nparts)//' parts of '//itoa(nelem)//' elements')
          return
       end if
-      allocate (eptr(nelem + 1), eind(4*nelem), vwgt(nelem), epart(nelem), npart(nnode))
-      eptr = [(int(4*e, c_int32_t), e=0, nelem)]
-      eind = int(reshape(conn, [4*nelem]) - 1, c_int32_t)
+      allocate (vwgt(nelem), epart(nelem), npart(nnode))
+      ep = int(eptr, c_int32_t)
+      ei = int(eind(1:eptr(nelem + 1)) - 1, c_int32_t)
       vwgt = int(max(1, weight), c_int32_t)
       status = c_set_default_options(options)
       options(OPTION_SEED + 1) = 1_c_int32_t
       options(OPTION_NUMBERING + 1) = 0_c_int32_t
-      status = c_part_mesh_dual(int(nelem, c_int32_t), int(nnode, c_int32_t), eptr, eind, vwgt, c_null_ptr, &
+      status = c_part_mesh_dual(int(nelem, c_int32_t), int(nnode, c_int32_t), ep, ei, vwgt, c_null_ptr, &
                                 2_c_int32_t, int(nparts, c_int32_t), c_null_ptr, options, objval, epart, npart)
       if (status /= METIS_OK) then
          call make_error(err, 'METIS_PartMeshDual failed (status '//itoa(int(status))//') on '// &

@@ -8,7 +8,7 @@ module exic_parallel_partition
    implicit none
    private
 
-   public :: partition_elements, node_owners
+   public :: partition_elements, partition_mesh, node_owners
 
 contains
 
@@ -20,11 +20,23 @@ contains
       integer, intent(in) :: conn(4, nelem), weight(nelem)
       integer, intent(out) :: owner(nelem), cut
       type(error_t), allocatable, intent(out) :: err
+      integer :: e
+      call partition_mesh(nelem, nnode, [(4*e, e=0, nelem)], reshape(conn, [4*nelem]), weight, nparts, owner, &
+                          cut, err)
+   end subroutine partition_elements
+
+   !> partition_elements for a mesh whose element e has the nodes eind(eptr(e) + 1 : eptr(e + 1))
+   !> (eptr(1) = 0), any number each (the blocks of elements of the distributed force pass).
+   subroutine partition_mesh(nelem, nnode, eptr, eind, weight, nparts, owner, cut, err)
+      integer, intent(in) :: nelem, nnode, nparts
+      integer, intent(in) :: eptr(nelem + 1), eind(:), weight(nelem)
+      integer, intent(out) :: owner(nelem), cut
+      type(error_t), allocatable, intent(out) :: err
       owner = 0
       cut = 0
       if (nparts <= 1) return
-      call metis_part_mesh_dual(nelem, nnode, conn, weight, nparts, owner, cut, err)
-   end subroutine partition_elements
+      call metis_part_mesh_dual(nelem, nnode, eptr, eind, weight, nparts, owner, cut, err)
+   end subroutine partition_mesh
 
    !> node(n): the smallest owner of the elements that use node n (0 for a node of none).
    pure subroutine node_owners(nelem, nnode, conn, owner, node)
@@ -39,6 +51,7 @@ contains
          end do
       end do
       where (node == huge(1)) node = 0
+      ! (an element owner of huge(1), an element of no part, gives its nodes no owner)
    end subroutine node_owners
 
 end module exic_parallel_partition

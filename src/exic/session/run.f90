@@ -12,7 +12,7 @@ module exic_session_run
    use exic_base_clock, only: wall_time
    use exic_base_progress, only: progress_t, clock_text
    use exic_base_strings, only: itoa, rtoa
-   use exic_parallel_mpi, only: par_or_bits
+   use exic_parallel_mpi, only: par_or_bits, par_rank
    use exic_base_signals, only: signals_take, SIG_BIT_INT, SIG_BIT_TERM, SIG_BIT_USR1, SIG_BIT_USR2
    use exic_model_model, only: model_t
    use exic_restart, only: run_position_t, write_restart, read_restart
@@ -239,7 +239,8 @@ contains
       text = r%stp%messages%take()
       call r%progress%clear()
       call r%out%files%say(text)
-      write (error_unit, '(a)') 'exic: '//text
+      ! the console is rank 0's (doc/parallel.md)
+      if (par_rank() == 0) write (error_unit, '(a)') 'exic: '//text
       flush (error_unit)
    end subroutine pass_messages
 
