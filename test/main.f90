@@ -29,6 +29,7 @@ program exic_tests
    use test_plasticity, only: run_plasticity_tests
    use test_axisymmetric, only: run_axisymmetric_tests
    use test_plastic_decks, only: run_plastic_decks_tests
+   use test_plastic_step, only: run_plastic_step_tests
    use test_hostile, only: run_hostile_tests
    use test_math, only: run_math_tests
    use test_threads, only: run_threads_tests
@@ -52,6 +53,7 @@ program exic_tests
    call r%run('plasticity', run_plasticity_tests)
    call r%run('axisymmetric', run_axisymmetric_tests)
    call r%run('plastic_decks', run_plastic_decks_tests)
+   call r%run('plastic_step', run_plastic_step_tests)
    call r%run('fields', run_fields_tests)
    call r%run('xdmf', run_xdmf_tests)
    call r%run('viewers', run_viewers_tests)
