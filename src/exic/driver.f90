@@ -11,6 +11,7 @@ module exic_driver
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
    use exic_base_signals, only: signals_install
+   use exic_explicit_energy, only: model_energies
    use exic_io_model, only: model_t
    use exic_io_program, only: MAX_LOOP_DEPTH
    use exic_io_report, only: report_preamble, report_summary, report_final, console_summary
@@ -68,7 +69,7 @@ contains
       if (len(restart) > 0) then
          call resume(r, model, opts%base, restart, err)
       else
-         call r%out%open(opts%base, err)
+         call r%out%open(opts%base, err, model_energies(model%materials))
          if (.not. allocated(err)) call report_preamble(r%out%files, model)
          if (.not. allocated(err)) call r%stp%init(model%mesh, model%materials, model%contact, err, model%loads)
          if (.not. allocated(err)) call report_summary(r%out%files, model, r%stp)

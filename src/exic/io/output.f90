@@ -16,10 +16,10 @@ module exic_io_output
    use exic_mesh_edge_set, only: find_edge_set, edge_set_nodes
    use exic_io_history, only: history_files_t
    use exic_io_fields, only: field_writer_t
-   use exic_io_report, only: energy_balance
    use exic_explicit_step, only: stepper_t, first_nonfinite
-   use exic_explicit_assembly, only: element_stress, all_stresses, NSIG
+   use exic_explicit_assembly, only: element_stress, all_stresses, NSIG, energy_balance
    use exic_explicit_loading, only: reaction
+   use exic_explicit_energy, only: energy_t, model_energies, ENERGY_NAMES, NENERGY, E_WPM, E_FRICTION, E_PLASTIC
    use exic_explicit_rigid, only: RB_PLAIN, RB_FREE
    implicit none
    private
@@ -31,12 +31,6 @@ module exic_io_output
       integer, allocatable :: nodes(:)
    end type node_list_t
 
-   !> The energies of the field output, datasets /energies/<name>; friction_dissipation only when
-   !> the run has friction (doc/friction.md, section 5), plastic_work only for decks with a plastic
-   !> set (doc/axisymmetry.md).
-   character(len=20), parameter :: ENERGY_NAMES(7) = [character(len=20) :: 'kinetic', 'strain', &
-                                                      'external_work', 'contact_work', 'hourglass', &
-                                                      'friction_dissipation', 'plastic_work']
    !> The element values of the field output of a deck with a plastic set (others: the first 7,
    !> fields.f90's default).
    character(len=20), parameter :: PLASTIC_CELL_NAMES(10) = [character(len=20) :: 'sxx', 'syy', &
@@ -74,13 +68,14 @@ module exic_io_output
 
 contains
 
-   !> Create <base>.his, .ene and .out.
-   subroutine output_open(self, base, err)
+   !> Create <base>.his, .ene and .out; `with`: the energies of <stem>.ene (model_energies).
+   subroutine output_open(self, base, err, with)
       class(output_t), intent(inout) :: self
       character(len=*), intent(in) :: base
       type(error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: with(NENERGY)
       self%base = base
-      call self%files%open(base, err)
+      call self%files%open(base, err, with)
    end subroutine output_open
 
    !> Flush the files (the field output times still in memory too) and note their lengths and
@@ -103,18 +98,19 @@ contains
       type(stepper_t), intent(in) :: stp
       type(error_t), allocatable, intent(out) :: err
       self%base = base
+      self%files%with = model_energies(model%materials)
       ! the .h5 first: when it cannot be continued, the text files stay as they are
       if (self%field_dt > 0.0_wp) then
          if (stp%st%has_plastic) then
             call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                     model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
-                                    pack(ENERGY_NAMES, energy_mask(stp)), err, cell_names=PLASTIC_CELL_NAMES, &
+                                    pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, cell_names=PLASTIC_CELL_NAMES, &
                                     friction=stp%contact%friction, &
                                     capacity=expected_field_times(model, stp%st%t, self%field_dt))
          else
             call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                     model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
-                                    pack(ENERGY_NAMES, energy_mask(stp)), err, friction=stp%contact%friction, &
+                                    pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, friction=stp%contact%friction, &
                                     capacity=expected_field_times(model, stp%st%t, self%field_dt))
          end if
          if (allocated(err)) return
@@ -196,6 +192,7 @@ contains
       type(stepper_t), intent(in) :: stp
       integer :: k
       real(wp) :: sig(NSIG), total, drift, kc
+      type(energy_t) :: en
 
       do k = 1, size(self%values)
          associate (q => model%requests(k), st => stp%st)
@@ -226,9 +223,10 @@ contains
       associate (st => stp%st)
          call self%files%his_row(st%t, self%values)
          call energy_balance(st, total, drift, kc)
-         call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
-                                 st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm, &
-                                 stp%contact%dissipation, st%plastic, kc)
+         ! the frictional dissipation as the contact has it now (also right after a restart)
+         en = st%energy
+         en%friction = stp%contact%dissipation
+         call self%files%ene_row(st%t, st%step, st%dt, en, total, drift, st%momentum, st%nactive, kc)
       end associate
       self%last_row_step = stp%st%step
    end subroutine write_rows
@@ -351,13 +349,13 @@ contains
          call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
                                model%mesh%mat, stp%contact%edges(), err, cell_names=PLASTIC_CELL_NAMES, &
-                               energy_names=pack(ENERGY_NAMES, energy_mask(stp)), &
+                               energy_names=pack(ENERGY_NAMES, energy_mask(stp, self%files)), &
                                friction=stp%contact%friction, capacity=expected_field_times(model, stp%st%t, dt_out))
       else
          call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
                                model%mesh%mat, stp%contact%edges(), err, &
-                               energy_names=pack(ENERGY_NAMES, energy_mask(stp)), &
+                               energy_names=pack(ENERGY_NAMES, energy_mask(stp, self%files)), &
                                friction=stp%contact%friction, capacity=expected_field_times(model, stp%st%t, dt_out))
       end if
    end subroutine output_open_fields
@@ -392,14 +390,17 @@ contains
       end if
    end function expected_field_times
 
-   !> Which of ENERGY_NAMES the run's field output has: the frictional dissipation with friction
-   !> only, the plastic work with a plastic set only.
-   pure function energy_mask(stp) result(mask)
+   !> Which of ENERGY_NAMES (explicit/energy.f90) the run's field output has: not the work of
+   !> the prescribed motion, the frictional dissipation with friction only, the plastic work
+   !> with a plastic set only, the other dissipations when <stem>.ene has them.
+   pure function energy_mask(stp, files) result(mask)
       type(stepper_t), intent(in) :: stp
-      logical :: mask(size(ENERGY_NAMES))
-      mask = .true.
-      mask(6) = stp%contact%friction
-      mask(7) = stp%st%has_plastic
+      type(history_files_t), intent(in) :: files
+      logical :: mask(NENERGY)
+      mask = files%with
+      mask(E_WPM) = .false.
+      mask(E_FRICTION) = stp%contact%friction
+      mask(E_PLASTIC) = stp%st%has_plastic
    end function energy_mask
 
    !> Write the fields when an output time is due. The next output time is the first multiple
@@ -450,14 +451,14 @@ contains
       logical, intent(out), optional :: nonfinite   !< the error is a non-finite value (nothing written)
       real(wp), allocatable :: sig(:, :)
       integer, allocatable :: flag(:)
-      real(wp) :: energies(7)
+      real(wp) :: energies(NENERGY)
       integer :: nc
       associate (st => stp%st)
          nc = merge(NSIG, 7, st%has_plastic)
          allocate (sig(nc, st%nelem), flag(st%nnode))
          call all_stresses(st, stp%sets, sig)
-         energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass, &
-                     stp%contact%dissipation, st%plastic]
+         energies = st%energy%values()
+         energies(E_FRICTION) = stp%contact%dissipation
          ! non-finite values are never written as results: the run stops, naming where
          if (present(nonfinite)) nonfinite = .false.
          if (.not. (all_finite(size(st%u), st%u) .and. all_finite(size(st%v), st%v) .and. &
@@ -471,12 +472,12 @@ contains
          flag = merge(1, 0, st%fcon(1, :) /= 0.0_wp .or. st%fcon(2, :) /= 0.0_wp)
          if (stp%contact%friction) then
             call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                        pack(energies, energy_mask(stp)), &
-                                        pack(ENERGY_NAMES, energy_mask(stp)), err, stp%contact%ffric)
+                                        pack(energies, energy_mask(stp, self%files)), &
+                                        pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, stp%contact%ffric)
          else
             call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                        pack(energies, energy_mask(stp)), &
-                                        pack(ENERGY_NAMES, energy_mask(stp)), err)
+                                        pack(energies, energy_mask(stp, self%files)), &
+                                        pack(ENERGY_NAMES, energy_mask(stp, self%files)), err)
          end if
          self%field_last = st%t
       end associate
