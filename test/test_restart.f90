@@ -50,6 +50,8 @@ contains
       call check(s, shell('grep -q "stiffness rows formed again at large strain [1-9]" '//dir// &
                           '/energy_face/energy_face.out') == 0, 'energy_face: the face''s stiffness '// &
                  'is formed again during the run (its state crosses the restart point)')
+      call section(s, 'restart: mass damping and bulk viscosity across the restart point')
+      call continued(s, exic, 'dissipation', dissipation_deck())
       call section(s, 'restart: a restart file of another deck is refused')
       call mismatch(s, exic)
       call section(s, 'restart: a write failure (file size limit) ends the run cleanly')
@@ -347,6 +349,18 @@ contains
              '  LOOP,,60'//nl//'    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
              '  disp,13,1'//nl//'  velo,13,1'//nl//'  stre,5,1'//nl//'  cont,1,1'//nl//nl//'STOP'
    end function one_point_deck
+
+   !> one_point_deck with DAMPing MASS 20 until 0.045 and VISCosity BULK (doc/damping.md): the
+   !> damping ends and the bar is compressed after the restart point (0.03); their nodal forces
+   !> and energies cross it.
+   function dissipation_deck() result(deck)
+      character(len=:), allocatable :: deck
+      character(len=*), parameter :: hg = '    HOURglass 0.1'//nl
+      integer :: k
+      deck = one_point_deck()
+      k = index(deck, hg) + len(hg)
+      deck = deck(:k - 1)//'    DAMPing MASS 20 0.045'//nl//'    VISCosity BULK'//nl//deck(k:)
+   end function dissipation_deck
 
    !> A bar (12 x 2, neo-Hookean) at 1 against a rigid wall 0.01 away, its struck end a
    !> massless contact face (LAGRange,ENERgy, doc/impact.md section 3): contact from t = 0.01
