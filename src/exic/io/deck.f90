@@ -18,7 +18,8 @@ module exic_io_deck
    use exic_base_error, only: error_t
    use exic_io_model, only: model_t
    use exic_material_material, only: material_t
-   use exic_io_records, only: read_source, keyword_is, to_lower
+   use exic_base_strings, only: to_lower
+   use exic_io_records, only: read_source, keyword_is
    use exic_io_reader, only: reader_t, next_record, next_nonblank, word, field, int_field, fail, &
                              where, check_command, looks_like_data, read_parameters, &
                              unknown_keyword, itoa, track_fields, unused_fields, use_all

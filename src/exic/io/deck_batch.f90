@@ -30,9 +30,10 @@ module exic_io_deck_batch
    use exic_io_deck_loads, only: read_prop_data
    use exic_io_records, only: keyword_is, keyword_key
    use exic_io_expression, only: evaluate
+   use exic_base_strings, only: rtoa, SHORT_REAL
    use exic_io_reader, only: next_in_set, reader_t, next_nonblank, field, word, has_field, &
                              real_field, int_field, fail, warn, warn_at, where, unknown_keyword, &
-                             itoa, rtoa, check_command, check_data_record, is_command
+                             itoa, check_command, check_data_record, is_command
    use exic_io_deck_mesh, only: genvec_t, node_record
    use exic_io_deck_finish, only: used_nodes, nearest_node
    implicit none
@@ -235,7 +236,7 @@ contains
          c%option = 'pene'
          if (.not. has_field(rd, i, 3)) c%v(1) = PENETRATION_WARN
          if (.not. (c%v(1) > 0.0_wp .and. c%v(1) < huge(1.0_wp))) &
-            call fail(rd, i, 'CHECk,PENEtration,fraction = '//rtoa(c%v(1))//': expected fraction > 0', err)
+            call fail(rd, i, 'CHECk,PENEtration,fraction = '//rtoa(c%v(1), SHORT_REAL)//': expected fraction > 0', err)
          if (has_field(rd, i, 4)) call fail(rd, i, 'CHECk,PENEtration,fraction takes one value; the fourth '// &
                                             'field '//field(rd, i, 4)//' is not used', err)
          return
@@ -248,7 +249,7 @@ contains
       if (.not. has_field(rd, i, 3)) c%v(1) = ENERGY_WARN
       if (.not. has_field(rd, i, 4)) c%v(2) = ENERGY_STOP
       if (.not. (c%v(1) > 0.0_wp .and. c%v(2) >= c%v(1) .and. c%v(2) < huge(1.0_wp))) &
-         call fail(rd, i, 'CHECk,ENERgy,warn,stop = '//rtoa(c%v(1))//', '//rtoa(c%v(2))// &
+         call fail(rd, i, 'CHECk,ENERgy,warn,stop = '//rtoa(c%v(1), SHORT_REAL)//', '//rtoa(c%v(2), SHORT_REAL)// &
                    ': expected 0 < warn <= stop', err)
       if (has_field(rd, i, 5)) call fail(rd, i, 'CHECk,ENERgy,warn,stop takes two values; the fifth field '// &
                                          field(rd, i, 5)//' is not used', err)
@@ -283,7 +284,7 @@ contains
       character(len=*), intent(in) :: what
       type(error_t), allocatable, intent(out) :: err
       if (v < 1.0_wp .or. v /= anint(v) .or. v > 2.0e9_wp) &
-         call fail(rd, i, what//' = '//rtoa(v)//': expected an integer >= 1', err)
+         call fail(rd, i, what//' = '//rtoa(v, SHORT_REAL)//': expected an integer >= 1', err)
    end subroutine positive_int
 
    !> DT,,dt | DT,CFL,c | DT dt (warning).
@@ -299,7 +300,7 @@ contains
          c%option = 'cfl'
          if (.not. has_field(rd, i, 3)) c%v(1) = DEFAULT_CFL
          if (.not. (c%v(1) > 0.0_wp .and. c%v(1) <= 1.0_wp)) &
-            call fail(rd, i, 'DT,CFL,c: c = '//rtoa(c%v(1))//': expected 0 < c <= 1', err)
+            call fail(rd, i, 'DT,CFL,c: c = '//rtoa(c%v(1), SHORT_REAL)//': expected 0 < c <= 1', err)
          return
       end if
       if (len_trim(c%option) > 0) then
@@ -313,7 +314,7 @@ contains
          c%option = ''
          c%v(1) = v
       end if
-      if (.not. (c%v(1) > 0.0_wp)) call fail(rd, i, 'DT,,dt: dt = '//rtoa(c%v(1))// &
+      if (.not. (c%v(1) > 0.0_wp)) call fail(rd, i, 'DT,,dt: dt = '//rtoa(c%v(1), SHORT_REAL)// &
                                              ': expected dt > 0 (or DT,CFL,c)', err)
    end subroutine parse_dt
 

@@ -11,8 +11,9 @@ module exic_io_deck_block
    use exic_mesh_block, only: BLOCK_CARTESIAN, BLOCK_POLAR, block_coordinates, &
                               block_connectivity, collapsed_edge
    use exic_io_records, only: keyword_is
+   use exic_base_strings, only: rtoa, SHORT_REAL
    use exic_io_reader, only: next_in_set, reader_t, next_record, field, word, has_field, &
-                             real_field, int_field, fail, where, unknown_keyword, itoa, rtoa, &
+                             real_field, int_field, fail, where, unknown_keyword, itoa, &
                              looks_like_data, check_data_record
    use exic_io_deck_mesh, only: builder_t, ensure_node, ensure_elem, MAX_NUMBER
    use exic_io_memory, only: mesh_memory_message
@@ -201,8 +202,8 @@ contains
          corner = [c1, c1 + 1, c1 + nr + 2, c1 + nr + 1]
          p = xb(:, corner(side))
          if (kind == BLOCK_POLAR .and. norm2(p - b%origin) <= tol) then
-            hint = ': a POLAr edge at r = 0 collapses to the centre ('//rtoa(b%origin(1))//', '// &
-                   rtoa(b%origin(2))//') and its elements would have two corners at one point; '// &
+            hint = ': a POLAr edge at r = 0 collapses to the centre ('//rtoa(b%origin(1), SHORT_REAL)//', '// &
+                   rtoa(b%origin(2), SHORT_REAL)//') and its elements would have two corners at one point; '// &
                    'start the POLAr block at r > 0, or mesh a disk with GMSH (doc/gmsh.md) or '// &
                    'with a centre square BLOCk and a ring of CARTesian BLOCks joined by TIE '// &
                    '(as inputs/paper/common/ex75_disk.inc does)'
@@ -210,7 +211,7 @@ contains
             hint = ': expected four distinct corners and mid-side nodes that keep the map one-to-one'
          end if
          call fail(rd, icmd, 'BLOCk: element ('//itoa(ie)//', '//itoa(je)//') of the block has '// &
-                   'two corners at one point near ('//rtoa(p(1))//', '//rtoa(p(2))//'), on '// &
+                   'two corners at one point near ('//rtoa(p(1), SHORT_REAL)//', '//rtoa(p(2), SHORT_REAL)//'), on '// &
                    edge//hint, err)
       end subroutine check_collapsed
    end subroutine cmd_block

@@ -22,8 +22,9 @@ module exic_io_deck_contact
                                 SURF_MATERIAL, SURF_FACETS, PAIR_NTOS, PAIR_SYMMETRIC, PAIR_SELF, &
                                 METHOD_LAGRANGE, METHOD_PENALTY, DETECT_SWEPT, DETECT_STATIC
    use exic_io_records, only: keyword_is
+   use exic_base_strings, only: rtoa, SHORT_REAL
    use exic_io_reader, only: reader_t, next_record, field, word, has_field, real_field, int_field, &
-                             fail, where, end_set, unknown_keyword, itoa, rtoa, nfields, &
+                             fail, where, end_set, unknown_keyword, itoa, nfields, &
                              check_data_record, no_more_fields
    implicit none
    private
@@ -259,7 +260,7 @@ contains
             end if
             if (allocated(err)) return
             if (p%energy .and. p%mus > 0.0_wp) then
-               call fail(rd, i, 'LAGRange,ENERgy with Coulomb friction (FRICtion,COULomb,'//rtoa(p%mus)// &
+               call fail(rd, i, 'LAGRange,ENERgy with Coulomb friction (FRICtion,COULomb,'//rtoa(p%mus, SHORT_REAL)// &
                          ') on the same pair: not supported (the massless faces are not coupled to '// &
                          'the tangential problem); expected LAGRange with friction, or ENERgy without', err)
                return
@@ -268,7 +269,7 @@ contains
             call friction(i, k0, p, err)
             if (allocated(err)) return
             if (p%energy .and. p%method == METHOD_LAGRANGE .and. p%mus > 0.0_wp) then
-               call fail(rd, i, 'FRICtion,COULomb,'//rtoa(p%mus)//' with LAGRange,ENERgy on the same pair: '// &
+               call fail(rd, i, 'FRICtion,COULomb,'//rtoa(p%mus, SHORT_REAL)//' with LAGRange,ENERgy on the same pair: '// &
                          'not supported (the massless faces are not coupled to the tangential '// &
                          'problem); expected LAGRange with friction, or ENERgy without', err)
                return
@@ -288,7 +289,7 @@ contains
             end if
             if (allocated(err)) return
             if (.not. (p%penalty > 0.0_wp)) then
-               call fail(rd, i, 'PENAlty '//rtoa(p%penalty)//': expected PENAlty,k or '// &
+               call fail(rd, i, 'PENAlty '//rtoa(p%penalty, SHORT_REAL)//': expected PENAlty,k or '// &
                          'PENAlty,SCALe,f with a value > 0', err)
                return
             end if
@@ -344,17 +345,17 @@ contains
             call real_field(rd, i, k0 + 4, what, p%decay, err)
             if (allocated(err)) return
             if (.not. p%decay > 0.0_wp) then
-               call fail(rd, i, 'FRICtion,COULomb decay '//rtoa(p%decay)//': expected decay > 0 (or '// &
+               call fail(rd, i, 'FRICtion,COULomb decay '//rtoa(p%decay, SHORT_REAL)//': expected decay > 0 (or '// &
                          'no decay field: mus at rest, mud when sliding)', err)
                return
             end if
          end if
          if (.not. (p%mus >= 0.0_wp .and. p%mud >= 0.0_wp)) then
-            call fail(rd, i, 'FRICtion,COULomb '//rtoa(p%mus)//', '//rtoa(p%mud)//': expected '// &
+            call fail(rd, i, 'FRICtion,COULomb '//rtoa(p%mus, SHORT_REAL)//', '//rtoa(p%mud, SHORT_REAL)//': expected '// &
                       'coefficients >= 0', err)
          else if (p%mud > p%mus) then
-            call fail(rd, i, 'FRICtion,COULomb,mus,mud with mud = '//rtoa(p%mud)//' above mus = '// &
-                      rtoa(p%mus)//': expected mud <= mus (the dynamic coefficient at most the static one)', err)
+            call fail(rd, i, 'FRICtion,COULomb,mus,mud with mud = '//rtoa(p%mud, SHORT_REAL)//' above mus = '// &
+                      rtoa(p%mus, SHORT_REAL)//': expected mud <= mus (the dynamic coefficient at most the static one)', err)
          else
             call no_more_fields(rd, i, k0 + 4, what, err)
          end if

@@ -24,7 +24,8 @@ module exic_io_deck_finish
    use exic_mesh_edge_set, only: find_edge_set, edge_set_nodes, edge_set_ids
    use exic_io_model, only: model_t
    use exic_io_records, only: keyword_is
-   use exic_io_reader, only: reader_t, fail, warn, warn_at, where, itoa, rtoa, word, field, int_field, &
+   use exic_base_strings, only: rtoa, SHORT_REAL
+   use exic_io_reader, only: reader_t, fail, warn, warn_at, where, itoa, word, field, int_field, &
                              unknown_keyword, has_field
    use exic_io_deck_mesh, only: builder_t, CB_NODE, CB_LINE, INIT_NODE, INIT_REGION, INIT_MATERIAL
    implicit none
@@ -177,7 +178,7 @@ contains
             n = model%mesh%conn(k, e)
             if (model%mesh%x(1, n) < 0.0_wp) then
                call fail(rd, merge(b%nrec(n), b%axis_rec, b%nrec(n) > 0), 'node '//itoa(n)// &
-                         ' (of element '//itoa(e)//') at r = x = '//rtoa(model%mesh%x(1, n))// &
+                         ' (of element '//itoa(e)//') at r = x = '//rtoa(model%mesh%x(1, n), SHORT_REAL)// &
                          ' < 0 with GLOBal AXISymmetric (at '//where(rd, b%axis_rec)// &
                          '): expected every node at r >= 0 (x = r, y = z)', err)
                return
@@ -289,12 +290,12 @@ contains
                if (j > 0) then
                   call fail(rd, b%erec(e), 'element '//itoa(e)//' (nodes '//nodes// &
                             ') has two corners at one point: nodes '//itoa(c(j))//' and '// &
-                            itoa(c(modulo(j, 4) + 1))//' at ('//rtoa(xe(1, j))//', '// &
-                            rtoa(xe(2, j))//'): expected four distinct corners (a 4-node '// &
+                            itoa(c(modulo(j, 4) + 1))//' at ('//rtoa(xe(1, j), SHORT_REAL)//', '// &
+                            rtoa(xe(2, j), SHORT_REAL)//'): expected four distinct corners (a 4-node '// &
                             'element cannot be collapsed to a triangle)', err)
                else if (area <= 0.0_wp) then
                   call fail(rd, b%erec(e), 'element '//itoa(e)//' (nodes '//nodes// &
-                            ') has non-positive area '//rtoa(area)//': expected counter-clockwise'// &
+                            ') has non-positive area '//rtoa(area, SHORT_REAL)//': expected counter-clockwise'// &
                             ' nodes', err)
                else
                   call fail(rd, b%erec(e), 'element '//itoa(e)//' (nodes '//nodes// &
@@ -416,7 +417,7 @@ contains
                if (n == 0) cycle
                dist = norm2(mesh%x(:, n) - cb%p(:, 1))
                if (dist > 1.0e-3_wp*h) call warn(rd, cb%rec, 'CBOUndary NODE: the nearest node '// &
-                                                 itoa(n)//' is '//rtoa(dist)//' away')
+                                                 itoa(n)//' is '//rtoa(dist, SHORT_REAL)//' away')
                call set_codes(mesh%bc(:, n), cb%code, cb%set)
             else
                d = cb%p(:, 2) - cb%p(:, 1)

@@ -22,9 +22,10 @@ module exic_io_deck_gmsh
    use exic_base_error, only: error_t
    use exic_base_sort, only: search_sorted
    use exic_mesh_edge_set, only: orient_edges, add_edges
-   use exic_io_records, only: keyword_is, to_lower, dirname
+   use exic_io_records, only: keyword_is, dirname
+   use exic_base_strings, only: rtoa, SHORT_REAL, to_lower
    use exic_io_reader, only: reader_t, next_in_set, field, word, has_field, int_field, fail, &
-                             warn, where, itoa, rtoa, check_data_record
+                             warn, where, itoa, check_data_record
    use exic_io_gmsh, only: gmsh_mesh_t, gmsh_read
    use exic_io_deck_mesh, only: builder_t, pbou_t, ensure_node, ensure_elem, set_mode, MAX_NUMBER
    use exic_io_memory, only: mesh_memory_message
@@ -149,7 +150,7 @@ contains
       do j = 1, gm%nnode
          if (used(j) .and. abs(gm%x(3, j)) > tol) then
             call fail(rd, icmd, tag//': node '//itoa8(gm%node_tag(j))//' has z = '// &
-                      rtoa(gm%x(3, j))//': expected a plane mesh in z = 0', err)
+                      rtoa(gm%x(3, j), SHORT_REAL)//': expected a plane mesh in z = 0', err)
             return
          end if
       end do

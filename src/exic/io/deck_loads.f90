@@ -26,8 +26,9 @@ module exic_io_deck_loads
                                   FN_TABLE, FN_RAMP, EDGE_NORMAL, EDGE_TANGENTIAL
    use exic_io_model, only: model_t
    use exic_io_records, only: keyword_is
+   use exic_base_strings, only: rtoa, SHORT_REAL
    use exic_io_reader, only: next_in_set, next_record, reader_t, nfields, field, word, has_field, &
-                             real_field, int_field, fail, where, unknown_keyword, itoa, rtoa, &
+                             real_field, int_field, fail, where, unknown_keyword, itoa, &
                              looks_like_data, check_data_record, end_set
    use exic_io_deck_mesh, only: genvec_t, node_record
    use exic_io_deck_finish, only: used_nodes, mesh_size
@@ -479,9 +480,9 @@ contains
             dbest = min(dbest, d)
          end do
          if (dbest > tol) then
-            call fail(rd, grp%prec(k), 'CSURface point '//itoa(k)//' ('//rtoa(grp%pts(1, k))//', '// &
-                      rtoa(grp%pts(2, k))//') is not on a boundary: the nearest boundary edge is '// &
-                      rtoa(dbest)//' away: expected a point on the boundary of the mesh', err)
+            call fail(rd, grp%prec(k), 'CSURface point '//itoa(k)//' ('//rtoa(grp%pts(1, k), SHORT_REAL)//', '// &
+                      rtoa(grp%pts(2, k), SHORT_REAL)//') is not on a boundary: the nearest boundary edge is '// &
+                      rtoa(dbest, SHORT_REAL)//' away: expected a point on the boundary of the mesh', err)
             return
          end if
       end do
@@ -661,7 +662,7 @@ contains
       if (f%k < 0) then
          call fail(rd, i, what//': k = '//itoa(f%k)//': expected an exponent k >= 0', err)
       else if (.not. (f%tmax > f%tmin)) then
-         call fail(rd, i, what//': tmin = '//rtoa(f%tmin)//', tmax = '//rtoa(f%tmax)// &
+         call fail(rd, i, what//': tmin = '//rtoa(f%tmin, SHORT_REAL)//', tmax = '//rtoa(f%tmax, SHORT_REAL)// &
                    ': expected tmax > tmin', err)
       else if (has_field(rd, i, 9)) then
          call fail(rd, i, what//': the ninth field '//field(rd, i, 9)//' is not used', err)
@@ -718,7 +719,7 @@ contains
             n = size(tab, 2)
             if (n > 0) then
                if (t < tab(1, n)) then
-                  call fail(rd, ir, what//': t = '//rtoa(t)//' after t = '//rtoa(tab(1, n))// &
+                  call fail(rd, ir, what//': t = '//rtoa(t, SHORT_REAL)//' after t = '//rtoa(tab(1, n), SHORT_REAL)// &
                             ': expected the times in order (non-decreasing; a time given twice '// &
                             'is a jump)', err)
                   return

@@ -28,8 +28,9 @@ module exic_io_deck_material
                                      MAT_UNDEFINED, HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
    use exic_material_j2_hardening, only: j2_check_parameters, J2_MISES, J2_POWER, J2_JOHNSON_COOK
    use exic_io_records, only: keyword_is
+   use exic_base_strings, only: rtoa, SHORT_REAL
    use exic_io_reader, only: reader_t, next_record, field, word, real_field, int_field, fail, &
-                             warn, where, end_set, unknown_keyword, rtoa, itoa, &
+                             warn, where, end_set, unknown_keyword, itoa, &
                              check_data_record, has_field
    implicit none
    private
@@ -59,14 +60,14 @@ contains
          call real_field(rd, i, 3, 'HOURglass,PHYSical,s', mat%hourglass, err)
          if (allocated(err)) return
          if (.not. (mat%hourglass > 0.0_wp .and. mat%hourglass <= 1.0_wp)) &
-            call fail(rd, i, 'HOURglass,PHYSical,'//rtoa(mat%hourglass)//': expected a scale s with '// &
+            call fail(rd, i, 'HOURglass,PHYSical,'//rtoa(mat%hourglass, SHORT_REAL)//': expected a scale s with '// &
                       '0 < s <= 1 (1: the assumed-strain stiffness of the material)', err)
       else
          mat%hourglass_kind = HOURGLASS_STIFFNESS
          call real_field(rd, i, 2, 'HOURglass h (a coefficient) or HOURglass,PHYSical[,s]', &
                          mat%hourglass, err)
          if (allocated(err)) return
-         if (.not. mat%hourglass >= 0.0_wp) call fail(rd, i, 'HOURglass '//rtoa(mat%hourglass)// &
+         if (.not. mat%hourglass >= 0.0_wp) call fail(rd, i, 'HOURglass '//rtoa(mat%hourglass, SHORT_REAL)// &
                                                       ': expected a coefficient >= 0', err)
       end if
    end subroutine hourglass_record
@@ -249,13 +250,13 @@ contains
                call fail(rd, icmd, 'MATErial '//itoa(ma)//' (SOLId): expected ELAStic NEOHookean '// &
                          'E nu', err)
             else if (.not. (mat%young > 0.0_wp)) then
-               call fail(rd, ielas, 'MATErial '//itoa(ma)//': E = '//rtoa(mat%young)// &
+               call fail(rd, ielas, 'MATErial '//itoa(ma)//': E = '//rtoa(mat%young, SHORT_REAL)// &
                          ': expected E > 0', err)
             else if (.not. (mat%poisson > -1.0_wp .and. mat%poisson < 0.5_wp)) then
-               call fail(rd, ielas, 'MATErial '//itoa(ma)//': nu = '//rtoa(mat%poisson)// &
+               call fail(rd, ielas, 'MATErial '//itoa(ma)//': nu = '//rtoa(mat%poisson, SHORT_REAL)// &
                          ': expected -1 < nu < 0.5', err)
             else if (.not. (mat%rho > 0.0_wp)) then
-               call fail(rd, idens, 'MATErial '//itoa(ma)//': rho = '//rtoa(mat%rho)// &
+               call fail(rd, idens, 'MATErial '//itoa(ma)//': rho = '//rtoa(mat%rho, SHORT_REAL)// &
                          ': expected DENSity rho > 0', err)
             else
                call lame_from_young(mat%young, mat%poisson, mat%lambda, mat%mu)
@@ -277,7 +278,7 @@ contains
                return
             end if
             if (mat%rho < 0.0_wp) call fail(rd, idens, 'MATErial '//itoa(ma)//': rho = '// &
-                                            rtoa(mat%rho)//': expected DENSity rho >= 0', err)
+                                            rtoa(mat%rho, SHORT_REAL)//': expected DENSity rho >= 0', err)
             if (has_e) call warn(rd, ielas, 'ELAStic ignored for a RIGId material')
             if (mat%free .and. .not. allocated(err) .and. .not. (mat%rho > 0.0_wp)) &
                call fail(rd, irig, 'MATErial '//itoa(ma)//': a free rigid body (RIGId,FREE) needs '// &

@@ -197,17 +197,8 @@ contains
       subroutine push(node, val)
          integer, intent(in) :: node
          real(wp), intent(in) :: val(2)
-         integer, allocatable :: tn(:)
-         real(wp), allocatable :: tv(:, :)
-         if (.not. allocated(nodes)) then
-            allocate (nodes(64), vals(2, 64))
-         else if (cnt == size(nodes)) then
-            allocate (tn(2*cnt), tv(2, 2*cnt))
-            tn(1:cnt) = nodes(1:cnt)
-            tv(:, 1:cnt) = vals(:, 1:cnt)
-            call move_alloc(tn, nodes)
-            call move_alloc(tv, vals)
-         end if
+         call grow(nodes, max(cnt + 1, 64))
+         call grow(vals, max(cnt + 1, 64), 2)
          cnt = cnt + 1
          nodes(cnt) = node
          vals(:, cnt) = val

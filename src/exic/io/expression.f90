@@ -16,7 +16,7 @@
 !> digits, `_`, starting with a letter) and are case-folded.
 module exic_io_expression
    use exic_base_kinds, only: wp
-   use exic_base_strings, only: itoa
+   use exic_base_strings, only: itoa, to_lower
    use exic_base_error, only: error_t, make_error
    implicit none
    private
@@ -66,7 +66,7 @@ contains
       real(wp), allocatable :: tv(:)
       integer :: k
       do k = 1, tab%n
-         if (tab%name(k) == lower(name)) then
+         if (tab%name(k) == to_lower(name)) then
             tab%value(k) = value
             return
          end if
@@ -81,7 +81,7 @@ contains
          call move_alloc(tv, tab%value)
       end if
       tab%n = tab%n + 1
-      tab%name(tab%n) = lower(name)
+      tab%name(tab%n) = to_lower(name)
       tab%value(tab%n) = value
    end subroutine set_param
 
@@ -96,7 +96,7 @@ contains
       found = .false.
       if (len(name) > MAX_NAME) return
       do k = 1, tab%n
-         if (tab%name(k) == lower(name)) then
+         if (tab%name(k) == to_lower(name)) then
             value = tab%value(k)
             found = .true.
             return
@@ -255,7 +255,7 @@ contains
             if (.not. (is_letter(c) .or. is_digit(c) .or. c == '_')) exit
             q = q + 1
          end do
-         name = lower(ps%s(ps%p:q - 1))
+         name = to_lower(ps%s(ps%p:q - 1))
          ps%p = q
          if (q <= len(ps%s)) then
             if (ps%s(q:q) == '(') then
@@ -429,16 +429,5 @@ contains
       character, intent(in) :: c
       is_letter = (c >= 'a' .and. c <= 'z') .or. (c >= 'A' .and. c <= 'Z')
    end function is_letter
-
-   pure function lower(s) result(t)
-      character(len=*), intent(in) :: s
-      character(len=len(s)) :: t
-      integer :: k, c
-      t = s
-      do k = 1, len(s)
-         c = iachar(s(k:k))
-         if (c >= iachar('A') .and. c <= iachar('Z')) t(k:k) = achar(c + 32)
-      end do
-   end function lower
 
 end module exic_io_expression

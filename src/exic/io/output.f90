@@ -15,7 +15,7 @@ module exic_io_output
                               REQ_REAC_REGION, REQ_REAC_SET, REQ_RIGI
    use exic_mesh_edge_set, only: find_edge_set, edge_set_nodes
    use exic_io_history, only: history_files_t
-   use exic_io_fields, only: field_writer_t
+   use exic_io_fields, only: field_writer_t, STRESS_NAMES
    use exic_io_posix, only: file_kind, FILE_MISSING
    use exic_io_report, only: energy_balance
    use exic_explicit_step, only: stepper_t, first_nonfinite
@@ -40,8 +40,8 @@ module exic_io_output
                                                       'friction_dissipation', 'plastic_work']
    !> The element values of the field output of a deck with a plastic set (others: the first 7,
    !> fields.f90's default).
-   character(len=20), parameter :: PLASTIC_CELL_NAMES(10) = [character(len=20) :: 'sxx', 'syy', &
-      'szz', 'sxy', 'pressure', 'von_mises', 'J', 'plastic_strain', 'temperature', 'yield_stress']
+   character(len=20), parameter :: PLASTIC_CELL_NAMES(10) = [character(len=20) :: STRESS_NAMES, &
+      'plastic_strain', 'temperature', 'yield_stress']
 
    !> The run's output files and their schedules.
    type :: output_t

@@ -11,16 +11,16 @@
 !> (PAIR and contact method records) the parser calls `no_more_fields` itself.
 module exic_io_reader
    use exic_base_kinds, only: wp
-   use exic_base_strings, only: itoa
+   use exic_base_strings, only: itoa, rtoa, to_lower, SHORT_REAL
    use exic_base_error, only: error_t, make_error
-   use exic_io_records, only: source_t, to_lower, keyword_is, nearest_keyword
+   use exic_io_records, only: source_t, keyword_is, nearest_keyword
    use exic_io_expression, only: param_table_t, set_param, evaluate, is_valid_name
    implicit none
    private
 
    public :: reader_t, next_record, next_in_set, next_nonblank, back_one, nfields, field, word, has_field
    public :: real_field, int_field, fail, warn, warn_at, where, end_set, looks_like_data, check_command
-   public :: read_parameters, unknown_keyword, itoa, rtoa, check_data_record, is_command
+   public :: read_parameters, unknown_keyword, itoa, check_data_record, is_command
    public :: no_more_fields, unused_fields, use_all, track_fields
 
    !> Every command keyword of the language (mesh, solution and top level), used to tell a
@@ -280,10 +280,10 @@ contains
       call real_field(rd, i, k, what, v, err)
       if (allocated(err)) return
       if (abs(v) > 2.0e9_wp) then
-         call fail(rd, i, what//': field '//itoa(k)//' = '//rtoa(v)//': expected an integer '// &
+         call fail(rd, i, what//': field '//itoa(k)//' = '//rtoa(v, SHORT_REAL)//': expected an integer '// &
                    'of reasonable size', err)
       else if (abs(v - anint(v)) > 1.0e-9_wp*max(1.0_wp, abs(v))) then
-         call fail(rd, i, what//': field '//itoa(k)//' = '//rtoa(v)//': expected an integer', err)
+         call fail(rd, i, what//': field '//itoa(k)//' = '//rtoa(v, SHORT_REAL)//': expected an integer', err)
       else
          n = nint(v)
       end if
@@ -403,14 +403,5 @@ contains
          call set_param(rd%params, name, v)
       end do
    end subroutine parameter_record
-
-   !> Real as short text.
-   pure function rtoa(v) result(s)
-      real(wp), intent(in) :: v
-      character(len=:), allocatable :: s
-      character(len=32) :: buf
-      write (buf, '(g0.8)') v
-      s = trim(adjustl(buf))
-   end function rtoa
 
 end module exic_io_reader

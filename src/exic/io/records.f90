@@ -15,13 +15,13 @@
 !> `TIE`) match on their own length.
 module exic_io_records
    use exic_base_error, only: error_t, make_error
-   use exic_base_strings, only: itoa
+   use exic_base_strings, only: itoa, to_lower
    use exic_io_posix, only: file_kind, FILE_REGULAR, FILE_DIRECTORY, FILE_MISSING
    implicit none
    private
 
    public :: field_t, record_t, source_t
-   public :: read_source, split_fields, to_lower, keyword_is, keyword_key, nearest_keyword
+   public :: read_source, split_fields, keyword_is, keyword_key, nearest_keyword
    public :: edit_distance, dirname
 
    !> Longest record accepted (characters, trailing blanks excluded).
@@ -374,18 +374,6 @@ contains
       nf = nf + 1
       f(nf)%s = s
    end subroutine add_field
-
-   !> Lower-case copy of `s` (ASCII).
-   pure function to_lower(s) result(t)
-      character(len=*), intent(in) :: s
-      character(len=len(s)) :: t
-      integer :: k, c
-      t = s
-      do k = 1, len(s)
-         c = iachar(s(k:k))
-         if (c >= iachar('A') .and. c <= iachar('Z')) t(k:k) = achar(c + 32)
-      end do
-   end function to_lower
 
    !> The significant part of a keyword's display form: first 4 characters, lower case.
    pure function keyword_key(display) result(key)
