@@ -103,6 +103,11 @@ def base_decks():
     fp = FRICTION_PLASTIC
     bases['friction'] = ({}, fp[:fp.index('END\nBATCh')], fp[fp.index('NEXT\nEND\n') + len('NEXT\nEND\n'):],
                          dict(dt='1e-3', tplot=1, tout=2e-3, loop=1000000, tend=0.06))
+    # the same block dropped from 0.03 above the floor: restart points before its first contact
+    gap = fp.replace('1,0,0.01', '1,0,0.03').replace('2,2,0.01', '2,2,0.03').replace(
+        '3,2,1.01', '3,2,1.03').replace('4,0,1.01', '4,0,1.03')
+    bases['friction_gap'] = ({}, gap[:gap.index('END\nBATCh')], bases['friction'][2],
+                             dict(dt='1e-3', tplot=1, tout=2e-3, loop=1000000, tend=0.06))
     return bases
 
 
@@ -278,6 +283,7 @@ def main():
     ap.add_argument('--exic', required=True)
     ap.add_argument('--quick', action='store_true', help='one base deck, one restart point (the suite)')
     ap.add_argument('--keep', help='work in this folder and keep it')
+    ap.add_argument('--bases', help='comma-separated base decks (default: all)')
     args = ap.parse_args()
     exic = os.path.abspath(args.exic)
     work = args.keep or tempfile.mkdtemp(prefix='restart_family_')
@@ -285,7 +291,9 @@ def main():
     R = Runner(exic, work)
     bases = base_decks()
     names = ['ex72'] if args.quick else list(bases)
-    fractions = [0.55] if args.quick else [0.1, 0.45, 0.8]
+    if args.bases:
+        names = args.bases.split(',')
+    fractions = [0.55] if args.quick else [0.15, 0.4, 0.7]
     results = []
     refs = {}
 
@@ -310,7 +318,9 @@ def main():
         T1 = float(p1['tend'])
         fixed = 'dt' in p1
         for f in fractions:
-            p1f = dict(p1, save=repr(f * T1))
+            # P1 ends at 1.6 f T1 (< 2 f T1): its one interval restart file is at f T1
+            T1 = 1.6 * f * float(p1['tend'])
+            p1f = dict(p1, save=repr(f * float(p1['tend'])), tend=repr(T1))
             # the run with the short program, its interval restart file (.rst.prev) and end file
             src = os.path.join(work, '%s_f%g_src' % (bname, f))
             R.write_case(src, base, p1f)
@@ -321,8 +331,10 @@ def main():
             rst = os.path.join(src, 'a.rst.prev')
             t_r = h5_number(rst, '/state.t')
             nact = h5_number(rst, '/state.nactive')
+            wcon = h5_number(rst, '/state.wcon')
             ntimes = int(h5_number(rst, '/output.field_times'))
-            tag = '%s t_r=%.4g %s' % (bname, t_r, 'contact' if nact > 0 else 'apart')
+            where = 'in contact' if nact > 0 else ('after contact' if wcon != 0 else 'before contact')
+            tag = '%s t_r=%.4g %s' % (bname, t_r, where)
             T2 = repr(1.5 * T1)
             allowed = {
                 'time': dict(p1f, tend=T2),
@@ -345,7 +357,7 @@ def main():
                 else:
                     srck, rstk = src, rst
                 ref = reference(bname, p2)
-                for folder in ('same', 'new'):
+                for folder in (('same', 'new') if kind in ('time', 'output', 'loop') else ('same',)):
                     d = os.path.join(work, '%s_f%g_%s_%s' % (bname, f, kind, folder))
                     shutil.rmtree(d, ignore_errors=True)
                     if folder == 'same':
