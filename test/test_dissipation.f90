@@ -295,7 +295,21 @@ contains
       call refused(s, 'visc_kind', '    VISCosity SHEAr', 'expected VISCosity BULK [q1 q2]')
       call refused(s, 'visc_one', '    VISCosity BULK 1.5', 'give both q1 and q2')
       call refused(s, 'visc_neg', '    VISCosity BULK -1 0.06', 'expected finite q1 >= 0 and q2 >= 0')
+      call axisymmetric_refused(s)
    end subroutine records
+
+   !> VISCosity BULK on an AXISymmetric solid stops the run before its first step, naming why.
+   subroutine axisymmetric_refused(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, deck
+      integer :: stage, k
+      deck = free_deck('    VISCosity BULK'//nl, '1e-3', '0.01')
+      k = index(deck, 'MATErial,1')
+      deck = deck(:k - 1)//'GLOBal'//nl//'  AXISymmetric'//nl//nl//deck(k:)
+      call run_deck('visc_axi', deck, stage, msg)
+      call check(s, stage == 2 .and. index(msg, 'VISCosity BULK is not available for AXISymmetric') > 0, &
+                 'VISCosity BULK with GLOBal AXISymmetric: refused, naming why', msg)
+   end subroutine axisymmetric_refused
 
    !> The free-body deck with material record `rec` is refused with `expect` in the message.
    subroutine refused(s, name, rec, expect)

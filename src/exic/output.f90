@@ -16,6 +16,7 @@ module exic_output
    use exic_mesh_edge_set, only: find_edge_set, edge_set_nodes
    use exic_output_text_history, only: history_files_t
    use exic_output_fields, only: field_writer_t, STRESS_NAMES
+   use exic_base_posix, only: file_kind, FILE_MISSING
    use exic_explicit_step, only: stepper_t, first_nonfinite
    use exic_explicit_assembly, only: element_stress, all_stresses, NSIG, energy_balance
    use exic_explicit_loading, only: reaction
@@ -49,6 +50,8 @@ module exic_output
       real(wp) :: field_dt = 0.0_wp                 !< OUTPut,HDF5 interval (0: no field output)
       real(wp) :: field_next = 0.0_wp               !< time of the next field output
       real(wp) :: field_last = -huge(1.0_wp)        !< time of the last field output
+      real(wp) :: field_t0 = 0.0_wp                 !< time of OUTPut,HDF5 (the schedule's origin)
+      real(wp) :: field_checked = -huge(1.0_wp)     !< time of the last look at the schedule
       logical :: warned_interval = .false.          !< the interval-below-the-step warning was given
       ! what the files held at the last restart point (`checkpoint`)
       integer(i8) :: saved_his_bytes = 0, saved_ene_bytes = 0
@@ -90,15 +93,41 @@ contains
 
    !> Continue the outputs of the run that wrote a restart file, whose output state (schedules,
    !> lengths, number of output times) has been read into self: the text files cut to their
-   !> lengths then, the field files to their output times then, and appended to.
-   subroutine output_resume(self, base, model, stp, err)
+   !> lengths then, the field files to their output times then, and appended to. In a folder
+   !> that holds none of them (<base>.his, .ene and, with field output, .h5 all missing: the
+   !> restart file was taken elsewhere), new files are made that start at the restart point
+   !> (`fresh` true); some missing and some present is refused, naming them
+   !> (doc/input-language.md, "Restart files").
+   subroutine output_resume(self, base, model, stp, fresh, err)
       class(output_t), intent(inout) :: self
       character(len=*), intent(in) :: base
       type(model_t), intent(in) :: model
       type(stepper_t), intent(in) :: stp
+      logical, intent(out) :: fresh
       type(error_t), allocatable, intent(out) :: err
+      character(len=:), allocatable :: present_files, missing
       self%base = base
       self%files%with = model_energies(model%materials)
+      present_files = ''
+      missing = ''
+      call sort_file(base//'.his', present_files, missing)
+      call sort_file(base//'.ene', present_files, missing)
+      if (self%field_dt > 0.0_wp) call sort_file(base//'.h5', present_files, missing)
+      fresh = len(present_files) == 0
+      if (.not. fresh .and. len(missing) > 0) then
+         call make_error(err, 'cannot continue the outputs of the restart file: '//missing(3:)// &
+                         ' missing while '//present_files(3:)//' present (all present: they are continued; '// &
+                         'none: new files start at the restart point)')
+         return
+      end if
+      if (fresh) then
+         call self%files%open(base, err)
+         if (allocated(err)) return
+         if (self%field_dt > 0.0_wp) call create_fields(self, model, stp, err)
+         if (allocated(err)) return
+         call self%begin(model)
+         return
+      end if
       ! the .h5 first: when it cannot be continued, the text files stay as they are
       if (self%field_dt > 0.0_wp) then
          if (stp%st%has_plastic) then
@@ -119,6 +148,17 @@ contains
       if (allocated(err)) return
       call self%begin(model, header=.false.)
    end subroutine output_resume
+
+   !> Add ', '//path to `there` or to `absent`, as the file exists or not.
+   subroutine sort_file(path, there, absent)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(inout) :: there, absent
+      if (file_kind(path) == FILE_MISSING) then
+         absent = absent//', '//path
+      else
+         there = there//', '//path
+      end if
+   end subroutine sort_file
 
    !> At the start of the time loop: the history header (`header` false: a restarted run, whose
    !> file has it) and the region of every node.
@@ -345,20 +385,31 @@ contains
       if (self%fields%is_open()) return
       self%field_dt = dt_out
       self%field_next = stp%st%t
+      self%field_t0 = stp%st%t
+      call create_fields(self, model, stp, err)
+   end subroutine output_open_fields
+
+   !> Create <stem>.h5 and <stem>.xdmf with the mesh, with room for the output times of the
+   !> schedule (field_dt) from now to the end of the program.
+   subroutine create_fields(self, model, stp, err)
+      type(output_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(stepper_t), intent(in) :: stp
+      type(error_t), allocatable, intent(out) :: err
       if (stp%st%has_plastic) then
          call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
                                model%mesh%mat, stp%contact%edges(), err, cell_names=PLASTIC_CELL_NAMES, &
-                               energy_names=pack(ENERGY_NAMES, energy_mask(stp, self%files)), &
-                               friction=stp%contact%friction, capacity=expected_field_times(model, stp%st%t, dt_out))
+                               energy_names=pack(ENERGY_NAMES, energy_mask(stp, self%files)), friction=stp%contact%friction, &
+                               capacity=expected_field_times(model, stp%st%t, self%field_dt))
       else
          call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
                                model%mesh%mat, stp%contact%edges(), err, &
-                               energy_names=pack(ENERGY_NAMES, energy_mask(stp, self%files)), &
-                               friction=stp%contact%friction, capacity=expected_field_times(model, stp%st%t, dt_out))
+                               energy_names=pack(ENERGY_NAMES, energy_mask(stp, self%files)), friction=stp%contact%friction, &
+                               capacity=expected_field_times(model, stp%st%t, self%field_dt))
       end if
-   end subroutine output_open_fields
+   end subroutine create_fields
 
    !> The number of field output times a run writes from t on, every dt_out, up to the end time
    !> of its BATCh program (its largest TIME), plus the final state: the room the field file is
@@ -413,6 +464,7 @@ contains
       type(error_t), allocatable, intent(out) :: err
       real(wp) :: behind, next
       if (.not. self%fields%is_open()) return
+      self%field_checked = stp%st%t
       ! output times kept in memory longer than the batch allows go to the file now (the rows of
       ! the text files up to them were flushed when they were taken)
       call self%fields%flush_stale(err)

@@ -91,6 +91,9 @@ module exic_explicit_step
       integer :: dt_elements_at = 0                   !< its element
       integer :: folded = 0                           !< first element folded at a corner in that pass
       real(wp) :: tmax = -1.0_wp                      !< end time to land on (TIME,,tmax; < 0: none)
+      !> the end time that last shortened a step to land on it (-1: none yet): a state whose
+      !> steps it shaped is not that of a run with a later end time (session/program_change.f90)
+      real(wp) :: landed_tmax = -1.0_wp
       logical :: dt_warned = .false.
       ! energy guard: limits as fractions of the energy put in, and the worst growth seen
       real(wp) :: energy_warn = ENERGY_WARN
@@ -537,7 +540,10 @@ contains
             ! land exactly on tmax with steps no larger than the stable one
             if (self%tmax > st%t) then
                n = ceiling((self%tmax - st%t)/st%dt*(1.0_wp - TIME_TOL))
-               if (n >= 1 .and. n <= 4) st%dt = (self%tmax - st%t)/real(n, wp)
+               if (n >= 1 .and. n <= 4) then
+                  if ((self%tmax - st%t)/real(n, wp) /= st%dt) self%landed_tmax = self%tmax
+                  st%dt = (self%tmax - st%t)/real(n, wp)
+               end if
             end if
          else
             if (self%dt_fixed <= 0.0_wp) then
