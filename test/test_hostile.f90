@@ -20,12 +20,12 @@ module test_hostile
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
-   use exic_io_history, only: history_files_t
-   use exic_io_number, only: put_real, put_int, REAL_WIDTH
-   use exic_io_memory, only: mesh_memory_message
-   use exic_io_posix, only: make_directories, file_kind, FILE_DIRECTORY, FILE_MISSING
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
+   use exic_output_text_history, only: history_files_t
+   use exic_output_text_number, only: put_real, put_int, REAL_WIDTH
+   use exic_base_memory, only: mesh_memory_message
+   use exic_base_posix, only: make_directories, file_kind, FILE_DIRECTORY, FILE_MISSING
    use testing, only: suite_t, check, section, file_text
    implicit none
    private
@@ -379,7 +379,7 @@ contains
       call row_text(s)
    end subroutine number_format
 
-   !> The rows' own number formatting (exic_io_number) gives the characters of Fortran's
+   !> The rows' own number formatting (exic_output_text_number) gives the characters of Fortran's
    !> `1x,es24.16e3` and `i12` editing: zeros, subnormals, the extremes, powers of ten and
    !> their neighbours, 300000 random bit patterns of every exponent, and 200000 numbers whose
    !> decimal expansion is a tie or nearly one at the 17th significant digit.

@@ -8,8 +8,8 @@ module test_loads
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_explicit_step, only: stepper_t
    use exic_explicit_state, only: plus_zero
    use exic_explicit_loads, only: prop_fn_t, prop_eval, prop_value, FN_TYPE1, FN_TABLE, FN_RAMP

@@ -5,8 +5,8 @@ module test_physics
    use testing, only: suite_t, check, check_close, section
    use deck_runner, only: run_dir, run_deck, read_table, column, write_text, file_has
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_explicit_state, only: state_t, element_set_t
    use exic_explicit_assembly, only: assembly_init, internal_forces
    implicit none

@@ -6,7 +6,7 @@ module test_rigid
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
+   use exic_model_model, only: model_t
    use exic_explicit_step, only: stepper_t
    use exic_explicit_rigid, only: RB_FREE
    use testing, only: suite_t, check, check_close, section, error_text

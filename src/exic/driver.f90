@@ -1,7 +1,7 @@
 !> The BATCh interpreter (spec section 5): runs a model's solution program command by command.
 !>
-!> The step itself is src/exic/explicit/step.f90 (`stepper_t`), the files src/exic/io/output.f90
-!> and src/exic/io/report.f90, what is done around a step (restart files, signals, the
+!> The step itself is src/exic/explicit/step.f90 (`stepper_t`), the files src/exic/output.f90
+!> and src/exic/output/text/report.f90, what is done around a step (restart files, signals, the
 !> penetration check) src/exic/session/run.f90; this module only decides, command by command,
 !> what to call.
 module exic_driver
@@ -11,9 +11,9 @@ module exic_driver
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
    use exic_base_signals, only: signals_install
-   use exic_io_model, only: model_t
-   use exic_io_program, only: MAX_LOOP_DEPTH
-   use exic_io_report, only: report_preamble, report_summary, report_final, console_summary
+   use exic_model_model, only: model_t
+   use exic_model_program, only: MAX_LOOP_DEPTH
+   use exic_output_text_report, only: report_preamble, report_summary, report_final, console_summary
    use exic_session_run, only: fields_observer, run_t, INSIDE_STEPS, resume, save_restart, init_inside, &
                                check_inside, start, step, after_step, finish_progress, pass_messages
    implicit none

@@ -13,10 +13,10 @@ module exic_session_run
    use exic_base_progress, only: progress_t, clock_text
    use exic_base_strings, only: itoa, rtoa
    use exic_base_signals, only: signals_take, SIG_BIT_INT, SIG_BIT_TERM, SIG_BIT_USR1, SIG_BIT_USR2
-   use exic_io_model, only: model_t
-   use exic_io_restart, only: run_position_t, write_restart, read_restart
-   use exic_io_output, only: output_t
-   use exic_io_report, only: energy_balance
+   use exic_model_model, only: model_t
+   use exic_restart, only: run_position_t, write_restart, read_restart
+   use exic_output, only: output_t
+   use exic_output_text_report, only: energy_balance
    use exic_explicit_step, only: stepper_t
    use exic_contact_inside, only: inside_t
    implicit none
