@@ -18,6 +18,8 @@
 !>   PLAStic JOHNson-cook A B n C m Tmelt Troom epsdot0   [ext] Johnson-Cook
 !>   SPECific heat c                 adiabatic heating (Taylor-Quinney 0.9)
 !>   MIXEd                           mean dilatation for the 2x2 element (FEAP's mixed element)
+!>   DAMPing MASS c [t_end]          [ext] mass damping (deck_material_dissipation.f90)
+!>   VISCosity BULK [q1 q2]          [ext] bulk viscosity (deck_material_dissipation.f90)
 !> ```
 !> A set is checked when its blank record is read: element type given; for SOLId E > 0,
 !> -1 < nu < 0.5 and rho > 0; for RIGId rho >= 0; for RIGId,FREE rho > 0 (a free body needs a
@@ -30,6 +32,7 @@ module exic_input_deck_material
    use exic_material_law, only: LAW_NEOHOOKEAN, LAW_HYPOELASTIC
    use exic_material_j2_hardening, only: j2_check_parameters, J2_MISES, J2_POWER, J2_JOHNSON_COOK
    use exic_input_deck_records, only: keyword_is
+   use exic_input_deck_material_dissipation, only: damping_record, viscosity_record, check_dissipation
    use exic_base_strings, only: rtoa, SHORT_REAL
    use exic_input_deck_reader, only: reader_t, next_record, field, word, real_field, int_field, fail, &
                              warn, where, end_set, unknown_keyword, itoa, &
@@ -39,10 +42,10 @@ module exic_input_deck_material
 
    public :: cmd_material
 
-   character(len=16), parameter :: props(13) = [character(len=16) :: 'SOLId', 'RIGId', &
+   character(len=16), parameter :: props(15) = [character(len=16) :: 'SOLId', 'RIGId', &
                                                 'ELAStic', 'DENSity', 'QUADrature', 'HOURglass', &
                                                 'MASS', 'PLANe', 'FINIte', 'BODY', 'PLAStic', &
-                                                'SPECific', 'MIXEd']
+                                                'SPECific', 'MIXEd', 'DAMPing', 'VISCosity']
 
 contains
 
@@ -89,7 +92,7 @@ contains
       integer, intent(out) :: ma
       type(material_t), intent(out) :: mat
       type(error_t), allocatable, intent(out) :: err
-      integer :: i, ielas, idens, irig, iplas
+      integer :: i, ielas, idens, irig, iplas, idiss
       logical :: has_e, has_rho
 
       call int_field(rd, icmd, 2, 'MATErial,ma', ma, err)
@@ -105,6 +108,7 @@ contains
       idens = icmd
       irig = icmd
       iplas = 0
+      idiss = 0
       do
          call next_record(rd, i)
          if (i == 0) exit
@@ -116,6 +120,7 @@ contains
          if (allocated(err)) return
       end do
       call check(err)
+      if (.not. allocated(err) .and. idiss > 0) call check_dissipation(rd, idiss, ma, mat, err)
    contains
       subroutine property(i, err)
          integer, intent(in) :: i
@@ -187,6 +192,12 @@ contains
             if (iplas == 0) iplas = i
          else if (keyword_is(w, 'mixe')) then
             mat%mixed = .true.
+         else if (keyword_is(w, 'damp')) then
+            call damping_record(rd, i, mat, err)
+            idiss = i
+         else if (keyword_is(w, 'visc')) then
+            call viscosity_record(rd, i, mat, err)
+            idiss = i
          else if (keyword_is(w, 'body')) then
             call real_field(rd, i, 2, 'BODY bx by', mat%body(1), err)
             if (.not. allocated(err)) call real_field(rd, i, 3, 'BODY bx by', mat%body(2), err)
