@@ -28,6 +28,7 @@ program exic_tests
    use test_rigid, only: run_rigid_tests
    use test_plasticity, only: run_plasticity_tests
    use test_axisymmetric, only: run_axisymmetric_tests
+   use test_hypoelastic, only: run_hypoelastic_tests
    use test_plastic_decks, only: run_plastic_decks_tests
    use test_plastic_step, only: run_plastic_step_tests
    use test_hostile, only: run_hostile_tests
@@ -53,6 +54,7 @@ program exic_tests
    call r%run('hourglass', run_hourglass_tests)
    call r%run('plasticity', run_plasticity_tests)
    call r%run('axisymmetric', run_axisymmetric_tests)
+   call r%run('hypoelastic', run_hypoelastic_tests)
    call r%run('plastic_decks', run_plastic_decks_tests)
    call r%run('plastic_step', run_plastic_step_tests)
    call r%run('fields', run_fields_tests)

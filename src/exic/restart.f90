@@ -188,7 +188,7 @@ contains
       do k = 1, size(stp%sets)
          associate (s => stp%sets(k))
             sets(:, k) = [real(s%mat, wp), real(s%kind, wp), real(s%nq, wp), real(s%nel, wp), &
-                          s%lambda, s%mu, s%rho, merge(-s%hourglass, s%hourglass, &
+                          s%law%lambda, s%law%mu, s%rho, merge(-s%hourglass, s%hourglass, &
                           s%hgkind == HOURGLASS_PHYSICAL)]
          end associate
       end do

@@ -19,7 +19,8 @@ module exic_explicit_assembly
    use exic_base_strings, only: rtoa
    use exic_base_threads, only: threaded
    use exic_mesh_mesh, only: mesh_t
-   use exic_material_material, only: material_t, MAT_SOLID, MAT_RIGID
+   use exic_material_material, only: material_t, MAT_SOLID, MAT_RIGID, material_law
+   use exic_material_law, only: law_has_history
    use exic_explicit_state, only: state_t, element_set_t, plus_zero
    use exic_explicit_central, only: cd_kinetic, cd_kinetic_power, cd_zero
    use exic_explicit_dissipation, only: mass_damping, half_work, damped_step
@@ -101,8 +102,7 @@ contains
             s%kind = m%kind
             s%nq = m%quadrature
             s%nel = count(im)
-            s%lambda = m%lambda
-            s%mu = m%mu
+            s%law = material_law(m)
             s%rho = m%rho
             s%hourglass = m%hourglass
             s%hgkind = m%hourglass_kind
@@ -152,16 +152,16 @@ contains
       end do
    end subroutine assembly_init
 
-   !> The general solid path of set s (doc/axisymmetry.md) when it is axisymmetric, plastic or
-   !> MIXEd, with the history of a plastic set; else the plane-strain elastic kernels.
+   !> The general solid path of set s (doc/axisymmetry.md) when it is axisymmetric or MIXEd or
+   !> its law has a history (with that history); else the plane-strain kernels of quad4.f90.
    subroutine general_path(s, m, axi)
       type(element_set_t), intent(inout) :: s
       type(material_t), intent(in) :: m
       logical, intent(in) :: axi
-      s%general = m%kind == MAT_SOLID .and. (axi .or. m%plastic .or. (m%mixed .and. m%quadrature == 2))
-      s%solid = q4g_init(m%quadrature, axi, m%mixed, m%plastic .and. s%general, m%lambda, m%mu, &
-                         m%rho, m%hourglass, m%j2, m%hourglass_kind)
-      if (s%solid%plastic) then
+      s%general = m%kind == MAT_SOLID .and. (axi .or. law_has_history(s%law) .or. &
+                                             (m%mixed .and. m%quadrature == 2))
+      s%solid = q4g_init(m%quadrature, axi, m%mixed, s%law, m%hourglass, m%hourglass_kind)
+      if (s%solid%nvar > 0) then
          allocate (s%hist(s%solid%nvar, s%nq*s%nq, s%nel))
          call q4g_hist_init(s%solid, s%nel, s%hist)
       else
@@ -421,7 +421,7 @@ contains
          e1 = s%rfirst(r)
          n = s%rfirst(r + 1) - e1
          if (s%general) then
-            if (s%solid%plastic) then
+            if (s%solid%nvar > 0) then
                call q4g_force(s%solid, n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, dt, &
                               s%hist(:, :, e1:e1 + n - 1), f, pw(r), phg(r), pdw(r), pj(r), pe(r), &
                               pd(r), pm(r), pf(r), v)
@@ -430,11 +430,11 @@ contains
                               pw(r), phg(r), pdw(r), pj(r), pe(r), pd(r), pm(r), pf(r), v)
             end if
          else if (s%nq == 2) then
-            call q4_force_2x2(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%lambda, s%mu, s%rho, f, &
+            call q4_force_2x2(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%law, f, &
                               pw(r), pj(r), pe(r), pd(r), pm(r), pf(r))
             phg(r) = 0.0_wp
          else
-            call q4_force_1pt(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%lambda, s%mu, s%rho, &
+            call q4_force_1pt(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, s%law, &
                               s%hourglass, f, pw(r), phg(r), pj(r), pe(r), pd(r), pm(r), pf(r), &
                               s%hgkind, v)
          end if
@@ -466,7 +466,7 @@ contains
             if (s%general) then
                call q4g_stable_dt(s%solid, s%nel, st%nnode, s%conn, st%x0, x, d, e, ef)
             else
-               call q4_stable_dt(s%nq, s%nel, st%nnode, s%conn, st%x0, x, s%lambda, s%mu, s%rho, d, e, ef)
+               call q4_stable_dt(s%nq, s%nel, st%nnode, s%conn, st%x0, x, s%law, d, e, ef)
             end if
             if (s%damping > 0.0_wp .and. st%t <= s%damping_end) d = damped_step(d, s%damping)
             if (ef /= 0 .and. efold == 0) efold = s%elems(ef)
@@ -555,14 +555,14 @@ contains
       associate (s => sets(st%eset(e)))
          if (s%kind /= MAT_SOLID) return
          if (s%general) then
-            if (s%solid%plastic) then
+            if (s%solid%nvar > 0) then
                call q4g_stress(s%solid, 1, st%nnode, s%conn(:, j:j), st%x0, st%u, s%hist(:, :, j:j), sg)
             else
                call q4g_stress(s%solid, 1, st%nnode, s%conn(:, j:j), st%x0, st%u, s%hist, sg)
             end if
             sig = sg(:, 1)
          else
-            call q4_stress(s%nq, 1, st%nnode, s%conn(:, j:j), st%x0, st%u, s%lambda, s%mu, s1)
+            call q4_stress(s%nq, 1, st%nnode, s%conn(:, j:j), st%x0, st%u, s%law, s1)
             sig(1:7) = s1(:, 1)
          end if
       end associate
@@ -587,7 +587,7 @@ contains
                call q4g_stress(s%solid, s%nel, st%nnode, s%conn, st%x0, st%u, s%hist, s1)
             else
                allocate (s1(7, s%nel))
-               call q4_stress(s%nq, s%nel, st%nnode, s%conn, st%x0, st%u, s%lambda, s%mu, s1)
+               call q4_stress(s%nq, s%nel, st%nnode, s%conn, st%x0, st%u, s%law, s1)
             end if
             sig(1:min(nc, size(s1, 1)), s%elems) = s1(1:min(nc, size(s1, 1)), :)
             deallocate (s1)

@@ -3,6 +3,7 @@ module exic_explicit_state
    use exic_base_kinds, only: wp, i8
    use exic_element_q4_general, only: q4_solid_t
    use exic_material_material, only: HOURGLASS_STIFFNESS
+   use exic_material_law, only: law_t
    use exic_explicit_energy, only: energy_t
    implicit none
    private
@@ -23,19 +24,21 @@ module exic_explicit_state
       integer :: nel = 0
       integer, allocatable :: elems(:)          !< (nel) global element numbers
       integer, allocatable :: conn(:, :)        !< (4, nel) global node numbers
-      real(wp) :: lambda = 0.0_wp, mu = 0.0_wp, rho = 0.0_wp, hourglass = 0.0_wp
+      type(law_t) :: law                        !< the material law (material/law.f90)
+      real(wp) :: rho = 0.0_wp, hourglass = 0.0_wp
       integer :: hgkind = HOURGLASS_STIFFNESS   !< or HOURGLASS_PHYSICAL (doc/hourglass.md)
       integer :: nrange = 0                     !< ranges of consecutive elements
       integer, allocatable :: rfirst(:)         !< (nrange + 1) first element of each range
       integer :: ncolour = 0
       integer, allocatable :: cfirst(:)         !< (ncolour + 1) first entry of each colour in cranges
       integer, allocatable :: cranges(:)        !< (nrange) the ranges by colour, ascending in each
-      !> The general solid path (doc/axisymmetry.md): axisymmetric, plastic or MIXEd sets run
-      !> q4_general.f90 with `solid`; the plane-strain elastic sets quad4.f90's kernels.
+      !> The general solid path (doc/axisymmetry.md): axisymmetric and MIXEd sets and those whose
+      !> law has a history run q4_general.f90 with `solid`; the others quad4.f90's kernels.
       logical :: general = .false.
       type(q4_solid_t) :: solid
-      !> (nvar, nq*nq, nel) history of a plastic set (Cp^-1, ep[, T]; material/j2.f90), changed
-      !> only by the force pass; (1, 1, 1) otherwise
+      !> (nvar, nq*nq, nel) history of a set whose law has one (law_t%nvar: J2's Cp^-1, ep[, T],
+      !> material/j2.f90; the hypoelastic F, stress, energy), changed only by the force pass;
+      !> (1, 1, 1) otherwise
       real(wp), allocatable :: hist(:, :, :)
       !> DAMPing MASS c [t_end] (doc/damping.md, section 2): c (0: none), t_end, the set's nodes
       !> and their shares of the lumped mass (allocated only when c > 0)

@@ -1,6 +1,7 @@
 !> The run's report in <stem>.out: the deck echo before the first step, the model summary, and
 !> the final state, energy balance, wall time and contact statistics at the end.
 module exic_output_text_report
+   use exic_material_law, only: law_name
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa, rtoa_result
    use exic_base_error, only: error_t
@@ -54,7 +55,7 @@ contains
       do k = 1, size(stp%sets)
          associate (s => stp%sets(k), m => model%materials(stp%sets(k)%mat))
             if (s%kind == MAT_SOLID) then
-               call files%say('material '//itoa(s%mat)//': solid neo-Hookean, E = '// &
+               call files%say('material '//itoa(s%mat)//': solid '//law_name(s%law)//', E = '// &
                               rtoa(m%young)//', nu = '//rtoa(m%poisson)//', lambda = '// &
                               rtoa(m%lambda)//', mu = '//rtoa(m%mu)//', rho = '//rtoa(m%rho)// &
                               ', quadrature '//itoa(s%nq)//', elements '//itoa(s%nel)// &
