@@ -26,6 +26,7 @@ module test_plastic_step
    use exic_base_kinds, only: wp
    use exic_material_material, only: lame_from_young, HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
    use exic_material_j2_hardening, only: j2_param_t, J2_MISES
+   use exic_material_law, only: law_make, LAW_J2, LAW_NEOHOOKEAN
    use exic_element_quad4, only: q4_lumped_mass
    use exic_element_q4_general, only: q4_solid_t, q4g_init, q4g_force, q4g_hist_init
    use exic_linalg_lapack, only: dsygv
@@ -145,11 +146,15 @@ contains
       pel%y0 = huge(1.0_wp)
       pel%yinf = huge(1.0_wp)
       if (phys) then
-         o = q4g_init(1, .false., .false., plastic, lam, mu, RHO, 1.0_wp, prm, HOURGLASS_PHYSICAL)
-         oel = q4g_init(1, .false., .false., plastic, lam, mu, RHO, 1.0_wp, pel, HOURGLASS_PHYSICAL)
+         o = q4g_init(1, .false., .false., law_make(merge(LAW_J2, LAW_NEOHOOKEAN, plastic), lam, mu, RHO, prm), &
+                        1.0_wp, HOURGLASS_PHYSICAL)
+         oel = q4g_init(1, .false., .false., law_make(merge(LAW_J2, LAW_NEOHOOKEAN, plastic), lam, mu, RHO, pel), &
+                        1.0_wp, HOURGLASS_PHYSICAL)
       else
-         o = q4g_init(1, .false., .false., plastic, lam, mu, RHO, 0.1_wp, prm, HOURGLASS_STIFFNESS)
-         oel = q4g_init(1, .false., .false., plastic, lam, mu, RHO, 0.1_wp, pel, HOURGLASS_STIFFNESS)
+         o = q4g_init(1, .false., .false., law_make(merge(LAW_J2, LAW_NEOHOOKEAN, plastic), lam, mu, RHO, prm), &
+                        0.1_wp, HOURGLASS_STIFFNESS)
+         oel = q4g_init(1, .false., .false., law_make(merge(LAW_J2, LAW_NEOHOOKEAN, plastic), lam, mu, RHO, pel), &
+                        0.1_wp, HOURGLASS_STIFFNESS)
       end if
       ! the reference rectangle, turned by 30 degrees
       rot = reshape([cos(0.5235987755982988_wp), sin(0.5235987755982988_wp), &
