@@ -6,7 +6,7 @@
 !> bars are derived by characteristics in doc/contact-verification.md.
 module test_contact
    use exic_base_kinds, only: wp
-   use exic_base_strings, only: rtoa
+   use exic_base_strings, only: rtoa, itoa
    use testing, only: suite_t, check, check_close, section
    use deck_runner, only: run_dir, run_deck, read_table, column, file_has
    implicit none
@@ -40,6 +40,11 @@ contains
       call penalty_test(s)
       call section(s, 'contact: bodies overlapping at the start')
       call overlap_test(s)
+      call section(s, 'contact: a wall of 10 x 1505 elements beside a block (no overlap)')
+      call long_wall_test(s, 'AUTOmatic', 10.0_wp, 0, 'a block beside a wall of long elements is not an overlap (AUTOmatic)')
+      call long_wall_test(s, 'PAIR,1,NTOS,2,1', 10.0_wp, 0, 'nor with the block nodes against the wall (NTOS)')
+      call long_wall_test(s, 'PAIR,1,NTOS,1,2', 10.0_wp, 0, 'nor with the wall nodes against the block (NTOS)')
+      call long_wall_test(s, 'AUTOmatic', 7.0_wp, 2, 'the block 3 inside the wall is refused')
       call section(s, 'contact: self contact of a U-shaped body')
       call self_contact_test(s)
    end subroutine run_contact_tests
@@ -94,6 +99,44 @@ contains
       call check(s, stage == 2 .and. index(msg, 'overlap') > 0 .and. index(msg, 'node') > 0 .and. &
                  index(msg, '5.0000000E-02') > 0, 'overlapping bodies are refused, naming the node and the depth', msg)
    end subroutine overlap_test
+
+   !> Issue 32, item 6: a wall of 1 x 2 elements of 10 x 1505 (3010 high) and a block of 4 x 4
+   !> elements of 10 beside it, its left face at x = x0 (10: touching; 7: inside the wall by 3),
+   !> moving away from the wall at 0.1 for 20 steps. Touching: it runs, and the wall's far bottom
+   !> corner (node 1 at (0, 0), which the old check took for a node inside the block) moves by less
+   !> than 1, a tenth of the wall's width (a false contact moves it by 50). Overlapping: refused, naming the depth 3.
+   subroutine long_wall_test(s, pair, x0, want, what)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: pair, what
+      real(wp), intent(in) :: x0
+      integer, intent(in) :: want
+      character(len=:), allocatable :: msg, deck
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: d(:, :)
+      integer :: stage
+      deck = 'FEAP * * wall beside a block'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1e4 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,1,2,1,1,1'//nl//'    1,0,0'//nl//'    2,10,0'//nl// &
+             '    3,10,3010'//nl//'    4,0,3010'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,4,4,7,3,1'//nl//'    1,'//rtoa(x0)//',0'//nl// &
+             '    2,'//rtoa(x0 + 40)//',0'//nl//'    3,'//rtoa(x0 + 40)//',40'//nl//'    4,'//rtoa(x0)//',40'//nl//nl// &
+             'INITial,VELOcity'//nl//'  REGIon,2,0.1,0'//nl//nl// &
+             'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
+             '  '//pair//nl//'END CONTact'//nl//nl//'END'//nl// &
+             'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,20'//nl//'    TIME,,2'//nl// &
+             '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//'  disp,1,1'//nl//'  disp,1,2'//nl//nl//'STOP'
+      call run_deck('wall_'//itoa(want)//'_'//pair(1:4)//pair(len(pair):), deck, stage, msg)
+      if (want == 2) then
+         call check(s, stage == 2 .and. index(msg, 'bodies overlap at the start') > 0 .and. &
+                    index(msg, '3.0000') > 0, what, msg)
+         return
+      end if
+      call check(s, stage == 0, what, msg)
+      if (stage /= 0) return
+      call read_table(run_dir//'/wall_'//itoa(want)//'_'//pair(1:4)//pair(len(pair):)//'.his', names, d)
+      call check(s, maxval(abs(d(2:3, :))) < 1.0_wp, 'the far corner of the wall stays (no false contact)', &
+                 'largest displacement '//rtoa(maxval(abs(d(2:3, :)))))
+   end subroutine long_wall_test
 
    !> Seed example 7.2: bar 30 x 4 (30 x 6) at 50 against a free vertical bar 4 x 30 meshed
    !> 6 x 30 (node on node) or 6 x 31 (node on segment); lambda = 33333, mu = 5000, rho = 0.1.
