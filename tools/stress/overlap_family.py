@@ -6,7 +6,7 @@ of 4 x 4 square elements of edge w, on its left or its right, the block's base a
 regions in either order (wall first or block first), and contact by NTOS (block nodes against the
 wall, or wall nodes against the block), SYMMetric or AUTOmatic.
 
-Asserted for every variant (the start check: a run of one step, TIME 0):
+Asserted for every variant (the start check: a run of one step, LOOP,,1):
   - apart or touching: exit code 0 (no "bodies overlap at the start"), every number of its .his
     finite;
   - overlapping by 0.3 w (the block's face inside the wall element): exit code 1 with "bodies
@@ -82,7 +82,7 @@ def deck(ar, ny, side, gap, lift, order, mode, steps):
             "    ELAStic NEOHookean %g %g\n    DENSity %g\n\n" % (E, NU, RHO) + body +
             "INITial,VELOcity\n  REGIon,%d,%.17g,0\n\n" % (rid["block"], v) +
             "CONTact\n" + cont + "END CONTact\nEND\nBATCh\n  DT,CFL,0.9\n  TPLOt,,1\n"
-            "  LOOP,,100000\n    TIME,,%.17g\n    FORM,EXPLicit\n  NEXT\nEND\n" % (20 * dt_est * steps) +
+            "  LOOP,,%d\n    TIME,,%.17g\n    FORM,EXPLicit\n  NEXT\nEND\n" % (100000 if steps else 1, 20 * dt_est) +
             "  disp,%d,1\n  disp,%d,2\n\nSTOP\n" % (wall_far, wall_far))
     return text, w
 
