@@ -23,7 +23,7 @@ RELEASE := --profile release --flag "$(RELEASE_FLAGS)"
 EXAMPLE ?= inputs/examples/impact.inp
 OUTDIR  ?= out
 
-.PHONY: all setup deps venv build run test test-release test-viewers serial verify stress bench bench-peers taylor-ccx baseline plots install legacy-host clean help
+.PHONY: all doc setup deps venv build run test test-release test-viewers serial verify stress bench bench-peers taylor-ccx baseline plots install legacy-host clean help
 
 all: build
 
@@ -45,6 +45,8 @@ help:
 	@echo "make plots DECK=path.inp [OUTDIR=out]   run a deck, draw its histories and contours"
 	@echo "              into OUTDIR/plots"
 	@echo "make test-viewers  install ParaView (Debian packages) and check it reads the field output"
+	@echo "make doc     the API reference of the library from the sources' !> comments (FORD) into"
+	@echo "              build/doc/api/index.html"
 	@echo "make install PREFIX=dir    install the exic program, libexic.a, module files and the C header"
 	@echo "make legacy-host PREFIX=dir   build examples/legacy_host against that installation"
 
@@ -189,6 +191,12 @@ install: setup
 legacy-host: install
 	$(MAKE) -C examples/legacy_host PREFIX=$(abspath $(or $(PREFIX),$(CURDIR)/dist)) \
 	        OUT=$(abspath $(or $(PREFIX),$(CURDIR)/dist))/bin
+
+# The API reference (FORD, pinned in tools/requirements.txt; doc/ford.md is its project file):
+# every module of src/exic with its public entities and their !> comments.
+doc: setup
+	$(VENV)/bin/ford doc/ford.md
+	@echo "the API reference: $(CURDIR)/build/doc/api/index.html"
 
 clean:
 	rm -rf build $(OUTDIR)

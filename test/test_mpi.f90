@@ -1,6 +1,7 @@
 !> The exic program on several MPI ranks (doc/parallel.md): a family of small scenes (AUTOmatic
 !> contact between bodies given in any order with gravity, Coulomb friction on a rigid floor,
-!> a free rigid disk striking a bar, one-point elements with no contact) run by `mpirun -np P`
+!> a free rigid disk striking a bar, one-point elements with no contact, bars with bulk
+!> viscosity and mass damping in AUTOmatic contact) run by `mpirun -np P`
 !> for P = 1, 2, 3, 4 must write .his and .ene files equal byte for byte to those of the same
 !> program run without mpirun (one rank); the report names the decomposition (a cut that is
 !> not empty: the partition boundaries cross the bodies and their contact surfaces); a deck
@@ -19,22 +20,25 @@ module test_mpi
    character(len=*), parameter :: nl = new_line('a')
    character(len=*), parameter :: MPIRUN = 'mpirun --oversubscribe --allow-run-as-root'
    character(len=*), parameter :: HEAD = 'FEAP * * mpi scene'//nl//'0 0 0 2 2 4'//nl
+   !> Checks of the suite: 13 per scene, 3 of the refusals.
+   integer, parameter :: NCHECKS = 5*13 + 3
 
 contains
 
    subroutine run_mpi_tests(s)
       type(suite_t), intent(inout) :: s
       character(len=:), allocatable :: exic
-      character(len=*), parameter :: names(4) = [character(len=10) :: 'auto', 'friction', 'free_rigid', 'one_point']
+      character(len=*), parameter :: names(5) = [character(len=11) :: 'auto', 'friction', 'free_rigid', 'one_point', &
+                                                 'dissipation']
       integer :: k
       call section(s, 'mpi: mpirun -np 1..4 writes the serial .his and .ene byte for byte')
       exic = exic_program()
       if (len(exic) == 0) then
-         call skip(s, 'decks on several ranks', 'the exic program next to the tests', 54)
+         call skip(s, 'decks on several ranks', 'the exic program next to the tests', NCHECKS)
          return
       end if
       if (.not. have_command('mpirun')) then
-         call skip(s, 'decks on several ranks', 'mpirun (Debian openmpi-bin, which the Makefile installs)', 54)
+         call skip(s, 'decks on several ranks', 'mpirun (Debian openmpi-bin, which the Makefile installs)', NCHECKS)
          return
       end if
       do k = 1, size(names)
@@ -92,6 +96,21 @@ contains
                 'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
                 '  PAIR,1,SYMMetric,1,2'//nl//'END CONTact'//nl//'END'//nl//'TIE,REGIon,2,2'//nl// &
                 batch('0.08')//'  disp,10,1'//nl//'  velo,80,2'//nl//nl//'STOP'
+      case ('dissipation')
+         ! the scene 'auto' with VISCosity BULK on both bars (the default and given q1 q2) and
+         ! DAMPing MASS on the one-point bar until t = 0.15: the viscous forces of the blocks
+         ! exchanged, the damping on every rank, their .ene columns
+         deck = HEAD//solid1//'    QUADrature 1'//nl//'    HOURglass 0.1'//nl//'    VISCosity BULK'//nl// &
+                '    DAMPing MASS 2 0.15'//nl//nl// &
+                'MATErial,2'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 2000 0.45'//nl//'    DENSity 1'//nl// &
+                '    VISCosity BULK 2 0.1'//nl//nl// &
+                'MATErial,3'//nl//'  RIGId'//nl//'    DENSity 1'//nl//nl// &
+                'REGIon,1'//nl//block(24, 6, 1, 2.05, 0.0, 5.05, 1.0)// &
+                'REGIon,2'//nl//block(20, 6, 2, 0.0, 0.0, 2.0, 1.0)// &
+                'REGIon,3'//nl//block(1, 2, 3, 5.1, -1.0, 6.0, 2.0)// &
+                'INITial,VELOcity'//nl//'  REGIon,2,4,0'//nl//'  REGIon,1,1,0'//nl//nl// &
+                'CONTact'//nl//'  AUTOmatic'//nl//'END CONTact'//nl//nl//'GRAVity,0,-10'//nl//nl//'END'//nl// &
+                batch('0.3')//'  disp,5,1'//nl//'  velo,60,2'//nl//nl//'STOP'
       case default
          ! one-point elements, no contact, no loads: the plain step
          deck = HEAD//solid1//'    QUADrature 1'//nl//'    HOURglass 0.1'//nl//nl// &
@@ -199,7 +218,8 @@ contains
       end do
    end function count_lines
 
-   !> A plastic deck on 2 ranks is refused at the start, naming PLAStic; on 1 rank it runs.
+   !> A plastic deck on 2 ranks is refused at the start, naming PLAStic; on 1 rank it runs. A
+   !> hypoelastic deck (ELAStic ISOTropic) on 2 ranks is refused naming it.
    subroutine refusal_test(s, exic)
       type(suite_t), intent(inout) :: s
       character(len=*), intent(in) :: exic
@@ -219,6 +239,17 @@ contains
       call execute_command_line(exic//' -q '//deck//' -o '//run_dir//'/mpi_plastic > '//run_dir// &
                                 '/mpi_plastic.log 2>&1', exitstat=code)
       call check(s, code == 0, 'the same deck runs on one rank', file_text(run_dir//'/mpi_plastic.log'))
+      ! the hypoelastic law keeps a history per point too
+      call write_text(deck, HEAD//'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic ISOTropic 1000 0.3'//nl// &
+                      '    DENSity 1'//nl//nl//'REGIon,1'//nl// &
+                      block(4, 2, 1, 0.0, 0.0, 2.0, 1.0)//'INITial,VELOcity'//nl//'  REGIon,1,1,0'//nl//nl// &
+                      'END'//nl//batch('0.01')//nl//'STOP')
+      call execute_command_line(MPIRUN//' -np 2 '//exic//' -q '//deck//' -o '//run_dir//'/mpi_plastic > '// &
+                                run_dir//'/mpi_plastic.log 2>&1', exitstat=code)
+      log = file_text(run_dir//'/mpi_plastic.log')
+      call check(s, code /= 0 .and. index(log, 'ELAStic ISOTropic') > 0 .and. &
+                 index(log, 'not yet supported on several MPI ranks') > 0, &
+                 'a hypoelastic deck on 2 ranks is refused naming ELAStic ISOTropic', log)
    end subroutine refusal_test
 
 end module test_mpi

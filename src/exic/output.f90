@@ -16,10 +16,11 @@ module exic_output
    use exic_mesh_edge_set, only: find_edge_set, edge_set_nodes
    use exic_output_text_history, only: history_files_t
    use exic_output_fields, only: field_writer_t, STRESS_NAMES
-   use exic_output_text_report, only: energy_balance
+   use exic_base_posix, only: file_kind, FILE_MISSING
    use exic_explicit_step, only: stepper_t, first_nonfinite
-   use exic_explicit_assembly, only: element_stress, all_stresses, NSIG
+   use exic_explicit_assembly, only: element_stress, all_stresses, NSIG, energy_balance
    use exic_explicit_loading, only: reaction
+   use exic_explicit_energy, only: energy_t, model_energies, ENERGY_NAMES, NENERGY, E_WPM, E_FRICTION, E_PLASTIC
    use exic_explicit_rigid, only: RB_PLAIN, RB_FREE
    implicit none
    private
@@ -31,12 +32,6 @@ module exic_output
       integer, allocatable :: nodes(:)
    end type node_list_t
 
-   !> The energies of the field output, datasets /energies/<name>; friction_dissipation only when
-   !> the run has friction (doc/friction.md, section 5), plastic_work only for decks with a plastic
-   !> set (doc/axisymmetry.md).
-   character(len=20), parameter :: ENERGY_NAMES(7) = [character(len=20) :: 'kinetic', 'strain', &
-                                                      'external_work', 'contact_work', 'hourglass', &
-                                                      'friction_dissipation', 'plastic_work']
    !> The element values of the field output of a deck with a plastic set (others: the first 7,
    !> fields.f90's default).
    character(len=20), parameter :: PLASTIC_CELL_NAMES(10) = [character(len=20) :: STRESS_NAMES, &
@@ -55,6 +50,8 @@ module exic_output
       real(wp) :: field_dt = 0.0_wp                 !< OUTPut,HDF5 interval (0: no field output)
       real(wp) :: field_next = 0.0_wp               !< time of the next field output
       real(wp) :: field_last = -huge(1.0_wp)        !< time of the last field output
+      real(wp) :: field_t0 = 0.0_wp                 !< time of OUTPut,HDF5 (the schedule's origin)
+      real(wp) :: field_checked = -huge(1.0_wp)     !< time of the last look at the schedule
       logical :: warned_interval = .false.          !< the interval-below-the-step warning was given
       ! what the files held at the last restart point (`checkpoint`)
       integer(i8) :: saved_his_bytes = 0, saved_ene_bytes = 0
@@ -74,13 +71,14 @@ module exic_output
 
 contains
 
-   !> Create <base>.his, .ene and .out.
-   subroutine output_open(self, base, err)
+   !> Create <base>.his, .ene and .out; `with`: the energies of <stem>.ene (model_energies).
+   subroutine output_open(self, base, err, with)
       class(output_t), intent(inout) :: self
       character(len=*), intent(in) :: base
       type(error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: with(NENERGY)
       self%base = base
-      call self%files%open(base, err)
+      call self%files%open(base, err, with)
    end subroutine output_open
 
    !> Flush the files (the field output times still in memory too) and note their lengths and
@@ -95,26 +93,53 @@ contains
 
    !> Continue the outputs of the run that wrote a restart file, whose output state (schedules,
    !> lengths, number of output times) has been read into self: the text files cut to their
-   !> lengths then, the field files to their output times then, and appended to.
-   subroutine output_resume(self, base, model, stp, err)
+   !> lengths then, the field files to their output times then, and appended to. In a folder
+   !> that holds none of them (<base>.his, .ene and, with field output, .h5 all missing: the
+   !> restart file was taken elsewhere), new files are made that start at the restart point
+   !> (`fresh` true); some missing and some present is refused, naming them
+   !> (doc/input-language.md, "Restart files").
+   subroutine output_resume(self, base, model, stp, fresh, err)
       class(output_t), intent(inout) :: self
       character(len=*), intent(in) :: base
       type(model_t), intent(in) :: model
       type(stepper_t), intent(in) :: stp
+      logical, intent(out) :: fresh
       type(error_t), allocatable, intent(out) :: err
+      character(len=:), allocatable :: present_files, missing
       self%base = base
+      self%files%with = model_energies(model%materials)
+      present_files = ''
+      missing = ''
+      call sort_file(base//'.his', present_files, missing)
+      call sort_file(base//'.ene', present_files, missing)
+      if (self%field_dt > 0.0_wp) call sort_file(base//'.h5', present_files, missing)
+      fresh = len(present_files) == 0
+      if (.not. fresh .and. len(missing) > 0) then
+         call make_error(err, 'cannot continue the outputs of the restart file: '//missing(3:)// &
+                         ' missing while '//present_files(3:)//' present (all present: they are continued; '// &
+                         'none: new files start at the restart point)')
+         return
+      end if
+      if (fresh) then
+         call self%files%open(base, err)
+         if (allocated(err)) return
+         if (self%field_dt > 0.0_wp) call create_fields(self, model, stp, err)
+         if (allocated(err)) return
+         call self%begin(model)
+         return
+      end if
       ! the .h5 first: when it cannot be continued, the text files stay as they are
       if (self%field_dt > 0.0_wp) then
          if (stp%st%has_plastic) then
             call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                     model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
-                                    pack(ENERGY_NAMES, energy_mask(stp)), err, cell_names=PLASTIC_CELL_NAMES, &
+                                    pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, cell_names=PLASTIC_CELL_NAMES, &
                                     friction=stp%contact%friction, &
                                     capacity=expected_field_times(model, stp%st%t, self%field_dt))
          else
             call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                     model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
-                                    pack(ENERGY_NAMES, energy_mask(stp)), err, friction=stp%contact%friction, &
+                                    pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, friction=stp%contact%friction, &
                                     capacity=expected_field_times(model, stp%st%t, self%field_dt))
          end if
          if (allocated(err)) return
@@ -123,6 +148,17 @@ contains
       if (allocated(err)) return
       call self%begin(model, header=.false.)
    end subroutine output_resume
+
+   !> Add ', '//path to `there` or to `absent`, as the file exists or not.
+   subroutine sort_file(path, there, absent)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable, intent(inout) :: there, absent
+      if (file_kind(path) == FILE_MISSING) then
+         absent = absent//', '//path
+      else
+         there = there//', '//path
+      end if
+   end subroutine sort_file
 
    !> At the start of the time loop: the history header (`header` false: a restarted run, whose
    !> file has it) and the region of every node.
@@ -196,6 +232,7 @@ contains
       type(stepper_t), intent(in) :: stp
       integer :: k
       real(wp) :: sig(NSIG), total, drift, kc
+      type(energy_t) :: en
 
       do k = 1, size(self%values)
          associate (q => model%requests(k), st => stp%st)
@@ -226,9 +263,10 @@ contains
       associate (st => stp%st)
          call self%files%his_row(st%t, self%values)
          call energy_balance(st, total, drift, kc)
-         call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
-                                 st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm, &
-                                 stp%contact%dissipation, st%plastic, kc)
+         ! the frictional dissipation as the contact has it now (also right after a restart)
+         en = st%energy
+         en%friction = stp%contact%dissipation
+         call self%files%ene_row(st%t, st%step, st%dt, en, total, drift, st%momentum, st%nactive, kc)
       end associate
       self%last_row_step = stp%st%step
    end subroutine write_rows
@@ -347,20 +385,31 @@ contains
       if (self%fields%is_open()) return
       self%field_dt = dt_out
       self%field_next = stp%st%t
+      self%field_t0 = stp%st%t
+      call create_fields(self, model, stp, err)
+   end subroutine output_open_fields
+
+   !> Create <stem>.h5 and <stem>.xdmf with the mesh, with room for the output times of the
+   !> schedule (field_dt) from now to the end of the program.
+   subroutine create_fields(self, model, stp, err)
+      type(output_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(stepper_t), intent(in) :: stp
+      type(error_t), allocatable, intent(out) :: err
       if (stp%st%has_plastic) then
          call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
                                model%mesh%mat, stp%contact%edges(), err, cell_names=PLASTIC_CELL_NAMES, &
-                               energy_names=pack(ENERGY_NAMES, energy_mask(stp)), &
-                               friction=stp%contact%friction, capacity=expected_field_times(model, stp%st%t, dt_out))
+                               energy_names=pack(ENERGY_NAMES, energy_mask(stp, self%files)), friction=stp%contact%friction, &
+                               capacity=expected_field_times(model, stp%st%t, self%field_dt))
       else
          call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
                                model%mesh%mat, stp%contact%edges(), err, &
-                               energy_names=pack(ENERGY_NAMES, energy_mask(stp)), &
-                               friction=stp%contact%friction, capacity=expected_field_times(model, stp%st%t, dt_out))
+                               energy_names=pack(ENERGY_NAMES, energy_mask(stp, self%files)), friction=stp%contact%friction, &
+                               capacity=expected_field_times(model, stp%st%t, self%field_dt))
       end if
-   end subroutine output_open_fields
+   end subroutine create_fields
 
    !> The number of field output times a run writes from t on, every dt_out, up to the end time
    !> of its BATCh program (its largest TIME), plus the final state: the room the field file is
@@ -392,14 +441,17 @@ contains
       end if
    end function expected_field_times
 
-   !> Which of ENERGY_NAMES the run's field output has: the frictional dissipation with friction
-   !> only, the plastic work with a plastic set only.
-   pure function energy_mask(stp) result(mask)
+   !> Which of ENERGY_NAMES (explicit/energy.f90) the run's field output has: not the work of
+   !> the prescribed motion, the frictional dissipation with friction only, the plastic work
+   !> with a plastic set only, the other dissipations when <stem>.ene has them.
+   pure function energy_mask(stp, files) result(mask)
       type(stepper_t), intent(in) :: stp
-      logical :: mask(size(ENERGY_NAMES))
-      mask = .true.
-      mask(6) = stp%contact%friction
-      mask(7) = stp%st%has_plastic
+      type(history_files_t), intent(in) :: files
+      logical :: mask(NENERGY)
+      mask = files%with
+      mask(E_WPM) = .false.
+      mask(E_FRICTION) = stp%contact%friction
+      mask(E_PLASTIC) = stp%st%has_plastic
    end function energy_mask
 
    !> Write the fields when an output time is due. The next output time is the first multiple
@@ -412,6 +464,7 @@ contains
       type(error_t), allocatable, intent(out) :: err
       real(wp) :: behind, next
       if (.not. self%fields%is_open()) return
+      self%field_checked = stp%st%t
       ! output times kept in memory longer than the batch allows go to the file now (the rows of
       ! the text files up to them were flushed when they were taken)
       call self%fields%flush_stale(err)
@@ -450,14 +503,14 @@ contains
       logical, intent(out), optional :: nonfinite   !< the error is a non-finite value (nothing written)
       real(wp), allocatable :: sig(:, :)
       integer, allocatable :: flag(:)
-      real(wp) :: energies(7)
+      real(wp) :: energies(NENERGY)
       integer :: nc
       associate (st => stp%st)
          nc = merge(NSIG, 7, st%has_plastic)
          allocate (sig(nc, st%nelem), flag(st%nnode))
          call all_stresses(st, stp%sets, sig)
-         energies = [st%kinetic, st%strain + st%hourglass, st%wext, st%wcon, st%hourglass, &
-                     stp%contact%dissipation, st%plastic]
+         energies = st%energy%values()
+         energies(E_FRICTION) = stp%contact%dissipation
          ! non-finite values are never written as results: the run stops, naming where
          if (present(nonfinite)) nonfinite = .false.
          if (.not. (all_finite(size(st%u), st%u) .and. all_finite(size(st%v), st%v) .and. &
@@ -471,12 +524,12 @@ contains
          flag = merge(1, 0, st%fcon(1, :) /= 0.0_wp .or. st%fcon(2, :) /= 0.0_wp)
          if (stp%contact%friction) then
             call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                        pack(energies, energy_mask(stp)), &
-                                        pack(ENERGY_NAMES, energy_mask(stp)), err, stp%contact%ffric)
+                                        pack(energies, energy_mask(stp, self%files)), &
+                                        pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, stp%contact%ffric)
          else
             call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                        pack(energies, energy_mask(stp)), &
-                                        pack(ENERGY_NAMES, energy_mask(stp)), err)
+                                        pack(energies, energy_mask(stp, self%files)), &
+                                        pack(ENERGY_NAMES, energy_mask(stp, self%files)), err)
          end if
          self%field_last = st%t
       end associate

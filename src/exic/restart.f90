@@ -36,19 +36,23 @@ module exic_restart
    implicit none
    private
 
-   public :: run_position_t, write_restart, read_restart, previous_path
+   public :: run_position_t, write_restart, read_restart, previous_path, code
 
    !> Version of the layout; a file of another version is refused.
-   integer, parameter :: RESTART_FORMAT = 1
+   integer, parameter :: RESTART_FORMAT = 2
 
    !> Where the BATCh interpreter is, and the schedules it keeps.
    type :: run_position_t
       integer :: pc = 1                            !< next command to run
+      !> the FORM of the last step (with `depth` and `remaining` as they were at it): where a
+      !> changed program resumes (doc/input-language.md, "Changing the program at a restart")
+      integer :: form_pc = 0
       integer :: depth = 0                         !< open LOOPs
       integer :: remaining(MAX_LOOP_DEPTH) = 0     !< passes left in each open LOOP
       integer :: print_inc = 0                     !< PRINt,ENERgy interval
       real(wp) :: save_dt = 0.0_wp                 !< SAVE interval (0: only at the end)
       real(wp) :: save_next = 0.0_wp               !< time of the next SAVE
+      real(wp) :: save_t0 = 0.0_wp                 !< time of the SAVE command (its schedule's origin)
       logical :: save_on = .false.                 !< SAVE was given
    end type run_position_t
 
@@ -57,6 +61,9 @@ module exic_restart
       type(hdf5_file_t) :: h5
       logical :: saving = .true.
       type(error_t), allocatable :: err            !< the first failure; later items do nothing
+      !> loading: the BATCh program of the run that wrote the file, (5, commands): name and
+      !> option codes (`code`), v(1:3)
+      real(wp), allocatable :: program(:, :)
    contains
       procedure, private :: real0, real1, real2, real3, int0, int1, int2, i80, log0
       generic :: item => real0, real1, real2, real3, int0, int1, int2, i80, log0
@@ -115,13 +122,16 @@ contains
 
    !> Read the restart file `path` into the stepper (made by stepper_t%init from the same
    !> model), the output schedules and the program position. A file of another deck or mesh is
-   !> refused with a message naming what differs.
-   subroutine read_restart(path, model, stp, out, pos, err)
+   !> refused with a message naming what differs. The BATCh program is not compared here:
+   !> `program` returns the one of the run that wrote the file, (5, commands) as `identity`
+   !> saves it, for the caller to judge its changes (src/exic/session/program_change.f90).
+   subroutine read_restart(path, model, stp, out, pos, program, err)
       character(len=*), intent(in) :: path
       type(model_t), intent(in) :: model
       type(stepper_t), intent(inout) :: stp
       type(output_t), intent(inout) :: out
       type(run_position_t), intent(inout) :: pos
+      real(wp), allocatable, intent(out) :: program(:, :)
       type(error_t), allocatable, intent(out) :: err
       type(archive_t) :: ar
       type(error_t), allocatable :: err2
@@ -148,6 +158,7 @@ contains
          call move_alloc(err2, err)
       end if
       if (allocated(err)) err%message = "restart file '"//path//"': "//err%message
+      if (allocated(ar%program)) call move_alloc(ar%program, program)
    end subroutine read_restart
 
    ! ---------------------------------------------------------------------------- identity
@@ -177,7 +188,7 @@ contains
       do k = 1, size(stp%sets)
          associate (s => stp%sets(k))
             sets(:, k) = [real(s%mat, wp), real(s%kind, wp), real(s%nq, wp), real(s%nel, wp), &
-                          s%lambda, s%mu, s%rho, merge(-s%hourglass, s%hourglass, &
+                          s%law%lambda, s%law%mu, s%rho, merge(-s%hourglass, s%hourglass, &
                           s%hgkind == HOURGLASS_PHYSICAL)]
          end associate
       end do
@@ -197,8 +208,17 @@ contains
             prog(:, k) = [real(code(c%name), wp), real(code(c%option), wp), c%v]
          end associate
       end do
-      call same_int(ar, 'model.commands', np, 'the number of BATCh commands')
-      call same_reals(ar, 'model.program', reshape(prog, [5*np]), 'the BATCh commands', 5)
+      if (ar%saving) then
+         call ar%item('model.commands', np)
+         call ar%item('model.program', prog)
+      else
+         ! the program as it was, judged by the caller (changes that leave the state up to the
+         ! restart point as it is are allowed)
+         call ar%item('model.commands', np)
+         if (allocated(ar%err)) return
+         allocate (ar%program(5, np))
+         if (np > 0) call ar%item('model.program', ar%program)
+      end if
       call same_int(ar, 'model.requests', size_requests(model), 'the number of TPLOt requests')
    end subroutine identity
 
@@ -296,17 +316,26 @@ contains
          call ar%item('state.dt_prev', st%dt_prev)
          call ar%item('state.dt', st%dt)
          call ar%item('state.step', st%step)
-         call ar%item('state.kinetic', st%kinetic)
-         call ar%item('state.strain', st%strain)
-         call ar%item('state.hourglass', st%hourglass)
-         call ar%item('state.wext', st%wext)
-         call ar%item('state.wcon', st%wcon)
-         call ar%item('state.total0', st%total0)
-         call ar%item('state.wpm', st%wpm)
+         call ar%item('state.kinetic', st%energy%kinetic)
+         call ar%item('state.strain', st%energy%strain)
+         call ar%item('state.hourglass', st%energy%hourglass)
+         call ar%item('state.wext', st%energy%wext)
+         call ar%item('state.wcon', st%energy%wcon)
+         call ar%item('state.total0', st%energy%total0)
+         call ar%item('state.wpm', st%energy%wpm)
          call ar%item('state.momentum', st%momentum)
          call ar%item('state.jmin', st%jmin)
          call ar%item('state.nactive', st%nactive)
-         call ar%item('state.plastic', st%plastic)
+         call ar%item('state.plastic', st%energy%plastic)
+         ! the dissipations of doc/damping.md: their energy and the nodal forces of the last pass
+         if (allocated(st%gdamp)) then
+            call ar%item('state.damping', st%energy%damping)
+            call ar%item('state.gdamp', st%gdamp)
+         end if
+         if (allocated(st%gbulk)) then
+            call ar%item('state.bulk', st%energy%bulk)
+            call ar%item('state.gbulk', st%gbulk)
+         end if
          call ar%item('state.body_power', st%body_power)
          call ar%item('state.correction0', st%correction0)
          call ar%item('state.dt_residual', st%dt_residual)
@@ -322,6 +351,7 @@ contains
       call ar%item('stepper.dt_elements_at', stp%dt_elements_at)
       call ar%item('stepper.folded', stp%folded)
       call ar%item('stepper.tmax', stp%tmax)
+      call ar%item('stepper.landed_tmax', stp%landed_tmax)
       call ar%item('stepper.dt_warned', stp%dt_warned)
       call ar%item('stepper.energy_warn', stp%energy_warn)
       call ar%item('stepper.energy_stop', stp%energy_stop)
@@ -345,6 +375,8 @@ contains
       call visit_loading(ar, stp)
       call visit_output(ar, out)
       call ar%item('program.pc', pos%pc)
+      call ar%item('program.form_pc', pos%form_pc)
+      call ar%item('program.save_t0', pos%save_t0)
       call ar%item('program.depth', pos%depth)
       call ar%item('program.remaining', pos%remaining)
       call ar%item('program.print_inc', pos%print_inc)
@@ -499,6 +531,8 @@ contains
       call ar%item('output.field_dt', out%field_dt)
       call ar%item('output.field_next', out%field_next)
       call ar%item('output.field_last', out%field_last)
+      call ar%item('output.field_t0', out%field_t0)
+      call ar%item('output.field_checked', out%field_checked)
       call ar%item('output.warned_interval', out%warned_interval)
       call ar%item('output.his_bytes', out%saved_his_bytes)
       call ar%item('output.ene_bytes', out%saved_ene_bytes)

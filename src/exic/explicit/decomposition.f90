@@ -23,10 +23,11 @@ module exic_explicit_decomposition
    use exic_material_material, only: MAT_SOLID
    use exic_element_quad4, only: q4_force_2x2, q4_force_1pt, NBLOCK
    use exic_element_q4_general, only: q4g_force
+   use exic_element_q4_bulk_viscosity, only: q4_bulk_viscosity
    use exic_parallel_mpi, only: par_rank, par_size, par_allgatherv, par_allgather_int
    use exic_parallel_partition, only: partition_mesh, node_owners
    use exic_explicit_state, only: state_t, element_set_t
-   use exic_explicit_central, only: cd_zero
+   use exic_explicit_assembly, only: force_result_t, forces_open, set_damping, forces_close
    implicit none
    private
 
@@ -72,9 +73,10 @@ module exic_explicit_decomposition
       real(wp), allocatable :: bval(:, :)     !< (3, nblock) w, whg, wd of every block
    end type decomposition_t
 
-   !> Values per rank after its blocks' energies: per set the smallest squared step and its
-   !> ordinal; jmin, the first inverted and the first folded ordinal.
-   integer, parameter :: PER_SET = 2, TAIL = 3
+   !> Values per rank after its blocks' energies: per set the smallest squared step, its
+   !> ordinal and the smallest bulk-viscosity step ratio (1 without); jmin, the first inverted
+   !> and the first folded ordinal.
+   integer, parameter :: PER_SET = 3, TAIL = 3
 
 contains
 
@@ -297,37 +299,44 @@ contains
       end do
    end subroutine by_owner
 
-   !> internal_forces (explicit/assembly.f90) on P ranks: the same outputs to the bit.
-   subroutine decomposition_forces(self, st, sets, ebad, dtmin, emin, efold)
+   !> internal_forces (explicit/assembly.f90) on P ranks: the same outputs to the bit (res, the
+   !> forces, st%energy, st%jmin). With VISCosity BULK, the bulk-viscosity forces of the blocks
+   !> are exchanged as the internal forces are (st%gbulk: the owners' values) and each set's
+   !> step ratio is the smallest over the ranks (exact); the mass damping (DAMPing MASS) and the
+   !> works of both are nodal and run on every rank on the replicated state (forces_open,
+   !> set_damping, forces_close: the serial code).
+   subroutine decomposition_forces(self, st, sets, res)
       type(decomposition_t), intent(inout) :: self
       type(state_t), intent(inout) :: st
       type(element_set_t), intent(inout) :: sets(:)
-      integer, intent(out) :: ebad, emin, efold
-      real(wp), intent(out) :: dtmin
-      real(wp), allocatable :: bw(:, :), bj(:), bd(:)
+      type(force_result_t), intent(out) :: res
+      real(wp), allocatable :: bw(:, :), bj(:), bd(:), bq(:)
       integer, allocatable :: be(:), bm(:), bf(:)
-      real(wp) :: d2(self%nset), jmin, w, whg, wd, pw, phg, pd, dset
+      real(wp) :: d2(self%nset), q2(self%nset), jmin, w, whg, wd, pw, phg, pd, dset, wdamp, wbulk
       integer :: o2(self%nset), obad, ofold, k, i, r, q, base, p, g, orank, b1, b2
       integer :: ord
 
-      call cd_zero(2*st%nnode, st%fint)
+      call forces_open(st, wdamp, wbulk)
       ! this rank's blocks, set by set, colour by colour (the serial order at every node)
       d2 = huge(1.0_wp)
       o2 = huge(1)
+      q2 = 1.0_wp
       obad = huge(1)
       ofold = huge(1)
       jmin = huge(1.0_wp)
       do k = 1, self%nset
          associate (s => sets(k), b => self%sb(k))
             if (s%kind /= MAT_SOLID .or. size(b%e0) == 0) cycle
-            allocate (bw(3, size(b%e0)), bj(size(b%e0)), bd(size(b%e0)), be(size(b%e0)), bm(size(b%e0)), &
-                      bf(size(b%e0)))
-            call set_blocks(sets(k), self%sb(k), st, bw, bj, bd, be, bm, bf)
+            allocate (bw(3, size(b%e0)), bj(size(b%e0)), bd(size(b%e0)), bq(size(b%e0)), be(size(b%e0)), &
+                      bm(size(b%e0)), bf(size(b%e0)))
+            bq = 1.0_wp
+            call set_blocks(sets(k), self%sb(k), st, bw, bj, bd, bq, be, bm, bf)
             ! the owned blocks' values, in ascending global block order (the order of b%gid)
             do q = 1, size(b%e0)
                if (b%slot(q) == 0) cycle
                self%bsend(3*b%slot(q) - 2:3*b%slot(q)) = bw(:, q)
                jmin = min(jmin, bj(q))
+               q2(k) = min(q2(k), bq(q))
                base = self%set_elem(k) + b%e0(q) - 1
                if (be(q) /= 0) obad = min(obad, base + be(q))
                if (bf(q) /= 0) ofold = min(ofold, base + bf(q))
@@ -339,32 +348,29 @@ contains
                   end if
                end if
             end do
-            deallocate (bw, bj, bd, be, bm, bf)
+            deallocate (bw, bj, bd, bq, be, bm, bf)
          end associate
       end do
       p = 3*self%nowned
       do k = 1, self%nset
-         self%bsend(p + 2*k - 1) = d2(k)
-         self%bsend(p + 2*k) = real(o2(k), wp)
+         self%bsend(p + PER_SET*k - 2) = d2(k)
+         self%bsend(p + PER_SET*k - 1) = real(o2(k), wp)
+         self%bsend(p + PER_SET*k) = q2(k)
       end do
       p = p + PER_SET*self%nset
       self%bsend(p + 1) = jmin
       self%bsend(p + 2) = real(obad, wp)
       self%bsend(p + 3) = real(ofold, wp)
 
-      ! the owners' nodal forces to every rank
-      do i = 1, size(self%mine)
-         self%fsend(2*i - 1:2*i) = st%fint(:, self%mine(i))
-      end do
-      call par_allgatherv(size(self%fsend), self%fsend, self%node_counts, self%frecv)
-      do i = 1, st%nnode
-         st%fint(:, self%node_order(i)) = self%frecv(2*i - 1:2*i)
-      end do
+      ! the owners' nodal forces (and bulk-viscosity forces) to every rank
+      call exchange_owned(self, st%nnode, st%fint)
+      if (allocated(st%gbulk)) call exchange_owned(self, st%nnode, st%gbulk)
       call par_allgatherv(size(self%bsend), self%bsend, self%rec_counts, self%brecv)
 
-      ! every block's energies in place; the ranks' step, jmin and first elements combined
+      ! every block's energies in place; the ranks' step, ratio, jmin and first elements combined
       d2 = huge(1.0_wp)
       o2 = huge(1)
+      q2 = 1.0_wp
       obad = huge(1)
       ofold = huge(1)
       jmin = huge(1.0_wp)
@@ -377,12 +383,13 @@ contains
          end do
          p = p + self%rec_counts(orank) - PER_SET*self%nset - TAIL
          do k = 1, self%nset
-            pd = self%brecv(p + 2*k - 1)
-            ord = nint(self%brecv(p + 2*k))
+            pd = self%brecv(p + PER_SET*k - 2)
+            ord = nint(self%brecv(p + PER_SET*k - 1))
             if (pd < d2(k) .or. (pd == d2(k) .and. ord < o2(k))) then
                d2(k) = pd
                o2(k) = ord
             end if
+            q2(k) = min(q2(k), self%brecv(p + PER_SET*k))
          end do
          p = p + PER_SET*self%nset
          jmin = min(jmin, self%brecv(p + 1))
@@ -391,12 +398,7 @@ contains
          p = p + TAIL
       end do
 
-      ! fold in the serial order (internal_forces, set_forces, the kernels)
-      st%strain = 0.0_wp
-      st%hourglass = 0.0_wp
-      st%jmin = huge(1.0_wp)
-      dtmin = huge(1.0_wp)
-      emin = 0
+      ! fold in the serial order (internal_forces, set_forces, add_result, the kernels)
       do k = 1, self%nset
          associate (s => sets(k))
             if (s%kind /= MAT_SOLID) cycle
@@ -418,19 +420,26 @@ contains
                wd = wd + pd
                whg = whg + phg
             end do
-            st%strain = st%strain + w
-            st%plastic = st%plastic + wd
-            st%hourglass = st%hourglass + whg
             dset = sqrt(d2(k))
-            if (dset < dtmin) then
-               dtmin = dset
-               emin = element_of(o2(k))
+            if (s%bulk) dset = dset*q2(k)
+            call set_damping(s, st, dset)
+            st%energy%plastic = st%energy%plastic + wd
+            res%strain = res%strain + w
+            res%dissipation = res%dissipation + wd
+            res%hourglass = res%hourglass + whg
+            if (dset < res%dt) then
+               res%dt = dset
+               res%emin = element_of(o2(k))
             end if
          end associate
       end do
-      st%jmin = min(st%jmin, jmin)
-      ebad = element_of(obad)
-      efold = element_of(ofold)
+      res%jmin = jmin
+      res%ebad = element_of(obad)
+      res%efold = element_of(ofold)
+      st%energy%strain = res%strain
+      st%energy%hourglass = res%hourglass
+      st%jmin = res%jmin
+      call forces_close(st, wdamp, wbulk)
    contains
       !> The global element of an ordinal (0 for none).
       integer function element_of(o) result(e)
@@ -447,21 +456,37 @@ contains
       end function element_of
    end subroutine decomposition_forces
 
+   !> The owners' values of the nodal field f(2, nnode) copied to every rank (one MPI_Allgatherv
+   !> of values, never summed): f is then, at every node, its owner's value.
+   subroutine exchange_owned(self, nnode, f)
+      type(decomposition_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      real(wp), intent(inout) :: f(2, nnode)
+      integer :: i
+      do i = 1, size(self%mine)
+         self%fsend(2*i - 1:2*i) = f(:, self%mine(i))
+      end do
+      call par_allgatherv(size(self%fsend), self%fsend, self%node_counts, self%frecv)
+      do i = 1, nnode
+         f(:, self%node_order(i)) = self%frecv(2*i - 1:2*i)
+      end do
+   end subroutine exchange_owned
+
    !> The blocks this rank computes in set s: the ranges of each colour on the threads, one
    !> colour after the other (set_forces of explicit/assembly.f90).
-   subroutine set_blocks(s, b, st, bw, bj, bd, be, bm, bf)
+   subroutine set_blocks(s, b, st, bw, bj, bd, bq, be, bm, bf)
       type(element_set_t), intent(inout) :: s
       type(set_blocks_t), intent(in) :: b
       type(state_t), intent(inout) :: st
-      real(wp), intent(inout) :: bw(:, :), bj(:), bd(:)
+      real(wp), intent(inout) :: bw(:, :), bj(:), bd(:), bq(:)
       integer, intent(inout) :: be(:), bm(:), bf(:)
       integer :: c, i
       if (threaded(s%nel, PAR_MIN_ELEMENTS)) then
-         !$omp parallel default(none) private(c, i) shared(s, b, st, bw, bj, bd, be, bm, bf)
+         !$omp parallel default(none) private(c, i) shared(s, b, st, bw, bj, bd, bq, be, bm, bf)
          do c = 1, s%ncolour
             !$omp do schedule(dynamic)
             do i = s%cfirst(c), s%cfirst(c + 1) - 1
-               call range_blocks(s, b, s%cranges(i), st, bw, bj, bd, be, bm, bf)
+               call range_blocks(s, b, s%cranges(i), st, bw, bj, bd, bq, be, bm, bf)
             end do
             !$omp end do
          end do
@@ -469,27 +494,29 @@ contains
       else
          do c = 1, s%ncolour
             do i = s%cfirst(c), s%cfirst(c + 1) - 1
-               call range_blocks(s, b, s%cranges(i), st, bw, bj, bd, be, bm, bf)
+               call range_blocks(s, b, s%cranges(i), st, bw, bj, bd, bq, be, bm, bf)
             end do
          end do
       end if
    end subroutine set_blocks
 
    !> The blocks this rank computes in range r of set s, each by one kernel call (one block:
-   !> the serial kernel's block, with its lane sums and scatter in the same order).
-   subroutine range_blocks(s, b, r, st, bw, bj, bd, be, bm, bf)
+   !> the serial kernel's block, with its lane sums and scatter in the same order; set_forces's
+   !> range_forces); with VISCosity BULK the block's viscous forces into st%gbulk and its step
+   !> ratio bq.
+   subroutine range_blocks(s, b, r, st, bw, bj, bd, bq, be, bm, bf)
       type(element_set_t), intent(inout) :: s
       type(set_blocks_t), intent(in) :: b
       integer, intent(in) :: r
       type(state_t), intent(inout) :: st
-      real(wp), intent(inout) :: bw(:, :), bj(:), bd(:)
+      real(wp), intent(inout) :: bw(:, :), bj(:), bd(:), bq(:)
       integer, intent(inout) :: be(:), bm(:), bf(:)
       integer :: q, e0, n
       do q = b%rfirst(r), b%rfirst(r + 1) - 1
          e0 = b%e0(q)
          n = min(NBLOCK, s%rfirst(r + 1) - e0)
          if (s%general) then
-            if (s%solid%plastic) then
+            if (s%solid%nvar > 0) then
                call q4g_force(s%solid, n, st%nnode, s%conn(:, e0:e0 + n - 1), st%x0, st%u, st%dt_prev, &
                               s%hist(:, :, e0:e0 + n - 1), st%fint, bw(1, q), bw(2, q), bw(3, q), bj(q), be(q), &
                               bd(q), bm(q), bf(q), st%v)
@@ -498,15 +525,17 @@ contains
                               st%fint, bw(1, q), bw(2, q), bw(3, q), bj(q), be(q), bd(q), bm(q), bf(q), st%v)
             end if
          else if (s%nq == 2) then
-            call q4_force_2x2(n, st%nnode, s%conn(:, e0:e0 + n - 1), st%x0, st%u, s%lambda, s%mu, s%rho, &
+            call q4_force_2x2(n, st%nnode, s%conn(:, e0:e0 + n - 1), st%x0, st%u, s%law, &
                               st%fint, bw(1, q), bj(q), be(q), bd(q), bm(q), bf(q))
             bw(2:3, q) = 0.0_wp
          else
-            call q4_force_1pt(n, st%nnode, s%conn(:, e0:e0 + n - 1), st%x0, st%u, s%lambda, s%mu, s%rho, &
+            call q4_force_1pt(n, st%nnode, s%conn(:, e0:e0 + n - 1), st%x0, st%u, s%law, &
                               s%hourglass, st%fint, bw(1, q), bw(2, q), bj(q), be(q), bd(q), bm(q), bf(q), &
                               s%hgkind, st%v)
             bw(3, q) = 0.0_wp
          end if
+         if (s%bulk) call q4_bulk_viscosity(n, st%nnode, s%conn(:, e0:e0 + n - 1), st%x0, st%u, st%v, st%a, &
+                                            st%dt_prev, s%rho, s%wave, s%q1, s%q2, st%gbulk, bq(q))
       end do
    end subroutine range_blocks
 

@@ -7,7 +7,8 @@ module exic_session_ranks
    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_null_char, c_associated
    use exic_base_error, only: error_t, make_error
    use exic_base_strings, only: itoa
-   use exic_material_material, only: MAT_SOLID
+   use exic_material_material, only: MAT_SOLID, material_law
+   use exic_material_law, only: law_has_history
    use exic_model_model, only: model_t
    use exic_base_posix, only: remove_file
    implicit none
@@ -50,6 +51,11 @@ contains
             if (m%kind == MAT_SOLID .and. m%plastic) then
                msg = 'MATErial '//itoa(k)//': PLAStic (the plasticity history of the elements) is not yet '// &
                      'supported on several MPI ranks; run this deck on one rank'
+               return
+            end if
+            if (m%kind == MAT_SOLID .and. law_has_history(material_law(m))) then
+               msg = 'MATErial '//itoa(k)//': ELAStic ISOTropic (the hypoelastic law''s history of the elements) '// &
+                     'is not yet supported on several MPI ranks; run this deck on one rank'
                return
             end if
          end associate

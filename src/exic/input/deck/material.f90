@@ -3,7 +3,8 @@
 !> ```
 !> MATErial,ma
 !>   SOLId | RIGId | RIGId,FREE       element type record (FREE [ext]: a free rigid body)
-!>   ELAStic NEOHookean E nu         (ELAStic ISOTropic E nu: read as NEOHookean, with a warning)
+!>   ELAStic NEOHookean E nu         the seed's neo-Hookean law (eq. 7.2)
+!>   ELAStic ISOTropic E nu          linear elastic, hypoelastic with the Jaumann rate (doc/hypoelastic.md)
 !>   DENSity rho
 !>   QUADrature 1|2                  [ext]
 !>   HOURglass h                     [ext] Flanagan-Belytschko stiffness coefficient (default 0.1)
@@ -17,6 +18,8 @@
 !>   PLAStic JOHNson-cook A B n C m Tmelt Troom epsdot0   [ext] Johnson-Cook
 !>   SPECific heat c                 adiabatic heating (Taylor-Quinney 0.9)
 !>   MIXEd                           mean dilatation for the 2x2 element (FEAP's mixed element)
+!>   DAMPing MASS c [t_end]          [ext] mass damping (deck_material_dissipation.f90)
+!>   VISCosity BULK [q1 q2]          [ext] bulk viscosity (deck_material_dissipation.f90)
 !> ```
 !> A set is checked when its blank record is read: element type given; for SOLId E > 0,
 !> -1 < nu < 0.5 and rho > 0; for RIGId rho >= 0; for RIGId,FREE rho > 0 (a free body needs a
@@ -26,8 +29,10 @@ module exic_input_deck_material
    use exic_base_error, only: error_t
    use exic_material_material, only: material_t, lame_from_young, MAT_SOLID, MAT_RIGID, &
                                      MAT_UNDEFINED, HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
+   use exic_material_law, only: LAW_NEOHOOKEAN, LAW_HYPOELASTIC
    use exic_material_j2_hardening, only: j2_check_parameters, J2_MISES, J2_POWER, J2_JOHNSON_COOK
    use exic_input_deck_records, only: keyword_is
+   use exic_input_deck_material_dissipation, only: damping_record, viscosity_record, check_dissipation
    use exic_base_strings, only: rtoa, SHORT_REAL
    use exic_input_deck_reader, only: reader_t, next_record, field, word, real_field, int_field, fail, &
                              warn, where, end_set, unknown_keyword, itoa, &
@@ -37,12 +42,20 @@ module exic_input_deck_material
 
    public :: cmd_material
 
-   character(len=16), parameter :: props(13) = [character(len=16) :: 'SOLId', 'RIGId', &
+   character(len=16), parameter :: props(15) = [character(len=16) :: 'SOLId', 'RIGId', &
                                                 'ELAStic', 'DENSity', 'QUADrature', 'HOURglass', &
                                                 'MASS', 'PLANe', 'FINIte', 'BODY', 'PLAStic', &
-                                                'SPECific', 'MIXEd']
+                                                'SPECific', 'MIXEd', 'DAMPing', 'VISCosity']
 
 contains
+
+   !> The deck word of an ELAStic law.
+   pure function law_word(id) result(w)
+      integer, intent(in) :: id
+      character(len=11) :: w
+      w = 'NEOHookean'
+      if (id == LAW_HYPOELASTIC) w = 'ISOTropic'
+   end function law_word
 
    !> `HOURglass h` (Flanagan-Belytschko stiffness form, coefficient h >= 0) or
    !> `HOURglass,PHYSical[,s]` (assumed-strain stabilization with scale 0 < s <= 1, default 1;
@@ -79,7 +92,7 @@ contains
       integer, intent(out) :: ma
       type(material_t), intent(out) :: mat
       type(error_t), allocatable, intent(out) :: err
-      integer :: i, ielas, idens, irig, iplas
+      integer :: i, ielas, idens, irig, iplas, idiss
       logical :: has_e, has_rho
 
       call int_field(rd, icmd, 2, 'MATErial,ma', ma, err)
@@ -95,6 +108,7 @@ contains
       idens = icmd
       irig = icmd
       iplas = 0
+      idiss = 0
       do
          call next_record(rd, i)
          if (i == 0) exit
@@ -106,6 +120,7 @@ contains
          if (allocated(err)) return
       end do
       call check(err)
+      if (.not. allocated(err) .and. idiss > 0) call check_dissipation(rd, idiss, ma, mat, err)
    contains
       subroutine property(i, err)
          integer, intent(in) :: i
@@ -131,16 +146,17 @@ contains
             end if
          else if (keyword_is(w, 'elas')) then
             if (keyword_is(word(rd, i, 2), 'isot')) then
-               call warn(rd, i, 'ELAStic ISOTropic is read as ELAStic NEOHookean (exic''s only '// &
-                         'solid law)')
-            else if (.not. keyword_is(word(rd, i, 2), 'neoh')) then
+               mat%law = LAW_HYPOELASTIC
+            else if (keyword_is(word(rd, i, 2), 'neoh')) then
+               mat%law = LAW_NEOHOOKEAN
+            else
                call fail(rd, i, 'ELAStic law "'//field(rd, i, 2)//'" is not supported: expected '// &
-                         'ELAStic NEOHookean E nu', err)
+                         'ELAStic NEOHookean E nu or ELAStic ISOTropic E nu', err)
                return
             end if
-            call real_field(rd, i, 3, 'ELAStic NEOHookean E nu', mat%young, err)
-            if (.not. allocated(err)) call real_field(rd, i, 4, 'ELAStic NEOHookean E nu', &
-                                                      mat%poisson, err)
+            call real_field(rd, i, 3, 'ELAStic '//trim(law_word(mat%law))//' E nu', mat%young, err)
+            if (.not. allocated(err)) call real_field(rd, i, 4, 'ELAStic '// &
+                                                      trim(law_word(mat%law))//' E nu', mat%poisson, err)
             has_e = .true.
             ielas = i
          else if (keyword_is(w, 'dens')) then
@@ -176,6 +192,12 @@ contains
             if (iplas == 0) iplas = i
          else if (keyword_is(w, 'mixe')) then
             mat%mixed = .true.
+         else if (keyword_is(w, 'damp')) then
+            call damping_record(rd, i, mat, err)
+            idiss = i
+         else if (keyword_is(w, 'visc')) then
+            call viscosity_record(rd, i, mat, err)
+            idiss = i
          else if (keyword_is(w, 'body')) then
             call real_field(rd, i, 2, 'BODY bx by', mat%body(1), err)
             if (.not. allocated(err)) call real_field(rd, i, 3, 'BODY bx by', mat%body(2), err)
@@ -260,7 +282,11 @@ contains
                          ': expected DENSity rho > 0', err)
             else
                call lame_from_young(mat%young, mat%poisson, mat%lambda, mat%mu)
-               if (mat%plastic) then
+               if (mat%plastic .and. mat%law /= LAW_NEOHOOKEAN) then
+                  call fail(rd, iplas, 'MATErial '//itoa(ma)//': PLAStic is J2 plasticity on the '// &
+                            'neo-Hookean law: expected ELAStic NEOHookean E nu with it, not '// &
+                            'ELAStic '//trim(law_word(mat%law)), err)
+               else if (mat%plastic) then
                   call check_plastic(err)
                else if (iplas > 0) then
                   call fail(rd, iplas, 'MATErial '//itoa(ma)//': SPECific heat without a PLAStic '// &

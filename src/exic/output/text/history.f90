@@ -23,21 +23,15 @@ module exic_output_text_history
    use exic_base_strings, only: itoa, rtoa
    use exic_output_text_number, only: put_real, put_int, REAL_WIDTH
    use exic_base_posix, only: truncate_file, file_size
+   use exic_explicit_energy, only: energy_t, ENERGY_NAMES, NENERGY, E_KINETIC, E_WCON, E_HOURGLASS, E_PLASTIC, &
+                                   DEFAULT_ENERGIES
    implicit none
    private
 
-   public :: history_files_t, ENERGY_COLUMNS
+   public :: history_files_t, energy_columns
 
    !> Edit descriptor of one real in <stem>.his and <stem>.ene (with its leading blank).
    character(len=*), parameter, public :: NUMBER_FORMAT = '1x,es24.16e3'
-
-   !> Column names of <stem>.ene, in order (prescribed_work [ext], doc/loads.md section 3, and
-   !> friction_dissipation [ext], doc/friction.md section 5, and plastic_work [ext],
-   !> doc/axisymmetry.md section 8, and kinetic_correction [ext], doc/decisions.md "Energy
-   !> balance", appended after the older columns so that they keep their positions).
-   character(len=*), parameter :: ENERGY_COLUMNS = &
-      't step dt kinetic strain external_work contact_work total drift momentum_x momentum_y '// &
-      'active hourglass prescribed_work friction_dissipation plastic_work kinetic_correction'
 
    !> The three text files of one run.
    type :: history_files_t
@@ -51,6 +45,8 @@ module exic_output_text_history
       character(len=:), allocatable :: nonfinite_message  !< the first such value: file, column, t
       character(len=:), allocatable :: row       !< the text of a row, assembled before its write
       character(len=:), allocatable :: io_error  !< the first failed write, flush or close
+      !> the energies of explicit/energy.f90 that <stem>.ene has (energy_columns)
+      logical :: with(NENERGY) = DEFAULT_ENERGIES
    contains
       procedure :: open => files_open
       procedure :: resume => files_resume
@@ -66,13 +62,41 @@ module exic_output_text_history
 
 contains
 
-   !> Create <base>.his, <base>.ene and <base>.out (base = directory/stem).
-   subroutine files_open(self, base, err)
+   !> Column names of <stem>.ene, in order, for the energies `with` (explicit/energy.f90):
+   !> t, step, dt, kinetic, strain, external_work, contact_work, total, drift, momentum_x,
+   !> momentum_y, active, hourglass, prescribed_work [ext], doc/loads.md section 3,
+   !> friction_dissipation [ext], doc/friction.md section 5, plastic_work [ext],
+   !> doc/axisymmetry.md section 8, kinetic_correction [ext], doc/decisions.md "Energy balance"
+   !> (appended after the older columns so that they keep their positions); then, only when the
+   !> model has them, damping_dissipation and bulk_viscosity (doc/damping.md).
+   function energy_columns(with) result(text)
+      logical, intent(in) :: with(NENERGY)
+      character(len=:), allocatable :: text
+      integer :: k
+      text = 't step dt'
+      do k = E_KINETIC, E_WCON
+         text = text//' '//trim(ENERGY_NAMES(k))
+      end do
+      text = text//' total drift momentum_x momentum_y active'
+      do k = E_HOURGLASS, E_PLASTIC
+         text = text//' '//trim(ENERGY_NAMES(k))
+      end do
+      text = text//' kinetic_correction'
+      do k = E_PLASTIC + 1, NENERGY
+         if (with(k)) text = text//' '//trim(ENERGY_NAMES(k))
+      end do
+   end function energy_columns
+
+   !> Create <base>.his, <base>.ene and <base>.out (base = directory/stem); `with`: the energies
+   !> of <stem>.ene past the fixed ones (energy_columns; default DEFAULT_ENERGIES).
+   subroutine files_open(self, base, err, with)
       class(history_files_t), intent(inout) :: self
       character(len=*), intent(in) :: base
       type(error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: with(NENERGY)
       integer :: ios
       character(len=256) :: msg
+      if (present(with)) self%with = with .or. DEFAULT_ENERGIES
       self%his_path = base//'.his'
       self%ene_path = base//'.ene'
       self%out_path = base//'.out'
@@ -83,7 +107,7 @@ contains
       call open_new(self%out_path, self%out, err)
       if (allocated(err)) return
       self%opened = .true.
-      write (self%ene, '(a)', iostat=ios, iomsg=msg) '# '//ENERGY_COLUMNS
+      write (self%ene, '(a)', iostat=ios, iomsg=msg) '# '//energy_columns(self%with)
       call check_io(self, ios, msg, self%ene_path)
       self%last_flush = wall_time()
    end subroutine files_open
@@ -202,48 +226,58 @@ contains
       call self%maybe_flush()
    end subroutine files_his_row
 
-   !> One row of <stem>.ene. A row with a non-finite value is not written (see the module
-   !> header); `err` then says which.
-   subroutine files_ene_row(self, t, step, dt, kinetic, strain, wext, wcon, total, drift, &
-                            momentum, nactive, hourglass, wpm, dfric, wpl, kc, err)
+   !> One row of <stem>.ene: the energies `en` with the balance's total and drift and kc, the
+   !> change of the kinetic correction (part of total). A row with a non-finite value is not
+   !> written (see the module header); `err` then says which.
+   subroutine files_ene_row(self, t, step, dt, en, total, drift, momentum, nactive, kc, err)
       class(history_files_t), intent(inout) :: self
-      real(wp), intent(in) :: t, dt, kinetic, strain, wext, wcon, total, drift, momentum(2), hourglass
-      real(wp), intent(in) :: wpm      !< work of the prescribed motion
-      real(wp), intent(in) :: dfric    !< frictional dissipation
-      real(wp), intent(in) :: wpl      !< plastic work dissipated
-      real(wp), intent(in) :: kc       !< kinetic correction (part of total)
+      real(wp), intent(in) :: t, dt, total, drift, momentum(2), kc
+      type(energy_t), intent(in) :: en
       integer(i8), intent(in) :: step
       integer, intent(in) :: nactive
       type(error_t), allocatable, intent(out), optional :: err
-      character(len=20), parameter :: names(15) = [character(len=20) :: 't', 'dt', 'kinetic', &
-         'strain', 'external_work', 'contact_work', 'total', 'drift', 'momentum_x', 'momentum_y', &
-         'hourglass', 'prescribed_work', 'friction_dissipation', 'plastic_work', 'kinetic_correction']
-      real(wp) :: v(15)
-      integer :: k, n, ios
+      real(wp) :: e(NENERGY), v(9 + NENERGY)
+      character(len=20) :: names(9 + NENERGY)
+      integer :: k, n, m, ios
       character(len=256) :: msg
-      v = [t, dt, kinetic, strain, wext, wcon, total, drift, momentum, hourglass, wpm, dfric, wpl, kc]
-      do k = 1, size(v)
+      ! the real columns in the order of the row (step and active apart)
+      e = en%values()
+      v(1:2) = [t, dt]
+      names(1:2) = [character(len=20) :: 't', 'dt']
+      v(3:6) = e(E_KINETIC:E_WCON)
+      names(3:6) = ENERGY_NAMES(E_KINETIC:E_WCON)
+      v(7:10) = [total, drift, momentum]
+      names(7:10) = [character(len=20) :: 'total', 'drift', 'momentum_x', 'momentum_y']
+      v(11:14) = e(E_HOURGLASS:E_PLASTIC)
+      names(11:14) = ENERGY_NAMES(E_HOURGLASS:E_PLASTIC)
+      v(15) = kc
+      names(15) = 'kinetic_correction'
+      m = 15
+      do k = E_PLASTIC + 1, NENERGY
+         if (.not. self%with(k)) cycle
+         m = m + 1
+         v(m) = e(k)
+         names(m) = ENERGY_NAMES(k)
+      end do
+      do k = 1, m
          if (.not. ieee_is_finite(v(k))) then
             call refuse(self, 'ene', trim(names(k)), v(k), t, err)
             return
          end if
       end do
       ! the text of write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,5('// &
-      ! NUMBER_FORMAT//'))') t, step, dt, kinetic, strain, wext, wcon, total, drift, momentum, &
-      ! nactive, hourglass, wpm, dfric, wpl, kc
-      call reserve(self, 15*REAL_WIDTH + 22)
+      ! NUMBER_FORMAT//'),...)') v(1), step, v(2:10), nactive, v(11:m)
+      call reserve(self, m*REAL_WIDTH + 22)
       n = 0
-      call put_real(self%row, n, t)
+      call put_real(self%row, n, v(1))
       call put_int(self%row, n, step, 12)
       do k = 2, 10
          call put_real(self%row, n, v(k))
       end do
       call put_int(self%row, n, int(nactive, i8), 10)
-      call put_real(self%row, n, hourglass)
-      call put_real(self%row, n, wpm)
-      call put_real(self%row, n, dfric)
-      call put_real(self%row, n, wpl)
-      call put_real(self%row, n, kc)
+      do k = 11, m
+         call put_real(self%row, n, v(k))
+      end do
       write (self%ene, '(a)', iostat=ios, iomsg=msg) self%row(1:n)
       call check_io(self, ios, msg, self%ene_path)
       call self%maybe_flush()

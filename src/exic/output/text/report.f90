@@ -1,6 +1,7 @@
 !> The run's report in <stem>.out: the deck echo before the first step, the model summary, and
 !> the final state, energy balance, wall time and contact statistics at the end.
 module exic_output_text_report
+   use exic_material_law, only: law_name
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa, rtoa_result
    use exic_base_error, only: error_t
@@ -11,13 +12,14 @@ module exic_output_text_report
    use exic_explicit_rigid, only: RB_FREE, RB_DRIVEN
    use exic_explicit_loads, only: FN_UNDEFINED
    use exic_explicit_state, only: state_t
-   use exic_explicit_assembly, only: kinetic_correction
+   use exic_explicit_assembly, only: energy_balance
+   use exic_explicit_energy, only: energy_t
    use exic_contact_inside, only: inside_t
    !$ use omp_lib, only: omp_get_max_threads
    implicit none
    private
 
-   public :: report_preamble, report_summary, report_final, console_summary, energy_balance
+   public :: report_preamble, report_summary, report_final, console_summary
 
 contains
 
@@ -53,7 +55,7 @@ contains
       do k = 1, size(stp%sets)
          associate (s => stp%sets(k), m => model%materials(stp%sets(k)%mat))
             if (s%kind == MAT_SOLID) then
-               call files%say('material '//itoa(s%mat)//': solid neo-Hookean, E = '// &
+               call files%say('material '//itoa(s%mat)//': solid '//law_name(s%law)//', E = '// &
                               rtoa(m%young)//', nu = '//rtoa(m%poisson)//', lambda = '// &
                               rtoa(m%lambda)//', mu = '//rtoa(m%mu)//', rho = '//rtoa(m%rho)// &
                               ', quadrature '//itoa(s%nq)//', elements '//itoa(s%nel)// &
@@ -117,9 +119,7 @@ contains
       associate (st => stp%st, c => stp%contact)
          if (stp%started) then
             call files%say('final time '//rtoa(st%t)//' after '//itoa(int(st%step))//' steps')
-            call files%say('energy: kinetic '//rtoa_result(st%kinetic)//', strain '// &
-                           rtoa_result(st%strain + st%hourglass)//', external work '//rtoa_result(st%wext)// &
-                           ', contact work '//rtoa_result(st%wcon)//', initial total '//rtoa_result(st%total0))
+            call files%say('energy: '//energy_text(st%energy)//', initial total '//rtoa_result(st%energy%total0))
             if (stp%growth_max >= huge(1.0_wp)/100.0_wp) then
                growth = 'all of it (energy appeared with none put in)'
             else
@@ -170,24 +170,6 @@ contains
                      field_files)
    end subroutine report_final
 
-   !> The energy balance of <stem>.ene: total = kinetic + the change of the kinetic correction
-   !> since t = 0 (doc/decisions.md, "Energy balance", eq. E.3) + strain + hourglass + plastic
-   !> work (doc/axisymmetry.md, (A13)) - external work - contact work - prescribed work, and its
-   !> drift from the initial total
-   !> relative to the largest of |initial total| and the physical energy now; `correction`, that
-   !> change of the kinetic correction, for its column.
-   subroutine energy_balance(st, total, drift, correction)
-      type(state_t), intent(in) :: st
-      real(wp), intent(out) :: total, drift
-      real(wp), intent(out), optional :: correction
-      real(wp) :: denom, c
-      c = kinetic_correction(st)
-      total = st%kinetic + c + st%strain + st%hourglass + st%plastic - st%wext - st%wcon - st%wpm
-      denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass + st%plastic, tiny(1.0_wp))
-      drift = (total - st%total0)/denom
-      if (present(correction)) correction = c
-   end subroutine energy_balance
-
    !> The lines printed on the console at the end of a run: steps, wall time and rates (the
    !> figures of <stem>.out), the largest penetration, and the energy balance of the last
    !> <stem>.ene row.
@@ -207,12 +189,22 @@ contains
          end if
          if (c%active) text = text//NL//'exic: largest penetration over the run '//largest_penetration(stp, inside)
          call energy_balance(st, total, drift)
-         text = text//NL//'exic: energy: initial total '//rtoa_result(st%total0)//', kinetic '// &
-                rtoa_result(st%kinetic)//', strain '//rtoa_result(st%strain + st%hourglass)//', external work '// &
-                rtoa_result(st%wext)//', contact work '//rtoa_result(st%wcon)//NL//'exic: energy balance: total '// &
-                rtoa_result(total)//', drift '//rtoa_result(drift)
+         text = text//NL//'exic: energy: initial total '//rtoa_result(st%energy%total0)//', '// &
+                energy_text(st%energy)//NL//'exic: energy balance: total '//rtoa_result(total)//', drift '// &
+                rtoa_result(drift)
       end associate
    end function console_summary
+
+   !> The energies of the final report: kinetic, strain (with the hourglass energy), external
+   !> work, contact work (and the damping and bulk viscosity dissipations when not zero).
+   function energy_text(en) result(text)
+      type(energy_t), intent(in) :: en
+      character(len=:), allocatable :: text
+      text = 'kinetic '//rtoa_result(en%kinetic)//', strain '//rtoa_result(en%strain + en%hourglass)// &
+             ', external work '//rtoa_result(en%wext)//', contact work '//rtoa_result(en%wcon)
+      if (en%damping /= 0.0_wp) text = text//', damping dissipation '//rtoa_result(en%damping)
+      if (en%bulk /= 0.0_wp) text = text//', bulk viscosity dissipation '//rtoa_result(en%bulk)
+   end function energy_text
 
    !> The largest penetration over the run: the geometric one (the deepest node found inside
    !> another body at the checked times, with its node, regions, depth in element edges and
