@@ -20,8 +20,8 @@ module test_mpi
    character(len=*), parameter :: nl = new_line('a')
    character(len=*), parameter :: MPIRUN = 'mpirun --oversubscribe --allow-run-as-root'
    character(len=*), parameter :: HEAD = 'FEAP * * mpi scene'//nl//'0 0 0 2 2 4'//nl
-   !> Checks of the suite: 13 per scene, 3 of the refusals.
-   integer, parameter :: NCHECKS = 5*13 + 3
+   !> Checks of the suite: 13 per scene, 1 of the dissipation scene's columns, 3 of the refusals.
+   integer, parameter :: NCHECKS = 5*13 + 1 + 3
 
 contains
 
@@ -167,6 +167,9 @@ contains
       his = file_text(dir//'/serial/mpi_'//name//'.his')
       ene = file_text(dir//'/serial/mpi_'//name//'.ene')
       call check(s, count_lines(ene) > 10, name//': the serial run wrote more than 10 energy rows')
+      if (name == 'dissipation') call check(s, last_value(ene, 'damping_dissipation') > 0.0 .and. &
+                                            last_value(ene, 'bulk_viscosity') > 0.0, &
+                                            name//': the damping and the bulk viscosity dissipate energy (.ene)')
       do np = 1, 4
          call execute_command_line(MPIRUN//' -np '//itoa(np)//' '//exic//' -q '//deck//' -o '//dir//'/np'// &
                                    itoa(np)//' > '//dir//'_np'//itoa(np)//'.log 2>&1', exitstat=code)
@@ -207,6 +210,34 @@ contains
       read (text(k + len(word):), *, iostat=ios) n
       if (ios /= 0) n = huge(1)
    end function number_after
+
+   !> The value of column `col` (named in the '# ' header line) in the last row of an .ene text
+   !> (-1 when missing or unreadable).
+   real function last_value(ene, col) result(v)
+      character(len=*), intent(in) :: ene, col
+      real :: row(64)
+      integer :: e, k, n, b, ios
+      v = -1.0
+      e = index(ene, nl)
+      if (e < 3) return
+      k = index(ene(1:e - 1)//' ', ' '//col//' ')
+      if (k == 0) return
+      n = count_words(ene(3:k)) + 1
+      b = index(ene(1:len(ene) - 1), nl, back=.true.)
+      if (n > size(row) .or. b <= e) return
+      read (ene(b + 1:), *, iostat=ios) row(1:n)
+      if (ios == 0) v = row(n)
+   end function last_value
+
+   !> Words separated by blanks in text.
+   pure integer function count_words(text) result(n)
+      character(len=*), intent(in) :: text
+      integer :: i
+      n = 0
+      do i = 1, len(text)
+         if (text(i:i) /= ' ' .and. (i == 1 .or. text(max(i - 1, 1):max(i - 1, 1)) == ' ')) n = n + 1
+      end do
+   end function count_words
 
    !> Newlines in text.
    pure integer function count_lines(text) result(n)
