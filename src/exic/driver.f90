@@ -68,7 +68,7 @@ contains
       if (len(restart) > 0) then
          call resume(r, model, opts%base, restart, err)
       else
-         call r%out%open(opts%base, err)
+         call r%out%open(opts%base, err, model)
          if (.not. allocated(err)) call report_preamble(r%out%files, model)
          if (.not. allocated(err)) call r%stp%init(model%mesh, model%materials, model%contact, err, model%loads)
          if (.not. allocated(err)) call report_summary(r%out%files, model, r%stp)

@@ -43,6 +43,8 @@ module exic_explicit_step
    use exic_explicit_loads, only: load_spec_t
    use exic_explicit_loading, only: loading_t
    use exic_explicit_face, only: face_setup, face_refresh
+   use exic_explicit_erosion, only: erosion_t, erosion_init, erosion_before, erosion_after
+   use exic_explicit_erosion_contact, only: erosion_contact_t, erosion_contact_init, erosion_contact_rebuild
    implicit none
    private
 
@@ -80,6 +82,8 @@ module exic_explicit_step
       type(loading_t) :: ld                           !< loads, prescribed motion, rigid bodies
       class(contact_hook_t), pointer :: hook => null() !< a host's contact instead, when associated
       type(messages_t) :: messages                    !< warnings for the run's report
+      type(erosion_t) :: ero                          !< element erosion (doc/erosion.md)
+      type(erosion_contact_t) :: eroc                 !< the contact surfaces it rebuilds
       logical :: started = .false.                    !< `start` has made the state at t = 0
       ! time-step control
       logical :: cfl_mode = .true.                    !< DT,CFL (else a fixed DT)
@@ -140,6 +144,7 @@ contains
 
       call assembly_init(mesh, materials, self%st, self%sets, err)
       if (allocated(err)) return
+      call erosion_init(self%ero, self%st, self%sets, materials)
       call self%ld%init(mesh, materials, self%st, self%sets, err, loads)
       if (allocated(err)) return
       n = self%st%nnode
@@ -161,6 +166,8 @@ contains
          call self%contact%init(spec, n, self%st%x0, self%st%x0, mesh%nelem, mesh%conn, mesh%region, &
                                 mesh%mat, modulus, err)
       end if
+      if (allocated(err)) return
+      if (self%ero%active) call erosion_contact_init(self%eroc, spec, mesh, modulus, err)
       if (allocated(err)) return
       if (self%contact%energy) then
          ! LAGRange,ENERgy: massless contact faces (doc/impact.md, section 3)
@@ -334,14 +341,35 @@ contains
          else if (self%has_contact() .or. self%ld%active) then
             call positions(st%nnode, st%x0, st%u, self%x)
          end if
+         if (self%ero%active) call erosion_before(self%ero, st, self%sets, self%messages, self%a_old)
          call internal_forces(st, self%sets, ebad, self%dt_elements, self%dt_elements_at, self%folded)
          if (ebad /= 0) then
             call inverted_error(st, ebad, err)
             return
          end if
+         if (self%ero%active) call eroded(self, err)
+         if (allocated(err)) return
          call choose_dt(self, err, 'DT')
       end associate
    end subroutine forces_and_dt
+
+   !> After the force pass: the erosions it decides (doc/erosion.md (R2)); after any erosion, the
+   !> contact surfaces from the live elements and the positions of their nodes.
+   subroutine eroded(self, err)
+      type(stepper_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      associate (st => self%st)
+         call erosion_after(self%ero, st, self%sets, self%dt_elements, self%dt_elements_at, self%folded, &
+                            self%messages)
+         if (.not. self%ero%changed) return
+         self%ero%changed = .false.
+         if (.not. self%contact%active) return
+         call erosion_contact_rebuild(self%eroc, self%contact, st, err)
+         if (allocated(err)) return
+         self%contact%keep_fcon = .true.
+         call positions(st%nnode, st%x0, st%u, self%x)
+      end associate
+   end subroutine eroded
 
    !> True when a step has no contact, loads or masses per dof: it sweeps the nodes twice
    !> (cd_displacement_plain, cd_update_plain) and reads none of the work arrays x, du, a_old, v~
@@ -575,7 +603,7 @@ contains
       real(wp) :: e, put_in, growth, w_in
       character(len=:), allocatable :: what
       associate (st => self%st)
-         e = st%kinetic + st%strain + st%hourglass + st%plastic
+         e = st%kinetic + st%strain + st%hourglass + st%plastic + st%eroded
          if (.not. (ieee_is_finite(e) .and. ieee_is_finite(st%wext) .and. ieee_is_finite(st%wcon))) then
             call make_error(err, 'a value is not finite at t = '//rtoa(st%t)//', step '// &
                             itoa(int(st%step))//': '//first_nonfinite(self))

@@ -67,10 +67,12 @@ module exic_io_history
 contains
 
    !> Create <base>.his, <base>.ene and <base>.out (base = directory/stem).
-   subroutine files_open(self, base, err)
+   subroutine files_open(self, base, err, extra)
       class(history_files_t), intent(inout) :: self
       character(len=*), intent(in) :: base
       type(error_t), allocatable, intent(out) :: err
+      !> names of columns after the standard ones (' eroded': doc/erosion.md), none when absent
+      character(len=*), intent(in), optional :: extra
       integer :: ios
       character(len=256) :: msg
       self%his_path = base//'.his'
@@ -83,7 +85,11 @@ contains
       call open_new(self%out_path, self%out, err)
       if (allocated(err)) return
       self%opened = .true.
-      write (self%ene, '(a)', iostat=ios, iomsg=msg) '# '//ENERGY_COLUMNS
+      if (present(extra)) then
+         write (self%ene, '(a)', iostat=ios, iomsg=msg) '# '//ENERGY_COLUMNS//extra
+      else
+         write (self%ene, '(a)', iostat=ios, iomsg=msg) '# '//ENERGY_COLUMNS
+      end if
       call check_io(self, ios, msg, self%ene_path)
       self%last_flush = wall_time()
    end subroutine files_open
@@ -205,7 +211,7 @@ contains
    !> One row of <stem>.ene. A row with a non-finite value is not written (see the module
    !> header); `err` then says which.
    subroutine files_ene_row(self, t, step, dt, kinetic, strain, wext, wcon, total, drift, &
-                            momentum, nactive, hourglass, wpm, dfric, wpl, kc, err)
+                            momentum, nactive, hourglass, wpm, dfric, wpl, kc, err, eroded)
       class(history_files_t), intent(inout) :: self
       real(wp), intent(in) :: t, dt, kinetic, strain, wext, wcon, total, drift, momentum(2), hourglass
       real(wp), intent(in) :: wpm      !< work of the prescribed motion
@@ -215,6 +221,7 @@ contains
       integer(i8), intent(in) :: step
       integer, intent(in) :: nactive
       type(error_t), allocatable, intent(out), optional :: err
+      real(wp), intent(in), optional :: eroded   !< energy of eroded elements (a last column, doc/erosion.md)
       character(len=20), parameter :: names(15) = [character(len=20) :: 't', 'dt', 'kinetic', &
          'strain', 'external_work', 'contact_work', 'total', 'drift', 'momentum_x', 'momentum_y', &
          'hourglass', 'prescribed_work', 'friction_dissipation', 'plastic_work', 'kinetic_correction']
@@ -231,7 +238,13 @@ contains
       ! the text of write (self%ene, '('//NUMBER_FORMAT//',i12,9('//NUMBER_FORMAT//'),i10,5('// &
       ! NUMBER_FORMAT//'))') t, step, dt, kinetic, strain, wext, wcon, total, drift, momentum, &
       ! nactive, hourglass, wpm, dfric, wpl, kc
-      call reserve(self, 15*REAL_WIDTH + 22)
+      if (present(eroded)) then
+         if (.not. ieee_is_finite(eroded)) then
+            call refuse(self, 'ene', 'eroded', eroded, t, err)
+            return
+         end if
+      end if
+      call reserve(self, 16*REAL_WIDTH + 22)
       n = 0
       call put_real(self%row, n, t)
       call put_int(self%row, n, step, 12)
@@ -244,6 +257,7 @@ contains
       call put_real(self%row, n, dfric)
       call put_real(self%row, n, wpl)
       call put_real(self%row, n, kc)
+      if (present(eroded)) call put_real(self%row, n, eroded)
       write (self%ene, '(a)', iostat=ios, iomsg=msg) self%row(1:n)
       call check_io(self, ios, msg, self%ene_path)
       call self%maybe_flush()

@@ -75,11 +75,24 @@ module exic_io_output
 contains
 
    !> Create <base>.his, .ene and .out.
-   subroutine output_open(self, base, err)
+   subroutine output_open(self, base, err, model)
       class(output_t), intent(inout) :: self
       character(len=*), intent(in) :: base
       type(error_t), allocatable, intent(out) :: err
+      !> the model: a material with EROSion adds the column `eroded` to <stem>.ene (doc/erosion.md)
+      type(model_t), intent(in), optional :: model
+      integer :: k
       self%base = base
+      if (present(model)) then
+         do k = 1, size(model%materials)
+            associate (m => model%materials(k))
+               if (m%erode_inverted .or. m%erode_strain > 0.0_wp .or. m%erode_dt > 0.0_wp) then
+                  call self%files%open(base, err, ' eroded')
+                  return
+               end if
+            end associate
+         end do
+      end if
       call self%files%open(base, err)
    end subroutine output_open
 
@@ -226,9 +239,15 @@ contains
       associate (st => stp%st)
          call self%files%his_row(st%t, self%values)
          call energy_balance(st, total, drift, kc)
-         call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
-                                 st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm, &
-                                 stp%contact%dissipation, st%plastic, kc)
+         if (allocated(st%status)) then
+            call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
+                                    st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm, &
+                                    stp%contact%dissipation, st%plastic, kc, eroded=st%eroded)
+         else
+            call self%files%ene_row(st%t, st%step, st%dt, st%kinetic, st%strain + st%hourglass, st%wext, &
+                                    st%wcon, total, drift, st%momentum, st%nactive, st%hourglass, st%wpm, &
+                                    stp%contact%dissipation, st%plastic, kc)
+         end if
       end associate
       self%last_row_step = stp%st%step
    end subroutine write_rows

@@ -183,6 +183,7 @@ contains
       real(wp) :: denom, c
       c = kinetic_correction(st)
       total = st%kinetic + c + st%strain + st%hourglass + st%plastic - st%wext - st%wcon - st%wpm
+      if (allocated(st%status)) total = total + st%eroded   ! doc/erosion.md (R3)
       denom = max(abs(st%total0), st%kinetic + st%strain + st%hourglass + st%plastic, tiny(1.0_wp))
       drift = (total - st%total0)/denom
       if (present(correction)) correction = c
@@ -206,6 +207,8 @@ contains
                    ', element-steps per second '//rtoa(real(st%step, wp)*st%nelem/ts)
          end if
          if (c%active) text = text//NL//'exic: largest penetration over the run '//largest_penetration(stp, inside)
+         if (allocated(st%status)) text = text//NL//'exic: elements eroded '//itoa(st%neroded)//' of '// &
+                                          itoa(st%nelem)//', eroded energy '//rtoa_result(st%eroded)
          call energy_balance(st, total, drift)
          text = text//NL//'exic: energy: initial total '//rtoa_result(st%total0)//', kinetic '// &
                 rtoa_result(st%kinetic)//', strain '//rtoa_result(st%strain + st%hourglass)//', external work '// &
