@@ -30,7 +30,7 @@ module exic_explicit_erosion
    implicit none
    private
 
-   public :: erosion_t, erosion_init, erosion_before, erosion_after, erosion_restore, erosion_live
+   public :: erosion_t, erosion_init, erosion_before, erosion_after, erosion_restore, erosion_live, element_strain
    public :: ERODED_INVERTED, ERODED_STRAIN, ERODED_TIMESTEP
 
    !> st%status values: why an element left the model (0: live).
