@@ -19,7 +19,7 @@ RELEASE := --profile release --flag "$(RELEASE_FLAGS)"
 EXAMPLE ?= inputs/examples/impact.inp
 OUTDIR  ?= out
 
-.PHONY: all setup deps venv build run test test-release test-viewers serial verify stress bench bench-peers taylor-ccx baseline plots install legacy-host clean help
+.PHONY: all doc setup deps venv build run test test-release test-viewers serial verify stress bench bench-peers taylor-ccx baseline plots install legacy-host clean help
 
 all: build
 
@@ -41,6 +41,8 @@ help:
 	@echo "make plots DECK=path.inp [OUTDIR=out]   run a deck, draw its histories and contours"
 	@echo "              into OUTDIR/plots"
 	@echo "make test-viewers  install ParaView (Debian packages) and check it reads the field output"
+	@echo "make doc     the API reference of the library from the sources' !> comments (FORD) into"
+	@echo "              build/doc/api/index.html"
 	@echo "make install PREFIX=dir    install the exic program, libexic.a, module files and the C header"
 	@echo "make legacy-host PREFIX=dir   build examples/legacy_host against that installation"
 
@@ -85,6 +87,8 @@ build: setup
 run: build
 	@mkdir -p $(OUTDIR)
 	$(FPM) run $(RELEASE) exic -- $(EXAMPLE) -o $(OUTDIR)
+	@echo "the exic program is $$(realpath $(EXIC))"
+	@echo "(run it by that path, or 'make install PREFIX=dir' and put dir/bin on PATH)"
 
 # fpm 0.12 can leave a stale test executable when `fpm run` rebuilt the library first: relink it.
 # The legacy API tests install exic with this fpm (examples/legacy_host/build.sh).
@@ -183,6 +187,12 @@ install: setup
 legacy-host: install
 	$(MAKE) -C examples/legacy_host PREFIX=$(abspath $(or $(PREFIX),$(CURDIR)/dist)) \
 	        OUT=$(abspath $(or $(PREFIX),$(CURDIR)/dist))/bin
+
+# The API reference (FORD, pinned in tools/requirements.txt; doc/ford.md is its project file):
+# every module of src/exic with its public entities and their !> comments.
+doc: setup
+	$(VENV)/bin/ford doc/ford.md
+	@echo "the API reference: $(CURDIR)/build/doc/api/index.html"
 
 clean:
 	rm -rf build $(OUTDIR)

@@ -28,11 +28,14 @@ program exic_tests
    use test_rigid, only: run_rigid_tests
    use test_plasticity, only: run_plasticity_tests
    use test_axisymmetric, only: run_axisymmetric_tests
+   use test_hypoelastic, only: run_hypoelastic_tests
    use test_plastic_decks, only: run_plastic_decks_tests
+   use test_plastic_step, only: run_plastic_step_tests
    use test_hostile, only: run_hostile_tests
    use test_math, only: run_math_tests
    use test_threads, only: run_threads_tests
    use test_friction, only: run_friction_tests
+   use test_dissipation, only: run_dissipation_tests
    use test_restart, only: run_restart_tests
    use test_inside, only: run_inside_tests
    use test_stress_decks, only: run_stress_decks_tests
@@ -52,7 +55,9 @@ program exic_tests
    call r%run('hourglass', run_hourglass_tests)
    call r%run('plasticity', run_plasticity_tests)
    call r%run('axisymmetric', run_axisymmetric_tests)
+   call r%run('hypoelastic', run_hypoelastic_tests)
    call r%run('plastic_decks', run_plastic_decks_tests)
+   call r%run('plastic_step', run_plastic_step_tests)
    call r%run('fields', run_fields_tests)
    call r%run('xdmf', run_xdmf_tests)
    call r%run('viewers', run_viewers_tests)
@@ -70,6 +75,7 @@ program exic_tests
    call r%run('loads', run_loads_tests)
    call r%run('rigid', run_rigid_tests)
    call r%run('friction', run_friction_tests)
+   call r%run('dissipation', run_dissipation_tests)
    call r%run('hostile', run_hostile_tests)
    call r%run('stress_decks', run_stress_decks_tests)
    call r%run('legacy', run_legacy_tests)

@@ -3,11 +3,12 @@
 !> mode, the thick-walled cylinder (elastic, against Lame) and the energy balance of a small
 !> Taylor bar.
 module test_axisymmetric
+   use exic_material_law, only: law_make, LAW_J2, LAW_NEOHOOKEAN
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
    use exic_base_strings, only: rtoa
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
    use exic_material_j2_hardening, only: j2_param_t, J2_MISES
    use exic_material_j2, only: j2_piola
@@ -98,7 +99,7 @@ contains
       prm%y0 = 0.5_wp
       prm%yinf = 0.5_wp
       prm%hiso = 5.0_wp
-      o = q4g_init(nq, axi, mixed, plastic, lam, mu, 1.0_wp, 0.1_wp, prm)
+      o = q4g_init(nq, axi, mixed, law_make(merge(LAW_J2, LAW_NEOHOOKEAN, plastic), lam, mu, 1.0_wp, prm), 0.1_wp)
       if (plastic) then
          allocate (hist(o%nvar, nq*nq, ne))
          call q4g_hist_init(o, ne, hist)
@@ -110,7 +111,7 @@ contains
       ! the law at the uniform F
       h = [1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp]
       one = 1.0_wp
-      call j2_piola(1, lam, mu, o%prm, 1.0_wp, [1.0_wp + e1], [0.0_wp], [0.0_wp], [1.0_wp + e3], &
+      call j2_piola(1, lam, mu, o%law%j2, 1.0_wp, [1.0_wp + e1], [0.0_wp], [0.0_wp], [1.0_wp + e3], &
                     [merge(1.0_wp + e1, 1.0_wp, axi)], [(1.0_wp + e1)*(1.0_wp + e3)], one, h(1:1), &
                     h(2:2), h(3:3), h(4:4), h(5:5), h(6:6), p(1:1), p(2:2), p(3:3), p(4:4), p(5:5), &
                     we, dw, ys)

@@ -2,6 +2,7 @@
 !> finite deformation, objectivity, force = derivative of energy, lumped mass, the stable step
 !> against the element's exact limit, and inversion flags.
 module test_element
+   use exic_material_law, only: neohookean_law
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa
    use exic_material_material, only: lame_from_young
@@ -114,10 +115,10 @@ contains
       f = 0.0_wp
       whg = 0.0_wp
       if (st%nq == 2) then
-         call q4_force_2x2(st%nel, st%nnode, st%conn, st%x0, u, lambda, mu, 1.0_wp, f, w, &
+         call q4_force_2x2(st%nel, st%nnode, st%conn, st%x0, u, neohookean_law(lambda, mu, 1.0_wp), f, w, &
                            jmin, ebad, d, em, ef)
       else
-         call q4_force_1pt(st%nel, st%nnode, st%conn, st%x0, u, lambda, mu, 1.0_wp, hg, f, w, whg, &
+         call q4_force_1pt(st%nel, st%nnode, st%conn, st%x0, u, neohookean_law(lambda, mu, 1.0_wp), hg, f, w, whg, &
                            jmin, ebad, d, em, ef)
       end if
       if (present(dt2)) dt2 = d
@@ -261,7 +262,7 @@ contains
             end do
          end do
          call check(s, err <= 1e-13_wp, 'F and J exact at every integration point')
-         call q4_stress(nq, 4, 9, conn, x0, u, lam0, mu0, sig)
+         call q4_stress(nq, 4, 9, conn, x0, u, neohookean_law(lam0, mu0, 1.0_wp), sig)
          err = 0.0_wp
          do e = 1, 4
             err = max(err, maxval(abs(sig(1:4, e) - sref)))
@@ -504,8 +505,8 @@ contains
                   cycle
                end if
                dtx = 2.0_wp/sqrt(ev(8))
-               call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, xq, lambda, mu, &
-                                 rho, dte, emin, efold)
+               call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, xq, &
+                     neohookean_law(lambda, mu, rho), dte, emin, efold)
                ratio = dte/dtx
                rmin(nq) = min(rmin(nq), ratio)
                rmax(nq) = max(rmax(nq), ratio)
@@ -552,7 +553,7 @@ contains
       xq = reshape([0.0_wp, 0.0_wp, 2.0_wp, 0.0_wp, 2.0_wp, 2.0_wp, 0.0_wp, 2.0_wp], [2, 4])
       do nq = 2, 1, -1
          call make_setup(nq, xq, reshape([1, 2, 3, 4], [4, 1]), st, ebad)
-         call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, xq, lambda, mu, rho, &
+         call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, xq, neohookean_law(lambda, mu, rho), &
                            dte, emin, efold)
          dtx = 2.0_wp/sqrt(2.0_wp)/sqrt((lambda + 2.0_wp*mu)/rho)
          call check_close(s, dte, dtx, 1e-14_wp*dtx, trim(qname(nq))//': square, a/(sqrt(2) c)')
@@ -560,7 +561,7 @@ contains
       xq = reshape([0.0_wp, 0.0_wp, 3.0_wp, 0.5_wp, 3.8_wp, 2.5_wp, 0.8_wp, 2.0_wp], [2, 4])
       do nq = 2, 1, -1
          call make_setup(nq, xq, reshape([1, 2, 3, 4], [4, 1]), st, ebad)
-         call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, xq, lambda, mu, rho, &
+         call q4_stable_dt(nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), xq, xq, neohookean_law(lambda, mu, rho), &
                            dte, emin, efold)
          ! area 3 x 2 - 0.5 x 0.8 = 5.6, longest diagonal |(3.8, 2.5)|
          dtx = 5.6_wp/norm2([3.8_wp, 2.5_wp])/sqrt((lambda + 2.0_wp*mu)/rho)
@@ -568,7 +569,7 @@ contains
       end do
       ! current geometry: a uniform dilatation J scales L by sqrt(J) and c^2 by the tangent
       xq = xq*1.1_wp
-      call q4_stable_dt(st%nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), st%x0, xq, lambda, mu, rho, &
+      call q4_stable_dt(st%nq, 1, 4, reshape([1, 2, 3, 4], [4, 1]), st%x0, xq, neohookean_law(lambda, mu, rho), &
                         dte, emin, efold)
       dtx = 1.1_wp*5.6_wp/norm2([3.8_wp, 2.5_wp]) &
             /sqrt((lambda + 2.0_wp*mu - 2.0_wp*lambda*log(1.21_wp))/rho)
@@ -630,7 +631,7 @@ contains
          call section(s, 'stable step of the force pass, '//trim(qname(nq)))
          call make_setup(nq, x0, conn, st, ebad)
          call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad, dt2, emin, efold)
-         call q4_stable_dt(nq, nx*ny, n, conn, x0, x0 + u, lam0, mu0, 1.0_wp, dtmin, em, ef)
+         call q4_stable_dt(nq, nx*ny, n, conn, x0, x0 + u, neohookean_law(lam0, mu0, 1.0_wp), dtmin, em, ef)
          call check(s, sqrt(dt2) == dtmin .and. emin == em .and. efold == ef .and. emin > 0, &
                     'same estimate and element as q4_stable_dt, to the bit')
          ! the same elements in two calls, split inside a block
@@ -639,13 +640,17 @@ contains
          whg1 = 0.0_wp
          whg2 = 0.0_wp
          if (nq == 2) then
-            call q4_force_2x2(split, n, conn(:, 1:split), x0, u, lam0, mu0, 1.0_wp, f2, w1, j1, eb1, d1, em1, ef1)
-            call q4_force_2x2(nx*ny - split, n, conn(:, split + 1:), x0, u, lam0, mu0, 1.0_wp, f2, w2, j2, &
+            call q4_force_2x2(split, n, conn(:, 1:split), x0, u, neohookean_law(lam0, mu0, 1.0_wp), &
+                  f2, w1, j1, eb1, d1, em1, ef1)
+            call q4_force_2x2(nx*ny - split, n, conn(:, split + 1:), x0, u, neohookean_law(lam0, &
+                  mu0, 1.0_wp), f2, w2, j2, &
                               eb2, d2, em2, ef2)
          else
-            call q4_force_1pt(split, n, conn(:, 1:split), x0, u, lam0, mu0, 1.0_wp, hg0, f2, w1, whg1, j1, &
+            call q4_force_1pt(split, n, conn(:, 1:split), x0, u, neohookean_law(lam0, mu0, 1.0_wp), &
+                  hg0, f2, w1, whg1, j1, &
                               eb1, d1, em1, ef1)
-            call q4_force_1pt(nx*ny - split, n, conn(:, split + 1:), x0, u, lam0, mu0, 1.0_wp, hg0, f2, w2, &
+            call q4_force_1pt(nx*ny - split, n, conn(:, split + 1:), x0, u, neohookean_law(lam0, &
+                  mu0, 1.0_wp), hg0, f2, w2, &
                               whg2, j2, eb2, d2, em2, ef2)
          end if
          call check(s, all(f2 == f), 'forces of two calls equal those of one, to the bit')
@@ -676,7 +681,7 @@ contains
          call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad)
          call check(s, ebad == 3 .and. jmin <= 0.0_wp, 'node pushed through: ebad names element 3')
          call check(s, all(abs(f) < huge(1.0_wp)) .and. w == w, 'forces stay finite')
-         call q4_stable_dt(nq, 4, 9, conn, x0, x0 + u, lam0, mu0, 1.0_wp, dtmin, emin, efold)
+         call q4_stable_dt(nq, 4, 9, conn, x0, x0 + u, neohookean_law(lam0, mu0, 1.0_wp), dtmin, emin, efold)
          call check(s, emin == 3 .and. dtmin == 0.0_wp, 'stable step: zero, element 3')
          call check(s, efold == 3, 'stable step: element 3 is folded at a corner')
          call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad, dtmin, emin, efold)
@@ -692,7 +697,7 @@ contains
       call check(s, ebad == 0 .and. jmin > 0.0_wp, 're-entrant corner: the one-point centroid J stays positive')
       do nq = 2, 1, -1
          call make_setup(nq, x0, conn, st, ebad)
-         call q4_stable_dt(nq, 4, 9, conn, x0, x0 + u, lam0, mu0, 1.0_wp, dtmin, emin, efold)
+         call q4_stable_dt(nq, 4, 9, conn, x0, x0 + u, neohookean_law(lam0, mu0, 1.0_wp), dtmin, emin, efold)
          call check(s, efold == 4, trim(qname(nq))//': re-entrant corner in the current mesh flags element 4')
          call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad, dtmin, emin, efold)
          call check(s, efold == 4, trim(qname(nq))//': the force pass flags the re-entrant corner too')
@@ -707,13 +712,13 @@ contains
       u = xb - x0
       do nq = 2, 1, -1
          call make_setup(nq, x0, conn, st, ebad)
-         call q4_stable_dt(nq, 4, 9, conn, x0, xb, lam0, mu0, 1.0_wp, dtmin, emin, efold)
+         call q4_stable_dt(nq, 4, 9, conn, x0, xb, neohookean_law(lam0, mu0, 1.0_wp), dtmin, emin, efold)
          call check(s, efold == 0 .and. dtmin > 0.0_wp, trim(qname(nq))//': a corner flat to the bit is not folded')
          call eval_force(st, u, lam0, mu0, hg0, f, w, whg, jmin, ebad, dtmin, emin, efold)
          call check(s, efold == 0 .and. dtmin > 0.0_wp .and. ebad == 0, &
                     trim(qname(nq))//': nor in the force pass (x0 + u flat to round-off)')
          xb(2, 9) = 2.0_wp - 0.85e-6_wp
-         call q4_stable_dt(nq, 4, 9, conn, x0, xb, lam0, mu0, 1.0_wp, dtmin, emin, efold)
+         call q4_stable_dt(nq, 4, 9, conn, x0, xb, neohookean_law(lam0, mu0, 1.0_wp), dtmin, emin, efold)
          call check(s, efold == 4, trim(qname(nq))//': the same corner folded by 1e-6 of its edge flags element 4')
          xb(2, 9) = 2.0_wp
       end do
@@ -828,7 +833,7 @@ contains
          end do
       end do
       do nq = 1, 2
-         call q4_stress(nq, ne, 4*ne, conn, x0, u, lam0, mu0, sig)
+         call q4_stress(nq, ne, 4*ne, conn, x0, u, neohookean_law(lam0, mu0, 1.0_wp), sig)
          call q4_deformation(nq, ne, 4*ne, conn, x0, u, fg(:, 1:nq*nq, :))
          r = 1.0_wp/real(nq*nq, wp)
          nneg = 0

@@ -8,9 +8,9 @@ module test_erosion
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
-   use exic_io_report, only: energy_balance
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
+   use exic_explicit_assembly, only: energy_balance
    use exic_explicit_step, only: stepper_t
    use exic_explicit_erosion, only: ERODED_INVERTED, ERODED_TIMESTEP, ERODED_STRAIN, element_strain
    use testing, only: suite_t, check, section, error_text
@@ -121,9 +121,9 @@ contains
                     'inverse mass and no velocity')
          ! the balance with the eroded energy: E_kin + E_strain + E_eroded - W = E(0) within 1 %
          call energy_balance(stp%st, total, drift)
-         call check(s, abs(drift) < 0.01_wp .and. stp%st%eroded > 0.0_wp, 'QUADrature '//itoa(q)// &
+         call check(s, abs(drift) < 0.01_wp .and. stp%st%energy%eroded > 0.0_wp, 'QUADrature '//itoa(q)// &
                     ': the energy balance with the eroded energy closes within 1 %', 'drift '//rtoa(drift)// &
-                    ', eroded '//rtoa(stp%st%eroded))
+                    ', eroded '//rtoa(stp%st%energy%eroded))
       end do
       ! TIMEstep: the stable step of the live elements never falls below dt_min
       call run_to('erosion_dt', deck(1500.0_wp, 2, '    EROSion TIMEstep 6.0e-6'//nl//'    EROSion INVErted'), &

@@ -33,12 +33,19 @@
 !>   without the corner barrier (doc/hourglass.md section 5) element 106 folded at a corner at
 !>   step 156 (t = 0.1708, the release build of the commit before the barrier); with it the run
 !>   ends at its final time with no energy growth.
+!> - plastic1pt_corner_12x8 (tools/stress/plastic_1pt.py, the family of section 1k of
+!>   doc/stability/by_hand.md): a 12 x 8 one-point plastic block with HOURglass,PHYSical hits an
+!>   elastic slab corner-first at CFL 0.9; crushed elements sit with a corner at the barrier's
+!>   threshold r0 and enter it step by step, and the energy guard stopped the run at t = 2.63
+!>   with 11 % growth (the release build of ed34b8b). With the barrier's entry bound
+!>   (doc/hourglass.md (H20)) it ends at its final time and the physical energy never exceeds
+!>   the energy put in.
 module test_stress_decks
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
    use exic_base_strings, only: itoa, rtoa
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
    use deck_runner, only: run_dir
    use testing, only: suite_t, check, section, file_text
@@ -86,6 +93,12 @@ contains
       call check_final_time(s, out, 2.4756629_wp, 'corner barrier: final time 2.4757 (stopped at '// &
                             '0.1708, element 106 folded, without it)')
       call check_growth(s, out, 'energy growth below the warning limit of 1 %')
+      call section(s, 'stress decks: a crushed one-point plastic block at CFL 0.9 (section 1k)')
+      call run_saved(s, 'plastic1pt_corner_12x8', out)
+      call check_final_time(s, out, 5.6_wp, 'final time 5.6 (stopped at 2.63 by the energy guard, 11 % growth)')
+      v = number_after(out, 'largest growth of the physical energy over the energy put in ')
+      call check(s, v >= 0.0_wp .and. v < 0.1_wp, 'physical energy never above the energy put in by '// &
+                 '0.1 % (kinetic + strain + plastic work; was 11 %)', line_with(out, 'energy guard'))
       call section(s, 'stress decks: a block bouncing between frictionless rigid walls, 10^5 steps')
       call run_saved(s, 'flat_wall_bounce', out)
       call transverse_momentum(s, run_dir//'/flat_wall_bounce.his')

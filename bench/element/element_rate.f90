@@ -15,6 +15,7 @@
 !> Build: fpm build --profile release --flag "-O3 -march=native -funroll-loops -ffp-contract=off"
 !> Run:   fpm run exic-bench-element --profile release --flag "..." [-- nsteps | bandwidth]
 program element_rate
+   use exic_material_law, only: neohookean_law, law_make, LAW_J2, LAW_NEOHOOKEAN
    use exic_base_kinds, only: wp, i8
    use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_stable_dt
    use exic_element_q4_general, only: q4_solid_t, q4g_init, q4g_force, q4g_hist_init
@@ -94,7 +95,8 @@ program element_rate
       call cpu_time(p0)
       do step = 1, nsteps
          f = 0.0_wp
-         call q4_force_2x2(nel, nnode, conn, x0, u, lambda, mu, 0.1_wp, f, wint, jmin, ebad, dtmin, emin, efold)
+         call q4_force_2x2(nel, nnode, conn, x0, u, neohookean_law(lambda, mu, 0.1_wp), f, wint, &
+               jmin, ebad, dtmin, emin, efold)
       end do
       call system_clock(c1)
       call cpu_time(p1)
@@ -105,7 +107,7 @@ program element_rate
       call cpu_time(p0)
       do step = 1, nsteps
          f = 0.0_wp
-         call q4_force_1pt(nel, nnode, conn, x0, u, lambda, mu, 0.1_wp, 0.1_wp, f, wint, whg, &
+         call q4_force_1pt(nel, nnode, conn, x0, u, neohookean_law(lambda, mu, 0.1_wp), 0.1_wp, f, wint, whg, &
                            jmin, ebad, dtmin, emin, efold)
       end do
       call system_clock(c1)
@@ -116,7 +118,7 @@ program element_rate
       call system_clock(c0)
       call cpu_time(p0)
       do step = 1, nsteps
-         call q4_stable_dt(2, nel, nnode, conn, x0, x, lambda, mu, 0.1_wp, dtmin, emin, efold)
+         call q4_stable_dt(2, nel, nnode, conn, x0, x, neohookean_law(lambda, mu, 0.1_wp), dtmin, emin, efold)
          chk = chk + dtmin
       end do
       call system_clock(c1)
@@ -155,21 +157,21 @@ contains
             k = k + 1
             select case (c)
             case (1)
-               o = q4g_init(nq, .false., .false., .false., lambda, mu, 0.1_wp, 0.1_wp, prm)
+               o = q4g_init(nq, .false., .false., law_make(LAW_NEOHOOKEAN, lambda, mu, 0.1_wp, prm), 0.1_wp)
                names(k) = 'elastic kernel (quad4)'
             case (2)
-               o = q4g_init(nq, .false., .false., .false., lambda, mu, 0.1_wp, 0.1_wp, prm)
+               o = q4g_init(nq, .false., .false., law_make(LAW_NEOHOOKEAN, lambda, mu, 0.1_wp, prm), 0.1_wp)
                names(k) = 'general path, elastic'
             case (3)
                prm%y0 = 1.0e3_wp*mu
                prm%yinf = prm%y0
-               o = q4g_init(nq, .false., .false., .true., lambda, mu, 0.1_wp, 0.1_wp, prm)
+               o = q4g_init(nq, .false., .false., law_make(LAW_J2, lambda, mu, 0.1_wp, prm), 0.1_wp)
                names(k) = 'J2, no point yields'
             case (4, 5)
                prm%y0 = 1.0e-3_wp*mu
                prm%yinf = prm%y0
                prm%hiso = 0.1_wp*mu
-               o = q4g_init(nq, .false., c == 5, .true., lambda, mu, 0.1_wp, 0.1_wp, prm)
+               o = q4g_init(nq, .false., c == 5, law_make(LAW_J2, lambda, mu, 0.1_wp, prm), 0.1_wp)
                names(k) = 'J2, every point yields'
                if (c == 5) names(k) = 'J2 MIXEd, every point yields'
             end select
@@ -186,10 +188,10 @@ contains
                do step = 1, nsteps
                   f = 0.0_wp
                   if (c == 1 .and. nq == 2) then
-                     call q4_force_2x2(nel, nnode, conn, x0, u, lambda, mu, 0.1_wp, f, wint, jmin, &
+                     call q4_force_2x2(nel, nnode, conn, x0, u, neohookean_law(lambda, mu, 0.1_wp), f, wint, jmin, &
                                        ebad, dtmin, emin, efold)
                   else if (c == 1) then
-                     call q4_force_1pt(nel, nnode, conn, x0, u, lambda, mu, 0.1_wp, 0.1_wp, f, wint, &
+                     call q4_force_1pt(nel, nnode, conn, x0, u, neohookean_law(lambda, mu, 0.1_wp), 0.1_wp, f, wint, &
                                        whg, jmin, ebad, dtmin, emin, efold)
                   else if (c == 2) then
                      call q4g_force(o, nel, nnode, conn, x0, u, 1.0e-3_wp, one, f, ww, wh, wd, jm, &

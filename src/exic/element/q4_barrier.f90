@@ -29,6 +29,10 @@ contains
       real(wp), parameter :: RB = 0.5_wp                          !< r0 of (H14)
       real(wp), parameter :: HT = 1.7320508075688772935_wp        !< |Hessian| of a doubled triangle area
       real(wp), parameter :: HQ = 2.0_wp                          !< |Hessian| of a doubled quad area
+      !> beta of the kinematic limit (H19): ln r_a falls by at most beta in a step (H20)
+      real(wp), parameter :: BETA = 0.25_wp
+      !> exp(2 beta), and RA = r0 exp(beta): above RA no corner reaches r0 in one step (H20)
+      real(wp), parameter :: EB2 = 1.6487212707001282_wp, RA = 0.64201270834387071_wp
       real(wp), dimension(n, 4) :: s0, sc, rr
       real(wp), dimension(n) :: q0, qc
       real(wp) :: kap, c, el, s, sq, gs(2, 4), gsq(2, 4), m(4), mmin, gm, sm, w
@@ -49,7 +53,7 @@ contains
          end do
       end do
       ob = 0.0_wp
-      if (minval(rr) >= RB) return
+      if (minval(rr) >= RA) return
 
       ! kappa = E' = 2 mu (1 + nub), nub = lambda/(lambda + 2 mu) (H14)
       kap = 2.0_wp*mu*(1.0_wp + lambda/(lambda + 2.0_wp*mu))
@@ -67,7 +71,7 @@ contains
          gsq(:, 4) = -gsq(:, 2)
          sq = qc(k)
          do a = 1, 4
-            if (.not. (rr(k, a) < RB .and. rr(k, a) > 0.0_wp)) cycle
+            if (.not. (rr(k, a) < RA .and. rr(k, a) > 0.0_wp)) cycle
             ip = modulo(a - 2, 4) + 1
             ir = modulo(a, 4) + 1
             s = sc(k, a)
@@ -77,9 +81,10 @@ contains
             gs(:, a) = [yc(k, ir) - yc(k, ip), xc(k, ip) - xc(k, ir)]
             gs(:, ir) = [yc(k, ip) - yc(k, a), xc(k, a) - xc(k, ip)]
             el = log(rr(k, a)/RB)
-            ! w_a = kappa A0/4 L^2, grad w_a = kappa A0/2 L g, A0 = S0/2 (H14, H15)
+            ! w_a = kappa A0/4 L^2, grad w_a = kappa A0/2 L g, A0 = S0/2 (H14, H15); forces and
+            ! energy below r0 only
             c = 0.25_wp*kap*q0(k)
-            w = wr(k)*c*el
+            w = merge(wr(k)*c*el, 0.0_wp, el < 0.0_wp)
             gm = 0.0_wp
             sm = 0.0_wp
             do b = 1, 4
@@ -88,9 +93,10 @@ contains
                gm = gm + ((gs(1, b)/s - gsq(1, b)/sq)**2 + (gs(2, b)/s - gsq(2, b)/sq)**2)/m(b)
                sm = sm + (gs(1, b)**2 + gs(2, b)**2)/m(b)
             end do
-            eh(k) = eh(k) + 0.5_wp*wr(k)*c*el*el
-            ! omega_a^2/4 of (H17)
-            ob(k) = ob(k) + 0.25_wp*c*(gm + abs(el)*(sm/(s*s) + HT/(mmin*s) + HQ/(mmin*sq)))
+            if (el < 0.0_wp) eh(k) = eh(k) + 0.5_wp*wr(k)*c*el*el
+            ! omega_a^2/4 of (H17) at the worst state the step can reach (H20): |L| + beta, the
+            ! areas shrunk by exp(-beta)
+            ob(k) = ob(k) + 0.25_wp*c*EB2*(gm + (BETA - el)*(sm/(s*s) + HT/(mmin*s) + HQ/(mmin*sq)))
          end do
       end do
    end subroutine corner_barrier

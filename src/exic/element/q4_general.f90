@@ -2,10 +2,11 @@
 !> with J2 plasticity (history per Gauss point) and the mean-dilatation 2x2 element (MIXEd), in
 !> the block structure of quad4.f90 (doc/axisymmetry.md derives every equation tagged (Ak)).
 !>
-!> The material kernel is j2_piola (src/exic/material/j2.f90) for every set of this path: a
-!> plastic set passes its history, an elastic one the virgin history Cp^-1 = 1 with a yield stress
-!> that is never reached (j2_piola then gives nh_piola's stress and energy, with F33 = r/R in
-!> axisymmetry). The plane-strain elastic sets keep the kernels of quad4.f90.
+!> The material law is the set's law_t (src/exic/material/law.f90), called once per block through
+!> law_piola_general with the block's history: a law with history (J2) passes the stored one, a
+!> law without the virgin state (the neo-Hookean law runs j2_piola with a yield stress never
+!> reached, which gives nh_piola's stress and energy, with F33 = r/R in axisymmetry). The
+!> plane-strain sets of laws without history keep the kernels of quad4.f90.
 !>
 !> Block steps (gather, kinematics, forces, stable step, scatter) are quad4.f90's; this module adds
 !> the hoop terms (A1)-(A5), the mean dilatation (A10)-(A12), the history copies and the ring
@@ -14,9 +15,9 @@ module exic_element_q4_general
    use exic_base_kinds, only: wp
    use exic_base_sums, only: lane_sum
    use exic_base_cube_root, only: cbrt_block
-   use exic_material_j2_hardening, only: j2_param_t, j2_has_temperature, j2_static_yield, J2_MISES
-   use exic_material_j2, only: j2_piola, j2_cauchy, j2_init_history
-   use exic_material_neohookean, only: nh_wave_speed2_block
+   use exic_material_j2_hardening, only: j2_static_yield
+   use exic_material_law, only: law_t, LAW_J2, NVMAX, law_init_history, law_piola_general, &
+                                law_cauchy_general, law_wave_speed2
    use exic_material_material, only: HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
    use exic_element_q4_block, only: NBLOCK, gather, gather_pairs, split_pairs, current, scatter
    use exic_element_quad4, only: kinematics_2x2 => q4b_kinematics_2x2, &
@@ -45,57 +46,44 @@ module exic_element_q4_general
       integer :: nq = 2                      !< 2: 2x2 Gauss; 1: one point + hourglass
       logical :: axi = .false.               !< GLOBal AXISymmetric
       logical :: mixed = .false.             !< MIXEd: mean dilatation (2x2 only)
-      logical :: plastic = .false.           !< J2 plasticity with history
-      integer :: nvar = 0                    !< history values per point (5, or 6 with T)
-      real(wp) :: lambda = 0.0_wp, mu = 0.0_wp, rho = 0.0_wp, hg = 0.0_wp
+      logical :: plastic = .false.           !< J2 plasticity (ep, T and yield stress outputs)
+      integer :: nvar = 0                    !< history values per point stored (law_t%nvar)
+      real(wp) :: hg = 0.0_wp
       integer :: hgkind = HOURGLASS_STIFFNESS  !< or HOURGLASS_PHYSICAL (hg its scale; doc/hourglass.md)
-      type(j2_param_t) :: prm                !< the law (elastic sets: a yield never reached)
+      type(law_t) :: law                     !< the material law (material/law.f90)
    end type q4_solid_t
 
 contains
 
-   !> The description of a set: prm is the material's plastic law when plastic, else a linear
-   !> law with an infinite yield stress (j2_piola then stays elastic).
-   pure function q4g_init(nq, axi, mixed, plastic, lambda, mu, rho, hg, prm, hgkind) result(o)
+   !> The description of a set with the law `law` (law_make).
+   pure function q4g_init(nq, axi, mixed, law, hg, hgkind) result(o)
       integer, intent(in) :: nq
-      logical, intent(in) :: axi, mixed, plastic
-      real(wp), intent(in) :: lambda, mu, rho, hg
-      type(j2_param_t), intent(in) :: prm
+      logical, intent(in) :: axi, mixed
+      type(law_t), intent(in) :: law
+      real(wp), intent(in) :: hg
       integer, intent(in), optional :: hgkind   !< HOURGLASS_STIFFNESS (default) or HOURGLASS_PHYSICAL
       type(q4_solid_t) :: o
       if (present(hgkind)) o%hgkind = hgkind
       o%nq = nq
       o%axi = axi
       o%mixed = mixed .and. nq == 2
-      o%plastic = plastic
-      o%lambda = lambda
-      o%mu = mu
-      o%rho = rho
+      o%law = law
+      o%plastic = law%id == LAW_J2
+      o%nvar = law%nvar
       o%hg = hg
-      if (plastic) then
-         o%prm = prm
-         o%nvar = 5
-         if (j2_has_temperature(prm)) o%nvar = 6
-      else
-         o%prm%law = J2_MISES
-         o%prm%y0 = huge(1.0_wp)
-         o%prm%yinf = huge(1.0_wp)
-      end if
    end function q4g_init
 
-   !> The initial history of nel elements: hist(nvar, nq*nq, nel) (j2_init_history).
+   !> The initial history of nel elements: hist(nvar, nq*nq, nel) (law_init_history).
    pure subroutine q4g_hist_init(o, nel, hist)
       type(q4_solid_t), intent(in) :: o
       integer, intent(in) :: nel
       real(wp), intent(out) :: hist(:, :, :)
-      real(wp) :: t(1), a11(1), a12(1), a22(1), a33(1), ep(1)
+      real(wp) :: h(1, NVMAX)
       integer :: e, g
-      t = 0.0_wp
-      call j2_init_history(1, o%prm, a11, a12, a22, a33, ep, t)
+      call law_init_history(o%law, 1, h)
       do e = 1, nel
          do g = 1, o%nq*o%nq
-            hist(1:5, g, e) = [a11(1), a12(1), a22(1), a33(1), ep(1)]
-            if (o%nvar == 6) hist(6, g, e) = t(1)
+            hist(1:o%nvar, g, e) = h(1, 1:o%nvar)
          end do
       end do
    end subroutine q4g_hist_init
@@ -131,7 +119,7 @@ contains
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
          h0 = 1
-         if (o%plastic) h0 = e0
+         if (o%nvar > 0) h0 = e0
          if (o%nq == 2) then
             call block_2x2(o, nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, dt, hist, h0, f, &
                            wint, wdis, jmin, ebad, dt2min, emin, efold)
@@ -164,7 +152,7 @@ contains
       real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, js, wt, i11, i12, &
                                         i21, i22, p11, p12, p21, p22, p33, wq, fx, fy, f33, rg, jchk, &
                                         b11, b12, b21, b22, b33, bj, al, dw, ys
-      real(wp), dimension(NBLOCK, 4, 6) :: h
+      real(wp), dimension(NBLOCK, 4, NVMAX) :: h
       real(wp) :: dt2(NBLOCK), good(NBLOCK), we(NBLOCK), wd(NBLOCK), nn(4, 4), p0(2, NBLOCK, 4), &
                   pu(2, NBLOCK, 4)
       integer :: k, g, a
@@ -210,8 +198,8 @@ contains
       wdis = wdis + lane_sum(nb, wd)
       call check_points(nb, 4, off, jchk, jmin, ebad)
       call current(xe, ye, uxe, uye)
-      call stable_block(2, xe, ye, uxe, uye, o%lambda, o%mu, o%rho, dt2, good)
-      if (o%axi) call ring_step(2, xe, ye, uxe, uye, o%lambda, o%mu, o%rho, dt2)
+      call stable_block(2, xe, ye, uxe, uye, o%law, dt2, good)
+      if (o%axi) call ring_step(2, xe, ye, uxe, uye, o%law, dt2)
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
       call scatter(nb, nnode, conn, fx, fy, f)
    end subroutine block_2x2
@@ -318,20 +306,20 @@ contains
       end do
    end subroutine mixed_stress
 
-   !> The law at the np x NBLOCK points of a block: j2_piola with the block's history copied in
-   !> from hist(:, :, h0 + k - 1) (lanes 1..nb; the padding lanes repeat lane nb) and back after
-   !> the call, for a plastic set; the virgin history for an elastic one.
+   !> The law at the np x NBLOCK points of a block (law_piola_general) with the block's history
+   !> copied in from hist(:, :, h0 + k - 1) (lanes 1..nb; the padding lanes repeat lane nb) and
+   !> back after the call, for a law with history; the virgin history for one without.
    pure subroutine law(o, np, nb, dt, hist, h0, h, f11, f12, f21, f22, f33, js, wt, p11, p12, p21, &
                        p22, p33, wq, dw, ys)
       type(q4_solid_t), intent(in) :: o
       integer, intent(in) :: np, nb, h0
       real(wp), intent(in) :: dt
       real(wp), intent(inout) :: hist(:, :, :)
-      real(wp), intent(out) :: h(NBLOCK, np, 6)
+      real(wp), intent(out) :: h(NBLOCK, np, NVMAX)
       real(wp), intent(in), dimension(NBLOCK, np) :: f11, f12, f21, f22, f33, js, wt
       real(wp), intent(out), dimension(NBLOCK, np) :: p11, p12, p21, p22, p33, wq, dw, ys
       integer :: k, g, v
-      if (o%plastic) then
+      if (o%nvar > 0) then
          do g = 1, np
             do v = 1, o%nvar
                do k = 1, nb
@@ -340,19 +328,12 @@ contains
                h(nb + 1:, g, v) = h(nb, g, v)
             end do
          end do
-         if (o%nvar < 6) h(:, :, 6) = 0.0_wp
       else
-         h(:, :, 1) = 1.0_wp
-         h(:, :, 2) = 0.0_wp
-         h(:, :, 3) = 1.0_wp
-         h(:, :, 4) = 1.0_wp
-         h(:, :, 5) = 0.0_wp
-         h(:, :, 6) = 0.0_wp
+         call law_init_history(o%law, np*NBLOCK, h)
       end if
-      call j2_piola(np*NBLOCK, o%lambda, o%mu, o%prm, dt, f11, f12, f21, f22, f33, js, wt, &
-                    h(:, :, 1), h(:, :, 2), h(:, :, 3), h(:, :, 4), h(:, :, 5), h(:, :, 6), p11, p12, &
-                    p21, p22, p33, wq, dw, ys)
-      if (o%plastic) then
+      call law_piola_general(o%law, np*NBLOCK, dt, f11, f12, f21, f22, f33, js, wt, h, p11, p12, &
+                             p21, p22, p33, wq, dw, ys)
+      if (o%nvar > 0) then
          do g = 1, np
             do v = 1, o%nvar
                do k = 1, nb
@@ -378,10 +359,10 @@ contains
       real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, jac, js, a0, r0, p11, p12, p21, p22, p33, &
                                      wq, eh, dt2, good, f33, rc, wt, jchk, dw, ys, zero, ob
       real(wp), intent(in), optional :: v(2, nnode)
-      real(wp) :: h(NBLOCK, 1, 6), kh
+      real(wp) :: h(NBLOCK, 1, NVMAX), kh
       integer :: k, a
 
-      kh = o%hg*(o%lambda + 2.0_wp*o%mu)
+      kh = o%hg*(o%law%lambda + 2.0_wp*o%law%mu)
       call gather(nb, nnode, conn, x0, u, xe, ye, uxe, uye)
       call kinematics_1pt(xe, ye, uxe, uye, f11, f12, f21, f22, jac, a0, r0)
       if (o%axi) then
@@ -402,7 +383,7 @@ contains
          zero = 0.0_wp
          call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fx, fy, eh)
          if (o%hgkind == HOURGLASS_PHYSICAL) then
-            call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, o%lambda, o%mu, o%hg, &
+            call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, o%law%lambda, o%law%mu, o%hg, &
                               hx, hy, eh)
          else
             call forces_1pt(xe, ye, uxe, uye, r0, zero, zero, zero, zero, kh, hx, hy, eh)
@@ -416,7 +397,7 @@ contains
          eh = rc*eh
       else if (o%hgkind == HOURGLASS_PHYSICAL) then
          call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fx, fy, eh)
-         call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, o%lambda, o%mu, o%hg, hx, &
+         call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, o%law%lambda, o%law%mu, o%hg, hx, &
                            hy, eh)
          fx = fx + hx
          fy = fy + hy
@@ -430,12 +411,12 @@ contains
       ! the corner barrier (doc/hourglass.md section 5), times R_c in axisymmetry
       if (o%hgkind == HOURGLASS_PHYSICAL) then
          if (.not. o%axi) rc = 1.0_wp
-         call corner_barrier(NBLOCK, xe, ye, uxe, uye, rc, o%lambda, o%mu, o%rho, fx, fy, eh, ob)
+         call corner_barrier(NBLOCK, xe, ye, uxe, uye, rc, o%law%lambda, o%law%mu, o%law%rho, fx, fy, eh, ob)
       end if
       whg = whg + lane_sum(nb, eh)
-      call stable_block(1, xe, ye, uxe, uye, o%lambda, o%mu, o%rho, dt2, good)
+      call stable_block(1, xe, ye, uxe, uye, o%law, dt2, good)
       if (o%hgkind == HOURGLASS_PHYSICAL) call barrier_limit(NBLOCK, nb, nnode, conn, uxe, uye, ob, dt2, v)
-      if (o%axi) call ring_step(1, xe, ye, uxe, uye, o%lambda, o%mu, o%rho, dt2)
+      if (o%axi) call ring_step(1, xe, ye, uxe, uye, o%law, dt2)
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
       call scatter(nb, nnode, conn, fx, fy, f)
    end subroutine block_1pt
@@ -449,10 +430,10 @@ contains
    !> four values: the same result, for the values are positive and finite on a valid reference
    !> element (det J0 > 0, q4_check_reference; every node at r >= 0, the deck's
    !> check_axisymmetric).
-   pure subroutine ring_step(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2)
+   pure subroutine ring_step(nq, xr, yr, xc, yc, law, dt2)
       integer, intent(in) :: nq
       real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, xc, yc
-      real(wp), intent(in) :: lambda, mu, rho0
+      type(law_t), intent(in) :: law
       real(wp), intent(inout) :: dt2(NBLOCK)
       real(wp), dimension(NBLOCK) :: jr, c2, sr, hm, c1x, c2x, c3x, c1y, c2y, c3y, rc, a0, rmax
       real(wp), dimension(NBLOCK, 4) :: d, rg, m, mp, hh
@@ -514,7 +495,7 @@ contains
          jr(k) = merge(jr(k), 1.0_wp, jr(k) > 0.0_wp)
          jr(k) = max(jr(k), tiny(1.0_wp))   ! a normal number (nh_wave_speed2_block)
       end do
-      call nh_wave_speed2_block(NBLOCK, lambda, mu, rho0, jr, c2)
+      call law_wave_speed2(law, NBLOCK, jr, c2)
       ! dt2 >= 0 (stable_block's estimates, barrier_limit's bounds); no step, dt2 = +0, stays +0
       ! through the formula itself (sr/0 = +Inf, 1/Inf = +0), so no selection is needed
       do k = 1, NBLOCK
@@ -543,8 +524,8 @@ contains
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
          call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, x, xr, yr, xc, yc)
-         call stable_block(o%nq, xr, yr, xc, yc, o%lambda, o%mu, o%rho, dt2, good)
-         if (o%axi) call ring_step(o%nq, xr, yr, xc, yc, o%lambda, o%mu, o%rho, dt2)
+         call stable_block(o%nq, xr, yr, xc, yc, o%law, dt2, good)
+         if (o%axi) call ring_step(o%nq, xr, yr, xc, yc, o%law, dt2)
          call block_minimum(nb, e0 - 1, dt2, good, dt2min, emin, efold)
       end do
       dtmin = sqrt(dt2min)
@@ -564,7 +545,7 @@ contains
       real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, js, wt, i11, i12, &
                                         i21, i22, f33, rg, jchk, al, b11, b12, b21, b22, b33, bj
       real(wp), dimension(NBLOCK) :: a0, r0
-      real(wp) :: h(6), s(4), ys(1), nn(4, 4), r, fb(5), p0(2, NBLOCK, 4), pu(2, NBLOCK, 4)
+      real(wp) :: h(1, NVMAX), s(4), ys(1), nn(4, 4), r, fb(5), p0(2, NBLOCK, 4), pu(2, NBLOCK, 4)
       integer :: e0, nb, k, g, ng, e, a
 
       do g = 1, 4
@@ -603,20 +584,19 @@ contains
             e = e0 + k - 1
             sig(:, e) = 0.0_wp
             do g = 1, ng
-               h = [1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp]
-               if (o%plastic) h(1:o%nvar) = hist(:, g, e)
+               call law_init_history(o%law, 1, h)
+               if (o%nvar > 0) h(1, 1:o%nvar) = hist(:, g, e)
                if (jchk(k, g) > 0.0_wp) then
                   fb = [b11(k, g), b12(k, g), b21(k, g), b22(k, g), b33(k, g)]
-                  call j2_cauchy(1, o%lambda, o%mu, o%prm, fb(1:1), fb(2:2), fb(3:3), fb(4:4), &
-                                 fb(5:5), h(1:1), h(2:2), h(3:3), h(4:4), h(5:5), h(6:6), s(1:1), &
-                                 s(2:2), s(3:3), s(4:4), ys)
+                  call law_cauchy_general(o%law, 1, fb(1:1), fb(2:2), fb(3:3), fb(4:4), fb(5:5), h, &
+                                          s(1:1), s(2:2), s(3:3), s(4:4), ys)
                   sig(1:4, e) = sig(1:4, e) + r*s
                end if
                sig(7, e) = sig(7, e) + r*jchk(k, g)
                if (o%plastic) then
-                  sig(8, e) = sig(8, e) + r*h(5)
-                  sig(9, e) = sig(9, e) + r*h(6)
-                  sig(10, e) = sig(10, e) + r*j2_static_yield(o%prm, h(5), h(6))
+                  sig(8, e) = sig(8, e) + r*h(1, 5)
+                  sig(9, e) = sig(9, e) + r*h(1, 6)
+                  sig(10, e) = sig(10, e) + r*j2_static_yield(o%law%j2, h(1, 5), h(1, 6))
                end if
             end do
             s = sig(1:4, e)

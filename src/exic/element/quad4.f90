@@ -20,7 +20,7 @@
 !> The force kernels work on blocks of NBLOCK elements laid out as structure of arrays, so that
 !> every loop runs across the block's elements (vectorized; checked with -fopt-info-vec): the
 !> block's node coordinates and displacements, the deformation gradient F at every point, one
-!> call of the material's kernel on all points (src/exic/material: plain arrays of points in,
+!> call of the law's block entry point on all points (src/exic/material/law.f90: plain arrays in,
 !> weighted first Piola stress and energy out), then the nodal forces and the stable step. A law
 !> with history (per-point arrays) gets its arrays for the block's points in that one call
 !> (doc/architecture.md). Block arrays have the fixed shape (NBLOCK, 4) (element, local node or
@@ -39,7 +39,7 @@
 module exic_element_quad4
    use exic_base_kinds, only: wp
    use exic_base_sums, only: lane_sum
-   use exic_material_neohookean, only: nh_piola, nh_cauchy_block, nh_wave_speed2_block
+   use exic_material_law, only: law_t, law_piola, law_cauchy, law_wave_speed2
    use exic_material_material, only: HOURGLASS_PHYSICAL
    use exic_element_q4_barrier, only: corner_barrier, barrier_limit
    use exic_element_q4_reference, only: q4_check_reference, q4_lumped_mass, gq
@@ -61,17 +61,17 @@ contains
    !> Internal force with 2x2 Gauss quadrature, f_ia += sum_g det J0 P_iJ(F_g) dN_a/dX_J, and the
    !> stable step of every element from the same gathered nodes (q4_stable_dt's estimate).
    !>
-   !> F = 1 + grad0 u, P = lambda ln(J) F^-T + mu (F - F^-T) (eq. 7.2, nh_piola). f is
+   !> F = 1 + grad0 u, P = lambda ln(J) F^-T + mu (F - F^-T) (eq. 7.2, law_piola of the neo-Hookean law). f is
    !> accumulated (scatter-add, element by element in order); wint is the strain energy (summed
    !> per block with lane_sum, the blocks in order), jmin the smallest J at a Gauss point, ebad the first element with
    !> J <= 0 (its forces are meaningless); dt2min the smallest squared stable step at the
    !> geometry x0 + u, emin its first element, efold the first element folded at a corner.
-   pure subroutine q4_force_2x2(nel, nnode, conn, x0, u, lambda, mu, rho0, f, wint, jmin, ebad, &
+   pure subroutine q4_force_2x2(nel, nnode, conn, x0, u, law, f, wint, jmin, ebad, &
                                 dt2min, emin, efold)
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
-      real(wp), intent(in) :: lambda, mu, rho0
+      type(law_t), intent(in) :: law
       real(wp), intent(inout) :: f(2, nnode)
       real(wp), intent(out) :: wint, jmin, dt2min
       integer, intent(out) :: ebad, emin, efold
@@ -85,18 +85,18 @@ contains
       efold = 0
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
-         call block_2x2(nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, lambda, mu, rho0, f, wint, &
+         call block_2x2(nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, law, f, wint, &
                         jmin, ebad, dt2min, emin, efold)
       end do
    end subroutine q4_force_2x2
 
    !> One block of q4_force_2x2: elements off + 1 .. off + nb.
-   pure subroutine block_2x2(nb, off, nnode, conn, x0, u, lambda, mu, rho0, f, wint, jmin, ebad, &
+   pure subroutine block_2x2(nb, off, nnode, conn, x0, u, law, f, wint, jmin, ebad, &
                              dt2min, emin, efold)
       integer, intent(in) :: nb, off, nnode
       integer, intent(in) :: conn(4, nb)
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
-      real(wp), intent(in) :: lambda, mu, rho0
+      type(law_t), intent(in) :: law
       real(wp), intent(inout) :: f(2, nnode), wint, jmin, dt2min
       integer, intent(inout) :: ebad, emin, efold
       real(wp), dimension(NBLOCK, 4) :: f11, f12, f21, f22, jac, js, wt, i11, i12, &
@@ -109,7 +109,7 @@ contains
       call kinematics_2x2(p0, pu, f11, f12, f21, f22, jac, wt, i11, i12, i21, i22)
       call positive(4*NBLOCK, jac, js)
       ! the law at every point of the block
-      call nh_piola(4*NBLOCK, lambda, mu, f11, f12, f21, f22, js, wt, p11, p12, p21, p22, wq)
+      call law_piola(law, 4*NBLOCK, f11, f12, f21, f22, js, wt, p11, p12, p21, p22, wq)
       call forces_2x2_pairs(p11, p12, p21, p22, i11, i12, i21, i22, fp)
       do k = 1, NBLOCK
          we(k) = ((wq(k, 1) + wq(k, 2)) + wq(k, 3)) + wq(k, 4)
@@ -117,7 +117,7 @@ contains
       wint = wint + lane_sum(nb, we)
       call check_points(nb, 4, off, jac, jmin, ebad)
       ! the stable step at the current geometry x0 + u
-      call stable_block_pairs(2, p0, pu, lambda, mu, rho0, dt2, good)
+      call stable_block_pairs(2, p0, pu, law, dt2, good)
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
       call scatter_pairs(nb, nnode, conn, fp, f)
    end subroutine block_2x2
@@ -296,12 +296,13 @@ contains
    !> With hgkind = HOURGLASS_PHYSICAL the hourglass part is the assumed-strain stabilization
    !> of doc/hourglass.md instead (asqbi_forces), hg its scale s.
    !> wint: strain energy of the mean part; whg: hourglass energy; the rest as for q4_force_2x2.
-   pure subroutine q4_force_1pt(nel, nnode, conn, x0, u, lambda, mu, rho0, hg, f, wint, whg, jmin, &
+   pure subroutine q4_force_1pt(nel, nnode, conn, x0, u, law, hg, f, wint, whg, jmin, &
                                 ebad, dt2min, emin, efold, hgkind, v)
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
-      real(wp), intent(in) :: lambda, mu, rho0, hg
+      type(law_t), intent(in) :: law
+      real(wp), intent(in) :: hg
       real(wp), intent(inout) :: f(2, nnode)
       real(wp), intent(out) :: wint, whg, jmin, dt2min
       integer, intent(out) :: ebad, emin, efold
@@ -324,18 +325,19 @@ contains
       efold = 0
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
-         call block_1pt(nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, lambda, mu, rho0, hg, phys, &
+         call block_1pt(nb, e0 - 1, nnode, conn(:, e0:e0 + nb - 1), x0, u, law, hg, phys, &
                         f, wint, whg, jmin, ebad, dt2min, emin, efold, v)
       end do
    end subroutine q4_force_1pt
 
    !> One block of q4_force_1pt: elements off + 1 .. off + nb.
-   pure subroutine block_1pt(nb, off, nnode, conn, x0, u, lambda, mu, rho0, hg, phys, f, wint, whg, &
+   pure subroutine block_1pt(nb, off, nnode, conn, x0, u, law, hg, phys, f, wint, whg, &
                              jmin, ebad, dt2min, emin, efold, v)
       integer, intent(in) :: nb, off, nnode
       integer, intent(in) :: conn(4, nb)
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
-      real(wp), intent(in) :: lambda, mu, rho0, hg
+      type(law_t), intent(in) :: law
+      real(wp), intent(in) :: hg
       logical, intent(in) :: phys
       real(wp), intent(inout) :: f(2, nnode), wint, whg, jmin, dt2min
       integer, intent(inout) :: ebad, emin, efold
@@ -350,11 +352,11 @@ contains
       call kinematics_1pt(xe, ye, uxe, uye, f11, f12, f21, f22, jac, a0, r0)
       call positive(NBLOCK, jac, js)
       ! the law at every centroid of the block, weighted by the reference areas
-      call nh_piola(NBLOCK, lambda, mu, f11, f12, f21, f22, js, a0, p11, p12, p21, p22, wq)
+      call law_piola(law, NBLOCK, f11, f12, f21, f22, js, a0, p11, p12, p21, p22, wq)
       if (phys) then
          call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, 0.0_wp, fp, eh)
          call split_pairs(fp, fx, fy)
-         call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, lambda, mu, hg, hx, hy, eh)
+         call asqbi_forces(xe, ye, uxe, uye, r0, f11, f12, f21, f22, law%lambda, law%mu, hg, hx, hy, eh)
          do a = 1, 4
             do k = 1, NBLOCK
                fx(k, a) = fx(k, a) + hx(k, a)
@@ -362,7 +364,7 @@ contains
             end do
          end do
       else
-         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, hg*(lambda + 2.0_wp*mu), fp, eh)
+         call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, hg*(law%lambda + 2.0_wp*law%mu), fp, eh)
       end if
       wint = wint + lane_sum(nb, wq)
       call check_points(nb, 1, off, jac, jmin, ebad)
@@ -370,14 +372,14 @@ contains
          call current(xe, ye, uxe, uye)
          ! r0 is no longer needed: reused as the weight 1 of the plane element
          r0 = 1.0_wp
-         call corner_barrier(NBLOCK, xe, ye, uxe, uye, r0, lambda, mu, rho0, fx, fy, eh, ob)
+         call corner_barrier(NBLOCK, xe, ye, uxe, uye, r0, law%lambda, law%mu, law%rho, fx, fy, eh, ob)
          whg = whg + lane_sum(nb, eh)
-         call stable_block(1, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
+         call stable_block(1, xe, ye, uxe, uye, law, dt2, good)
          call barrier_limit(NBLOCK, nb, nnode, conn, uxe, uye, ob, dt2, v)
       else
          whg = whg + lane_sum(nb, eh)
          ! the stable step at the current geometry x0 + u
-         call stable_block_u(1, xe, ye, uxe, uye, lambda, mu, rho0, dt2, good)
+         call stable_block_u(1, xe, ye, uxe, uye, law, dt2, good)
       end if
       call block_minimum(nb, off, dt2, good, dt2min, emin, efold)
       if (phys) then
@@ -582,10 +584,10 @@ contains
    !>     dt^2 = phi^2 A^2/(D c^2) = (c0 A + c1 T) A/(D c^2)
    !> takes one division, and phi^2 > 0 is c0 A + c1 T > 0 (A > 0). Areas are formed doubled
    !> (2 A, 2 T, 2 A0; the halving is exact and cancels: D is multiplied by 4 instead).
-   pure subroutine stable_block(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2, good)
+   pure subroutine stable_block(nq, xr, yr, xc, yc, law, dt2, good)
       integer, intent(in) :: nq
       real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, xc, yc
-      real(wp), intent(in) :: lambda, mu, rho0
+      type(law_t), intent(in) :: law
       real(wp), intent(out), dimension(NBLOCK) :: dt2, good
       real(wp), dimension(NBLOCK) :: num, den, jr, ok
       real(wp) :: c0, c1, xcl(4), ycl(4)
@@ -598,16 +600,16 @@ contains
          call corner_estimate(c0, c1, xr(k, 1), xr(k, 2), xr(k, 3), xr(k, 4), yr(k, 1), yr(k, 2), &
                               yr(k, 3), yr(k, 4), xcl, ycl, good(k), ok(k), num(k), den(k), jr(k))
       end do
-      call stable_finish(lambda, mu, rho0, num, den, jr, ok, dt2)
+      call stable_finish(law, num, den, jr, ok, dt2)
    end subroutine stable_block
 
    !> stable_block from the reference corners (xr, yr) and the displacements (ux, uy) of the
    !> block: the current corners xr + ux, yr + uy (the sums of `current`) are formed in the loop
    !> instead of being stored and loaded again.
-   pure subroutine stable_block_u(nq, xr, yr, ux, uy, lambda, mu, rho0, dt2, good)
+   pure subroutine stable_block_u(nq, xr, yr, ux, uy, law, dt2, good)
       integer, intent(in) :: nq
       real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, ux, uy
-      real(wp), intent(in) :: lambda, mu, rho0
+      type(law_t), intent(in) :: law
       real(wp), intent(out), dimension(NBLOCK) :: dt2, good
       real(wp), dimension(NBLOCK) :: num, den, jr, ok
       real(wp) :: c0, c1, xcl(4), ycl(4)
@@ -622,15 +624,15 @@ contains
          call corner_estimate(c0, c1, xr(k, 1), xr(k, 2), xr(k, 3), xr(k, 4), yr(k, 1), yr(k, 2), &
                               yr(k, 3), yr(k, 4), xcl, ycl, good(k), ok(k), num(k), den(k), jr(k))
       end do
-      call stable_finish(lambda, mu, rho0, num, den, jr, ok, dt2)
+      call stable_finish(law, num, den, jr, ok, dt2)
    end subroutine stable_block_u
 
    !> stable_block_u from the (x, y) pairs of gather_pairs: reference corners p0(:, k, a),
    !> displacements pu(:, k, a); the same sums and operations.
-   pure subroutine stable_block_pairs(nq, p0, pu, lambda, mu, rho0, dt2, good)
+   pure subroutine stable_block_pairs(nq, p0, pu, law, dt2, good)
       integer, intent(in) :: nq
       real(wp), intent(in), dimension(2, NBLOCK, 4) :: p0, pu
-      real(wp), intent(in) :: lambda, mu, rho0
+      type(law_t), intent(in) :: law
       real(wp), intent(out), dimension(NBLOCK) :: dt2, good
       real(wp), dimension(NBLOCK) :: num, den, jr, ok
       real(wp) :: c0, c1, xcl(4), ycl(4)
@@ -646,7 +648,7 @@ contains
                               p0(2, k, 2), p0(2, k, 3), p0(2, k, 4), xcl, ycl, good(k), ok(k), num(k), &
                               den(k), jr(k))
       end do
-      call stable_finish(lambda, mu, rho0, num, den, jr, ok, dt2)
+      call stable_finish(law, num, den, jr, ok, dt2)
    end subroutine stable_block_pairs
 
    !> c0, c1 of phi^2 = c0 + c1 t for the rule nq (q4_stable_dt).
@@ -700,13 +702,13 @@ contains
    end subroutine corner_estimate
 
    !> dt2 = num/(den c^2) where ok, else 0, with c^2 the wave speed at the volume ratio jr.
-   pure subroutine stable_finish(lambda, mu, rho0, num, den, jr, ok, dt2)
-      real(wp), intent(in) :: lambda, mu, rho0
+   pure subroutine stable_finish(law, num, den, jr, ok, dt2)
+      type(law_t), intent(in) :: law
       real(wp), intent(in), dimension(NBLOCK) :: num, den, jr, ok
       real(wp), intent(out) :: dt2(NBLOCK)
       real(wp) :: c2(NBLOCK)
       integer :: k
-      call nh_wave_speed2_block(NBLOCK, lambda, mu, rho0, jr, c2)
+      call law_wave_speed2(law, NBLOCK, jr, c2)
       do k = 1, NBLOCK
          dt2(k) = merge(num(k)/merge(den(k)*c2(k), 1.0_wp, ok(k) > 0.0_wp), 0.0_wp, ok(k) > 0.0_wp)
       end do
@@ -769,12 +771,12 @@ contains
    !> dtmin: the smallest dt_e; emin: the first element that gives it; efold: the first element
    !> folded at a corner (a corner triangle of negative area beyond round-off, i.e. det J < 0 at that node,
    !> which the Gauss points of either rule need not see), 0 if none.
-   pure subroutine q4_stable_dt(nq, nel, nnode, conn, x0, x, lambda, mu, rho0, dtmin, emin, efold)
+   pure subroutine q4_stable_dt(nq, nel, nnode, conn, x0, x, law, dtmin, emin, efold)
       integer, intent(in) :: nq                    !< 1 or 2
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
       real(wp), intent(in) :: x0(2, nnode), x(2, nnode)
-      real(wp), intent(in) :: lambda, mu, rho0
+      type(law_t), intent(in) :: law
       real(wp), intent(out) :: dtmin
       integer, intent(out) :: emin, efold
       real(wp), dimension(NBLOCK, 4) :: xr, yr, xc, yc
@@ -787,7 +789,7 @@ contains
       do e0 = 1, nel, NBLOCK
          nb = min(NBLOCK, nel - e0 + 1)
          call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, x, xr, yr, xc, yc)
-         call stable_block(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2, good)
+         call stable_block(nq, xr, yr, xc, yc, law, dt2, good)
          call block_minimum(nb, e0 - 1, dt2, good, dt2min, emin, efold)
       end do
       dtmin = sqrt(dt2min)
@@ -837,12 +839,12 @@ contains
    !> Element stress for output: sig(:, e) = sxx, syy, szz, sxy, pressure (-tr sigma/3),
    !> von Mises, J; the mean over the Gauss points for nq = 2, the centroid value for nq = 1.
    !> A point with J <= 0 contributes zero stress (its J is still averaged).
-   pure subroutine q4_stress(nq, nel, nnode, conn, x0, u, lambda, mu, sig)
+   pure subroutine q4_stress(nq, nel, nnode, conn, x0, u, law, sig)
       integer, intent(in) :: nq                    !< 1 or 2
       integer, intent(in) :: nel, nnode
       integer, intent(in) :: conn(4, nel)
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode)
-      real(wp), intent(in) :: lambda, mu
+      type(law_t), intent(in) :: law
       real(wp), intent(out) :: sig(7, nel)
       real(wp), dimension(NBLOCK, 4) :: f11, f12, f21, f22, jac, sxx, syy, szz, sxy
       real(wp) :: a(NBLOCK, 5), s(4), r
@@ -856,7 +858,7 @@ contains
          ! the points' stresses as one block (a point with J <= 0 contributes zero stress), then
          ! the means over the points in the order g = 1, ..., ng from +0, as point by point
          do g = 1, ng
-            call nh_cauchy_block(nb, lambda, mu, f11(:, g), f12(:, g), f21(:, g), f22(:, g), jac(:, g), &
+            call law_cauchy(law, nb, f11(:, g), f12(:, g), f21(:, g), f22(:, g), jac(:, g), &
                                  sxx(:, g), syy(:, g), szz(:, g), sxy(:, g))
          end do
          a(1:nb, :) = 0.0_wp
@@ -941,12 +943,12 @@ contains
    end subroutine q4b_check_points
 
    !> stable_block for q4_general.f90.
-   pure subroutine q4b_stable_block(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2, good)
+   pure subroutine q4b_stable_block(nq, xr, yr, xc, yc, law, dt2, good)
       integer, intent(in) :: nq
       real(wp), intent(in), dimension(NBLOCK, 4) :: xr, yr, xc, yc
-      real(wp), intent(in) :: lambda, mu, rho0
+      type(law_t), intent(in) :: law
       real(wp), intent(out), dimension(NBLOCK) :: dt2, good
-      call stable_block(nq, xr, yr, xc, yc, lambda, mu, rho0, dt2, good)
+      call stable_block(nq, xr, yr, xc, yc, law, dt2, good)
    end subroutine q4b_stable_block
 
    !> block_minimum for q4_general.f90.

@@ -16,7 +16,7 @@
 !>    element's forces at t(n+1) stay in that step, it takes no part from t(n+2) on, and the
 !>    stable step is formed again without it (doc/erosion.md (R2)).
 !> The strain (and hourglass) energy the element held at its last valid configuration and the
-!> kinetic energy of the nodes that no live element holds any more are booked in st%eroded
+!> kinetic energy of the nodes that no live element holds any more are booked in st%energy%eroded
 !> (doc/erosion.md (R3)-(R4)); such nodes leave the model (zero inverse mass and velocity).
 module exic_explicit_erosion
    use exic_base_kinds, only: wp
@@ -132,7 +132,7 @@ contains
    !> whose strain exceeds e_max leave; then, while the smallest stable step dtmin (its element
    !> emin) is below dt_min of that element's set, that element leaves and the step is formed
    !> again over the live elements (stable_step, on the positions x0 + u). Their strain and
-   !> hourglass energy at t(n+1) move from st%strain and st%hourglass into st%eroded.
+   !> hourglass energy at t(n+1) move from st%energy%strain and st%energy%hourglass into st%energy%eroded.
    subroutine erosion_after(ero, st, sets, dtmin, emin, efold, messages)
       type(erosion_t), intent(inout) :: ero
       type(state_t), intent(inout) :: st
@@ -264,8 +264,8 @@ contains
    end function element_strain
 
    !> Book the energy element j of set s holds (its one-element force pass at u(n+1), or at u(n)
-   !> when `back`) into st%eroded, mark it with `why` and write its line into the report. `held`:
-   !> that energy is in st%strain and st%hourglass now (a pass at t(n+1) included the element).
+   !> when `back`) into st%energy%eroded, mark it with `why` and write its line into the report. `held`:
+   !> that energy is in st%energy%strain and st%energy%hourglass now (a pass at t(n+1) included the element).
    subroutine book_element(st, s, j, back, why, messages, held)
       type(state_t), intent(inout) :: st
       type(element_set_t), intent(in) :: s
@@ -273,7 +273,8 @@ contains
       logical, intent(in) :: back
       type(messages_t), intent(inout) :: messages
       logical, intent(in), optional :: held
-      real(wp) :: x0(2, 4), u(2, 4), v(2, 4), f(2, 4), w, whg, wd, jm, d, hist(size(s%hist, 1), size(s%hist, 2), 1)
+      real(wp) :: x0(2, 4), u(2, 4), v(2, 4), f(2, 4), w, whg, wd, jm, d
+      real(wp), allocatable :: hist(:, :, :)
       integer :: conn(4, 1), a, n, eb, em, ef
       do a = 1, 4
          n = s%conn(a, j)
@@ -286,23 +287,24 @@ contains
       f = 0.0_wp
       whg = 0.0_wp
       if (s%general) then
-         if (s%solid%plastic) then
-            hist(:, :, 1) = s%hist(:, :, j)
+         ! the element's own history (a copy: the energy is measured, the set is not changed)
+         if (s%solid%nvar > 0) then
+            hist = s%hist(:, :, j:j)
          else
-            hist = 0.0_wp
+            allocate (hist(0, 0, 0))
          end if
          call q4g_force(s%solid, 1, 4, conn, x0, u, 0.0_wp, hist, f, w, whg, wd, jm, eb, d, em, ef, v)
       else if (s%nq == 2) then
-         call q4_force_2x2(1, 4, conn, x0, u, s%lambda, s%mu, s%rho, f, w, jm, eb, d, em, ef)
+         call q4_force_2x2(1, 4, conn, x0, u, s%law, f, w, jm, eb, d, em, ef)
       else
-         call q4_force_1pt(1, 4, conn, x0, u, s%lambda, s%mu, s%rho, s%hourglass, f, w, whg, jm, eb, d, em, &
+         call q4_force_1pt(1, 4, conn, x0, u, s%law, s%hourglass, f, w, whg, jm, eb, d, em, &
                            ef, s%hgkind, v)
       end if
-      st%eroded = st%eroded + w + whg
+      st%energy%eroded = st%energy%eroded + w + whg
       if (present(held)) then
          if (held) then
-            st%strain = st%strain - w
-            st%hourglass = st%hourglass - whg
+            st%energy%strain = st%energy%strain - w
+            st%energy%hourglass = st%energy%hourglass - whg
          end if
       end if
       st%status(s%elems(j)) = why
@@ -327,7 +329,7 @@ contains
             n = s%conn(a, j)
             ero%nuse(n) = ero%nuse(n) - 1
             if (ero%nuse(n) > 0) cycle
-            st%eroded = st%eroded + 0.5_wp*st%mass(n)*(st%v(1, n)**2 + st%v(2, n)**2)
+            st%energy%eroded = st%energy%eroded + 0.5_wp*st%mass(n)*(st%v(1, n)**2 + st%v(2, n)**2)
             st%eroded_momentum = st%eroded_momentum + st%mass(n)*st%v(:, n)
             st%v(:, n) = 0.0_wp
             st%a(:, n) = 0.0_wp

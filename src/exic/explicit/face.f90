@@ -232,14 +232,14 @@ contains
          fp = 0.0_wp
          fm = 0.0_wp
          if (s%nq == 2) then
-            call q4_force_2x2(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, fp, w, jmin, eb, dt2, em, ef)
+            call q4_force_2x2(1, 4, conn_l, xe, u, s%law, fp, w, jmin, eb, dt2, em, ef)
             u(mod(j - 1, 2) + 1, (j + 1)/2) = ue(mod(j - 1, 2) + 1, (j + 1)/2) - h
-            call q4_force_2x2(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, fm, w, jmin, eb, dt2, em, ef)
+            call q4_force_2x2(1, 4, conn_l, xe, u, s%law, fm, w, jmin, eb, dt2, em, ef)
          else
-            call q4_force_1pt(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, s%hourglass, fp, w, whg, jmin, &
+            call q4_force_1pt(1, 4, conn_l, xe, u, s%law, s%hourglass, fp, w, whg, jmin, &
                               eb, dt2, em, ef, s%hgkind)
             u(mod(j - 1, 2) + 1, (j + 1)/2) = ue(mod(j - 1, 2) + 1, (j + 1)/2) - h
-            call q4_force_1pt(1, 4, conn_l, xe, u, s%lambda, s%mu, s%rho, s%hourglass, fm, w, whg, jmin, &
+            call q4_force_1pt(1, 4, conn_l, xe, u, s%law, s%hourglass, fm, w, whg, jmin, &
                               eb, dt2, em, ef, s%hgkind)
          end if
          ke(:, j) = reshape(fp - fm, [8])/(2.0_wp*h)

@@ -4,6 +4,7 @@
 module exic_material_material
    use exic_base_kinds, only: wp
    use exic_material_j2_hardening, only: j2_param_t
+   use exic_material_law, only: law_t, law_make, LAW_NEOHOOKEAN, LAW_J2
    implicit none
    private
 
@@ -13,11 +14,12 @@ module exic_material_material
    !> assumed-strain (ASQBI) stabilization in the element's turning frame, scaled by s.
    integer, parameter, public :: HOURGLASS_STIFFNESS = 1, HOURGLASS_PHYSICAL = 2
 
-   public :: material_t, lame_from_young
+   public :: material_t, lame_from_young, material_law
 
    !> One MATErial set.
    type :: material_t
       integer :: kind = MAT_UNDEFINED
+      integer :: law = LAW_NEOHOOKEAN                !< the ELAStic law (material/law.f90)
       real(wp) :: young = 0.0_wp, poisson = 0.0_wp   !< E, nu as given
       real(wp) :: lambda = 0.0_wp, mu = 0.0_wp       !< Lame constants from E, nu
       real(wp) :: rho = 0.0_wp                       !< reference density
@@ -34,9 +36,25 @@ module exic_material_material
       logical :: erode_inverted = .false.
       real(wp) :: erode_strain = 0.0_wp, erode_dt = 0.0_wp
       character(len=:), allocatable :: where         !< file:line of the MATErial record
+      !> DAMPing MASS c [t_end]: mass-proportional damping c (1/time) until t_end (doc/damping.md)
+      real(wp) :: damping = 0.0_wp, damping_end = huge(1.0_wp)
+      !> VISCosity BULK [q1 q2]: the bulk viscosity's coefficients (doc/damping.md, section 3)
+      logical :: bulk = .false.
+      real(wp) :: bulk_q1 = 1.5_wp, bulk_q2 = 0.06_wp
    end type material_t
 
 contains
+
+   !> The law of a material set: its ELAStic law, or J2 plasticity on it with PLAStic.
+   pure function material_law(m) result(o)
+      type(material_t), intent(in) :: m
+      type(law_t) :: o
+      if (m%plastic) then
+         o = law_make(LAW_J2, m%lambda, m%mu, m%rho, m%j2)
+      else
+         o = law_make(m%law, m%lambda, m%mu, m%rho, m%j2)
+      end if
+   end function material_law
 
    !> Lame constants from Young's modulus and Poisson's ratio.
    pure subroutine lame_from_young(e, nu, lambda, mu)
