@@ -6,7 +6,7 @@
 !> bars are derived by characteristics in doc/contact-verification.md.
 module test_contact
    use exic_base_kinds, only: wp
-   use exic_base_strings, only: rtoa
+   use exic_base_strings, only: rtoa, itoa
    use testing, only: suite_t, check, check_close, section
    use deck_runner, only: run_dir, run_deck, read_table, column, file_has
    implicit none
@@ -40,6 +40,16 @@ contains
       call penalty_test(s)
       call section(s, 'contact: bodies overlapping at the start')
       call overlap_test(s)
+      call section(s, 'contact: a wall of 10 x 1505 elements beside a block (no overlap)')
+      call long_wall_test(s, 'AUTOmatic', 10.0_wp, 0, 'a block beside a wall of long elements is not an overlap (AUTOmatic)')
+      call long_wall_test(s, 'PAIR,1,NTOS,2,1', 10.0_wp, 0, 'nor with the block nodes against the wall (NTOS)')
+      call long_wall_test(s, 'PAIR,1,NTOS,1,2', 10.0_wp, 0, 'nor with the wall nodes against the block (NTOS)')
+      call long_wall_test(s, 'AUTOmatic', 7.0_wp, 2, 'the block 3 inside the wall is refused')
+      call section(s, 'contact: bodies no contact pair couples (issue 32, item 8)')
+      call uncoupled_test(s, '', 3, 'three blocks without CONTact passing through each other')
+      call uncoupled_test(s, 'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl// &
+                          '    REGIon,2'//nl//'  PAIR,1,SYMMetric,1,2'//nl//'END CONTact'//nl//nl, 2, &
+                          'the same with a pair coupling regions 1 and 2')
       call section(s, 'contact: self contact of a U-shaped body')
       call self_contact_test(s)
    end subroutine run_contact_tests
@@ -94,6 +104,97 @@ contains
       call check(s, stage == 2 .and. index(msg, 'overlap') > 0 .and. index(msg, 'node') > 0 .and. &
                  index(msg, '5.0000000E-02') > 0, 'overlapping bodies are refused, naming the node and the depth', msg)
    end subroutine overlap_test
+
+   !> Issue 32, item 6: a wall of 1 x 2 elements of 10 x 1505 (3010 high) and a block of 4 x 4
+   !> elements of 10 beside it, its left face at x = x0 (10: touching; 7: inside the wall by 3),
+   !> moving away from the wall at 0.1 for 20 steps. Touching: it runs, and the wall's far bottom
+   !> corner (node 1 at (0, 0), which the old check took for a node inside the block) moves by less
+   !> than 1, a tenth of the wall's width (a false contact moves it by 50). Overlapping: refused, naming the depth 3.
+   subroutine long_wall_test(s, pair, x0, want, what)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: pair, what
+      real(wp), intent(in) :: x0
+      integer, intent(in) :: want
+      character(len=:), allocatable :: msg, deck
+      character(len=64), allocatable :: names(:)
+      real(wp), allocatable :: d(:, :)
+      integer :: stage
+      deck = 'FEAP * * wall beside a block'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1e4 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,1,2,1,1,1'//nl//'    1,0,0'//nl//'    2,10,0'//nl// &
+             '    3,10,3010'//nl//'    4,0,3010'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,4,4,7,3,1'//nl//'    1,'//rtoa(x0)//',0'//nl// &
+             '    2,'//rtoa(x0 + 40)//',0'//nl//'    3,'//rtoa(x0 + 40)//',40'//nl//'    4,'//rtoa(x0)//',40'//nl//nl// &
+             'INITial,VELOcity'//nl//'  REGIon,2,0.1,0'//nl//nl// &
+             'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
+             '  '//pair//nl//'END CONTact'//nl//nl//'END'//nl// &
+             'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,20'//nl//'    TIME,,2'//nl// &
+             '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//'  disp,1,1'//nl//'  disp,1,2'//nl//nl//'STOP'
+      call run_deck('wall_'//itoa(want)//'_'//pair(1:4)//pair(len(pair):), deck, stage, msg)
+      if (want == 2) then
+         call check(s, stage == 2 .and. index(msg, 'bodies overlap at the start') > 0 .and. &
+                    index(msg, '3.0000') > 0, what, msg)
+         return
+      end if
+      call check(s, stage == 0, what, msg)
+      if (stage /= 0) return
+      call read_table(run_dir//'/wall_'//itoa(want)//'_'//pair(1:4)//pair(len(pair):)//'.his', names, d)
+      call check(s, maxval(abs(d(2:3, :))) < 1.0_wp, 'the far corner of the wall stays (no false contact)', &
+                 'largest displacement '//rtoa(maxval(abs(d(2:3, :)))))
+   end subroutine long_wall_test
+
+   !> Issue 32, item 8: blocks A (region 1, moving right), B (region 2, at rest) and C (region 3,
+   !> moving left), each 1 x 1 in 4 x 4 elements, in a row 0.2 apart, B lifted by 0.5; at t = 1 A
+   !> and C have passed into B and into each other. Without contact every two of them
+   !> interpenetrate: one warning per pair ("regions i and j interpenetrate ...; no contact pair
+   !> couples them"), `nwarn` = 3, in <stem>.out and on the console. With `cont` a SYMMetric pair
+   !> couples A and B: they do not interpenetrate and are never named; the other two pairs warn
+   !> (`nwarn` = 2). (The console gets the same lines through the run's messages.)
+   subroutine uncoupled_test(s, cont, nwarn, what)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: cont, what
+      integer, intent(in) :: nwarn
+      character(len=:), allocatable :: msg, deck, name
+      integer :: stage, n12, n13, n23
+      deck = 'FEAP * * blocks passing through each other'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 100 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,4,4,1,1,1'//nl//'    1,0,0'//nl//'    2,1,0'//nl// &
+             '    3,1,1'//nl//'    4,0,1'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,4,4,26,17,1'//nl//'    1,1.2,0.5'//nl//'    2,2.2,0.5'//nl// &
+             '    3,2.2,1.5'//nl//'    4,1.2,1.5'//nl//nl// &
+             'REGIon,3'//nl//'BLOCk'//nl//'  CARTesian,4,4,51,33,1'//nl//'    1,2.4,0'//nl//'    2,3.4,0'//nl// &
+             '    3,3.4,1'//nl//'    4,2.4,1'//nl//nl// &
+             'INITial,VELOcity'//nl//'  REGIon,1,1,0'//nl//'  REGIon,3,-1,0'//nl//nl//cont// &
+             'END'//nl//'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,10'//nl//'  OUTPut,HDF5,0.05'//nl// &
+             '  LOOP,,100000'//nl//'    TIME,,1'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
+             '  disp,1,1'//nl//nl//'STOP'
+      name = 'uncoupled'//itoa(nwarn)
+      call run_deck(name, deck, stage, msg)
+      call check(s, stage == 0, what//' runs', msg)
+      if (stage /= 0) return
+      n12 = lines_with(run_dir//'/'//name//'.out', 'regions 1 and 2 interpenetrate at t')
+      n13 = lines_with(run_dir//'/'//name//'.out', 'regions 1 and 3 interpenetrate at t')
+      n23 = lines_with(run_dir//'/'//name//'.out', 'regions 2 and 3 interpenetrate at t')
+      call check(s, n12 + n13 + n23 == nwarn .and. max(n12, n13, n23) == 1 .and. &
+                 (nwarn == 3 .or. n12 == 0), what//': one warning per uncoupled pair in <stem>.out', &
+                 'warnings 1-2 '//itoa(n12)//', 1-3 '//itoa(n13)//', 2-3 '//itoa(n23))
+   end subroutine uncoupled_test
+
+   !> Number of lines of the file that contain `text`.
+   integer function lines_with(path, text) result(n)
+      character(len=*), intent(in) :: path, text
+      character(len=4096) :: line
+      integer :: u, ios
+      n = 0
+      open (newunit=u, file=path, status='old', action='read', iostat=ios)
+      if (ios /= 0) return
+      do
+         read (u, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         if (index(line, text) > 0) n = n + 1
+      end do
+      close (u)
+   end function lines_with
 
    !> Seed example 7.2: bar 30 x 4 (30 x 6) at 50 against a free vertical bar 4 x 30 meshed
    !> 6 x 30 (node on node) or 6 x 31 (node on segment); lambda = 33333, mu = 5000, rho = 0.1.

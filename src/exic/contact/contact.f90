@@ -40,6 +40,7 @@ module exic_contact_contact
    use exic_contact_pair_history, only: pair_history_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
    use exic_contact_massless_face, only: massless_face_t
+   use exic_contact_overlap, only: node_element_lists, inside_near
    implicit none
    private
 
@@ -190,9 +191,9 @@ contains
       integer, intent(in) :: conn(4, nelem), region(nelem), mat(nelem)
       real(wp), intent(in) :: modulus
       type(error_t), allocatable, intent(out) :: err
-      integer :: k, np, nsurf
+      integer :: k, np, nsurf, nlen
+      integer, allocatable :: head(:), list(:)
       real(wp) :: len_sum
-      integer :: nlen
 
       self%active = spec%active
       if (.not. self%active) return
@@ -230,7 +231,8 @@ contains
                          'model without ENERgy')
          return
       end if
-      call check_overlap(self, nnode, x, err)
+      call node_element_lists(nnode, nelem, conn, head, list)
+      call check_overlap(self, nnode, x, nelem, conn, head, list, err)
    end subroutine contact_init
 
    !> The friction state of the passes and of the model (at init): allocated only when some
@@ -442,10 +444,11 @@ contains
       k = 0
    end function surface_index
 
-   !> Bodies that overlap at the start are an error naming the worst node, segment and depth.
-   subroutine check_overlap(self, nnode, x, err)
+   !> Bodies that overlap at the start are an error naming the worst node, segment and depth: a
+   !> node behind a segment that lies inside an element next to it (src/exic/contact/overlap.f90).
+   subroutine check_overlap(self, nnode, x, nelem, conn, head, list, err)
       type(contact_t), intent(inout) :: self
-      integer, intent(in) :: nnode
+      integer, intent(in) :: nnode, nelem, conn(4, nelem), head(:), list(:)
       real(wp), intent(in) :: x(2, nnode)
       type(error_t), allocatable, intent(out) :: err
       integer :: k, j, worst_node, worst_m(2)
@@ -464,6 +467,8 @@ contains
                                  0.5_wp*self%lref, FACING)
             do j = 1, ps%hits%n
                if (-ps%hits%gap(j) > worst) then
+                  if (.not. inside_near(ps%hits%slave(j), ps%hits%master(:, j), nnode, x, nelem, conn, &
+                                        head, list)) cycle
                   worst = -ps%hits%gap(j)
                   worst_node = ps%hits%slave(j)
                   worst_m = ps%hits%master(:, j)

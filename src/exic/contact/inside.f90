@@ -12,6 +12,11 @@
 !> with no self contact asked for): its depth is the distance to that element's nearest side,
 !> in lengths of that side.
 !>
+!> With `all_pairs` (every run with two bodies or more, src/exic/session/run.f90) the bodies that no
+!> contact pass couples are checked too: a node of one inside the other is reported once per pair
+!> ("regions i and j interpenetrate at t = ...; no contact pair couples them"); such hits do not
+!> enter the deepest node of the contact's report (`last`, `worst`).
+!>
 !> Which pairs of bodies are checked is kept per body (the AUTOmatic set) plus a sorted list of
 !> the pairs PAIR passes name, and the pairs past the limit in a sorted list: memory and set-up
 !> O(nbody + listed pairs), never nbody^2 (a scene of 4096 bodies needed 1 GB and 9 s before).
@@ -64,6 +69,9 @@ module exic_contact_inside
       integer, allocatable :: edge(:, :)        !< (2, nedge) free boundary edges of all bodies
       integer, allocatable :: edge_body(:)      !< (nedge) body index of each edge
       real(wp) :: fraction = 1.0e-3_wp          !< warning limit, in edge lengths
+      !> every two bodies are checked: those no pass couples (neither (i, j) nor (j, i) checked)
+      !> warn once per pair, as "regions i and j interpenetrate ...; no contact pair couples them"
+      logical :: all_pairs = .false.
       !> results
       type(inside_hit_t) :: last                !< deepest of the last check
       type(inside_hit_t) :: worst               !< deepest over the run
@@ -289,6 +297,7 @@ contains
       character(len=:), allocatable, intent(out) :: warn
       integer :: n, a, c, k, e, b, pb(self%nbody), np
       real(wp) :: d, rel, t0, q(2, 4)
+      logical :: free
       ! the nodes past the limit of this check: their pair's key and their hit, in node order
       integer(i8), allocatable :: hkey(:)
       type(inside_hit_t), allocatable :: hit(:)
@@ -298,7 +307,7 @@ contains
       self%nover = 0
       if (.not. self%active) return
       if (.not. self%settled) call settle(self)
-      if (.not. any(self%tested)) return
+      if (.not. (any(self%tested) .or. (self%all_pairs .and. self%nbody > 1))) return
       t0 = wall_time()
       self%nchecks = self%nchecks + 1
       call build_grids(self, x)
@@ -306,16 +315,24 @@ contains
       do n = 1, self%nnode
          a = self%nb(n)
          if (a == 0) cycle
-         if (.not. self%tested(a)) cycle
+         if (.not. (self%tested(a) .or. self%all_pairs)) cycle
          c = cell_of(self, x(:, n))
          np = 0
          do k = self%ehead(c), self%ehead(c + 1) - 1
             e = self%eitem(k)
             b = self%eb(e)
             ! elements of other bodies the contact covers, and of the node's own body (which it
-            ! can be inside only when the body has passed through itself)
+            ! can be inside only when the body has passed through itself); with all_pairs, of
+            ! bodies no contact pass couples with it (`free`)
+            free = .false.
             if (b /= a) then
-               if (.not. checked(self, a, b)) cycle
+               if (.not. checked(self, a, b)) then
+                  if (.not. self%all_pairs) cycle
+                  if (checked(self, b, a)) cycle
+                  free = .true.
+               end if
+            else if (.not. self%tested(a)) then
+               cycle
             end if
             if (any(pb(1:np) == b)) cycle
             associate (box => self%ebox(:, e))
@@ -335,14 +352,16 @@ contains
                if (.not. self%edges_binned) call bin_edges(self, x)
                call boundary_depth(self, x, x(:, n), b, d, rel)
             end if
-            if (rel > self%last%edges) self%last = inside_hit_t(d, rel, n, self%ids(a), self%ids(b), t)
+            if (rel > self%last%edges .and. .not. free) self%last = inside_hit_t(d, rel, n, self%ids(a), self%ids(b), t)
             if (rel > self%fraction) then
                self%nover = self%nover + 1
                if (self%nover > size(hkey)) then
                   hkey = [hkey, hkey]
                   hit = [hit, hit]
                end if
+               ! a pair no pass couples: one key for both directions (min, max), marked negative
                hkey(self%nover) = pair_key(self%nbody, a, b)
+               if (free) hkey(self%nover) = -pair_key(self%nbody, min(a, b), max(a, b))
                hit(self%nover) = inside_hit_t(d, rel, n, self%ids(a), self%ids(b), t)
             end if
          end do
@@ -386,14 +405,22 @@ contains
             self%past_key = [self%past_key(1:at - 1), hkey(perm(p)), self%past_key(at:self%npast - 1)]
             self%past_checks = [self%past_checks(1:at - 1), 0, self%past_checks(at:self%npast - 1)]
             self%past_max = [self%past_max(1:at - 1), 0, self%past_max(at:self%npast - 1)]
-            ib = int(mod(hkey(perm(p)) - 1, int(self%nbody, i8))) + 1
-            jb = int((hkey(perm(p)) - 1)/int(self%nbody, i8)) + 1
+            ib = int(mod(abs(hkey(perm(p))) - 1, int(self%nbody, i8))) + 1
+            jb = int((abs(hkey(perm(p))) - 1)/int(self%nbody, i8)) + 1
             if (len(warn) > 0) warn = warn//new_line('a')
-            warn = warn//'warning: at t = '//rtoa(t)//' '//itoa(count)//' node(s) of region '// &
-                   itoa(self%ids(ib))//' are inside '//inside_what(self, ib, jb)//' deeper than '// &
-                   rtoa(self%fraction)//' element edges; deepest: node '//itoa(deep%node)// &
-                   ', '//rtoa(deep%edges)//' edges ('//rtoa(deep%depth)// &
-                   ') (geometric penetration check; later times are counted in <stem>.out)'
+            if (hkey(perm(p)) < 0) then
+               warn = warn//'warning: regions '//itoa(self%ids(ib))//' and '//itoa(self%ids(jb))// &
+                      ' interpenetrate at t = '//rtoa(t)//'; no contact pair couples them (node '// &
+                      itoa(deep%node)//' of region '//itoa(deep%of_body)//' is inside region '// &
+                      itoa(deep%in_body)//' by '//rtoa(deep%depth)//', '//rtoa(deep%edges)// &
+                      ' element edges; geometric penetration check, later times are counted in <stem>.out)'
+            else
+               warn = warn//'warning: at t = '//rtoa(t)//' '//itoa(count)//' node(s) of region '// &
+                      itoa(self%ids(ib))//' are inside '//inside_what(self, ib, jb)//' deeper than '// &
+                      rtoa(self%fraction)//' element edges; deepest: node '//itoa(deep%node)// &
+                      ', '//rtoa(deep%edges)//' edges ('//rtoa(deep%depth)// &
+                      ') (geometric penetration check; later times are counted in <stem>.out)'
+            end if
          end if
          self%past_checks(at) = self%past_checks(at) + 1
          self%past_max(at) = max(self%past_max(at), count)
@@ -430,9 +457,12 @@ contains
                 rtoa(self%worst%t)
       end if
       do k = 1, self%npast
-         ib = int(mod(self%past_key(k) - 1, int(self%nbody, i8))) + 1
-         jb = int((self%past_key(k) - 1)/int(self%nbody, i8)) + 1
-         if (ib == jb) then
+         ib = int(mod(abs(self%past_key(k)) - 1, int(self%nbody, i8))) + 1
+         jb = int((abs(self%past_key(k)) - 1)/int(self%nbody, i8)) + 1
+         if (self%past_key(k) < 0) then
+            text = text//new_line('a')//'geometric penetration check: regions '//itoa(self%ids(ib))// &
+                   ' and '//itoa(self%ids(jb))//' interpenetrate (no contact pair couples them)'
+         else if (ib == jb) then
             text = text//new_line('a')//'geometric penetration check: region '//itoa(self%ids(ib))// &
                    ' through itself'
          else

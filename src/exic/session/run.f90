@@ -120,23 +120,28 @@ contains
                            itoa(int(r%stp%st%step)))
    end subroutine save_restart
 
-   !> The geometric penetration check (src/exic/contact/inside.f90) over the regions, for the
-   !> pairs of regions that the contact passes cover; nothing without contact.
+   !> The geometric penetration check (src/exic/contact/inside.f90) over the regions: the pairs
+   !> of regions that the contact passes cover, and every other two regions, which warn once per
+   !> pair when they interpenetrate (no contact pair couples them; a model without CONTact too).
    subroutine init_inside(r, model, err)
       type(run_t), intent(inout) :: r
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: err
-      if (.not. r%stp%contact%active) return
+      if (size(model%mesh%conn, 2) == 0) return
+      if (.not. r%stp%contact%active .and. all(model%mesh%region == model%mesh%region(1))) return
       call r%inside%init(r%stp%st%nnode, size(model%mesh%conn, 2), model%mesh%conn, model%mesh%region, &
                          PENETRATION_WARN, err)
       if (allocated(err)) return
       call inside_pairs(r)
    end subroutine init_inside
 
-   !> The pairs of regions the check covers: those of the contact passes.
+   !> The pairs of regions the check covers: every two regions (all_pairs), those of the contact
+   !> passes allowed to touch.
    subroutine inside_pairs(r)
       type(run_t), intent(inout) :: r
       integer :: k
+      r%inside%all_pairs = .true.
+      if (.not. r%stp%contact%active) return
       associate (c => r%stp%contact)
          ! the passes of the PAIRs, and every pair of AUTOmatic surfaces (whose passes are made
          ! per step for the surfaces found near), given surface by surface
