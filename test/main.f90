@@ -41,6 +41,7 @@ program exic_tests
    use test_restart, only: run_restart_tests
    use test_inside, only: run_inside_tests
    use test_stress_decks, only: run_stress_decks_tests
+   use test_erosion, only: run_erosion_tests
    implicit none
    type(runner_t) :: r
 
@@ -72,6 +73,7 @@ program exic_tests
    call r%run('deck', run_deck_tests)
    call r%run('inputs', run_inputs_tests)
    call r%run('gmsh', run_gmsh_tests)
+   call r%run('erosion', run_erosion_tests)
    call r%run('loads', run_loads_tests)
    call r%run('rigid', run_rigid_tests)
    call r%run('friction', run_friction_tests)

@@ -130,7 +130,13 @@ contains
       end if
       ! the .h5 first: when it cannot be continued, the text files stay as they are
       if (self%field_dt > 0.0_wp) then
-         if (stp%st%has_plastic) then
+         if (allocated(stp%st%status)) then
+            call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
+                                    model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
+                                    pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, cell_names=status_names(stp), &
+                                    friction=stp%contact%friction, &
+                                    capacity=expected_field_times(model, stp%st%t, self%field_dt))
+         else if (stp%st%has_plastic) then
             call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                     model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
                                     pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, cell_names=PLASTIC_CELL_NAMES, &
@@ -396,7 +402,14 @@ contains
       type(model_t), intent(in) :: model
       type(stepper_t), intent(in) :: stp
       type(error_t), allocatable, intent(out) :: err
-      if (stp%st%has_plastic) then
+      if (allocated(stp%st%status)) then
+         ! erosion: the element status as one more element value (doc/erosion.md)
+         call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
+                               model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
+                               model%mesh%mat, stp%contact%edges(), err, cell_names=status_names(stp), &
+                               energy_names=pack(ENERGY_NAMES, energy_mask(stp, self%files)), &
+                               friction=stp%contact%friction, capacity=expected_field_times(model, stp%st%t, self%field_dt))
+      else if (stp%st%has_plastic) then
          call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
                                model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
                                model%mesh%mat, stp%contact%edges(), err, cell_names=PLASTIC_CELL_NAMES, &
@@ -440,6 +453,17 @@ contains
          k = int(n) + 2
       end if
    end function expected_field_times
+
+   !> The element values of a run with erosion: those of its sets, then `status`.
+   pure function status_names(stp) result(names)
+      type(stepper_t), intent(in) :: stp
+      character(len=20), allocatable :: names(:)
+      if (stp%st%has_plastic) then
+         names = [PLASTIC_CELL_NAMES, 'status              ']
+      else
+         names = [PLASTIC_CELL_NAMES(1:7), 'status              ']
+      end if
+   end function status_names
 
    !> Which of ENERGY_NAMES (explicit/energy.f90) the run's field output has: not the work of
    !> the prescribed motion, the frictional dissipation with friction only, the plastic work
@@ -507,8 +531,11 @@ contains
       integer :: nc
       associate (st => stp%st)
          nc = merge(NSIG, 7, st%has_plastic)
+         if (allocated(st%status)) nc = nc + 1
          allocate (sig(nc, st%nelem), flag(st%nnode))
          call all_stresses(st, stp%sets, sig)
+         ! erosion: the element status (0 live, else the reason; doc/erosion.md) as the last row
+         if (allocated(st%status)) sig(nc, :) = real(st%status, wp)
          energies = st%energy%values()
          energies(E_FRICTION) = stp%contact%dissipation
          ! non-finite values are never written as results: the run stops, naming where

@@ -32,6 +32,7 @@ module exic_restart
    use exic_explicit_state, only: plus_zero
    use exic_contact_contact, only: contact_t
    use exic_contact_pair_history, only: pair_history_t
+   use exic_explicit_erosion, only: erosion_restore
    use exic_material_material, only: HOURGLASS_PHYSICAL
    implicit none
    private
@@ -366,6 +367,14 @@ contains
       call ar%item('stepper.fcon_old', stp%fcon_old)
       call ar%item('stepper.time_forces', stp%time_forces)
       call ar%item('stepper.time_steps', stp%time_steps)
+      if (allocated(stp%st%status)) then
+         ! element erosion (doc/erosion.md): the status, then the sets without the eroded elements
+         call ar%item('state.status', stp%st%status)
+         call ar%item('state.neroded', stp%st%neroded)
+         call ar%item('state.eroded', stp%st%energy%eroded)
+         call ar%item('state.eroded_momentum', stp%st%eroded_momentum)
+         if (.not. ar%saving .and. .not. allocated(ar%err)) call erosion_restore(stp%ero, stp%st, stp%sets)
+      end if
       do k = 1, size(stp%sets)
          ! a material with history per point keeps it in the set, hist(nvar, nq*nq, nel)
          if (allocated(stp%sets(k)%hist)) call ar%item('set'//itoa(k)//'.hist', stp%sets(k)%hist)

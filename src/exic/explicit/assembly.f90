@@ -577,6 +577,7 @@ contains
       sig = 0.0_wp
       sig(7) = 1.0_wp
       j = st%eloc(e)
+      if (j == 0) return   ! an eroded element (doc/erosion.md)
       associate (s => sets(st%eset(e)))
          if (s%kind /= MAT_SOLID) return
          if (s%general) then

@@ -4,12 +4,13 @@
 !>
 !> One place writes each sum, always in the same order (the bits of the balance depend on it):
 !>
-!>     physical = kinetic + strain + hourglass + plastic + damping + bulk
-!>     total    = kinetic + c + strain + hourglass + plastic + damping + bulk - wext - wcon - wpm
+!>     physical = kinetic + strain + hourglass + plastic + damping + bulk + eroded
+!>     total    = kinetic + c + strain + hourglass + plastic + damping + bulk + eroded - wext - wcon - wpm
 !>
 !> with c the change since t = 0 of the kinetic correction (explicit/assembly.f90,
 !> kinetic_correction). The dissipations (plastic work, mass damping, bulk viscosity) are energy
-!> that left the mechanical system, booked so that the total stays at its initial value.
+!> that left the mechanical system, booked so that the total stays at its initial value; so is the
+!> energy of the eroded elements (doc/erosion.md, (R3)).
 !> The frictional dissipation is part of the contact work wcon; the guard adds it apart.
 module exic_explicit_energy
    use exic_base_kinds, only: wp
@@ -18,22 +19,23 @@ module exic_explicit_energy
    private
 
    public :: energy_t, ENERGY_NAMES, NENERGY, E_KINETIC, E_STRAIN, E_WEXT, E_WCON, E_HOURGLASS, E_WPM, &
-             E_FRICTION, E_PLASTIC, E_DAMPING, E_BULK, DEFAULT_ENERGIES, &
+             E_FRICTION, E_PLASTIC, E_DAMPING, E_BULK, E_ERODED, DEFAULT_ENERGIES, &
              model_energies
 
    !> The energies in the order of their columns (energy_t%values): kinetic, strain (with the
    !> hourglass energy), external work, contact work, hourglass, work of the prescribed motion,
-   !> frictional dissipation, plastic work, mass-damping dissipation, bulk-viscosity dissipation.
-   integer, parameter :: NENERGY = 10
+   !> frictional dissipation, plastic work, mass-damping dissipation, bulk-viscosity dissipation,
+   !> energy of the eroded elements.
+   integer, parameter :: NENERGY = 11
    integer, parameter :: E_KINETIC = 1, E_STRAIN = 2, E_WEXT = 3, E_WCON = 4, E_HOURGLASS = 5, E_WPM = 6, &
-                         E_FRICTION = 7, E_PLASTIC = 8, E_DAMPING = 9, E_BULK = 10
+                         E_FRICTION = 7, E_PLASTIC = 8, E_DAMPING = 9, E_BULK = 10, E_ERODED = 11
    !> The energies every <stem>.ene has (the others only when the model has them).
    logical, parameter :: DEFAULT_ENERGIES(NENERGY) = [.true., .true., .true., .true., .true., .true., .true., &
-                                                      .true., .false., .false.]
+                                                      .true., .false., .false., .false.]
    !> Their names: the column names of <stem>.ene and the energy names of the field file.
    character(len=20), parameter :: ENERGY_NAMES(NENERGY) = [character(len=20) :: 'kinetic', 'strain', &
       'external_work', 'contact_work', 'hourglass', 'prescribed_work', 'friction_dissipation', 'plastic_work', &
-      'damping_dissipation', 'bulk_viscosity']
+      'damping_dissipation', 'bulk_viscosity', 'eroded']
 
    !> The energies of a state at t(n+1) and the work done since t = 0.
    type :: energy_t
@@ -43,6 +45,7 @@ module exic_explicit_energy
       real(wp) :: plastic = 0.0_wp     !< plastic work dissipated (doc/axisymmetry.md, (A13))
       real(wp) :: damping = 0.0_wp     !< dissipated by mass damping (doc/damping.md)
       real(wp) :: bulk = 0.0_wp        !< dissipated by the bulk viscosity (doc/damping.md)
+      real(wp) :: eroded = 0.0_wp      !< eroded elements and nodes that left (doc/erosion.md)
       real(wp) :: wext = 0.0_wp        !< work of the external forces
       real(wp) :: wcon = 0.0_wp        !< work of the contact forces (friction included)
       real(wp) :: wpm = 0.0_wp         !< work of the prescribed motion (doc/loads.md, section 3)
@@ -58,7 +61,8 @@ module exic_explicit_energy
 contains
 
    !> The energies a model's <stem>.ene has: DEFAULT_ENERGIES, and the damping and bulk
-   !> viscosity dissipations when a SOLId material has DAMPing MASS or VISCosity BULK.
+   !> viscosity dissipations when a SOLId material has DAMPing MASS or VISCosity BULK, the eroded
+   !> energy when one has EROSion (doc/erosion.md).
    pure function model_energies(materials) result(with)
       type(material_t), intent(in) :: materials(:)
       logical :: with(NENERGY)
@@ -68,14 +72,16 @@ contains
          if (materials(k)%kind /= MAT_SOLID) cycle
          if (materials(k)%damping > 0.0_wp) with(E_DAMPING) = .true.
          if (materials(k)%bulk) with(E_BULK) = .true.
+         if (materials(k)%erode_inverted .or. materials(k)%erode_strain > 0.0_wp .or. &
+             materials(k)%erode_dt > 0.0_wp) with(E_ERODED) = .true.
       end do
    end function model_energies
 
    !> The physical energy: kinetic + strain + hourglass + plastic work + the damping and bulk
-   !> viscosity dissipations (what the energy guard compares with the energy put in).
+   !> viscosity dissipations + the eroded energy (what the energy guard compares with the energy put in).
    pure real(wp) function energy_physical(self) result(e)
       class(energy_t), intent(in) :: self
-      e = self%kinetic + self%strain + self%hourglass + self%plastic + self%damping + self%bulk
+      e = self%kinetic + self%strain + self%hourglass + self%plastic + self%damping + self%bulk + self%eroded
    end function energy_physical
 
    !> The total of the balance with c, the change of the kinetic correction since t = 0
@@ -83,7 +89,8 @@ contains
    pure real(wp) function energy_total(self, c) result(total)
       class(energy_t), intent(in) :: self
       real(wp), intent(in) :: c
-      total = self%kinetic + c + self%strain + self%hourglass + self%plastic + self%damping + self%bulk - &
+      total = self%kinetic + c + self%strain + self%hourglass + self%plastic + self%damping + self%bulk + &
+              self%eroded - &
               self%wext - self%wcon - self%wpm
    end function energy_total
 
@@ -104,7 +111,7 @@ contains
       class(energy_t), intent(in) :: self
       real(wp) :: v(NENERGY)
       v = [self%kinetic, self%strain + self%hourglass, self%wext, self%wcon, self%hourglass, self%wpm, &
-           self%friction, self%plastic, self%damping, self%bulk]
+           self%friction, self%plastic, self%damping, self%bulk, self%eroded]
    end function energy_values
 
 end module exic_explicit_energy

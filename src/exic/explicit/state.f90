@@ -93,6 +93,10 @@ module exic_explicit_state
       real(wp) :: momentum(2) = 0.0_wp
       real(wp) :: jmin = 1.0_wp
       integer :: nactive = 0                    !< active contact constraints
+      ! element erosion (doc/erosion.md); status allocated only when a material erodes
+      integer, allocatable :: status(:)         !< (nelem) 0 live, else why it was eroded
+      integer :: neroded = 0                    !< elements eroded so far
+      real(wp) :: eroded_momentum(2) = 0.0_wp   !< momentum of the nodes that left
    end type state_t
 
 contains

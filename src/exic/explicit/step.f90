@@ -45,6 +45,8 @@ module exic_explicit_step
    use exic_explicit_face, only: face_setup, face_refresh
    use exic_explicit_decomposition, only: decomposition_t, decomposition_init, decomposition_forces, &
                                           decomposition_summary
+   use exic_explicit_erosion, only: erosion_t, erosion_init, erosion_before, erosion_after
+   use exic_explicit_erosion_contact, only: erosion_contact_t, erosion_contact_init, erosion_contact_rebuild
    implicit none
    private
 
@@ -83,6 +85,8 @@ module exic_explicit_step
       class(contact_hook_t), pointer :: hook => null() !< a host's contact instead, when associated
       type(decomposition_t) :: dd                     !< the element pass on several MPI ranks (doc/parallel.md)
       type(messages_t) :: messages                    !< warnings for the run's report
+      type(erosion_t) :: ero                          !< element erosion (doc/erosion.md)
+      type(erosion_contact_t) :: eroc                 !< the contact surfaces it rebuilds
       logical :: started = .false.                    !< `start` has made the state at t = 0
       ! time-step control
       logical :: cfl_mode = .true.                    !< DT,CFL (else a fixed DT)
@@ -146,6 +150,7 @@ contains
 
       call assembly_init(mesh, materials, self%st, self%sets, err)
       if (allocated(err)) return
+      call erosion_init(self%ero, self%st, self%sets, materials)
       call decomposition_init(self%dd, self%st, self%sets, mesh%conn, err)
       if (allocated(err)) return
       if (self%dd%active) call self%messages%add(decomposition_summary(self%dd))
@@ -170,6 +175,8 @@ contains
          call self%contact%init(spec, n, self%st%x0, self%st%x0, mesh%nelem, mesh%conn, mesh%region, &
                                 mesh%mat, modulus, err)
       end if
+      if (allocated(err)) return
+      if (self%ero%active) call erosion_contact_init(self%eroc, spec, mesh, modulus, err)
       if (allocated(err)) return
       if (self%contact%energy) then
          ! LAGRange,ENERgy: massless contact faces (doc/impact.md, section 3)
@@ -343,6 +350,7 @@ contains
          else if (self%has_contact() .or. self%ld%active) then
             call positions(st%nnode, st%x0, st%u, self%x)
          end if
+         if (self%ero%active) call erosion_before(self%ero, st, self%sets, self%messages, self%a_old)
          if (self%dd%active) then
             call decomposition_forces(self%dd, st, self%sets, res)
          else
@@ -355,9 +363,29 @@ contains
             call inverted_error(st, res%ebad, err)
             return
          end if
+         if (self%ero%active) call eroded(self, err)
+         if (allocated(err)) return
          call choose_dt(self, err, 'DT')
       end associate
    end subroutine forces_and_dt
+
+   !> After the force pass: the erosions it decides (doc/erosion.md (R2)); after any erosion, the
+   !> contact surfaces from the live elements and the positions of their nodes.
+   subroutine eroded(self, err)
+      type(stepper_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      associate (st => self%st)
+         call erosion_after(self%ero, st, self%sets, self%dt_elements, self%dt_elements_at, self%folded, &
+                            self%messages)
+         if (.not. self%ero%changed) return
+         self%ero%changed = .false.
+         if (.not. self%contact%active) return
+         call erosion_contact_rebuild(self%eroc, self%contact, st, err)
+         if (allocated(err)) return
+         self%contact%keep_fcon = .true.
+         call positions(st%nnode, st%x0, st%u, self%x)
+      end associate
+   end subroutine eroded
 
    !> True when a step has no contact, loads or masses per dof: it sweeps the nodes twice
    !> (cd_displacement_plain, cd_update_plain) and reads none of the work arrays x, du, a_old, v~

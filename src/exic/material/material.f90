@@ -31,6 +31,10 @@ module exic_material_material
       logical :: plastic = .false.                   !< PLAStic: J2 plasticity (material/j2.f90)
       type(j2_param_t) :: j2                         !< its parameters (PLAStic, SPECific heat)
       logical :: mixed = .false.                     !< MIXEd: mean dilatation (2x2 element)
+      !> EROSion (doc/erosion.md): remove an element that would invert, whose strain exceeds
+      !> erode_strain (> 0), or whose stable step falls below erode_dt (> 0)
+      logical :: erode_inverted = .false.
+      real(wp) :: erode_strain = 0.0_wp, erode_dt = 0.0_wp
       character(len=:), allocatable :: where         !< file:line of the MATErial record
       !> DAMPing MASS c [t_end]: mass-proportional damping c (1/time) until t_end (doc/damping.md)
       real(wp) :: damping = 0.0_wp, damping_end = huge(1.0_wp)

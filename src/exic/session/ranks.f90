@@ -53,6 +53,11 @@ contains
                      'supported on several MPI ranks; run this deck on one rank'
                return
             end if
+            if (m%kind == MAT_SOLID .and. (m%erode_inverted .or. m%erode_strain > 0.0_wp .or. m%erode_dt > 0.0_wp)) then
+               msg = 'MATErial '//itoa(k)//': EROSion (elements removed during the run) is not yet '// &
+                     'supported on several MPI ranks; run this deck on one rank'
+               return
+            end if
             if (m%kind == MAT_SOLID .and. law_has_history(material_law(m))) then
                msg = 'MATErial '//itoa(k)//': ELAStic ISOTropic (the hypoelastic law''s history of the elements) '// &
                      'is not yet supported on several MPI ranks; run this deck on one rank'

@@ -56,6 +56,7 @@ module exic_session_run
       integer(i8) :: saved_step = -1           !< step of the last restart file written
       type(inside_t) :: inside                 !< geometric penetration check (with contact)
       integer(i8) :: inside_step = -1          !< step of its last check
+      integer :: inside_eroded = 0             !< eroded elements when it was built (doc/erosion.md)
       procedure(fields_observer), pointer, nopass :: on_fields => null()
    end type run_t
 
@@ -127,12 +128,19 @@ contains
       type(run_t), intent(inout) :: r
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: err
-      integer :: k
       if (size(model%mesh%conn, 2) == 0) return
       if (.not. r%stp%contact%active .and. all(model%mesh%region == model%mesh%region(1))) return
       call r%inside%init(r%stp%st%nnode, size(model%mesh%conn, 2), model%mesh%conn, model%mesh%region, &
                          PENETRATION_WARN, err)
       if (allocated(err)) return
+      call inside_pairs(r)
+   end subroutine init_inside
+
+   !> The pairs of regions the check covers: every two regions (all_pairs), those of the contact
+   !> passes allowed to touch.
+   subroutine inside_pairs(r)
+      type(run_t), intent(inout) :: r
+      integer :: k
       r%inside%all_pairs = .true.
       if (.not. r%stp%contact%active) return
       associate (c => r%stp%contact)
@@ -147,15 +155,49 @@ contains
             end do
          end if
       end associate
-   end subroutine init_inside
+   end subroutine inside_pairs
+
+   !> After erosion: the check over the live elements only (the run's results carried over).
+   subroutine inside_after_erosion(r, err)
+      type(run_t), intent(inout) :: r
+      type(error_t), allocatable, intent(out) :: err
+      type(inside_t) :: old
+      logical, allocatable :: live(:)
+      integer :: nlive
+      r%inside_eroded = r%stp%st%neroded
+      if (.not. r%stp%eroc%on) return
+      old = r%inside
+      live = r%stp%st%status == 0
+      nlive = count(live)
+      call r%inside%init(r%stp%st%nnode, nlive, reshape(pack(r%stp%eroc%conn, spread(live, 1, 4)), [4, nlive]), &
+                         pack(r%stp%eroc%region, live), PENETRATION_WARN, err)
+      if (allocated(err)) return
+      call inside_pairs(r)
+      r%inside%worst = old%worst
+      r%inside%npast = old%npast
+      r%inside%past_key = old%past_key
+      r%inside%past_checks = old%past_checks
+      r%inside%past_max = old%past_max
+      r%inside%nchecks = old%nchecks
+      r%inside%time_total = old%time_total
+   end subroutine inside_after_erosion
 
    !> Check the positions now for nodes inside other bodies; warnings go to <stem>.out and the
    !> console.
    subroutine check_inside(r)
       type(run_t), intent(inout) :: r
       character(len=:), allocatable :: warn
+      type(error_t), allocatable :: err
       if (.not. r%inside%active) return
       if (r%inside_step == r%stp%st%step) return
+      if (r%stp%st%neroded /= r%inside_eroded) then
+         call inside_after_erosion(r, err)
+         if (allocated(err)) then
+            call r%stp%messages%add('warning: the penetration check after an erosion: '//err%message)
+            r%inside%active = .false.
+            return
+         end if
+      end if
       r%inside_step = r%stp%st%step
       call r%inside%check(r%stp%st%x0 + r%stp%st%u, r%stp%st%t, warn)
       if (len(warn) > 0) call r%stp%messages%add(warn)

@@ -18,6 +18,7 @@
 !>   PLAStic JOHNson-cook A B n C m Tmelt Troom epsdot0   [ext] Johnson-Cook
 !>   SPECific heat c                 adiabatic heating (Taylor-Quinney 0.9)
 !>   MIXEd                           mean dilatation for the 2x2 element (FEAP's mixed element)
+!>   EROSion INVErted | STRAin e_max | TIMEstep dt_min   [ext] element erosion (doc/erosion.md)
 !>   DAMPing MASS c [t_end]          [ext] mass damping (deck_material_dissipation.f90)
 !>   VISCosity BULK [q1 q2]          [ext] bulk viscosity (deck_material_dissipation.f90)
 !> ```
@@ -42,10 +43,10 @@ module exic_input_deck_material
 
    public :: cmd_material
 
-   character(len=16), parameter :: props(15) = [character(len=16) :: 'SOLId', 'RIGId', &
+   character(len=16), parameter :: props(16) = [character(len=16) :: 'SOLId', 'RIGId', &
                                                 'ELAStic', 'DENSity', 'QUADrature', 'HOURglass', &
                                                 'MASS', 'PLANe', 'FINIte', 'BODY', 'PLAStic', &
-                                                'SPECific', 'MIXEd', 'DAMPing', 'VISCosity']
+                                                'SPECific', 'MIXEd', 'DAMPing', 'VISCosity', 'EROSion']
 
 contains
 
@@ -85,6 +86,35 @@ contains
       end if
    end subroutine hourglass_record
 
+   !> `EROSion INVErted`, `EROSion STRAin e_max` (e_max > 0) or `EROSion TIMEstep dt_min`
+   !> (dt_min > 0), doc/erosion.md; several records combine.
+   subroutine erosion_record(rd, i, ma, mat, err)
+      type(reader_t), intent(inout) :: rd
+      integer, intent(in) :: i, ma
+      type(material_t), intent(inout) :: mat
+      type(error_t), allocatable, intent(out) :: err
+      character(len=:), allocatable :: w2
+      real(wp) :: val
+      w2 = word(rd, i, 2)
+      if (keyword_is(w2, 'inve')) then
+         mat%erode_inverted = .true.
+      else if (keyword_is(w2, 'stra') .or. keyword_is(w2, 'time')) then
+         call real_field(rd, i, 3, 'EROSion '//field(rd, i, 2)//' value', val, err)
+         if (allocated(err)) return
+         if (.not. (val > 0.0_wp .and. val < huge(1.0_wp))) then
+            call fail(rd, i, 'MATErial '//itoa(ma)//': EROSion '//field(rd, i, 2)//' '//rtoa(val)// &
+                      ': expected a positive, finite value', err)
+         else if (keyword_is(w2, 'stra')) then
+            mat%erode_strain = val
+         else
+            mat%erode_dt = val
+         end if
+      else
+         call fail(rd, i, 'EROSion "'//field(rd, i, 2)//'": expected EROSion INVErted, EROSion '// &
+                   'STRAin e_max or EROSion TIMEstep dt_min', err)
+      end if
+   end subroutine erosion_record
+
    !> Read `MATErial,ma` (record `icmd`) and its data set into `mat`; `ma` is the set number.
    subroutine cmd_material(rd, icmd, ma, mat, err)
       type(reader_t), intent(inout) :: rd
@@ -92,7 +122,7 @@ contains
       integer, intent(out) :: ma
       type(material_t), intent(out) :: mat
       type(error_t), allocatable, intent(out) :: err
-      integer :: i, ielas, idens, irig, iplas, idiss
+      integer :: i, ielas, idens, irig, iplas, idiss, ieros
       logical :: has_e, has_rho
 
       call int_field(rd, icmd, 2, 'MATErial,ma', ma, err)
@@ -108,6 +138,7 @@ contains
       idens = icmd
       irig = icmd
       iplas = 0
+      ieros = 0
       idiss = 0
       do
          call next_record(rd, i)
@@ -192,6 +223,9 @@ contains
             if (iplas == 0) iplas = i
          else if (keyword_is(w, 'mixe')) then
             mat%mixed = .true.
+         else if (keyword_is(w, 'eros')) then
+            call erosion_record(rd, i, ma, mat, err)
+            if (.not. allocated(err)) ieros = i
          else if (keyword_is(w, 'damp')) then
             call damping_record(rd, i, mat, err)
             idiss = i
@@ -298,6 +332,11 @@ contains
                             '(the one-point element has a single volume change already)')
             end if
          case (MAT_RIGID)
+            if (ieros > 0) then
+               call fail(rd, ieros, 'MATErial '//itoa(ma)//': EROSion on a RIGId body: erosion '// &
+                         'needs a deformable SOLId material', err)
+               return
+            end if
             if (mat%plastic) then
                call fail(rd, iplas, 'MATErial '//itoa(ma)//': PLAStic on a RIGId body: '// &
                          'plasticity needs a deformable SOLId material', err)

@@ -188,6 +188,8 @@ contains
                    ', element-steps per second '//rtoa(real(st%step, wp)*st%nelem/ts)
          end if
          if (c%active) text = text//NL//'exic: largest penetration over the run '//largest_penetration(stp, inside)
+         if (allocated(st%status)) text = text//NL//'exic: elements eroded '//itoa(st%neroded)//' of '// &
+                                          itoa(st%nelem)//', eroded energy '//rtoa_result(st%energy%eroded)
          call energy_balance(st, total, drift)
          text = text//NL//'exic: energy: initial total '//rtoa_result(st%energy%total0)//', '// &
                 energy_text(st%energy)//NL//'exic: energy balance: total '//rtoa_result(total)//', drift '// &
