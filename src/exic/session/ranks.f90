@@ -5,6 +5,7 @@
 !> write theirs into a private folder under $TMPDIR (else /tmp) that is removed at the end.
 module exic_session_ranks
    use, intrinsic :: iso_c_binding, only: c_char, c_int, c_ptr, c_null_char, c_associated
+   use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
    use exic_base_strings, only: itoa
    use exic_material_material, only: MAT_SOLID, material_law
@@ -53,7 +54,8 @@ contains
                      'supported on several MPI ranks; run this deck on one rank'
                return
             end if
-            if (m%kind == MAT_SOLID .and. (m%erode_inverted .or. m%erode_strain > 0.0_wp .or. m%erode_dt > 0.0_wp)) then
+            if (m%kind == MAT_SOLID .and. (m%erode_inverted .or. m%erode_strain > 0.0_wp .or. &
+                                           m%erode_dt > 0.0_wp)) then
                msg = 'MATErial '//itoa(k)//': EROSion (elements removed during the run) is not yet '// &
                      'supported on several MPI ranks; run this deck on one rank'
                return
