@@ -13,7 +13,7 @@ module exic_driver
    use exic_base_signals, only: signals_install
    use exic_explicit_energy, only: model_energies
    use exic_model_model, only: model_t
-   use exic_model_program, only: MAX_LOOP_DEPTH
+   use exic_model_program, only: MAX_LOOP_DEPTH, loop_end
    use exic_output_text_report, only: report_preamble, report_summary, report_final, console_summary
    use exic_session_run, only: fields_observer, run_t, INSIDE_STEPS, resume, save_restart, init_inside, &
                                check_inside, start, step, after_step, finish_progress, pass_messages
@@ -176,7 +176,7 @@ contains
                if (.not. allocated(err) .and. c%v(1) > 0.0_wp) then
                   r%stp%tmax = c%v(1)
                   if (r%stp%st%t >= r%stp%tmax*(1.0_wp - TIME_TOL) .and. depth > 0) then
-                     pc = find_next(model, pc)   ! leave the innermost loop
+                     pc = loop_end(model%program, pc)   ! leave the innermost loop
                      depth = depth - 1
                   end if
                end if
@@ -218,24 +218,6 @@ contains
          pc = pc + 1
       end do
    end subroutine execute
-
-   !> Index of the NEXT that closes the innermost loop around command `pc`.
-   integer function find_next(model, pc) result(k)
-      type(model_t), intent(in) :: model
-      integer, intent(in) :: pc
-      integer :: level
-      level = 0
-      do k = pc + 1, size(model%program)
-         select case (model%program(k)%name)
-         case ('loop')
-            level = level + 1
-         case ('next')
-            if (level == 0) return
-            level = level - 1
-         end select
-      end do
-      k = size(model%program)
-   end function find_next
 
    !> Appends ' '//path to list when the file exists (the field files a run that stopped while
    !> creating them has not got are not reported as written).

@@ -10,7 +10,7 @@ module exic_model_program
    !> [ext] reaction sums over a region's or an edge set's nodes, a rigid body's motion
    integer, parameter, public :: REQ_REAC_REGION = 8, REQ_REAC_SET = 9, REQ_RIGI = 10
 
-   public :: command_t, request_t
+   public :: command_t, request_t, loop_end
 
    !> Deepest LOOP nesting of a BATCh program.
    integer, parameter, public :: MAX_LOOP_DEPTH = 8
@@ -35,5 +35,27 @@ module exic_model_program
       real(wp) :: xy(2) = 0.0_wp
       character(len=:), allocatable :: where
    end type request_t
+
+contains
+
+   !> Index of the NEXT that closes the innermost LOOP around command pc of `program` (the last
+   !> command when no loop encloses pc): the driver leaves a loop there, and a restart resumes
+   !> after it.
+   pure integer function loop_end(program, pc) result(k)
+      type(command_t), intent(in) :: program(:)
+      integer, intent(in) :: pc
+      integer :: level
+      level = 0
+      do k = pc + 1, size(program)
+         select case (program(k)%name)
+         case ('loop')
+            level = level + 1
+         case ('next')
+            if (level == 0) return
+            level = level - 1
+         end select
+      end do
+      k = size(program)
+   end function loop_end
 
 end module exic_model_program

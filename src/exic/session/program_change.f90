@@ -16,7 +16,7 @@ module exic_session_program_change
    use exic_base_error, only: error_t, make_error
    use exic_base_strings, only: itoa, rtoa
    use exic_model_model, only: model_t
-   use exic_model_program, only: MAX_LOOP_DEPTH, command_t
+   use exic_model_program, only: MAX_LOOP_DEPTH, command_t, loop_end
    use exic_restart, only: run_position_t, code
    use exic_output, only: output_t
    use exic_explicit_step, only: stepper_t
@@ -325,31 +325,13 @@ contains
             end if
          case ('time')
             if (saved(3, pc) > 0.0_wp .and. t >= saved(3, pc)*(1.0_wp - TIME_TOL) .and. depth > 0) then
-               pc = innermost_next(model, pc)
+               pc = loop_end(model%program, pc)
                depth = depth - 1
             end if
          end select
          pc = pc + 1
       end do
    end subroutine after_last_step
-
-   !> The NEXT that closes the innermost loop around command pc.
-   integer function innermost_next(model, pc) result(k)
-      type(model_t), intent(in) :: model
-      integer, intent(in) :: pc
-      integer :: level
-      level = 0
-      do k = pc + 1, size(model%program)
-         select case (model%program(k)%name)
-         case ('loop')
-            level = level + 1
-         case ('next')
-            if (level == 0) return
-            level = level - 1
-         end select
-      end do
-      k = size(model%program)
-   end function innermost_next
 
    !> v(1:3) of every command, (3, commands).
    function program_values(model) result(v)
