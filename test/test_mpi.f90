@@ -20,7 +20,7 @@ module test_mpi
    character(len=*), parameter :: nl = new_line('a')
    character(len=*), parameter :: MPIRUN = 'mpirun --oversubscribe --allow-run-as-root'
    character(len=*), parameter :: HEAD = 'FEAP * * mpi scene'//nl//'0 0 0 2 2 4'//nl
-   !> Checks of the suite: 13 per scene, 1 of the dissipation scene's columns, 3 of the refusals.
+   !> Checks of the suite: 13 per scene, 1 of the dissipation scene's columns, 4 of the refusals.
    integer, parameter :: NCHECKS = 5*13 + 1 + 3
 
 contains
@@ -250,7 +250,8 @@ contains
    end function count_lines
 
    !> A plastic deck on 2 ranks is refused at the start, naming PLAStic; on 1 rank it runs. A
-   !> hypoelastic deck (ELAStic ISOTropic) on 2 ranks is refused naming it.
+   !> hypoelastic deck (ELAStic ISOTropic) and an eroding one (EROSion) on 2 ranks are refused
+   !> naming them.
    subroutine refusal_test(s, exic)
       type(suite_t), intent(inout) :: s
       character(len=*), intent(in) :: exic
@@ -281,6 +282,17 @@ contains
       call check(s, code /= 0 .and. index(log, 'ELAStic ISOTropic') > 0 .and. &
                  index(log, 'not yet supported on several MPI ranks') > 0, &
                  'a hypoelastic deck on 2 ranks is refused naming ELAStic ISOTropic', log)
+      ! erosion changes the element sets during the run
+      call write_text(deck, HEAD//'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'//nl// &
+                      '    EROSion INVErted'//nl//'    DENSity 1'//nl//nl//'REGIon,1'//nl// &
+                      block(4, 2, 1, 0.0, 0.0, 2.0, 1.0)//'INITial,VELOcity'//nl//'  REGIon,1,1,0'//nl//nl// &
+                      'END'//nl//batch('0.01')//nl//'STOP')
+      call execute_command_line(MPIRUN//' -np 2 '//exic//' -q '//deck//' -o '//run_dir//'/mpi_plastic > '// &
+                                run_dir//'/mpi_plastic.log 2>&1', exitstat=code)
+      log = file_text(run_dir//'/mpi_plastic.log')
+      call check(s, code /= 0 .and. index(log, 'EROSion') > 0 .and. &
+                 index(log, 'not yet supported on several MPI ranks') > 0, &
+                 'an eroding deck on 2 ranks is refused naming EROSion', log)
    end subroutine refusal_test
 
 end module test_mpi
