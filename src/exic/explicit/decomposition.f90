@@ -403,8 +403,8 @@ contains
          do r = 1, self%nrank
             text = text//' '//itoa(self%cbound(r + 1) - self%cbound(r))
          end do
-         text = text//'; blocks computed by more than one rank '//itoa(self%redundant)//' of '// &
-                itoa(self%nblock)//'; rank '//itoa(self%rank)//' has '//itoa(size(self%ghost))// &
+         text = text//'; blocks computed again by another rank '//itoa(self%redundant)//' (of '// &
+                itoa(self%nblock)//'); rank '//itoa(self%rank)//' has '//itoa(size(self%ghost))// &
                 ' ghost nodes, '//itoa(size(self%nb))//' neighbours, sends '//itoa(8*size(self%sbuf))// &
                 ' and receives '//itoa(8*size(self%rbuf))//' bytes of v and a a step; elements per rank'
       else

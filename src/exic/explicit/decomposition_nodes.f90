@@ -13,7 +13,7 @@
 module exic_explicit_decomposition_nodes
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
-   use exic_base_strings, only: itoa
+   use exic_base_strings, only: itoa, rtoa
    use exic_base_clock, only: wall_time
    use exic_parallel_mpi, only: par_allgatherv_in_place, par_alltoallv_int, par_neighbour_exchange
    use exic_explicit_state, only: state_t, element_set_t
@@ -24,7 +24,7 @@ module exic_explicit_decomposition_nodes
    implicit none
    private
 
-   public :: nodes_init, nodes_displacement, nodes_update, decomposition_gather_nodes
+   public :: nodes_init, nodes_displacement, nodes_update, decomposition_gather_nodes, decomposition_timing
 
 contains
 
@@ -176,5 +176,26 @@ contains
       call par_allgatherv_in_place(size(st%fint), st%fint, dd%ncounts, dd%ndispls)
       dd%whole = .true.
    end subroutine decomposition_gather_nodes
+
+   !> One line for the report of a run whose nodal state was divided: this rank's wall time in
+   !> the element pass, the exchanges and the nodal update of its divided steps, and what it
+   !> receives and sends a step (bytes, messages); empty otherwise.
+   function decomposition_timing(dd) result(text)
+      type(decomposition_t), intent(in) :: dd
+      character(len=:), allocatable :: text
+      integer :: recv_bytes, send_bytes, nmsg
+      text = ''
+      if (.not. dd%nodes .or. dd%nsteps == 0) return
+      ! the ghosts' v and a (point to point), the chunks' sums and the ranges' sums (MPI_Allgatherv)
+      recv_bytes = 8*size(dd%rbuf) + 8*(size(dd%pall) - dd%pcounts(dd%rank + 1)) + &
+                   8*(sum(dd%rec_counts) - dd%rec_counts(dd%rank + 1))
+      send_bytes = 8*size(dd%sbuf) + 8*dd%pcounts(dd%rank + 1) + 8*dd%rec_counts(dd%rank + 1)
+      nmsg = count(dd%sfirst(2:) > dd%sfirst(:size(dd%sfirst) - 1)) + &
+             count(dd%rfirst(2:) > dd%rfirst(:size(dd%rfirst) - 1))
+      text = 'MPI rank '//itoa(dd%rank)//', '//itoa(dd%nsteps)//' divided steps: elements '//rtoa(dd%t_elements)// &
+             ' s, exchanges '//rtoa(dd%t_exchange)//' s, nodal update '//rtoa(dd%t_nodal)//' s; a step receives '// &
+             itoa(recv_bytes)//' bytes and sends '//itoa(send_bytes)//' ('//itoa(nmsg)// &
+             ' point-to-point messages and 2 MPI_Allgatherv)'
+   end function decomposition_timing
 
 end module exic_explicit_decomposition_nodes

@@ -161,6 +161,17 @@ contains
       call decomposition_init(self%dd, self%st, self%sets, mesh%conn, .not. (spec%active .or. self%ld%active .or. &
                               allocated(self%st%gbulk) .or. allocated(self%st%gdamp)), err)
       if (allocated(err)) return
+      ! a numbering without locality (ranges of elements that reach far apart in the node
+      ! numbers, as Gmsh's generation order) would have most blocks computed by several ranks:
+      ! past a quarter of them, METIS parts of the blocks and the replicated nodal state instead
+      if (self%dd%nodes .and. 4*self%dd%redundant > self%dd%nblock) then
+         call self%messages%add('MPI: with the nodal state divided in chunk ranges, '//itoa(self%dd%redundant)// &
+                                ' of the '//itoa(self%dd%nblock)//' element blocks would be computed by more '// &
+                                'than one rank (the element and node numbers have little locality): the '// &
+                                'nodal state stays replicated')
+         call decomposition_init(self%dd, self%st, self%sets, mesh%conn, .false., err)
+         if (allocated(err)) return
+      end if
       if (self%dd%nodes) call nodes_init(self%dd, self%st, self%sets, err)
       if (allocated(err)) return
       if (self%dd%active) call self%messages%add(decomposition_summary(self%dd))
