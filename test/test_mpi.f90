@@ -122,21 +122,23 @@ contains
       case ('plain_blocks')
          ! plain steps, the nodal state divided: a 2x2 block (nu 0.3) with its bottom edge fixed
          ! and a one-point block (nu 0.45) above it, whose nodes start at 2500 (nodes 1626-2499
-         ! are used by no element): 4124 nodes, 5 chunks; histories every 3 steps, fields, the
-         ! upper block's velocity set between two loops
+         ! are used by no element): 4124 nodes, 5 chunks; initial velocities that vary linearly
+         ! with the node number (every element deforms); histories every 3 steps (nodes at chunk
+         ! boundaries), fields, the upper block's velocity set between two loops
          deck = HEAD//solid1//nl//'MATErial,2'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 2000 0.45'//nl// &
                 '    DENSity 1'//nl//'    QUADrature 1'//nl//'    HOURglass 0.1'//nl//nl// &
                 'REGIon,1'//nl//block(64, 24, 1, 0.0, 0.0, 8.0, 3.0)// &
                 'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,64,24,2500,0,2'//nl//'    1,0.0,3.5'//nl// &
                 '    2,8.0,3.5'//nl//'    3,8.0,6.5'//nl//'    4,0.0,6.5'//nl//nl// &
                 'BOUNdary'//nl//'  1,1,1,1'//nl//'  65,0,1,1'//nl//nl// &
-                'INITial,VELOcity'//nl//'  REGIon,1,1,2'//nl//'  REGIon,2,-1,0.5'//nl//nl//'END'//nl// &
+                'INITial,VELOcity'//nl//'  1,1,1,2'//nl//'  1625,0,-1,-2'//nl//'  2500,1,-1,0.5'//nl// &
+                '  4124,0,1,-0.5'//nl//nl//'END'//nl// &
                 'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,3'//nl//'  OUTPut,HDF5,0.004'//nl// &
                 '  LOOP,,100000'//nl//'    TIME,,0.02'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl// &
-                '  INITial,REGIon,2,0,1'//nl//'  LOOP,,100000'//nl//'    TIME,,0.04'//nl// &
+                '  INITial,REGIon,2,0,0'//nl//'  LOOP,,100000'//nl//'    TIME,,0.04'//nl// &
                 '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
-                '  disp,3000,1'//nl//'  velo,1000,2'//nl//'  acce,4124,1'//nl//'  reac,30,2'//nl// &
-                '  stre,1500,1'//nl//'  stre,2000,2'//nl//nl//'STOP'
+                '  disp,1025,1'//nl//'  velo,1024,2'//nl//'  acce,3073,1'//nl//'  velo,4124,1'//nl// &
+                '  reac,1,2'//nl//'  stre,700,1'//nl//'  stre,2300,2'//nl//nl//'STOP'
       case ('plain_bulk')
          ! the scene 'one_point' with VISCosity BULK and DAMPing MASS: plain steps whose works
          ! are sums over every node in order, so the nodal state stays replicated
