@@ -28,8 +28,8 @@ module test_mpi
    character(len=*), parameter :: MPIRUN = 'mpirun --oversubscribe --allow-run-as-root'
    character(len=*), parameter :: HEAD = 'FEAP * * mpi scene'//nl//'0 0 0 2 2 4'//nl
    !> Checks of the suite: 13 per scene, 1 of the dissipation scene's columns, 4 of the refusals,
-   !> 3 of the .h5 files.
-   integer, parameter :: NCHECKS = 7*13 + 1 + 3 + 3
+   !> 3 of the .h5 files, 7 of the unstable scene.
+   integer, parameter :: NCHECKS = 7*13 + 1 + 3 + 3 + 7
 
 contains
 
@@ -52,6 +52,7 @@ contains
       do k = 1, size(names)
          call scene_test(s, exic, trim(names(k)))
       end do
+      call unstable_test(s, exic)
       call refusal_test(s, exic)
    end subroutine run_mpi_tests
 
@@ -119,12 +120,15 @@ contains
                 'INITial,VELOcity'//nl//'  REGIon,2,4,0'//nl//'  REGIon,1,1,0'//nl//nl// &
                 'CONTact'//nl//'  AUTOmatic'//nl//'END CONTact'//nl//nl//'GRAVity,0,-10'//nl//nl//'END'//nl// &
                 batch('0.3')//'  disp,5,1'//nl//'  velo,60,2'//nl//nl//'STOP'
-      case ('plain_blocks')
+      case ('plain_blocks', 'plain_unstable')
          ! plain steps, the nodal state divided: a 2x2 block (nu 0.3) with its bottom edge fixed
          ! and a one-point block (nu 0.45) above it, whose nodes start at 2500 (nodes 1626-2499
          ! are used by no element): 4124 nodes, 5 chunks; initial velocities that vary linearly
          ! with the node number (every element deforms); histories every 3 steps (nodes at chunk
-         ! boundaries), fields, the upper block's velocity set between two loops
+         ! boundaries), fields, the upper block stopped between two loops (INITial,REGIon,2,0,0);
+         ! 'plain_unstable': the same with histories every step and DT,,0.0025 (2.5 x the
+         ! stable step) between the loops: the energy guard warns, then stops the run (both
+         ! name the element whose nodes carry the most kinetic energy: every node read)
          deck = HEAD//solid1//nl//'MATErial,2'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 2000 0.45'//nl// &
                 '    DENSity 1'//nl//'    QUADrature 1'//nl//'    HOURglass 0.1'//nl//nl// &
                 'REGIon,1'//nl//block(64, 24, 1, 0.0, 0.0, 8.0, 3.0)// &
@@ -133,9 +137,11 @@ contains
                 'BOUNdary'//nl//'  1,1,1,1'//nl//'  65,0,1,1'//nl//nl// &
                 'INITial,VELOcity'//nl//'  1,1,1,2'//nl//'  1625,0,-1,-2'//nl//'  2500,1,-1,0.5'//nl// &
                 '  4124,0,1,-0.5'//nl//nl//'END'//nl// &
-                'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,3'//nl//'  OUTPut,HDF5,0.004'//nl// &
+                'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,'//merge('3', '1', name == 'plain_blocks')//nl// &
+                '  OUTPut,HDF5,0.004'//nl// &
                 '  LOOP,,100000'//nl//'    TIME,,0.02'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl// &
-                '  INITial,REGIon,2,0,0'//nl//'  LOOP,,100000'//nl//'    TIME,,0.04'//nl// &
+                merge('  INITial,REGIon,2,0,0', '  DT,,0.0025          ', name == 'plain_blocks')//nl// &
+                '  LOOP,,100000'//nl//'    TIME,,0.04'//nl// &
                 '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
                 '  disp,1025,1'//nl//'  velo,1024,2'//nl//'  acce,3073,1'//nl//'  velo,4124,1'//nl// &
                 '  reac,1,2'//nl//'  stre,700,1'//nl//'  stre,2300,2'//nl//nl//'STOP'
@@ -241,6 +247,58 @@ contains
                                                             'the serial ones (h5dump, 17 digits)')
       end do
    end subroutine scene_test
+
+   !> The scene 'plain_unstable' stops with the energy guard: on 2 and 3 ranks (divided nodes)
+   !> the same exit code, .his, .ene, and the same warning and error lines in the .out (their
+   !> largest contributor found from every node after the gather) as the serial run.
+   subroutine unstable_test(s, exic)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: exic
+      character(len=*), parameter :: name = 'plain_unstable'
+      character(len=:), allocatable :: dir, deck, ref, out
+      integer :: code, np
+      dir = run_dir//'/mpi_'//name
+      deck = dir//'.inp'
+      call execute_command_line('rm -rf '//dir)
+      call write_text(deck, scene(name))
+      call execute_command_line(exic//' -q '//deck//' -o '//dir//'/serial > '//dir//'_serial.log 2>&1', &
+                                exitstat=code)
+      ref = file_text(dir//'/serial/mpi_'//name//'.out')
+      call check(s, code == 1 .and. index(ref, 'error: the physical energy') > 0 .and. &
+                 index(ref, 'warning: the physical energy') > 0 .and. index(ref, 'largest contributor: element') > 0, &
+                 name//': the serial run warns, then stops with the energy guard naming an element', &
+                 file_text(dir//'_serial.log'))
+      do np = 2, 3
+         call execute_command_line(MPIRUN//' -np '//itoa(np)//' '//exic//' -q '//deck//' -o '//dir//'/np'// &
+                                   itoa(np)//' > '//dir//'_np'//itoa(np)//'.log 2>&1', exitstat=code)
+         out = file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.out')
+         call check(s, code /= 0 .and. index(out, 'nodal state divided') > 0, name//': -np '//itoa(np)// &
+                    ': the divided run stops too', file_text(dir//'_np'//itoa(np)//'.log'))
+         call check(s, file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.his') == &
+                    file_text(dir//'/serial/mpi_'//name//'.his') .and. &
+                    file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.ene') == &
+                    file_text(dir//'/serial/mpi_'//name//'.ene'), name//': -np '//itoa(np)// &
+                    ': .his and .ene equal the serial files byte for byte')
+         call check(s, lines_with(out, 'warning: the physical energy') == lines_with(ref, 'warning: the physical energy') &
+                    .and. lines_with(out, 'error: the physical energy') == lines_with(ref, 'error: the physical energy'), &
+                    name//': -np '//itoa(np)//': the warning and the error (time, growth, element) are the serial ones')
+      end do
+   end subroutine unstable_test
+
+   !> The lines of text that contain `word`, in order.
+   function lines_with(text, word) result(found)
+      character(len=*), intent(in) :: text, word
+      character(len=:), allocatable :: found
+      integer :: i, j
+      found = ''
+      i = 1
+      do while (i <= len(text))
+         j = index(text(i:), new_line('a'))
+         if (j == 0) j = len(text) - i + 2
+         if (index(text(i:i + j - 2), word) > 0) found = found//text(i:i + j - 2)//new_line('a')
+         i = i + j
+      end do
+   end function lines_with
 
    !> Every dataset of an .h5 file as h5dump prints it with 17 significant digits, without its
    !> first line (the file's name).

@@ -699,8 +699,6 @@ contains
             self%growth_max_t = st%t
          end if
          if (growth <= self%energy_warn) return
-         ! (the same on every rank: contributor reads every node)
-         call decomposition_gather_nodes(self%dd, st)
          if (put_in > self%energy_floor) then
             what = 'the physical energy (kinetic + strain + plastic work'//trim(merge(' + frictional dissipation', &
                    '                         ', self%contact%friction))//') exceeds the energy put in (initial energy '// &
@@ -710,6 +708,8 @@ contains
             what = 'kinetic + strain energy '//rtoa(e)//' appeared with no energy put in (round-off scale '// &
                    rtoa(self%energy_floor)//') at t = '//rtoa(st%t)//', step '//itoa(int(st%step))
          end if
+         ! contributor reads every node: the whole state first (every rank is here at this step)
+         if (growth > self%energy_stop .or. .not. self%energy_warned) call decomposition_gather_nodes(self%dd, st)
          if (growth > self%energy_stop) then
             call make_error(err, what//' (stop limit '//percent(self%energy_stop)//'); largest '// &
                             'contributor: '//contributor(self, put_in))
