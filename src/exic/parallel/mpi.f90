@@ -15,13 +15,13 @@ module exic_parallel_mpi
                       MPI_Bcast, MPI_Barrier, MPI_COMM_WORLD, MPI_THREAD_FUNNELED, &
                       MPI_DOUBLE_PRECISION, MPI_INTEGER, MPI_LOGICAL, MPI_LOR, MPI_MAX, MPI_BOR, &
                       MPI_Alltoall, MPI_Alltoallv, MPI_Isend, MPI_Irecv, MPI_Waitall, MPI_Request, &
-                      MPI_STATUSES_IGNORE, MPI_IN_PLACE, MPI_MIN
+                      MPI_STATUSES_IGNORE, MPI_IN_PLACE
    implicit none
    private
 
    public :: par_init, par_finalize, par_abort, par_rank, par_size, par_running
    public :: par_allgatherv, par_allgather_int, par_any, par_max_int, par_or_bits, par_barrier, par_bcast_int
-   public :: par_allgatherv_in_place, par_alltoallv_int, par_neighbour_exchange, par_min_int
+   public :: par_allgatherv_in_place, par_alltoallv_int, par_neighbour_exchange
 
    !> Environment variables of which one is set in a process that an MPI launcher started:
    !> OpenMPI's mpirun, PMIx (srun --mpi=pmix, OpenMPI 4), PMI-1/2 (srun --mpi=pmi2, MPICH's
@@ -163,13 +163,6 @@ contains
       all_bits = bits
       if (par_size() > 1) call MPI_Allreduce(bits, all_bits, 1, MPI_INTEGER, MPI_BOR, MPI_COMM_WORLD)
    end function par_or_bits
-
-   !> The smallest `k` of every rank (an integer reduction: exact).
-   integer function par_min_int(k) result(kmin)
-      integer, intent(in) :: k
-      kmin = k
-      if (par_size() > 1) call MPI_Allreduce(k, kmin, 1, MPI_INTEGER, MPI_MIN, MPI_COMM_WORLD)
-   end function par_min_int
 
    !> buf(displs(r+1)+1 : displs(r+1)+counts(r+1)) of rank r copied to every rank, in place
    !> (MPI_Allgatherv with MPI_IN_PLACE: each rank's part is already where it belongs). One
