@@ -1,5 +1,5 @@
 !> The exic test driver: runs the suites the command line selects and prints
-!> 'N passed, M failed' last (test/testing.f90).
+!> 'N passed, M failed' last (test_support/src/testing.f90).
 !>
 !>     fpm test                      every suite
 !>     fpm test -- contact legacy    the suites whose name contains 'contact' or 'legacy'
