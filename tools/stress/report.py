@@ -1,6 +1,5 @@
 """doc/stability.md and its figures from the JSON results of the stress suite (doc/stability/)."""
 import collections
-import datetime
 import os
 import subprocess
 
@@ -157,35 +156,6 @@ def _kills(data, w):
 
 
 # --- scenes ------------------------------------------------------------------------------
-
-def _counts(data):
-    res = data["scenes"]
-    fin = [r for r in res if r["class"] == "finished"]
-    stop = [r for r in res if r["class"] == "stopped"]
-
-    def grown(r, lim):
-        return ((r.get("energy") or {}).get("max") or 0.0) > lim
-
-    def deep(r):
-        return ((r.get("penetration") or {}).get("relative") or 0.0) > DEPTH_LIMIT
-
-    return [
-        ("scenes", len(res)),
-        ("finished", len(fin)),
-        ("stopped: inversion", sum(1 for r in stop if r.get("reason") == "inversion")),
-        ("stopped: energy guard", sum(1 for r in stop if r.get("reason") == "energy")),
-        ("stopped: other", sum(1 for r in stop if r.get("reason") not in ("inversion", "energy"))),
-        ("stops naming a node, element or pair", sum(1 for r in stop if r.get("named"))),
-        ("hang or crash", sum(1 for r in res if r["class"] in ("hang", "crash"))),
-        ("finished, energy growth > 1 %", sum(1 for r in fin if grown(r, GROWTH_WARN))),
-        ("... of which not warned", sum(1 for r in fin if grown(r, GROWTH_WARN) and not r.get("energy_warned"))),
-        ("finished, energy growth > 5 %", sum(1 for r in fin if grown(r, GROWTH_BAD))),
-        ("finished, a node > 1e-3 edge inside another body", sum(1 for r in fin if deep(r))),
-        ("... of which not warned", sum(1 for r in fin if deep(r) and not r.get("penetration_warned"))),
-        ("finished, a node > 0.1 edge inside another body",
-         sum(1 for r in fin if ((r.get("penetration") or {}).get("relative") or 0.0) > 0.1)),
-    ]
-
 
 def _inversions(data, w):
     res = [r for r in data["scenes"] if r.get("kind")]
