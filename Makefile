@@ -85,6 +85,8 @@ build: setup
 run: build
 	@mkdir -p $(OUTDIR)
 	$(FPM) run $(RELEASE) exic -- $(EXAMPLE) -o $(OUTDIR)
+	@echo "the exic program is $$(realpath $(EXIC))"
+	@echo "(run it by that path, or 'make install PREFIX=dir' and put dir/bin on PATH)"
 
 # fpm 0.12 can leave a stale test executable when `fpm run` rebuilt the library first: relink it.
 # The legacy API tests install exic with this fpm (examples/legacy_host/build.sh).

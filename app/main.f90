@@ -4,11 +4,11 @@
 !> is not set the command runs on one thread (doc/decisions.md, "Threads").
 program exic_main
    use exic_base_error, only: error_t, fatal_error
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model, RUN_INTERRUPTED
    use exic_base_signals, only: ignore_file_size_signal, signals_install
-   use exic_io_posix, only: make_directories, exit_now
+   use exic_base_posix, only: make_directories, exit_now
    use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
    !$ use omp_lib, only: omp_set_num_threads
    implicit none

@@ -403,10 +403,10 @@ PARTS = {
     "update (displacement, predictor, velocity)": [r"MOD_cd_displacement", r"MOD_cd_predictor",
                                                    r"MOD_cd_velocity"],
     "energies": [r"exic_explicit_assembly_MOD_kinetic_energy"],
-    "history output": [r"exic_io_history_MOD_files_his_row", r"exic_io_history_MOD_files_ene_row"],
+    "history output": [r"exic_output_text_history_MOD_files_his_row", r"exic_output_text_history_MOD_files_ene_row"],
     "contact search (normals, broad and narrow phase, gaps)": [r"exic_contact_contact_MOD_contact_correct"],
     "contact corrector": [r"exic_contact_corrector_MOD_corrector_solve"],
-    "field output": [r"exic_explicit_assembly_MOD_all_stresses", r"exic_io_fields_MOD_\w*write_step"],
+    "field output": [r"exic_explicit_assembly_MOD_all_stresses", r"exic_output_fields_MOD_\w*write_step"],
 }
 
 

@@ -15,8 +15,8 @@
 program deck_run_child
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model, RUN_INTERRUPTED
    use exic_base_signals, only: signals_peek
    use park, only: park_until_killed, park_until_signal

@@ -2,8 +2,8 @@
 module deck_runner
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
    implicit none
    private

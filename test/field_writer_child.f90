@@ -7,7 +7,7 @@
 program field_writer_child
    use, intrinsic :: iso_fortran_env, only: error_unit
    use exic_base_error, only: error_t
-   use exic_io_fields, only: field_writer_t
+   use exic_output_fields, only: field_writer_t
    use test_fields, only: write_synthetic
    use park, only: park_until_killed
    implicit none

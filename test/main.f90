@@ -33,6 +33,7 @@ program exic_tests
    use test_math, only: run_math_tests
    use test_threads, only: run_threads_tests
    use test_friction, only: run_friction_tests
+   use test_dissipation, only: run_dissipation_tests
    use test_restart, only: run_restart_tests
    use test_inside, only: run_inside_tests
    use test_stress_decks, only: run_stress_decks_tests
@@ -68,6 +69,7 @@ program exic_tests
    call r%run('loads', run_loads_tests)
    call r%run('rigid', run_rigid_tests)
    call r%run('friction', run_friction_tests)
+   call r%run('dissipation', run_dissipation_tests)
    call r%run('hostile', run_hostile_tests)
    call r%run('stress_decks', run_stress_decks_tests)
    call r%run('legacy', run_legacy_tests)

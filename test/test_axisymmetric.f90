@@ -6,8 +6,8 @@ module test_axisymmetric
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
    use exic_base_strings, only: rtoa
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
    use exic_material_j2_hardening, only: j2_param_t, J2_MISES
    use exic_material_j2, only: j2_piola

@@ -5,15 +5,15 @@ module test_deck
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
+   use exic_model_model, only: model_t
    use exic_material_material, only: MAT_SOLID, MAT_RIGID, HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
    use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
                                 DETECT_SWEPT, DETECT_STATIC
-   use exic_io_program, only: REQ_DISP, REQ_VELO, REQ_STRE, REQ_REAC, REQ_CONT
-   use exic_io_expression, only: param_table_t, set_param, evaluate
-   use exic_io_records, only: record_t, split_fields, field_t
-   use exic_io_deck, only: read_deck
+   use exic_model_program, only: REQ_DISP, REQ_VELO, REQ_STRE, REQ_REAC, REQ_CONT
+   use exic_input_deck_expression, only: param_table_t, set_param, evaluate
+   use exic_input_deck_records, only: record_t, split_fields, field_t
+   use exic_input_deck, only: read_deck
    use testing, only: suite_t, check, check_close, section, error_text
    implicit none
    private

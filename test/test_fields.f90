@@ -8,8 +8,8 @@ module test_fields
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_fields, only: field_writer_t
-   use exic_io_posix, only: copy_file
+   use exic_output_fields, only: field_writer_t
+   use exic_base_posix, only: copy_file
    use testing, only: suite_t, check, check_close, section, skip, have_command, have_python_modules, &
                       python_command, error_text
    implicit none
@@ -475,6 +475,20 @@ contains
                  'exit code '//itoa(code))
       code = run_python('tools/plot_history.py '//DIR//'/no_such_run -o '//plots//' 2> /dev/null')
       call check(s, code == 1, 'plot_history.py fails on a missing run', 'exit code '//itoa(code))
+      call execute_command_line('rm -f '//plots//'/force.png')
+      code = run_python('tools/plot_history.py test/data/fields/sample --xy "disp(n31,2)" "cont(p1,1)" --negate-x -o '// &
+                        plots//'/force.png > /dev/null')
+      inquire (file=plots//'/force.png', exist=exists)
+      call check(s, code == 0 .and. exists, 'plot_history.py --xy draws a column against another', &
+                 'exit code '//itoa(code))
+      code = run_python('tools/plot_history.py test/data/fields/sample --xy "disp(n99,2)" "cont(p1,1)" -o '// &
+                        plots//'/none.png 2> '//DIR//'/xy.err')
+      call check(s, code == 1 .and. file_has_text(DIR//'/xy.err', 'disp(n31,1)'), &
+                 'plot_history.py --xy refuses a column the files lack, listing theirs', 'exit code '//itoa(code))
+      code = run_python('tools/plot_fields.py '//h5//' -c plastic_strain -o '//DIR//'/none.png 2> '//DIR//'/comp.err')
+      call check(s, code == 2 .and. file_has_text(DIR//'/comp.err', 'this file has sxx'), &
+                 'plot_fields.py refuses a component the file lacks, listing the file''s components', &
+                 'exit code '//itoa(code))
       ! the run's output times are 0.25, 0.5, 0.75: 2.0 is after the run
       call execute_command_line('rm -f '//DIR//'/late.png '//DIR//'/anim.gif')
       code = run_python('tools/plot_fields.py '//h5//' -t 0.5 2.0 -o '//DIR//'/late.png 2> '//DIR//'/late.err')

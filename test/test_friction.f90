@@ -9,8 +9,8 @@ module test_friction
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use testing, only: suite_t, check, section, skip, have_command, error_text, file_text
    use test_fields, only: h5dump
    use deck_runner, only: run_dir, run_deck, read_table, column, write_text

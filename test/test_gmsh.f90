@@ -11,11 +11,11 @@ module test_gmsh
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
    use exic_mesh_edge_set, only: find_edge_set
-   use exic_io_gmsh_c, only: GMSH_LIBRARIES, gmsh_library_open
+   use exic_input_gmsh_library, only: GMSH_LIBRARIES, gmsh_library_open
    use testing, only: suite_t, check, check_close, section, skip, have_command, file_text
    use deck_runner, only: read_table, column
    implicit none
@@ -498,7 +498,7 @@ contains
       end subroutine bad
    end subroutine bad_input
 
-   !> exic_io_gmsh_c: libraries that do not load give an error naming each with dlerror's text
+   !> exic_input_gmsh_library: libraries that do not load give an error naming each with dlerror's text
    !> (the deck reader puts the GMSH record's file:line before it, as for the errors of
    !> bad_input); the first name tried is the soname a link with -lgmsh would record; the exic
    !> program needs no Gmsh library to start (none in its ldd list), and reads Gmsh meshes

@@ -20,12 +20,13 @@ module test_hostile
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
-   use exic_io_history, only: history_files_t
-   use exic_io_number, only: put_real, put_int, REAL_WIDTH
-   use exic_io_memory, only: mesh_memory_message
-   use exic_io_posix, only: make_directories, file_kind, FILE_DIRECTORY, FILE_MISSING
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
+   use exic_output_text_history, only: history_files_t
+   use exic_explicit_energy, only: energy_t
+   use exic_output_text_number, only: put_real, put_int, REAL_WIDTH
+   use exic_base_memory, only: mesh_memory_message
+   use exic_base_posix, only: make_directories, file_kind, FILE_DIRECTORY, FILE_MISSING
    use testing, only: suite_t, check, section, file_text
    implicit none
    private
@@ -341,6 +342,7 @@ contains
       type(error_t), allocatable :: err
       real(wp), parameter :: tiny_value = 1.2188988004400879e-302_wp
       real(wp) :: row(3), ene(14)
+      type(energy_t) :: en
       character(len=32) :: labels(2)
       character(len=400) :: line
       integer :: u, ios
@@ -351,8 +353,8 @@ contains
       call f%his_header(labels)
       call f%his_row(1.0e-300_wp, [tiny_value, -tiny_value], err)
       call check(s, .not. allocated(err), 'a row of tiny values is written')
-      call f%ene_row(2.0_wp, 7_i8, 1.0e-301_wp, tiny_value, 3.0e300_wp, 0.0_wp, -tiny_value, &
-                     1.0_wp, 0.0_wp, [1.0e-310_wp, -2.0e-320_wp], 3, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, err)
+      en = energy_t(kinetic=tiny_value, strain=3.0e300_wp, wext=0.0_wp, wcon=-tiny_value)
+      call f%ene_row(2.0_wp, 7_i8, 1.0e-301_wp, en, 1.0_wp, 0.0_wp, [1.0e-310_wp, -2.0e-320_wp], 3, 0.0_wp, err)
       call check(s, .not. allocated(err), 'an energy row of tiny values is written')
       call f%close()
       open (newunit=u, file=tmp//'fmt.his', status='old', action='read')
@@ -379,7 +381,7 @@ contains
       call row_text(s)
    end subroutine number_format
 
-   !> The rows' own number formatting (exic_io_number) gives the characters of Fortran's
+   !> The rows' own number formatting (exic_output_text_number) gives the characters of Fortran's
    !> `1x,es24.16e3` and `i12` editing: zeros, subnormals, the extremes, powers of ten and
    !> their neighbours, 300000 random bit patterns of every exponent, and 200000 numbers whose
    !> decimal expansion is a tie or nearly one at the 17th significant digit.
@@ -481,8 +483,7 @@ contains
       if (allocated(err)) call check(s, has(err%message, 'NaN in column velo(n1,1) of <stem>.his'), &
                                      'naming the column', err%message)
       call check(s, f%nonfinite, 'and sets the nonfinite flag')
-      call f%ene_row(0.5_wp, 1_i8, 0.1_wp, inf, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, &
-                     [0.0_wp, 0.0_wp], 0, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, err)
+      call f%ene_row(0.5_wp, 1_i8, 0.1_wp, energy_t(kinetic=inf), 0.0_wp, 0.0_wp, [0.0_wp, 0.0_wp], 0, 0.0_wp, err)
       call check(s, allocated(err), 'a .ene row with an infinity returns an error')
       if (allocated(err)) call check(s, has(err%message, 'infinite value in column kinetic'), &
                                      'naming the column', err%message)

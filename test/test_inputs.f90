@@ -5,9 +5,9 @@ module test_inputs
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
+   use exic_model_model, only: model_t
    use exic_material_material, only: MAT_SOLID
-   use exic_io_deck, only: read_deck
+   use exic_input_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
    use testing, only: suite_t, check, check_close, section, file_text
    use deck_runner, only: run_dir, write_text, read_table, column, run_deck

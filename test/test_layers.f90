@@ -24,17 +24,17 @@ contains
                                 exitstat=code)
       call check(s, code == 0, 'src/exic: no folder uses one above it, no file over 1,000 lines', &
                  'see build/test_layers.log')
-      ! a tree whose base module uses io must be refused
-      call execute_command_line('mkdir -p '//fake//'/base '//fake//'/io')
+      ! a tree whose base module uses input must be refused
+      call execute_command_line('mkdir -p '//fake//'/base '//fake//'/input')
       open (newunit=u, file=fake//'/base/kinds.f90', status='replace', action='write')
-      write (u, '(a)') 'module exic_base_kinds', '   use exic_io_deck, only: read_deck', 'end module exic_base_kinds'
+      write (u, '(a)') 'module exic_base_kinds', '   use exic_input_deck, only: read_deck', 'end module exic_base_kinds'
       close (u)
-      open (newunit=u, file=fake//'/io/deck.f90', status='replace', action='write')
-      write (u, '(a)') 'module exic_io_deck', '   use exic_base_kinds', 'end module exic_io_deck'
+      open (newunit=u, file=fake//'/input/deck.f90', status='replace', action='write')
+      write (u, '(a)') 'module exic_input_deck', '   use exic_base_kinds', 'end module exic_input_deck'
       close (u)
       call execute_command_line(python_command()//' tools/check_layers.py --root '//fake// &
                                 ' > build/test_layers_fake.log 2>&1', exitstat=code)
-      call check(s, code == 1, 'a base module that uses io is refused')
+      call check(s, code == 1, 'a base module that uses input is refused')
    end subroutine run_layers_tests
 
 end module test_layers

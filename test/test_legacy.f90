@@ -13,7 +13,7 @@ module test_legacy
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t, make_error
-   use exic_io_model, only: model_t
+   use exic_model_model, only: model_t
    use exic_material_material, only: MAT_RIGID
    use exic_contact_spec, only: contact_spec_t
    use exic_explicit_step, only: stepper_t, contact_hook_t

@@ -8,8 +8,8 @@ module test_loads
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_explicit_step, only: stepper_t
    use exic_explicit_state, only: plus_zero
    use exic_explicit_loads, only: prop_fn_t, prop_eval, prop_value, FN_TYPE1, FN_TABLE, FN_RAMP
@@ -171,10 +171,10 @@ contains
       call check(s, same(with%st%u, without%st%u) .and. same(with%st%v, without%st%v) .and. &
                  same(with%st%a, without%st%a) .and. any(with%st%a /= 0.0_wp), &
                  'u, v, a: the same bits as with fext read')
-      call check(s, same(reshape([with%st%wext, with%st%kinetic, with%st%strain, with%st%hourglass, &
-                                  with%st%momentum, with%st%dt_residual], [7, 1]), &
-                         reshape([without%st%wext, without%st%kinetic, without%st%strain, without%st%hourglass, &
-                                  without%st%momentum, without%st%dt_residual], [7, 1])), &
+      call check(s, same(reshape([with%st%energy%wext, with%st%energy%kinetic, with%st%energy%strain, &
+                                  with%st%energy%hourglass, with%st%momentum, with%st%dt_residual], [7, 1]), &
+                         reshape([without%st%energy%wext, without%st%energy%kinetic, without%st%energy%strain, &
+                                  without%st%energy%hourglass, without%st%momentum, without%st%dt_residual], [7, 1])), &
                  'works, energies, momentum and the kinetic correction: the same bits')
       call setup_stepper('zero_gravity', head//solid//block(2, 2, 1, 1, 1, 1, 0.0_wp, 0.0_wp, 1.0_wp, 1.0_wp)// &
                          'GRAVity,0,-10'//nl//nl//batch('0.1', ''), model, with, err)
@@ -767,7 +767,7 @@ contains
       if (allocated(err)) return
       a0 = loop_area()
       l0 = ang_mom()
-      kin0 = stp%st%kinetic
+      kin0 = stp%st%energy%kinetic
       trev = 2.0_wp*acos(-1.0_wp)/om
       stp%tmax = trev
       worst_w = 0.0_wp
@@ -776,12 +776,12 @@ contains
          call stp%advance(err)
          if (allocated(err)) exit
          area = loop_area()
-         worst_w = max(worst_w, abs(stp%st%wext + p*(area - a0)))
+         worst_w = max(worst_w, abs(stp%st%energy%wext + p*(area - a0)))
          lnow = ang_mom()
          worst_l = max(worst_l, abs(lnow - l0))
       end do
       call check(s, .not. allocated(err), 'ring spins one revolution', error_text(err))
-      wrev = stp%st%wext
+      wrev = stp%st%energy%wext
       call check(s, worst_w <= 1.0e-12_wp*p*a0, 'pressure work = -p (A(t) - A(0)) at every step', &
                  'largest difference '//rtoa(worst_w))
       call check(s, abs(wrev) <= 1.0e-3_wp*kin0, 'no net work over a revolution (0.1 % of the kinetic '// &

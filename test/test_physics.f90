@@ -5,10 +5,10 @@ module test_physics
    use testing, only: suite_t, check, check_close, section
    use deck_runner, only: run_dir, run_deck, read_table, column, write_text, file_has
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_explicit_state, only: state_t, element_set_t
-   use exic_explicit_assembly, only: assembly_init, internal_forces
+   use exic_explicit_assembly, only: assembly_init, internal_forces, force_result_t
    implicit none
    private
 
@@ -49,8 +49,9 @@ contains
       type(error_t), allocatable :: err
       character(len=:), allocatable :: deck
       character(len=1) :: q
-      integer :: k, ebad, emin, efold
-      real(wp) :: th, c, sn, worst_w, worst_f, fscale, dtmin
+      integer :: k
+      real(wp) :: th, c, sn, worst_w, worst_f, fscale
+      type(force_result_t) :: res
       integer, parameter :: nstep = 2000
 
       write (q, '(i1)') nq
@@ -74,8 +75,8 @@ contains
          sn = sin(th)
          st%u(1, :) = (c - 1.0_wp)*st%x0(1, :) - sn*st%x0(2, :)
          st%u(2, :) = sn*st%x0(1, :) + (c - 1.0_wp)*st%x0(2, :)
-         call internal_forces(st, sets, ebad, dtmin, emin, efold)
-         worst_w = max(worst_w, abs(st%strain) + abs(st%hourglass))
+         call internal_forces(st, sets, res)
+         worst_w = max(worst_w, abs(st%energy%strain) + abs(st%energy%hourglass))
          worst_f = max(worst_f, maxval(abs(st%fint)))
       end do
       call check(s, worst_w <= 1.0e-12_wp*1000.0_wp*3.0_wp, 'strain energy at round-off through 90 degrees'// &

@@ -11,6 +11,7 @@ module test_restart
    use testing, only: suite_t, check, section, skip, have_command
    use deck_runner, only: run_dir, write_text
    use test_contact_auto, only: sliding_blocks_deck, blocks_contact
+   use exic_base_progress, only: eta_seconds, eta_known
    implicit none
    private
 
@@ -24,6 +25,12 @@ contains
    subroutine run_restart_tests(s)
       type(suite_t), intent(inout) :: s
       character(len=:), allocatable :: exic, child
+      call section(s, 'restart: the ETA of the progress line counts from the restart point')
+      ! 10 s took the run from the restart point 0.5 to 0.6 of 1.0: 0.4 is left, 40 s
+      call check(s, eta_seconds(10.0_wp, 0.6_wp, 0.5_wp, 1.0_wp) - 40.0_wp <= 1.0e-12_wp .and. &
+                 eta_seconds(10.0_wp, 0.6_wp, 0.5_wp, 1.0_wp) - 40.0_wp >= -1.0e-12_wp .and. &
+                 .not. eta_known(10.0_wp, 0.5_wp, 0.5_wp, 1.0_wp), 'ETA = elapsed (tmax - t)/(t - t_begin), '// &
+                 'unknown before the run has advanced from where it began')
       exic = sibling('../app/exic')
       child = sibling('deck_run_child')
       if (len(exic) == 0 .or. len(child) == 0 .or. .not. have_command('h5diff')) then
@@ -50,8 +57,13 @@ contains
       call check(s, shell('grep -q "stiffness rows formed again at large strain [1-9]" '//dir// &
                           '/energy_face/energy_face.out') == 0, 'energy_face: the face''s stiffness '// &
                  'is formed again during the run (its state crosses the restart point)')
+      call section(s, 'restart: mass damping and bulk viscosity across the restart point')
+      call continued(s, exic, 'dissipation', dissipation_deck())
       call section(s, 'restart: a restart file of another deck is refused')
       call mismatch(s, exic)
+      call section(s, 'restart: a later end time, a changed program refused, a new output folder')
+      call extended(s, exic)
+      call new_folder(s, exic)
       call section(s, 'restart: a write failure (file size limit) ends the run cleanly')
       call write_failure(s, exic)
    end subroutine run_restart_tests
@@ -197,8 +209,10 @@ contains
       call ex72_in(d)
       code = shell('cd '//d//' && sed -i "s/tend = 0.3/tend = 0.31/" ex72.inp && '//abs(exic)// &
                    ' -q ex72.inp --restart ../full/ex72.rst > run.log 2>&1')
-      call check(s, code == 1 .and. shell('grep -q "another deck: the BATCh commands differ" '//d//'/run.log') == 0, &
-                 'another end time: refused (exit 1), the BATCh commands named', d//'/run.log')
+      call check(s, code == 1 .and. shell('grep -q "the BATCh commands differ where a restart cannot follow '// &
+                                          'them: TIME at .*batch.inc:9 .*shortened to land on the end time" '// &
+                                          d//'/run.log') == 0, 'another end time from the file of the end of a '// &
+                 'DT,CFL run (its last steps landed on the end time): refused (exit 1), the TIME named', d//'/run.log')
       code = shell('cd '//d//' && sed -i "s/tend = 0.31/tend = 0.3/" ex72.inp && '// &
                    'sed -i "s|^    1,0,-hgt/2|    1,-0.01,-hgt/2|" common/ex72_mesh.inc && '//abs(exic)// &
                    ' -q ex72.inp --restart ../full/ex72.rst > run2.log 2>&1')
@@ -206,6 +220,100 @@ contains
                                           '/run2.log') == 0, &
                  'a node moved: refused (exit 1), the node coordinates named', d//'/run2.log')
    end subroutine mismatch
+
+   !> Seed 7.2 to t = 0.2 (SAVE,,0.15) continued from its restart file of t = 0.15 with the end
+   !> time 0.3: the outputs of the run to 0.3 from the start (dir/full), bit for bit. From the
+   !> same file, another CFL number is refused, naming the DT and its line.
+   subroutine extended(s, exic)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: exic
+      character(len=:), allocatable :: d
+      integer :: code
+      d = dir//'/extended'
+      call ex72_in(d)
+      code = shell('cd '//d//' && sed -i "s/tend = 0.3/tend = 0.2/" ex72.inp && '//abs(exic)//' -q ex72.inp '// &
+                   '> short.log 2>&1 && cp ex72.rst.prev at015.rst && mkdir -p short && cp ex72.* short/')
+      call check(s, code == 0, 'the run to 0.2 ends normally', d//'/short.log')
+      code = shell('cd '//d//' && sed -i "s/cfl = 0.9/cfl = 0.8/; s/tend = 0.2/tend = 0.3/" ex72.inp && '// &
+                   abs(exic)//' -q ex72.inp --restart at015.rst > dt.log 2>&1')
+      call check(s, code == 1 .and. shell('grep -q "DT at .*batch.inc:4 (9.0*E-01 -> 8.0*E-01): it ran '// &
+                                          'before the restart point" '//d//'/dt.log') == 0 .and. &
+                 shell('cmp -s '//d//'/ex72.his '//d//'/short/ex72.his') == 0 .and. &
+                 shell('grep -q " wall " '//d//'/dt.log') /= 0, 'another CFL number: refused (exit 1), the DT '// &
+                 'named with its line and values; the files are left as they were; no progress line', d//'/dt.log')
+      code = shell('cd '//d//' && sed -i "s/cfl = 0.8/cfl = 0.9/" ex72.inp && '//abs(exic)// &
+                   ' -q ex72.inp --restart at015.rst > run.log 2>&1')
+      call check(s, code == 0 .and. shell('grep -q "the BATCh program differs from the restart file.s: TIME at '// &
+                                          '.*batch.inc:9 (2.0*E-01 -> 3.0*E-01): end time; the run resumes after '// &
+                                          'the step of FORM at .*batch.inc:10" '//d//'/ex72.out') == 0, &
+                 'a later end time: the run continues, its .out says what changed and where it resumes', &
+                 d//'/run.log')
+      call same_outputs(s, dir//'/full/ex72', d//'/ex72', 'end time 0.2 -> 0.3 at t = 0.15')
+   end subroutine extended
+
+   !> The restart file of t = 0.15 (extended) alone in a new folder with the deck to 0.3: new
+   !> .his, .ene and .h5 from the restart point, whose rows and output times are those of the
+   !> run to 0.3 from the start (dir/full) from there on; a folder with the .his and no .ene is
+   !> refused, naming both.
+   subroutine new_folder(s, exic)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: exic
+      character(len=:), allocatable :: d, full
+      integer :: code
+      d = dir//'/new_folder'
+      full = abs(dir//'/full/ex72')
+      call ex72_in(d)
+      code = shell('cd '//d//' && cp ../extended/at015.rst . && '//abs(exic)//' ex72.inp --restart at015.rst '// &
+                   '> run.log 2>&1')
+      call check(s, code == 0 .and. shell('grep -q "new output files start at the restart point (t = 1.5.*): '// &
+                                          '.*ex72.his, .*ex72.ene, .*ex72.h5 hold the run from there on" '//d// &
+                                          '/run.log') == 0 .and. shell('grep -q "new output files start" '//d// &
+                                                                       '/ex72.out') == 0, &
+                 'a new folder: the run continues, saying on the console and in the .out that new files '// &
+                 'start at the restart point', d//'/run.log')
+      call check(s, shell('cd '//d//' && test "$(head -1 ex72.his)" = "$(head -1 '//full//'.his)" && '// &
+                          'n=$(($(wc -l < ex72.his) - 1)) && test $n -gt 10 && '// &
+                          'cmp -s <(tail -n +2 ex72.his) <(tail -n $n '//full//'.his) && '// &
+                          'n=$(($(wc -l < ex72.ene) - 1)) && cmp -s <(tail -n +2 ex72.ene) <(tail -n $n '// &
+                          full//'.ene)') == 0, 'a new folder: the .his and .ene are the header and the last '// &
+                 'rows of those of the run to 0.3 from the start, byte for byte')
+      call check(s, same_tail(d//'/ex72.h5', full//'.h5', '/time') .and. &
+                 same_tail(d//'/ex72.h5', full//'.h5', '/fields/displacement') .and. &
+                 same_tail(d//'/ex72.h5', full//'.h5', '/fields/velocity') .and. &
+                 same_tail(d//'/ex72.h5', full//'.h5', '/energies/kinetic'), 'a new folder: the .h5 holds '// &
+                 'the last output times of the run to 0.3 from the start (time, displacement, velocity, '// &
+                 'kinetic energy, value for value at 17 digits)')
+      code = shell('cd '//d//' && mkdir -p partial && cp ex72.inp at015.rst partial/ && cp -r common partial/ && '// &
+                   'cp ../extended/short/ex72.his partial/ && cd partial && '//abs(exic)// &
+                   ' ex72.inp --restart at015.rst > run.log 2>&1')
+      call check(s, code == 1 .and. shell('grep -q "ex72.ene, ex72.h5 missing while ex72.his present" '//d// &
+                                          '/partial/run.log') == 0 .and. &
+                 shell('grep -q " wall " '//d//'/partial/run.log') /= 0, 'the .his without the .ene: refused '// &
+                 '(exit 1), naming the files; no progress line (its wall time was the time since boot)', &
+                 d//'/partial/run.log')
+   end subroutine new_folder
+
+   !> Whether every value of dataset `name` of `short` (a .h5) equals the last ones of the same
+   !> dataset of `long` (h5dump at 17 digits), and there are some.
+   logical function same_tail(short, long, name) result(same)
+      character(len=*), intent(in) :: short, long, name
+      character(len=*), parameter :: dump = 'h5dump -d NAME -y -w 0 -m %.17g FILE 2>/dev/null | '// &
+                                            'sed -n "/DATA {/,/}/p" | tr -s ", " "\n\n" | grep -E "^-?[0-9]"'
+      same = shell('a=$('//fill(dump, name, short)//'); n=$(echo "$a" | wc -l); test $n -gt 2 && '// &
+                   'test "$a" = "$('//fill(dump, name, long)//' | tail -n $n)"') == 0
+   end function same_tail
+
+   !> `pattern` with NAME and FILE replaced.
+   function fill(pattern, name, file) result(t)
+      character(len=*), intent(in) :: pattern, name, file
+      character(len=:), allocatable :: t
+      integer :: i
+      t = pattern
+      i = index(t, 'NAME')
+      t = t(1:i - 1)//name//t(i + 4:)
+      i = index(t, 'FILE')
+      t = t(1:i - 1)//file//t(i + 4:)
+   end function fill
 
    !> The 7.2 deck under a file size limit of 2000 kB (RLIMIT_FSIZE: writes past it fail with
    !> EFBIG, deterministically, as on a full disk): exit 1 (no signal), a message naming the file,
@@ -347,6 +455,18 @@ contains
              '  LOOP,,60'//nl//'    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
              '  disp,13,1'//nl//'  velo,13,1'//nl//'  stre,5,1'//nl//'  cont,1,1'//nl//nl//'STOP'
    end function one_point_deck
+
+   !> one_point_deck with DAMPing MASS 20 until 0.045 and VISCosity BULK (doc/damping.md): the
+   !> damping ends and the bar is compressed after the restart point (0.03); their nodal forces
+   !> and energies cross it.
+   function dissipation_deck() result(deck)
+      character(len=:), allocatable :: deck
+      character(len=*), parameter :: hg = '    HOURglass 0.1'//nl
+      integer :: k
+      deck = one_point_deck()
+      k = index(deck, hg) + len(hg)
+      deck = deck(:k - 1)//'    DAMPing MASS 20 0.045'//nl//'    VISCosity BULK'//nl//deck(k:)
+   end function dissipation_deck
 
    !> A bar (12 x 2, neo-Hookean) at 1 against a rigid wall 0.01 away, its struck end a
    !> massless contact face (LAGRange,ENERgy, doc/impact.md section 3): contact from t = 0.01

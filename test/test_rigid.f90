@@ -6,7 +6,7 @@ module test_rigid
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_model, only: model_t
+   use exic_model_model, only: model_t
    use exic_explicit_step, only: stepper_t
    use exic_explicit_rigid, only: RB_FREE
    use testing, only: suite_t, check, check_close, section, error_text
@@ -88,7 +88,7 @@ contains
       if (.not. allocated(err)) call stp%start(err)
       call check(s, .not. allocated(err), 'free rigid block starts', error_text(err))
       if (allocated(err)) return
-      e0 = stp%st%kinetic
+      e0 = stp%st%energy%kinetic
       call check_close(s, e0, 0.5_wp*(2.0_wp/6.0_wp)*om**2, 1.0e-13_wp, 'initial kinetic energy 1/2 I omega^2')
       ex = 0.0_wp
       eth = 0.0_wp
@@ -101,7 +101,7 @@ contains
             ex = max(ex, abs(b%xc(2) - c(2) + 0.5_wp*g*st%t**2), abs(b%xc(1) - c(1)))
             eth = max(eth, abs(b%th - om*st%t))
             eom = max(eom, abs(b%om - om))
-            ee = max(ee, abs(st%kinetic - st%wext - e0))
+            ee = max(ee, abs(st%energy%kinetic - st%energy%wext - e0))
          end associate
       end do
       call check(s, .not. allocated(err), 'free flight runs', error_text(err))

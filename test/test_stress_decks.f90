@@ -37,8 +37,8 @@ module test_stress_decks
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
    use exic_base_strings, only: itoa, rtoa
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_driver, only: run_options_t, run_model
    use deck_runner, only: run_dir
    use testing, only: suite_t, check, section, file_text

@@ -6,7 +6,7 @@ module test_viewers
    use exic_base_kinds, only: wp, i8
    use exic_base_strings, only: itoa, rtoa
    use exic_base_error, only: error_t
-   use exic_io_fields, only: field_writer_t
+   use exic_output_fields, only: field_writer_t
    use testing, only: suite_t, check, section, skip, have_command
    use test_fields, only: write_synthetic, synthetic_step, NNODE_T, NELEM_T
    implicit none

@@ -1,4 +1,4 @@
-!> The XDMF series file appended in place (src/exic/io/xdmf.f90) and the nodal averages of
+!> The XDMF series file appended in place (src/exic/output/fields/xdmf.f90) and the nodal averages of
 !> element values (src/exic/mesh/smoothing.f90).
 !>
 !> Kill safety is checked without killing anything: the writes of one append are applied to a
@@ -10,7 +10,7 @@ module test_xdmf
    use exic_base_strings, only: itoa
    use exic_base_error, only: error_t
    use exic_mesh_smoothing, only: nodal_average
-   use exic_io_xdmf, only: xdmf_series_t, xdmf_write_t, append_writes, write_whole_file
+   use exic_output_fields_xdmf, only: xdmf_series_t, xdmf_write_t, append_writes, write_whole_file
    use testing, only: suite_t, check, check_close, section, skip, have_python_modules, python_command, &
                       file_text, error_text
    implicit none

@@ -22,15 +22,16 @@ os.environ.setdefault("HDF5_USE_FILE_LOCKING", "FALSE")
 import numpy as np  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from plot_fields import STRESS, component_index, load  # noqa: E402
+from plot_fields import component_name, load, resolve_component  # noqa: E402
 
 
 def parse_args(argv):
     p = argparse.ArgumentParser(description="Animate the deformed mesh of an exic .h5 field output "
                                             "with contours of a stress component.")
     p.add_argument("h5", help="the <stem>.h5 file written by exic (OUTPut,HDF5)")
-    p.add_argument("-c", "--component", type=component_index, default=component_index("von_mises"),
-                   help="stress component: sxx, syy, szz, sxy, pressure, von_mises, J, or 1..7 "
+    p.add_argument("-c", "--component", type=component_name, default="von_mises",
+                   help="element value component: sxx, syy, szz, sxy, pressure, von_mises, J, "
+                        "and those a material adds (plastic_strain, ...), or its number 1..n "
                         "(default von_mises)")
     p.add_argument("-o", "--output", help="the .gif or .mp4 file (default <stem>_<component>.gif)")
     p.add_argument("-s", "--scale", type=float, default=1.0,
@@ -67,13 +68,16 @@ def main(argv=None):
     if len(d["time"]) == 0:
         print(f"animate_fields: {args.h5} has no output time yet", file=sys.stderr)
         return 1
-    out = args.output or f"{os.path.splitext(args.h5)[0]}_{STRESS[args.component]}.gif"
+    found = resolve_component(args.component, d, "animate_fields")
+    if found is None:
+        return 2
+    c, cname = found
+    out = args.output or f"{os.path.splitext(args.h5)[0]}_{cname}.gif"
     mp4 = out.lower().endswith(".mp4")
     if mp4 and shutil.which("ffmpeg") is None:
         print("animate_fields: an .mp4 needs ffmpeg, which is not installed; write a .gif instead",
               file=sys.stderr)
         return 1
-    c = args.component
     nodal = d["nodal"] is not None
     source = d["nodal"] if nodal else d["stress"]
     ks = frame_indices(len(d["time"]), args.frames)
@@ -97,30 +101,51 @@ def main(argv=None):
     tri = np.concatenate([d["conn"][:, [0, 1, 2]], d["conn"][:, [0, 2, 3]]])
     levels = np.linspace(vmin, vmax, 21)
     mappable = matplotlib.cm.ScalarMappable(norm=matplotlib.colors.Normalize(vmin, vmax), cmap=args.cmap)
-    fig.colorbar(mappable, ax=ax, label=STRESS[c] + (" (nodal)" if nodal else " (element)"))
+    fig.colorbar(mappable, ax=ax, label=cname + (" (nodal)" if nodal else " (element)"))
+
+    # The artists are made once and updated per frame (clearing the axes would lay out its
+    # ticks again for every frame, most of the drawing time).
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_aspect("equal")
+    cells = PolyCollection(shapes[0][d["conn"]], edgecolors="k", linewidths=0.15, zorder=2,
+                           facecolors="none" if nodal else None, cmap=None if nodal else args.cmap)
+    if not nodal:
+        cells.set_array(values[0])
+        cells.set_clim(vmin, vmax)
+    ax.add_collection(cells)
+    contact = None
+    if len(d["edges"]) > 0:
+        contact = LineCollection(shapes[0][d["edges"]], colors="r", linewidths=0.8, zorder=3)
+        ax.add_collection(contact)
+    scale = f", displacements x {args.scale:g}" if args.scale != 1.0 else ""
+    title = ax.set_title("", fontsize=9)
+    filled = []
 
     def draw(i):
-        ax.clear()
         x, v, k = shapes[i], values[i], ks[i]
+        for artist in filled:
+            artist.remove()
+        filled.clear()
         if nodal:
-            ax.tricontourf(x[:, 0], x[:, 1], tri, np.clip(v, vmin, vmax), levels=levels, cmap=args.cmap)
-            ax.add_collection(PolyCollection(x[d["conn"]], facecolors="none", edgecolors="k",
-                                             linewidths=0.15))
+            filled.append(ax.tricontourf(x[:, 0], x[:, 1], tri, np.clip(v, vmin, vmax),
+                                         levels=levels, cmap=args.cmap, zorder=1))
         else:
-            coll = PolyCollection(x[d["conn"]], array=v, cmap=args.cmap, edgecolors="k", linewidths=0.15)
-            coll.set_clim(vmin, vmax)
-            ax.add_collection(coll)
-        if len(d["edges"]) > 0:
-            ax.add_collection(LineCollection(x[d["edges"]], colors="r", linewidths=0.8))
-        ax.set_xlim(lo[0], hi[0])
-        ax.set_ylim(lo[1], hi[1])
-        ax.set_aspect("equal")
-        scale = f", displacements x {args.scale:g}" if args.scale != 1.0 else ""
-        ax.set_title(f"{STRESS[c]}  t = {d['time'][k]:.6g}  (step {d['step'][k]}, output {k + 1} of "
-                     f"{len(d['time'])}{scale})", fontsize=9)
+            cells.set_array(v)
+        cells.set_verts(x[d["conn"]])
+        if contact is not None:
+            contact.set_segments(x[d["edges"]])
+        title.set_text(f"{cname}  t = {d['time'][k]:.6g}  (step {d['step'][k]}, output {k + 1} of "
+                       f"{len(d['time'])}{scale})")
         return []
 
-    anim = animation.FuncAnimation(fig, draw, frames=len(ks), blit=False)
+    # The layout (colour bar, margins) is that of the first frame for every frame: the axes
+    # limits are fixed, so constrained layout would find the same positions again at a cost of
+    # most of the drawing time.
+    draw(0)
+    fig.canvas.draw()
+    fig.set_layout_engine("none")
+    anim = animation.FuncAnimation(fig, draw, frames=len(ks), blit=False, init_func=lambda: [])
     writer = animation.FFMpegWriter(fps=args.fps) if mp4 else animation.PillowWriter(fps=args.fps)
     anim.save(out, writer=writer, dpi=args.dpi)
     plt.close(fig)

@@ -16,12 +16,14 @@ import sys
 #: run it drives, session/)
 LAYERS = {
     "base": 0,
-    "linalg": 1, "mesh": 1, "material": 1,
+    "linalg": 1, "mesh": 1, "material": 1, "hdf5": 1,
     "element": 2, "contact": 2,
     "explicit": 3,
-    "io": 4,
-    "session": 5, "legacy": 5,
-    "driver": 6,
+    "model": 4,
+    "input": 5, "output": 5,
+    "restart": 6,
+    "session": 7, "legacy": 7,
+    "driver": 8,
 }
 MAX_LINES = 1000
 

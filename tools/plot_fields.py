@@ -14,6 +14,7 @@ Examples:
   plot_fields.py run.h5                              # von Mises at the last output time
   plot_fields.py run.h5 -c sxx -t 0 0.1 0.2 -o sxx.png
   plot_fields.py run.h5 -c 7 --scale 10              # J, displacements magnified 10 times
+  plot_fields.py run.h5 -c plastic_strain            # a component that the material adds
 """
 import argparse
 import os
@@ -30,17 +31,36 @@ ALIASES = {"vonmises": "von_mises", "mises": "von_mises", "vm": "von_mises", "p"
            "j": "J"}
 
 
-def component_index(text):
-    """0-based stress component of a name or a TPLOt number 1..7."""
+def component_index(text, names=STRESS):
+    """0-based component of a name or a TPLOt number 1..len(names), among the element value
+    components `names` of a file (its /fields/stress attribute `components`)."""
     key = text.strip()
-    if key.isdigit() and 1 <= int(key) <= 7:
+    if key.isdigit() and 1 <= int(key) <= len(names):
         return int(key) - 1
     key = ALIASES.get(key.lower(), key)
-    for i, name in enumerate(STRESS):
+    for i, name in enumerate(names):
         if key == name or key.lower() == name.lower():
             return i
     raise argparse.ArgumentTypeError(
-        f"unknown stress component '{text}' (use {', '.join(STRESS)} or 1..7)")
+        f"unknown component '{text}' (this file has {', '.join(names)}, or 1..{len(names)})")
+
+
+def component_name(text):
+    """The -c argument as given, checked for form only: the file says which names exist."""
+    if not text.strip():
+        raise argparse.ArgumentTypeError("empty component name")
+    return text
+
+
+def resolve_component(text, d, prog):
+    """(index, name) of the -c argument among the components of the loaded file d; prints the
+    file's names and returns None when it has no such component."""
+    try:
+        c = component_index(text, d["components"])
+    except argparse.ArgumentTypeError as exc:
+        print(f"{prog}: {exc}", file=sys.stderr)
+        return None
+    return c, d["components"][c]
 
 
 def parse_args(argv):
@@ -48,9 +68,10 @@ def parse_args(argv):
         description="Plot the deformed mesh of an exic .h5 field output, cells coloured by a "
                     "stress component, at chosen times.")
     p.add_argument("h5", help="the <stem>.h5 file written by exic (OUTPut,HDF5)")
-    p.add_argument("-c", "--component", type=component_index, default=component_index("von_mises"),
-                   help="stress component: sxx, syy, szz, sxy, pressure, von_mises, J, or 1..7 "
-                        "(default von_mises)")
+    p.add_argument("-c", "--component", type=component_name, default="von_mises",
+                   help="element value component: sxx, syy, szz, sxy, pressure, von_mises, J, "
+                        "and those a material adds (plastic_strain, ...; the file's attribute "
+                        "'components' lists them), or its number 1..n (default von_mises)")
     p.add_argument("-t", "--time", type=float, nargs="+",
                    help="times to draw; each uses the nearest output time (default: the last)")
     p.add_argument("-o", "--output", help="PNG file (default <stem>_<component>.png next to the .h5)")
@@ -80,6 +101,17 @@ def outside(times, wanted):
     return [t for t in wanted if t < lo - tol or t > hi + tol]
 
 
+def components_of(dataset):
+    """The component names of an element value dataset (attribute 'components'; files written
+    before it existed have the seven stress names)."""
+    names = dataset.attrs.get("components")
+    if names is None:
+        return list(STRESS)
+    if isinstance(names, (bytes, str)):
+        names = names.split() if isinstance(names, str) else names.decode().split()
+    return [n.decode() if isinstance(n, bytes) else str(n) for n in names]
+
+
 def load(path):
     """Mesh and complete output times of an exic field file."""
     with h5py.File(path, "r") as f:
@@ -95,6 +127,7 @@ def load(path):
             "step": f["step"][()][:n],
             "u": f["fields/displacement"][:n],
             "stress": f["fields/stress"][:n],
+            "components": components_of(f["fields/stress"]),
             "nodal": f["fields/nodal_stress"][:n] if "fields/nodal_stress" in f else None,
         }
     return data
@@ -126,7 +159,10 @@ def main(argv=None):
         print(f"plot_fields: warning: time {', '.join(f'{t:.6g}' for t in far)} outside the run ({span}); "
               "drawing the nearest output time", file=sys.stderr)
     ks = [int(np.argmin(np.abs(d["time"] - t))) for t in wanted]
-    c = args.component
+    found = resolve_component(args.component, d, "plot_fields")
+    if found is None:
+        return 2
+    c, cname = found
     if args.nodal and d["nodal"] is None:
         print(f"plot_fields: {args.h5} has no nodal values (written before they existed)", file=sys.stderr)
         return 1
@@ -173,19 +209,19 @@ def main(argv=None):
         ax.set_xlim(lo[0], hi[0])
         ax.set_ylim(lo[1], hi[1])
         ax.set_aspect("equal")
-        ax.set_title(f"{STRESS[c]}  t = {d['time'][k]:.6g}  (step {d['step'][k]})", fontsize=9)
+        ax.set_title(f"{cname}  t = {d['time'][k]:.6g}  (step {d['step'][k]})", fontsize=9)
         ax.set_xlabel("x")
         ax.set_ylabel("y")
     for j in range(npanel, nrow * ncol):
         axes[j // ncol][j % ncol].set_visible(False)
-    fig.colorbar(coll, ax=axes.ravel().tolist(), label=STRESS[c])
+    fig.colorbar(coll, ax=axes.ravel().tolist(), label=cname)
     if args.scale != 1.0:
         fig.suptitle(f"displacements x {args.scale:g}")
 
     out = args.output
     if out is None:
         stem = os.path.splitext(args.h5)[0]
-        out = f"{stem}_{STRESS[c]}.png"
+        out = f"{stem}_{cname}.png"
     fig.savefig(out, dpi=args.dpi)
     plt.close(fig)
     print(f"plot_fields: wrote {out}")

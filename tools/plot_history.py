@@ -8,9 +8,16 @@ Writes one PNG per history group into the output directory:
 Columns are grouped by the name before the parenthesis of their header entry, e.g.
 'disp(n31,1)'; unknown names get a group of their own.
 
+With --xy X Y [Y ...] it draws instead one plot of columns against a column of the same file
+(.his or .ene), e.g. the contact force against the punch's displacement; a column is named by
+its header entry (`disp(n31,2)`, `cont(p1,1)`, `kinetic`) or by its number (1 = t);
+--negate-x plots the abscissa's negative (a downward displacement as a positive indentation):
+  <stem>_<X>_vs_<Y>.png (or -o FILE.png)
+
 Examples:
   plot_history.py out/bar_wall                 # reads out/bar_wall.his and out/bar_wall.ene
   plot_history.py out/bar_wall.his -o plots/
+  plot_history.py out/punch --xy "disp(n5,2)" "cont(p1,1)" --negate-x   # force against indentation
 """
 import argparse
 import os
@@ -40,7 +47,59 @@ def parse_args(argv):
     p.add_argument("--ene", help="energy file (default <stem>.ene)")
     p.add_argument("-o", "--outdir", help="output directory (default: that of the files)")
     p.add_argument("--dpi", type=int, default=150, help="resolution (default 150)")
+    p.add_argument("--xy", nargs="+", metavar="COLUMN",
+                   help="plot columns 2.. against column 1 (header names or numbers from 1); "
+                        "-o may then name the PNG file")
+    p.add_argument("--negate-x", action="store_true", help="with --xy: plot the abscissa's negative")
     return p.parse_args(argv)
+
+
+def find_column(names, text):
+    """(index, label) of a column given by its header name or its number (1-based);
+    ValueError naming the file's columns."""
+    if text.isdigit() and 1 <= int(text) <= len(names):
+        return int(text) - 1, names[int(text) - 1]
+    low = [n.lower() for n in names]
+    if text.lower() not in low:
+        raise ValueError(f"no column '{text}': the file has {' '.join(names)}")
+    return low.index(text.lower()), names[low.index(text.lower())]
+
+
+def plot_xy(path, columns, negate_x, out, dpi, plt):
+    """One plot of columns[1:] against columns[0] (its negative with negate_x) of a .his or .ene
+    file."""
+    names, data = read_table(path)
+    if names is None or (data.size and len(names) != data.shape[1]):
+        raise ValueError(f"{path}: the '#' header must name every column")
+    if len(columns) < 2:
+        raise ValueError("--xy needs a column for the abscissa and at least one to plot")
+    if data.size == 0:
+        raise ValueError(f"{path} has no rows")
+    jx, lx = find_column(names, columns[0])
+    sx = -1.0 if negate_x else 1.0
+    lx = ("-" if negate_x else "") + lx
+    fig, ax = plt.subplots(figsize=(7.0, 4.5), layout="constrained")
+    for text in columns[1:]:
+        j, label = find_column(names, text)
+        ax.plot(sx * data[:, jx], data[:, j], lw=1.0, label=label)
+    ax.set_xlabel(lx)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8, loc="best")
+    fig.savefig(out, dpi=dpi)
+    plt.close(fig)
+    return [out]
+
+
+def find_column_ok(names, text):
+    try:
+        find_column(names or [], text)
+    except ValueError:
+        return False
+    return True
+
+
+def safe_name(text):
+    return "".join(c if c.isalnum() or c in "-_." else "_" for c in text).strip("_")
 
 
 def read_table(path):
@@ -150,6 +209,9 @@ def main(argv=None):
     ene = args.ene or base + ".ene"
     stem = os.path.basename(base)
     outdir = args.outdir or (os.path.dirname(base) or ".")
+    out_file = None
+    if args.xy and outdir.lower().endswith(".png"):
+        out_file, outdir = outdir, os.path.dirname(outdir) or "."
     have_his, have_ene = os.path.isfile(his), os.path.isfile(ene)
     if not (have_his or have_ene):
         print(f"plot_history: neither {his} nor {ene} exists", file=sys.stderr)
@@ -162,9 +224,21 @@ def main(argv=None):
 
     written = []
     try:
-        if have_his:
+        if args.xy:
+            source = None
+            for path, have in ((his, have_his), (ene, have_ene)):
+                if have and all(find_column_ok(read_table(path)[0], c) for c in args.xy):
+                    source = path
+                    break
+            if source is None:
+                raise ValueError(f"--xy: no file of {base} has every column of {' '.join(args.xy)}"
+                                 f" ({his}: {' '.join(read_table(his)[0] or []) if have_his else 'absent'};"
+                                 f" {ene}: {' '.join(read_table(ene)[0] or []) if have_ene else 'absent'})")
+            out = out_file or os.path.join(outdir, f"{stem}_{safe_name(args.xy[1])}_vs_{safe_name(args.xy[0])}.png")
+            written += plot_xy(source, args.xy, args.negate_x, out, args.dpi, plt)
+        elif have_his:
             written += plot_his(his, outdir, stem, args.dpi, plt)
-        if have_ene:
+        if have_ene and not args.xy:
             written += plot_ene(ene, outdir, stem, args.dpi, plt)
     except (OSError, ValueError) as exc:
         print(f"plot_history: {exc}", file=sys.stderr)

@@ -44,6 +44,16 @@ def peak_time(run):
     return float(ft[int(np.argmin(np.abs(ft - tp)))])
 
 
+def draw(script, argv):
+    """Run a drawing script's main(argv) in this process; stop on its failure as the script
+    itself would."""
+    import matplotlib.pyplot as plt
+    rc = script.main(argv)
+    plt.close("all")
+    if rc:
+        sys.exit(f"plots: {script.__name__} {' '.join(argv)} failed (exit code {rc})")
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("deck", help="the deck (.inp)")
@@ -72,10 +82,13 @@ def main(argv=None):
     plots = os.path.join(args.outdir, "plots")
     os.makedirs(plots, exist_ok=True)
     name = os.path.basename(stem)
-    subprocess.run([sys.executable, os.path.join(HERE, "plot_summary.py"), stem, "-o",
-                    os.path.join(plots, f"{name}_summary.png")], check=True)
-    subprocess.run([sys.executable, os.path.join(HERE, "plot_history.py"), stem, "-o", plots],
-                   check=True)
+    # the drawing scripts run in this process: each would otherwise import matplotlib again
+    import animate_fields
+    import plot_fields
+    import plot_history
+    import plot_summary
+    draw(plot_summary, [stem, "-o", os.path.join(plots, f"{name}_summary.png")])
+    draw(plot_history, [stem, "-o", plots])
     run = xr.Run(stem)
     if run.h5:
         ft = xr.field_times(run.h5)
@@ -84,13 +97,11 @@ def main(argv=None):
             for comp in args.component:
                 for label, t in times.items():
                     out = os.path.join(plots, f"{name}_{comp}_{label}.png")
-                    subprocess.run([sys.executable, os.path.join(HERE, "plot_fields.py"), run.h5,
-                                    "-c", comp, "-t", repr(t), "-o", out], check=True)
+                    draw(plot_fields, [run.h5, "-c", comp, "-t", repr(t), "-o", out])
             if args.movie != "none":
                 comp = args.component[0]
                 out = os.path.join(plots, f"{name}_{comp}.{args.movie}")
-                subprocess.run([sys.executable, os.path.join(HERE, "animate_fields.py"), run.h5,
-                                "-c", comp, "-o", out], check=True)
+                draw(animate_fields, [run.h5, "-c", comp, "-o", out])
     else:
         print("plots: the deck writes no fields (OUTPut,HDF5): no contour pictures")
     print(f"plots: pictures in {plots}/")

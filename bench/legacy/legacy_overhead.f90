@@ -15,8 +15,8 @@ program legacy_overhead
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
    use exic_base_clock, only: wall_time
-   use exic_io_model, only: model_t
-   use exic_io_deck, only: read_deck
+   use exic_model_model, only: model_t
+   use exic_input_deck, only: read_deck
    use exic_explicit_step, only: stepper_t
    use exic_contact_spec, only: contact_spec_t
    use bench_legacy_hooks, only: native_hook_t, api_hook_t

@@ -1,7 +1,7 @@
 !> The BATCh interpreter (spec section 5): runs a model's solution program command by command.
 !>
-!> The step itself is src/exic/explicit/step.f90 (`stepper_t`), the files src/exic/io/output.f90
-!> and src/exic/io/report.f90, what is done around a step (restart files, signals, the
+!> The step itself is src/exic/explicit/step.f90 (`stepper_t`), the files src/exic/output.f90
+!> and src/exic/output/text/report.f90, what is done around a step (restart files, signals, the
 !> penetration check) src/exic/session/run.f90; this module only decides, command by command,
 !> what to call.
 module exic_driver
@@ -11,9 +11,10 @@ module exic_driver
    use exic_base_error, only: error_t, make_error
    use exic_base_clock, only: wall_time
    use exic_base_signals, only: signals_install
-   use exic_io_model, only: model_t
-   use exic_io_program, only: MAX_LOOP_DEPTH
-   use exic_io_report, only: report_preamble, report_summary, report_final, console_summary
+   use exic_explicit_energy, only: model_energies
+   use exic_model_model, only: model_t
+   use exic_model_program, only: MAX_LOOP_DEPTH
+   use exic_output_text_report, only: report_preamble, report_summary, report_final, console_summary
    use exic_session_run, only: fields_observer, run_t, INSIDE_STEPS, resume, save_restart, init_inside, &
                                check_inside, start, step, after_step, finish_progress, pass_messages
    implicit none
@@ -51,6 +52,7 @@ contains
       type(error_t), allocatable :: ferr
       real(wp) :: wall_start, wall
       character(len=:), allocatable :: field_files, restart
+      logical :: ran    ! the program was interpreted (a run whose resume failed did not step)
 
       wall_start = wall_time()
       r%wall_start = wall_start
@@ -68,7 +70,7 @@ contains
       if (len(restart) > 0) then
          call resume(r, model, opts%base, restart, err)
       else
-         call r%out%open(opts%base, err)
+         call r%out%open(opts%base, err, model_energies(model%materials))
          if (.not. allocated(err)) call report_preamble(r%out%files, model)
          if (.not. allocated(err)) call r%stp%init(model%mesh, model%materials, model%contact, err, model%loads)
          if (.not. allocated(err)) call report_summary(r%out%files, model, r%stp)
@@ -78,9 +80,12 @@ contains
       if (.not. allocated(err)) then
          call init_inside(r, model, err)
       end if
+      ran = .false.
       if (.not. allocated(err)) then
-         call r%progress%begin(opts%quiet)
+         ! the wall time of the progress line counts from here, its ETA from the time reached
+         call r%progress%begin(opts%quiet, r%stp%st%t)
          r%t_start = r%stp%st%t
+         ran = .true.
          call execute(r, model, err)
       end if
       if (.not. allocated(err) .and. allocated(r%out%files%io_error)) &
@@ -88,25 +93,25 @@ contains
       ! the restart file of the end (SAVE) or of the interruption comes before the final rows
       ! and fields: a run continued from it writes them again, as the run that went on would
       ! (an interruption wrote its restart file after its step, in after_step)
-      if (.not. allocated(err) .and. r%stp%started .and. r%pos%save_on .and. .not. r%interrupted .and. &
+      if (.not. allocated(err) .and. ran .and. r%stp%started .and. r%pos%save_on .and. .not. r%interrupted .and. &
           r%saved_step /= r%stp%st%step) then
          r%pos%pc = size(model%program)
          call save_restart(r, model, err)
       end if
       ! the final state is always written; after a failure, its fields are (doc/fields.md)
-      if (r%stp%started .and. .not. allocated(err)) then
+      if (ran .and. r%stp%started .and. .not. allocated(err)) then
          call r%out%final(model, r%stp, ferr)
          if (allocated(ferr)) then
             call r%out%files%say('error: '//ferr%message)
             call move_alloc(ferr, err)
          end if
-      else if (r%stp%started) then
+      else if (ran .and. r%stp%started) then
          call r%out%failed(r%stp, err%message, ferr)
          if (allocated(ferr)) call r%out%files%say('error: '//ferr%message)
       end if
       call pass_messages(r)
-      if (r%stp%started) call check_inside(r)
-      if (r%stp%started) call finish_progress(r)
+      if (ran .and. r%stp%started) call check_inside(r)
+      if (ran .and. r%stp%started) call finish_progress(r)
       field_files = ''
       if (r%out%field_dt > 0.0_wp) then
          call add_existing(field_files, opts%base//'.h5')
@@ -118,7 +123,7 @@ contains
       call r%out%close()
       if (.not. allocated(err) .and. allocated(r%out%files%io_error)) &
          call make_error(err, r%out%files%io_error)
-      if (.not. opts%quiet .and. r%stp%started) write (output_unit, '(a)') console_summary(r%stp, wall, r%inside)
+      if (.not. opts%quiet .and. ran .and. r%stp%started) write (output_unit, '(a)') console_summary(r%stp, wall, r%inside)
       if (present(status)) status = merge(RUN_INTERRUPTED, RUN_COMPLETE, r%interrupted .and. .not. allocated(err))
    end subroutine run_model
 
@@ -180,6 +185,7 @@ contains
                if (.not. allocated(err)) call step(r, err)
                if (.not. allocated(err)) then
                   r%pos%pc = pc
+                  r%pos%form_pc = pc
                   r%pos%depth = depth
                   r%pos%remaining = remaining
                   call after_step(r, model, err)
@@ -197,6 +203,7 @@ contains
                r%pos%save_on = .true.
                r%pos%save_dt = c%v(1)
                r%pos%save_next = r%stp%st%t + c%v(1)
+               r%pos%save_t0 = r%stp%st%t
             case ('chec')
                if (c%option == 'pene') then
                   r%inside%fraction = c%v(1)

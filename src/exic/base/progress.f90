@@ -13,18 +13,19 @@ module exic_base_progress
    implicit none
    private
 
-   public :: progress_t, clock_text
+   public :: progress_t, clock_text, eta_seconds, eta_known
 
    character(len=*), parameter :: CR = achar(13)
 
    !> One run's progress line.
    type :: progress_t
       real(wp) :: start = 0.0_wp                 !< wall time of `begin`
+      real(wp) :: t_begin = 0.0_wp               !< simulated time at `begin` (a restart point)
       real(wp) :: last = 0.0_wp                  !< wall time of the last line
       real(wp) :: tty_interval = 0.25_wp         !< seconds between updates on a terminal
       real(wp) :: log_interval = 5.0_wp          !< seconds between lines in a log
       integer(i8) :: last_step = 0               !< step of the last line
-      logical :: quiet = .false.
+      logical :: quiet = .true.                  !< silent until `begin` (whose wall time is the origin)
       logical :: tty = .false.                   !< standard output is a terminal
       logical :: shown = .false.                 !< a line has been printed
       integer :: width = 0                       !< length of the in-place line on the terminal
@@ -38,12 +39,18 @@ module exic_base_progress
 
 contains
 
-   !> Start timing; `quiet` prints nothing. `tty` overrides the terminal test (for tests).
-   subroutine progress_begin(self, quiet, tty)
+   !> Start timing; `quiet` prints nothing. `t_begin`: the simulated time the run starts from
+   !> (a restart point; default 0), from which the ETA is measured. `tty` overrides the terminal
+   !> test (for tests). A progress line that was never begun prints nothing: the wall time is
+   !> measured from `begin` only.
+   subroutine progress_begin(self, quiet, t_begin, tty)
       class(progress_t), intent(inout) :: self
       logical, intent(in) :: quiet
+      real(wp), intent(in), optional :: t_begin
       logical, intent(in), optional :: tty
       self%start = wall_time()
+      self%t_begin = 0.0_wp
+      if (present(t_begin)) self%t_begin = t_begin
       self%last = self%start
       self%last_step = 0
       self%quiet = quiet
@@ -93,12 +100,11 @@ contains
       if (tmax > 0.0_wp) then
          frac = max(0.0_wp, min(t/tmax, 1.0_wp))
          write (pct, '(f6.1,a)') 100.0_wp*frac, ' %'
+         eta = '?'
          if (frac >= 1.0_wp) then
             eta = clock_text(0.0_wp)
-         else if (frac > 0.0_wp) then
-            eta = clock_text(elapsed*(1.0_wp - frac)/frac)
-         else
-            eta = '?'
+         else if (eta_known(elapsed, t, self%t_begin, tmax)) then
+            eta = clock_text(eta_seconds(elapsed, t, self%t_begin, tmax))
          end if
       else
          pct = '     ? %'
@@ -139,6 +145,19 @@ contains
       call self%show(t, tmax, dt, step, drift)
       call self%clear()
    end subroutine progress_finish
+
+   !> Whether eta_seconds can tell: simulated time has advanced since `t_begin`, short of tmax.
+   pure logical function eta_known(elapsed, t, t_begin, tmax)
+      real(wp), intent(in) :: elapsed, t, t_begin, tmax
+      eta_known = t > t_begin .and. tmax > t .and. elapsed >= 0.0_wp
+   end function eta_known
+
+   !> Wall seconds left to reach tmax at the pace of this process: `elapsed` seconds since
+   !> `begin` took the run from t_begin (the restart point, or 0) to t.
+   pure real(wp) function eta_seconds(elapsed, t, t_begin, tmax) result(eta)
+      real(wp), intent(in) :: elapsed, t, t_begin, tmax
+      eta = elapsed*(tmax - t)/(t - t_begin)
+   end function eta_seconds
 
    !> Seconds as h:mm:ss.
    function clock_text(seconds) result(s)

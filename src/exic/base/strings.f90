@@ -4,7 +4,11 @@ module exic_base_strings
    implicit none
    private
 
-   public :: itoa, rtoa, rtoa_result
+   public :: itoa, rtoa, rtoa_result, to_lower, SHORT_REAL
+
+   !> rtoa's format for a number quoted back to the user as given (8 significant digits, no
+   !> exponent where none is needed): rtoa(x, SHORT_REAL)
+   character(len=*), parameter :: SHORT_REAL = '(g0.8)'
 
    !> An integer (default or 64-bit) as text, without blanks.
    interface itoa
@@ -45,6 +49,18 @@ contains
       end if
       s = trim(adjustl(buf))
    end function rtoa
+
+   !> Lower-case copy of `s` (ASCII letters only).
+   pure function to_lower(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=len(s)) :: t
+      integer :: k, c
+      t = s
+      do k = 1, len(s)
+         c = iachar(s(k:k))
+         if (c >= iachar('A') .and. c <= iachar('Z')) t(k:k) = achar(c + 32)
+      end do
+   end function to_lower
 
    !> A computed result as text for a report: rtoa(x), or `not finite` for NaN and infinities,
    !> which are never written as results (a run that failed on them says where they appeared).

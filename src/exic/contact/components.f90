@@ -9,6 +9,7 @@
 !> so the split depends only on the candidates and their order.
 module exic_contact_components
    use exic_base_grow, only: grow
+   use exic_base_union_find, only: set_root, join_sets
    implicit none
    private
 
@@ -46,29 +47,11 @@ contains
       end do
    end subroutine components_reset
 
-   !> The root of candidate i (its component's smallest candidate so far), halving the path.
-   integer function find(self, i) result(r)
-      type(components_t), intent(inout) :: self
-      integer, intent(in) :: i
-      r = i
-      do while (self%root(r) /= r)
-         self%root(r) = self%root(self%root(r))
-         r = self%root(r)
-      end do
-   end function find
-
    !> Candidates i and j are in one component (the larger root is linked to the smaller).
    subroutine components_join(self, i, j)
       class(components_t), intent(inout) :: self
       integer, intent(in) :: i, j
-      integer :: ri, rj
-      ri = find(self, i)
-      rj = find(self, j)
-      if (ri < rj) then
-         self%root(rj) = ri
-      else if (rj < ri) then
-         self%root(ri) = rj
-      end if
+      call join_sets(self%root, i, j)
    end subroutine components_join
 
    !> Join the candidates that share a node: candidate i with local nodes lnode(:, i) (0: a
@@ -107,7 +90,7 @@ contains
       ! member
       self%n = 0
       do i = 1, m
-         r = find(self, i)
+         r = set_root(self%root, i)
          if (r == i) then
             self%n = self%n + 1
             self%id(i) = self%n

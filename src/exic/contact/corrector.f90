@@ -37,6 +37,7 @@ module exic_contact_corrector
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
    use exic_base_grow, only: grow
+   use exic_contact_pivot_rule, only: pivot_rule_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
    use exic_contact_system, only: system_t
    use exic_contact_massless_face, only: massless_face_t
@@ -259,14 +260,13 @@ contains
       type(error_t), allocatable, intent(out) :: err
       type(rigid_dofs_t), intent(inout), optional :: rb
       type(massless_face_t), intent(inout), optional :: face
-      integer :: m, nact, pass, k, i, nbad, ninf, best, budget, last
+      integer :: m, nact, pass, k, i, nbad, ninf, last
+      type(pivot_rule_t) :: rule
       real(wp) :: g
       logical :: have_safe
 
       m = cs%n
       self%rhs(1:m) = -gap0(1:m)/c
-      best = huge(1)
-      budget = 3
       pass = 0
       have_safe = .false.
       do
@@ -333,13 +333,7 @@ contains
             if (present(face)) call face%respond(m, cs%p(1:m))
             exit
          end if
-         if (ninf < best) then
-            best = ninf
-            budget = 3
-         else
-            budget = budget - 1
-         end if
-         if (budget >= 0) then
+         if (rule%block_pass(ninf)) then
             where (self%infeasible(1:m)) cs%active(1:m) = .not. cs%active(1:m)
          else
             cs%active(last) = .not. cs%active(last)

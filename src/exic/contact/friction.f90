@@ -20,6 +20,7 @@ module exic_contact_friction
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
    use exic_base_grow, only: grow
+   use exic_contact_pivot_rule, only: pivot_rule_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
    use exic_contact_system, only: system_t
    use exic_contact_corrector, only: constraints_t, corrector_t, apply, gap_change
@@ -211,12 +212,11 @@ contains
       real(wp), intent(in) :: minv(2, nnode), c, tol
       type(error_t), allocatable, intent(out) :: err
       type(rigid_dofs_t), intent(inout), optional :: rb
-      integer :: i, pass, nfree, nbad, ninf, best, budget, last
+      integer :: i, pass, nfree, nbad, ninf, last
+      type(pivot_rule_t) :: rule
       real(wp) :: ds
 
       where (.not. self%beta(1:m) > 0.0_wp) self%side(1:m) = 0
-      best = huge(1)
-      budget = 3
       pass = 0
       do
          pass = pass + 1
@@ -282,13 +282,7 @@ contains
             cs%q(1:m) = max(-self%beta(1:m), min(self%beta(1:m), cs%q(1:m)))
             exit
          end if
-         if (ninf < best) then
-            best = ninf
-            budget = 3
-         else
-            budget = budget - 1
-         end if
-         if (budget >= 0) then
+         if (rule%block_pass(ninf)) then
             do i = 1, m
                if (self%infeasible(i)) call switch(i)
             end do

@@ -22,6 +22,8 @@ module exic_explicit_assembly
    use exic_material_material, only: material_t, MAT_SOLID, MAT_RIGID
    use exic_explicit_state, only: state_t, element_set_t, plus_zero
    use exic_explicit_central, only: cd_kinetic, cd_kinetic_power, cd_zero
+   use exic_explicit_dissipation, only: mass_damping, half_work, damped_step
+   use exic_element_q4_bulk_viscosity, only: q4_bulk_viscosity
    use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
                                  q4_stable_dt, q4_stress, NBLOCK
    use exic_element_q4_general, only: q4g_init, q4g_force, q4g_stable_dt, q4g_stress, q4g_hist_init, &
@@ -30,6 +32,7 @@ module exic_explicit_assembly
    private
 
    public :: assembly_init, internal_forces, stable_step, kinetic_energy, kinetic_correction, element_stress, &
+             energy_balance, &
              book_step_change, all_stresses
    public :: set_ranges, NSIG
 
@@ -40,6 +43,18 @@ module exic_explicit_assembly
    !> Range length: nel/64 rounded up to whole blocks, between 256 and 2048 elements (fixed by
    !> the mesh, never by the number of threads).
    integer, parameter :: RANGE_MIN = 256, RANGE_MAX = 2048, RANGES_WANTED = 64
+
+   !> What a force pass returns besides the forces (internal_forces, set_forces).
+   type, public :: force_result_t
+      real(wp) :: strain = 0.0_wp        !< strain energy (without the hourglass part)
+      real(wp) :: hourglass = 0.0_wp     !< hourglass energy
+      real(wp) :: dissipation = 0.0_wp   !< plastic work of this pass
+      real(wp) :: jmin = huge(1.0_wp)    !< smallest J
+      integer :: ebad = 0                !< first element with J <= 0, or 0
+      real(wp) :: dt = huge(1.0_wp)      !< the stable step (its square inside a set's pass)
+      integer :: emin = 0                !< its element, 0 without deformable elements
+      integer :: efold = 0               !< first element folded at a corner, or 0
+   end type force_result_t
 
 contains
 
@@ -109,6 +124,8 @@ contains
                return
             end if
             call general_path(s, m, mesh%axisymmetric)
+            call dissipation_init(s, m, st, mesh%axisymmetric, err)
+            if (allocated(err)) return
             if (m%plastic .and. m%kind == MAT_SOLID) st%has_plastic = .true.
             call set_ranges(s, nn)
             st%active(reshape(s%conn, [4*s%nel])) = .true.
@@ -151,6 +168,41 @@ contains
          allocate (s%hist(1, 1, 1), source=0.0_wp)
       end if
    end subroutine general_path
+
+   !> The dissipations of set s (doc/damping.md): DAMPing MASS (the set's nodes and their shares
+   !> of the lumped mass) and VISCosity BULK (refused in axisymmetry); the state's nodal force
+   !> arrays of the dissipations in use.
+   subroutine dissipation_init(s, m, st, axi, err)
+      type(element_set_t), intent(inout) :: s
+      type(material_t), intent(in) :: m
+      type(state_t), intent(inout) :: st
+      logical, intent(in) :: axi
+      type(error_t), allocatable, intent(out) :: err
+      real(wp), allocatable :: share(:)
+      integer :: i
+      if (m%kind /= MAT_SOLID) return
+      if (m%damping > 0.0_wp) then
+         s%damping = m%damping
+         s%damping_end = m%damping_end
+         allocate (share(st%nnode), source=0.0_wp)
+         call q4_lumped_mass(s%nel, st%nnode, s%conn, st%x0, s%rho, share, axi)
+         s%dnodes = pack([(i, i=1, st%nnode)], share > 0.0_wp)
+         s%dmass = share(s%dnodes)
+         if (.not. allocated(st%gdamp)) allocate (st%gdamp(2, st%nnode), source=0.0_wp)
+      end if
+      if (m%bulk) then
+         if (axi) then
+            call make_error(err, 'VISCosity BULK is not available for AXISymmetric solids (the hoop '// &
+                            'rate v_r/r is not in its kernel, doc/damping.md section 3)', m%where)
+            return
+         end if
+         s%bulk = .true.
+         s%q1 = m%bulk_q1
+         s%q2 = m%bulk_q2
+         s%wave = sqrt((m%lambda + 2.0_wp*m%mu)/m%rho)
+         if (.not. allocated(st%gbulk)) allocate (st%gbulk(2, st%nnode), source=0.0_wp)
+      end if
+   end subroutine dissipation_init
 
    !> Number of non-zero entries.
    pure integer function count_nonzero(a)
@@ -224,63 +276,118 @@ contains
    end subroutine set_ranges
 
    !> Internal forces, strain and hourglass energy at the current displacement (seed eq. 4.3
-   !> needs P(u)), and from the same pass the stable step at x = x0 + u: dtmin, its (global)
-   !> element emin (0 when there is no deformable element) and the first (global) element
-   !> folded at a corner efold (q4_stable_dt). `ebad` is the first (global) element with
-   !> J <= 0, or 0.
+   !> needs P(u)), and from the same pass the stable step at x = x0 + u: res%dt, its (global)
+   !> element res%emin (0 when there is no deformable element) and the first (global) element
+   !> folded at a corner res%efold (q4_stable_dt); res%ebad: the first (global) element with
+   !> J <= 0, or 0. The energies go into st%energy (strain, hourglass) and res.
    !> Plastic sets update their history (once per call: the stepper calls this once per step)
-   !> and add the step's dissipation to st%plastic.
-   subroutine internal_forces(st, sets, ebad, dtmin, emin, efold)
+   !> and add the step's dissipation to st%energy%plastic.
+   subroutine internal_forces(st, sets, res)
       type(state_t), intent(inout) :: st
       type(element_set_t), intent(inout) :: sets(:)
-      integer, intent(out) :: ebad, emin, efold
-      real(wp), intent(out) :: dtmin
-      integer :: k, eb, em, ef
-      real(wp) :: w, whg, jm, d, wd
+      type(force_result_t), intent(out) :: res
+      type(force_result_t) :: r
+      real(wp) :: wd, wb
+      integer :: k
 
+      wd = 0.0_wp
+      wb = 0.0_wp
       call cd_zero(2*st%nnode, st%fint)
-      st%strain = 0.0_wp
-      st%hourglass = 0.0_wp
-      st%jmin = huge(1.0_wp)
-      ebad = 0
-      dtmin = huge(1.0_wp)
-      emin = 0
-      efold = 0
+      ! the first half of the trapezoid work of the dissipative forces of the last pass (D.5)
+      if (allocated(st%gdamp)) then
+         wd = half_work(st%nnode, st%gdamp, st%v, st%a, st%dt_prev)
+         call cd_zero(2*st%nnode, st%gdamp)
+      end if
+      if (allocated(st%gbulk)) then
+         wb = half_work(st%nnode, st%gbulk, st%v, st%a, st%dt_prev)
+         call cd_zero(2*st%nnode, st%gbulk)
+      end if
       do k = 1, size(sets)
          associate (s => sets(k))
             if (s%kind /= MAT_SOLID) cycle
-            call set_forces(s, st%nnode, st%x0, st%u, st%v, st%dt_prev, st%fint, w, whg, wd, jm, eb, d, em, &
-                            ef)
-            st%strain = st%strain + w
-            st%plastic = st%plastic + wd
-            st%hourglass = st%hourglass + whg
-            st%jmin = min(st%jmin, jm)
-            if (eb /= 0 .and. ebad == 0) ebad = s%elems(eb)
-            if (ef /= 0 .and. efold == 0) efold = s%elems(ef)
-            if (d < dtmin) then
-               dtmin = d
-               emin = s%elems(em)
+            if (s%bulk) then
+               call set_forces(s, st%nnode, st%x0, st%u, st%v, st%dt_prev, st%fint, r, st%a, st%gbulk)
+            else
+               call set_forces(s, st%nnode, st%x0, st%u, st%v, st%dt_prev, st%fint, r)
             end if
+            if (s%damping > 0.0_wp .and. st%t <= s%damping_end) then
+               call mass_damping(size(s%dnodes), s%dnodes, s%dmass, s%damping, st%nnode, st%v, st%a, &
+                                 st%dt_prev, st%gdamp)
+               r%dt = damped_step(r%dt, s%damping)
+            end if
+            st%energy%plastic = st%energy%plastic + r%dissipation
+            call add_result(res, global(r, s%elems, 0))
          end associate
       end do
+      st%energy%strain = res%strain
+      st%energy%hourglass = res%hourglass
+      st%jmin = res%jmin
+      if (allocated(st%gbulk)) then
+         st%fint = st%fint + st%gbulk
+         st%energy%bulk = st%energy%bulk + (wb + half_work(st%nnode, st%gbulk, st%v, st%a, st%dt_prev))
+      end if
+      if (allocated(st%gdamp)) then
+         st%fint = st%fint + st%gdamp
+         st%energy%damping = st%energy%damping + (wd + half_work(st%nnode, st%gdamp, st%v, st%a, st%dt_prev))
+      end if
    end subroutine internal_forces
 
+   !> Fold the result r of a range or a set into the running result `res`, in order: the sums
+   !> in the order of the calls, the first element that is inverted or folded, the smallest
+   !> step and its element.
+   pure subroutine add_result(res, r)
+      type(force_result_t), intent(inout) :: res
+      type(force_result_t), intent(in) :: r
+      res%strain = res%strain + r%strain
+      res%dissipation = res%dissipation + r%dissipation
+      res%hourglass = res%hourglass + r%hourglass
+      res%jmin = min(res%jmin, r%jmin)
+      if (r%ebad /= 0 .and. res%ebad == 0) res%ebad = r%ebad
+      if (r%efold /= 0 .and. res%efold == 0) res%efold = r%efold
+      if (r%dt < res%dt) then
+         res%dt = r%dt
+         res%emin = r%emin
+      end if
+   end subroutine add_result
+
+   !> r with its element numbers e (local: 1 is the first element of a range or set) turned
+   !> into elems(e) (a set's global numbers), or offset + e when elems is empty.
+   pure function global(r, elems, offset) result(g)
+      type(force_result_t), intent(in) :: r
+      integer, intent(in) :: elems(:), offset
+      type(force_result_t) :: g
+      g = r
+      if (size(elems) > 0) then
+         if (r%ebad /= 0) g%ebad = elems(r%ebad)
+         if (r%efold /= 0) g%efold = elems(r%efold)
+         if (r%emin /= 0) g%emin = elems(r%emin)
+      else
+         if (r%ebad /= 0) g%ebad = offset + r%ebad
+         if (r%efold /= 0) g%efold = offset + r%efold
+         if (r%emin /= 0) g%emin = offset + r%emin
+      end if
+   end function global
+
    !> The force pass over one set (internal_forces): the ranges of each colour on the threads,
-   !> one colour after the other; per-range results combined in range order. eb, em, ef are
-   !> local element numbers of the set.
-   subroutine set_forces(s, nnode, x0, u, v, dt, f, w, whg, wd, jm, eb, d, em, ef)
+   !> one colour after the other; per-range results combined in range order. res%dt is the
+   !> square of the set's step; its elements are local element numbers of the set.
+   !> With VISCosity BULK (s%bulk), a(n) and g: the bulk viscosity's nodal forces are added to
+   !> g and the set's step is lowered by its ratio (q4_bulk_viscosity).
+   subroutine set_forces(s, nnode, x0, u, v, dt, f, res, a, g)
       type(element_set_t), intent(inout) :: s
       integer, intent(in) :: nnode
       !> v: the nodal velocities (the corner barrier's kinematic step limit, doc/hourglass.md (H19))
       real(wp), intent(in) :: x0(2, nnode), u(2, nnode), v(2, nnode), dt
       real(wp), intent(inout) :: f(2, nnode)
-      real(wp), intent(out) :: w, whg, wd, jm, d
-      integer, intent(out) :: eb, em, ef
-      real(wp), dimension(s%nrange) :: pw, phg, pj, pd, pdw
+      type(force_result_t), intent(out) :: res
+      real(wp), intent(in), optional :: a(2, nnode)
+      real(wp), intent(inout), optional :: g(2, nnode)
+      real(wp), dimension(s%nrange) :: pw, phg, pj, pd, pdw, pq
       integer, dimension(s%nrange) :: pe, pm, pf
       integer :: c, i, r, e1
 
       pdw = 0.0_wp
+      pq = 1.0_wp
       if (threaded(s%nel, PAR_MIN_ELEMENTS)) then
          !$omp parallel default(none) private(c, i) shared(s)
          do c = 1, s%ncolour
@@ -298,28 +405,14 @@ contains
             end do
          end do
       end if
-      w = 0.0_wp
-      whg = 0.0_wp
-      wd = 0.0_wp
-      jm = huge(1.0_wp)
-      d = huge(1.0_wp)
-      eb = 0
-      em = 0
-      ef = 0
       do r = 1, s%nrange
          e1 = s%rfirst(r) - 1
-         w = w + pw(r)
-         wd = wd + pdw(r)
-         whg = whg + phg(r)
-         jm = min(jm, pj(r))
-         if (pe(r) /= 0 .and. eb == 0) eb = e1 + pe(r)
-         if (pf(r) /= 0 .and. ef == 0) ef = e1 + pf(r)
-         if (pd(r) < d) then
-            d = pd(r)
-            em = e1 + pm(r)
-         end if
+         call add_result(res, global(force_result_t(strain=pw(r), hourglass=phg(r), dissipation=pdw(r), &
+                                                    jmin=pj(r), ebad=pe(r), dt=pd(r), emin=pm(r), efold=pf(r)), &
+                                     [integer ::], e1))
       end do
-      d = sqrt(d)
+      res%dt = sqrt(res%dt)
+      if (present(g)) res%dt = res%dt*minval(pq)
    contains
       !> The forces of range r of the set.
       subroutine range_forces(r)
@@ -345,13 +438,16 @@ contains
                               s%hourglass, f, pw(r), phg(r), pj(r), pe(r), pd(r), pm(r), pf(r), &
                               s%hgkind, v)
          end if
+         if (present(g)) call q4_bulk_viscosity(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, v, a, dt, s%rho, &
+                                                s%wave, s%q1, s%q2, g, pq(r))
       end subroutine range_forces
    end subroutine set_forces
 
    !> Smallest critical step over the deformable elements at the current coordinates
    !> x(2, nnode), and its (global) element (0 when there is no deformable element); efold: the
    !> first (global) element folded at a corner (q4_stable_dt), 0 if none. The same estimate
-   !> as internal_forces computes (to the bit), for a mesh before its first force pass.
+   !> as internal_forces computes (to the bit), for a mesh before its first force pass, but for
+   !> the bulk viscosity's ratio, which needs the velocities (doc/damping.md, section 3).
    subroutine stable_step(st, sets, x, dtmin, emin, efold)
       type(state_t), intent(in) :: st
       type(element_set_t), intent(in) :: sets(:)
@@ -372,6 +468,7 @@ contains
             else
                call q4_stable_dt(s%nq, s%nel, st%nnode, s%conn, st%x0, x, s%lambda, s%mu, s%rho, d, e, ef)
             end if
+            if (s%damping > 0.0_wp .and. st%t <= s%damping_end) d = damped_step(d, s%damping)
             if (ef /= 0 .and. efold == 0) efold = s%elems(ef)
             if (d < dtmin) then
                dtmin = d
@@ -386,9 +483,9 @@ contains
    subroutine kinetic_energy(st)
       type(state_t), intent(inout) :: st
       if (allocated(st%mass_dof)) then
-         call cd_kinetic(st%nnode, st%mass, st%v, st%kinetic, st%momentum, st%mass_dof)
+         call cd_kinetic(st%nnode, st%mass, st%v, st%energy%kinetic, st%momentum, st%mass_dof)
       else
-         call cd_kinetic(st%nnode, st%mass, st%v, st%kinetic, st%momentum)
+         call cd_kinetic(st%nnode, st%mass, st%v, st%energy%kinetic, st%momentum)
       end if
    end subroutine kinetic_energy
 
@@ -400,6 +497,20 @@ contains
       type(state_t), intent(in) :: st
       c = -0.125_wp*st%dt*st%dt*kinetic_power(st) + st%dt_residual - st%correction0
    end function kinetic_correction
+
+   !> The energy balance of <stem>.ene (explicit/energy.f90, energy_total): the total with the
+   !> change of the kinetic correction since t = 0 (doc/decisions.md, "Energy balance", eq. E.3),
+   !> its drift from the initial total relative to the largest of |initial total| and the
+   !> physical energy now; `correction`, that change of the kinetic correction, for its column.
+   subroutine energy_balance(st, total, drift, correction)
+      type(state_t), intent(in) :: st
+      real(wp), intent(out) :: total, drift
+      real(wp), intent(out), optional :: correction
+      real(wp) :: c
+      c = kinetic_correction(st)
+      call st%energy%balance(c, total, drift)
+      if (present(correction)) correction = c
+   end subroutine energy_balance
 
    !> When the step to come differs from the one the correction was booked for: the sum of
    !> eq. E.4 takes (dt_new^2 - dt_old^2)/8 Q(n) (called at t(n) with the state of t(n)).

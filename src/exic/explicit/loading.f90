@@ -681,7 +681,7 @@ contains
          end if
          self%rold(j) = r
       end do
-      st%wpm = st%wpm + 0.5_wp*w
+      st%energy%wpm = st%energy%wpm + 0.5_wp*w
       self%wpm_p = self%wpm_p + 0.5_wp*h*wp2
    end subroutine loading_finish
 
@@ -698,9 +698,9 @@ contains
       if (self%varying) then
          alt = alt + self%wext_p
       else
-         alt = alt + st%wext
+         alt = alt + st%energy%wext
       end if
-      w = max(st%wext + st%wpm, alt)
+      w = max(st%energy%wext + st%energy%wpm, alt)
    end function loading_work_in
 
    !> After the nodes' kinetic energy and momentum: add the free bodies'
@@ -717,7 +717,7 @@ contains
       do ib = 1, size(self%bodies)
          associate (b => self%bodies(ib))
             if (b%kind /= RB_FREE) cycle
-            st%kinetic = st%kinetic + 0.5_wp*(b%mass*(b%v(1)**2 + b%v(2)**2) + b%inertia*b%om**2)
+            st%energy%kinetic = st%energy%kinetic + 0.5_wp*(b%mass*(b%v(1)**2 + b%v(2)**2) + b%inertia*b%om**2)
             st%momentum = st%momentum + b%mass*b%v
             s = s + b%mass*(b%a(1)**2 + b%a(2)**2) + b%inertia*b%al**2
          end associate

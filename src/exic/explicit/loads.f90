@@ -2,7 +2,7 @@
 !> it into nodal values: the FEAP proportional (load-time) functions with their derivatives, and
 !> the consistent nodal forces of edge loads on the current geometry.
 !>
-!> `load_spec_t` is filled by the deck reader (src/exic/io/deck_loads.f90) with everything
+!> `load_spec_t` is filled by the deck reader (src/exic/input/deck/loads.f90) with everything
 !> resolved to nodes and edges; the stepper receives it at `init` (src/exic/explicit/loading.f90).
 !> Body forces (`BODY`) and free rigid bodies (`RIGId,FREE`) are material data (material_t).
 module exic_explicit_loads

@@ -3,6 +3,7 @@ module exic_explicit_state
    use exic_base_kinds, only: wp, i8
    use exic_element_q4_general, only: q4_solid_t
    use exic_material_material, only: HOURGLASS_STIFFNESS
+   use exic_explicit_energy, only: energy_t
    implicit none
    private
 
@@ -36,6 +37,14 @@ module exic_explicit_state
       !> (nvar, nq*nq, nel) history of a plastic set (Cp^-1, ep[, T]; material/j2.f90), changed
       !> only by the force pass; (1, 1, 1) otherwise
       real(wp), allocatable :: hist(:, :, :)
+      !> DAMPing MASS c [t_end] (doc/damping.md, section 2): c (0: none), t_end, the set's nodes
+      !> and their shares of the lumped mass (allocated only when c > 0)
+      real(wp) :: damping = 0.0_wp, damping_end = huge(1.0_wp)
+      integer, allocatable :: dnodes(:)
+      real(wp), allocatable :: dmass(:)
+      !> VISCosity BULK q1 q2 (doc/damping.md, section 3) and the dilatational wave speed
+      logical :: bulk = .false.
+      real(wp) :: q1 = 0.0_wp, q2 = 0.0_wp, wave = 0.0_wp
    end type element_set_t
 
    !> Nodal state at time t(n+1) with v(n+1), a(n+1) once a step is complete.
@@ -65,11 +74,12 @@ module exic_explicit_state
       real(wp) :: dt_prev = 0.0_wp              !< dt(n)   = t(n+1) - t(n)
       real(wp) :: dt = 0.0_wp                   !< dt(n+1) = t(n+2) - t(n+1)
       integer(i8) :: step = 0
-      ! energy balance
-      real(wp) :: kinetic = 0.0_wp, strain = 0.0_wp, hourglass = 0.0_wp
-      real(wp) :: wext = 0.0_wp, wcon = 0.0_wp, total0 = 0.0_wp
-      real(wp) :: wpm = 0.0_wp                  !< work of the prescribed motion (doc/loads.md, section 3)
-      real(wp) :: plastic = 0.0_wp              !< plastic work dissipated so far (doc/axisymmetry.md, (A13))
+      !> the energies and works of the balance (explicit/energy.f90)
+      type(energy_t) :: energy
+      !> (2, nnode) the nodal mass-damping and bulk-viscosity forces of the last force pass (part
+      !> of fint; their work is booked by the trapezoid rule, doc/damping.md (D.5)); allocated
+      !> only when a set has DAMPing or VISCosity BULK
+      real(wp), allocatable :: gdamp(:, :), gbulk(:, :)
       ! the kinetic correction of the energy balance (doc/decisions.md, "Energy balance", eq. E.3-E.4)
       real(wp) :: body_power = 0.0_wp           !< the free bodies' m |A|^2 + I alpha^2
       real(wp) :: correction0 = 0.0_wp          !< the correction at t = 0

@@ -36,7 +36,7 @@ module exic_explicit_step
    use exic_contact_spec, only: contact_spec_t
    use exic_contact_contact, only: contact_t
    use exic_explicit_state, only: state_t, element_set_t, plus_zero
-   use exic_explicit_assembly, only: assembly_init, internal_forces, stable_step, kinetic_energy, &
+   use exic_explicit_assembly, only: assembly_init, internal_forces, force_result_t, stable_step, kinetic_energy, &
                                      kinetic_correction, book_step_change
    use exic_explicit_central, only: cd_displacement, cd_predictor, cd_velocity, cd_displacement_plain, &
                                     cd_update_plain, positions, positions_at, predictor_velocity_at
@@ -91,6 +91,9 @@ module exic_explicit_step
       integer :: dt_elements_at = 0                   !< its element
       integer :: folded = 0                           !< first element folded at a corner in that pass
       real(wp) :: tmax = -1.0_wp                      !< end time to land on (TIME,,tmax; < 0: none)
+      !> the end time that last shortened a step to land on it (-1: none yet): a state whose
+      !> steps it shaped is not that of a run with a later end time (session/program_change.f90)
+      real(wp) :: landed_tmax = -1.0_wp
       logical :: dt_warned = .false.
       ! energy guard: limits as fractions of the energy put in, and the worst growth seen
       real(wp) :: energy_warn = ENERGY_WARN
@@ -217,7 +220,7 @@ contains
          end if
          call kinetic_energy(st)
          if (self%ld%active) call self%ld%energy(st)
-         st%total0 = st%kinetic + st%strain + st%hourglass
+         st%energy%total0 = st%energy%physical()
          self%energy_floor = ENERGY_FLOOR*epsilon(1.0_wp)*self%c2max*sum(st%mass, mask=st%active .and. .not. st%rigid)
          ! the kinetic correction at t = 0, for the step dt(0) (doc/decisions.md, eq. E.3-E.4)
          st%dt_residual = 0.0_wp
@@ -276,10 +279,10 @@ contains
             power_q = st%dt /= st%dt_booked
             if (power_q) then
                call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, &
-                                    st%a, st%v, st%wext, st%kinetic, st%momentum, qnodes)
+                                    st%a, st%v, st%energy%wext, st%energy%kinetic, st%momentum, qnodes)
             else
                call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, &
-                                    st%a, st%v, st%wext, st%kinetic, st%momentum)
+                                    st%a, st%v, st%energy%wext, st%energy%kinetic, st%momentum)
             end if
          else
             ! 4. predictor, eq. 4.3-4.4 (v~ only when there is contact to search; exic's own
@@ -300,10 +303,10 @@ contains
             if (self%ld%varying) then
                ! loads that vary in time: the trapezoid rule 1/2 (F(n) + F(n+1)) . du
                call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, self%ld%favg, self%du, work_con, &
-                                self%fcon_old, st%fcon, st%minv, st%v, st%wext, st%wcon)
+                                self%fcon_old, st%fcon, st%minv, st%v, st%energy%wext, st%energy%wcon)
             else
                call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, st%fext, self%du, work_con, &
-                                self%fcon_old, st%fcon, st%minv, st%v, st%wext, st%wcon)
+                                self%fcon_old, st%fcon, st%minv, st%v, st%energy%wext, st%energy%wcon)
             end if
             if (self%ld%active) call self%ld%finish(st, self%du, 0.5_wp*st%dt_prev, .false.)
          end if
@@ -327,16 +330,19 @@ contains
    subroutine forces_and_dt(self, err)
       type(stepper_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
-      integer :: ebad
+      type(force_result_t) :: res
       associate (st => self%st)
          if (surface_only(self)) then
             call positions_at(st%nnode, st%x0, st%u, self%contact%cnodes, self%x)
          else if (self%has_contact() .or. self%ld%active) then
             call positions(st%nnode, st%x0, st%u, self%x)
          end if
-         call internal_forces(st, self%sets, ebad, self%dt_elements, self%dt_elements_at, self%folded)
-         if (ebad /= 0) then
-            call inverted_error(st, ebad, err)
+         call internal_forces(st, self%sets, res)
+         self%dt_elements = res%dt
+         self%dt_elements_at = res%emin
+         self%folded = res%efold
+         if (res%ebad /= 0) then
+            call inverted_error(st, res%ebad, err)
             return
          end if
          call choose_dt(self, err, 'DT')
@@ -534,7 +540,10 @@ contains
             ! land exactly on tmax with steps no larger than the stable one
             if (self%tmax > st%t) then
                n = ceiling((self%tmax - st%t)/st%dt*(1.0_wp - TIME_TOL))
-               if (n >= 1 .and. n <= 4) st%dt = (self%tmax - st%t)/real(n, wp)
+               if (n >= 1 .and. n <= 4) then
+                  if ((self%tmax - st%t)/real(n, wp) /= st%dt) self%landed_tmax = self%tmax
+                  st%dt = (self%tmax - st%t)/real(n, wp)
+               end if
             end if
          else
             if (self%dt_fixed <= 0.0_wp) then
@@ -575,27 +584,28 @@ contains
       real(wp) :: e, put_in, growth, w_in
       character(len=:), allocatable :: what
       associate (st => self%st)
-         e = st%kinetic + st%strain + st%hourglass + st%plastic
-         if (.not. (ieee_is_finite(e) .and. ieee_is_finite(st%wext) .and. ieee_is_finite(st%wcon))) then
+         if (self%contact%friction) st%energy%friction = self%contact%dissipation
+         e = st%energy%physical()
+         if (.not. (ieee_is_finite(e) .and. ieee_is_finite(st%energy%wext) .and. ieee_is_finite(st%energy%wcon))) then
             call make_error(err, 'a value is not finite at t = '//rtoa(st%t)//', step '// &
                             itoa(int(st%step))//': '//first_nonfinite(self))
             return
          end if
          ! frictional dissipation is energy that left the bodies (doc/friction.md, section 5)
-         if (self%contact%friction) e = e + self%contact%dissipation
+         if (self%contact%friction) e = e + st%energy%friction
          if (self%ld%active) then
             ! loads and prescribed motion: the larger of two estimates of their work (loading.f90)
             w_in = self%ld%work_in(st)
-            put_in = abs(st%total0) + max(abs(st%wext) + abs(st%wpm), abs(w_in))
+            put_in = abs(st%energy%total0) + max(abs(st%energy%wext) + abs(st%energy%wpm), abs(w_in))
          else
-            w_in = st%wext + st%wpm
-            put_in = abs(st%total0) + abs(st%wext) + abs(st%wpm)
+            w_in = st%energy%wext + st%energy%wpm
+            put_in = abs(st%energy%total0) + abs(st%energy%wext) + abs(st%energy%wpm)
          end if
          ! energy put in below the round-off scale (none, or a round-off amount) is measured
          ! against that scale: energy that appears at the level of round-off is not growth
          put_in = max(put_in, self%energy_floor)
          if (put_in > 0.0_wp) then
-            growth = (e - (st%total0 + w_in))/put_in
+            growth = (e - (st%energy%total0 + w_in))/put_in
          else
             growth = merge(huge(1.0_wp), 0.0_wp, e > 0.0_wp)
          end if

@@ -15,7 +15,7 @@ module exic_legacy_registry
    private
 
    public :: problem_t, slot_t
-   public :: registry_add, registry_get, registry_free, registry_count
+   public :: registry_add, registry_get, registry_free
    public :: set_error, last_message
 
    !> Error codes returned in `ierr` (documented in doc/api.md).
@@ -119,15 +119,6 @@ contains
       if (h < 1 .or. h > nhandles) return
       if (allocated(slots(h)%p)) deallocate (slots(h)%p)
    end subroutine registry_free
-
-   !> Number of live problems.
-   integer function registry_count() result(n)
-      integer :: k
-      n = 0
-      do k = 1, nhandles
-         if (allocated(slots(k)%p)) n = n + 1
-      end do
-   end function registry_count
 
    !> Record `msg` as the last error, on handle `h` as well when it is live.
    subroutine set_error(h, msg)

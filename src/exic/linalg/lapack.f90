@@ -6,7 +6,7 @@ module exic_linalg_lapack
    implicit none
    private
 
-   public :: dpotrf, dpotrs, dpstrf, dsytrf, dsytrs, dsyev, dsygv
+   public :: dpotrf, dpotrs, dpstrf, dsyev, dsygv
 
    interface
 
@@ -40,28 +40,6 @@ module exic_linalg_lapack
          real(wp), intent(inout) :: work(*)
          integer, intent(out) :: info
       end subroutine dpstrf
-
-      !> Bunch-Kaufman LDL' factorization of a symmetric indefinite matrix.
-      subroutine dsytrf(uplo, n, a, lda, ipiv, work, lwork, info)
-         import :: wp
-         character(len=1), intent(in) :: uplo
-         integer, intent(in) :: n, lda, lwork
-         real(wp), intent(inout) :: a(lda, *)
-         integer, intent(out) :: ipiv(*)
-         real(wp), intent(inout) :: work(*)
-         integer, intent(out) :: info
-      end subroutine dsytrf
-
-      !> Solve A X = B with the factorization from dsytrf.
-      subroutine dsytrs(uplo, n, nrhs, a, lda, ipiv, b, ldb, info)
-         import :: wp
-         character(len=1), intent(in) :: uplo
-         integer, intent(in) :: n, nrhs, lda, ldb
-         real(wp), intent(in) :: a(lda, *)
-         integer, intent(in) :: ipiv(*)
-         real(wp), intent(inout) :: b(ldb, *)
-         integer, intent(out) :: info
-      end subroutine dsytrs
 
       !> Eigenvalues (and optionally eigenvectors) of a symmetric matrix.
       subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)

@@ -30,6 +30,11 @@ module exic_material_material
       type(j2_param_t) :: j2                         !< its parameters (PLAStic, SPECific heat)
       logical :: mixed = .false.                     !< MIXEd: mean dilatation (2x2 element)
       character(len=:), allocatable :: where         !< file:line of the MATErial record
+      !> DAMPing MASS c [t_end]: mass-proportional damping c (1/time) until t_end (doc/damping.md)
+      real(wp) :: damping = 0.0_wp, damping_end = huge(1.0_wp)
+      !> VISCosity BULK [q1 q2]: the bulk viscosity's coefficients (doc/damping.md, section 3)
+      logical :: bulk = .false.
+      real(wp) :: bulk_q1 = 1.5_wp, bulk_q2 = 0.06_wp
    end type material_t
 
 contains

@@ -11,6 +11,8 @@
 !> group is taken. Edge sets (mesh%edge_sets) are remapped like the connectivity.
 module exic_mesh_tie
    use exic_base_kinds, only: wp, i8
+   use exic_base_sort, only: sort_perm_i8
+   use exic_base_union_find, only: set_root, join_sets
    use exic_mesh_mesh, only: mesh_t
    implicit none
    private
@@ -59,78 +61,26 @@ contains
                   n = list(order(q))
                   if (n == p) cycle
                   if (abs(x(1, n) - x(1, p)) <= tol .and. abs(x(2, n) - x(2, p)) <= tol) &
-                     call join(map, p, n)
+                     call join_sets(map, p, n)
                end do
             end do
          end do
       end do
       do n = 1, nnode
-         map(n) = find(map, n)
+         map(n) = set_root(map, n)
       end do
    end subroutine tie_map
 
-   !> Root of n's group (path halving).
-   integer function find(parent, n)
-      integer, intent(inout) :: parent(:)
-      integer, intent(in) :: n
-      find = n
-      do while (parent(find) /= find)
-         parent(find) = parent(parent(find))
-         find = parent(find)
-      end do
-   end function find
-
-   !> Join the groups of a and b; the lower root survives.
-   subroutine join(parent, a, b)
-      integer, intent(inout) :: parent(:)
-      integer, intent(in) :: a, b
-      integer :: ra, rb
-      ra = find(parent, a)
-      rb = find(parent, b)
-      if (ra < rb) then
-         parent(rb) = ra
-      else if (rb < ra) then
-         parent(ra) = rb
-      end if
-   end subroutine join
-
-   !> Sort `order` so that (kx, ky)(order(:)) is lexicographically increasing (merge sort).
+   !> Sort `order` (the identity on entry) so that (kx, ky)(order(:)) is lexicographically
+   !> increasing, equal cells in input order: a stable sort by ky, then a stable sort by kx.
    subroutine sort_by_cell(n, kx, ky, order)
       integer, intent(in) :: n
       integer(i8), intent(in) :: kx(n), ky(n)
       integer, intent(inout) :: order(n)
-      integer, allocatable :: tmp(:)
-      integer :: width, lo, mid, hi, i, j, k
-      allocate (tmp(n))
-      width = 1
-      do while (width < n)
-         lo = 1
-         do while (lo <= n)
-            mid = min(lo + width - 1, n)
-            hi = min(lo + 2*width - 1, n)
-            i = lo
-            j = mid + 1
-            do k = lo, hi
-               if (j > hi) then
-                  tmp(k) = order(i); i = i + 1
-               else if (i > mid) then
-                  tmp(k) = order(j); j = j + 1
-               else if (less_equal(order(i), order(j))) then
-                  tmp(k) = order(i); i = i + 1
-               else
-                  tmp(k) = order(j); j = j + 1
-               end if
-            end do
-            lo = lo + 2*width
-         end do
-         order = tmp
-         width = 2*width
-      end do
-   contains
-      logical function less_equal(a, b)
-         integer, intent(in) :: a, b
-         less_equal = kx(a) < kx(b) .or. (kx(a) == kx(b) .and. ky(a) <= ky(b))
-      end function less_equal
+      integer :: by_y(n), by_x(n)
+      call sort_perm_i8(n, ky, by_y)
+      call sort_perm_i8(n, kx(by_y), by_x)
+      order = by_y(by_x)
    end subroutine sort_by_cell
 
    !> First position q in the sorted order with (kx, ky)(order(q)) >= (cx, cy); n+1 if none.

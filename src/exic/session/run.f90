@@ -13,10 +13,12 @@ module exic_session_run
    use exic_base_progress, only: progress_t, clock_text
    use exic_base_strings, only: itoa, rtoa
    use exic_base_signals, only: signals_take, SIG_BIT_INT, SIG_BIT_TERM, SIG_BIT_USR1, SIG_BIT_USR2
-   use exic_io_model, only: model_t
-   use exic_io_restart, only: run_position_t, write_restart, read_restart
-   use exic_io_output, only: output_t
-   use exic_io_report, only: energy_balance
+   use exic_model_model, only: model_t
+   use exic_restart, only: run_position_t, write_restart, read_restart
+   use exic_output, only: output_t
+   use exic_explicit_assembly, only: energy_balance
+   use exic_output_text_report, only: report_preamble
+   use exic_session_program_change, only: adopt_program
    use exic_explicit_step, only: stepper_t
    use exic_contact_inside, only: inside_t
    implicit none
@@ -59,22 +61,48 @@ module exic_session_run
 contains
 
    !> Set the run up from the restart file `path`: the stepper made from the model, then its
-   !> state, the output schedules and the program position read; the outputs continued.
+   !> state, the output schedules and the program position read; a changed program judged
+   !> (session/program_change.f90); the outputs continued, or begun anew at the restart point in
+   !> a folder that has none of them.
    subroutine resume(r, model, base, path, err)
       type(run_t), intent(inout) :: r
       type(model_t), intent(in) :: model
       character(len=*), intent(in) :: base, path
       type(error_t), allocatable, intent(out) :: err
+      real(wp), allocatable :: program(:, :)
+      character(len=:), allocatable :: notes, text
+      logical :: fresh
       call r%stp%init(model%mesh, model%materials, model%contact, err, model%loads)
       if (allocated(err)) return
-      call read_restart(path, model, r%stp, r%out, r%pos, err)
+      call read_restart(path, model, r%stp, r%out, r%pos, program, err)
       if (allocated(err)) return
-      call r%out%resume(base, model, r%stp, err)
+      call adopt_program(model, program, r%pos, r%stp, r%out, notes, err)
+      if (allocated(err)) then
+         err%message = "restart file '"//path//"': "//err%message
+         return
+      end if
+      call r%out%resume(base, model, r%stp, fresh, err)
       if (allocated(err)) return
       r%pos%pc = r%pos%pc + 1
-      call r%out%files%say('')
+      if (fresh) then
+         call report_preamble(r%out%files, model)
+      else
+         call r%out%files%say('')
+      end if
       call r%out%files%say('restarted from '//path//' at t = '//rtoa(r%stp%st%t)//', step '// &
                            itoa(int(r%stp%st%step)))
+      if (fresh) then
+         text = 'new output files start at the restart point (t = '//rtoa(r%stp%st%t)//', step '// &
+                itoa(int(r%stp%st%step))//'): '//base//'.his, '//base//'.ene'
+         if (r%out%field_dt > 0.0_wp) text = text//', '//base//'.h5'
+         text = text//' hold the run from there on, not the rows and fields before it'
+         call r%out%files%say(text)
+         write (error_unit, '(a)') 'exic: '//text
+      end if
+      if (len(notes) > 0) then
+         call r%out%files%say(notes)
+         write (error_unit, '(a)') 'exic: '//notes
+      end if
    end subroutine resume
 
    !> Write the restart file of the state now (the files flushed and measured first).
@@ -152,7 +180,8 @@ contains
             if (mod(st%step, int(r%pos%print_inc, i8)) == 0) then
                call r%progress%clear()
                print '(a,es13.5e3,a,i0,a,es13.5e3,a,es13.5e3,a,es13.5e3,a,es13.5e3)', ' t=', st%t, ' step ', st%step, &
-                  ' K=', st%kinetic, ' U=', st%strain + st%hourglass, ' Wext=', st%wext, ' Wc=', st%wcon
+                  ' K=', st%energy%kinetic, ' U=', st%energy%strain + st%energy%hourglass, ' Wext=', st%energy%wext, &
+                  ' Wc=', st%energy%wcon
             end if
          end if
          if (r%progress%due()) then
