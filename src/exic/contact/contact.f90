@@ -27,6 +27,7 @@ module exic_contact_contact
    use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, SURF_NODES, PAIR_NTOS, &
                                 PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
                                 DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t, spec_penalty_finite
+   use exic_contact_face_rule, only: facing_dofs
    use exic_mesh_boundary, only: free_edges, free_edges_of, bodies_elements, &
                                  surface_nodes, segment_links, locate_nodes, node_normals, &
                                  node_segments, normal_dofs
@@ -950,7 +951,7 @@ contains
    !> that meets a deformable body (a partner surface with a node not in `rigid`) is massless
    !> along its normals only: dofs(d, i) when a segment at node i has a normal n with
    !> |n_d| >= |n_other| (eq. I.3a; a node where the surface turns, a body's corner, gets both).
-   !> A surface that meets rigid bodies only is massless along both dofs.
+   !> Against rigid bodies only, the segments that face a partner (eq. I.3b) are massless so.
    function contact_face_dofs(self, nnode, x, rigid) result(dofs)
       class(contact_t), intent(in) :: self
       integer, intent(in) :: nnode
@@ -959,16 +960,20 @@ contains
       logical :: dofs(2, nnode)
       ! per surface: 0 no ENERgy pass, 1 every partner rigid, 2 a deformable partner
       integer :: meets(size(self%surfaces))
+      logical :: pairs(size(self%surfaces), size(self%surfaces))   ! (k, m): m is a partner of k
       integer :: k, s, m, ndef
       dofs = .false.
       if (.not. self%active) return
       meets = 0
+      pairs = .false.
       do k = 1, self%nfixed
          if (.not. self%passes(k)%energy) cycle
          s = self%passes(k)%slave
          m = self%passes(k)%master
          meets(s) = max(meets(s), merge(2, 1, deformable(m)))
          meets(m) = max(meets(m), merge(2, 1, deformable(s)))
+         pairs(s, m) = .true.
+         pairs(m, s) = .true.
       end do
       if (self%auto_pass%auto .and. self%auto_pass%energy) then
          ! AUTOmatic: every one of its surfaces can meet every other one
@@ -978,11 +983,15 @@ contains
          end do
          do k = self%auto_first + 1, self%auto_first + self%auto%nsurf
             meets(k) = max(meets(k), merge(2, 1, ndef - merge(1, 0, deformable(k)) > 0))
+            pairs(k, self%auto_first + 1:self%auto_first + self%auto%nsurf) = .true.
          end do
       end if
       do k = 1, size(self%surfaces)
-         if (meets(k) == 1) dofs(:, self%surfaces(k)%nodes) = .true.
          if (meets(k) == 2) call normal_dofs(nnode, x, self%surfaces(k)%nseg, self%surfaces(k)%seg, dofs)
+         do m = 1, size(self%surfaces)
+            if (meets(k) == 1 .and. pairs(k, m) .and. m /= k) call facing_dofs(nnode, x, self%surfaces(k)%nseg, &
+                                            self%surfaces(k)%seg, self%surfaces(m)%nseg, self%surfaces(m)%seg, dofs)
+         end do
       end do
    contains
       logical function deformable(k)
