@@ -10,7 +10,11 @@ the pair's method LAGRange (the seed's scheme) and LAGRange,ENERgy. Figures of a
 
   rebound  (p_end - p_exact) / p0, p_end the bar's x-momentum at the end (1.5 contact times
            after separation), p_exact = -p0 (exact for nu = 0; with nu > 0 the lateral
-           vibration keeps some of it, compare the schemes); the disk's y-momentum the same way
+           vibration keeps some of it); the disk's y-momentum the same way
+  rerr     rebound - rebound_ref: the error against the converged rebound of the same nu and
+           speed (0 for bars with nu = 0, the 1-D solution; otherwise the mean of both schemes
+           on the reference mesh REF_BAR = 320 x 40 or REF_DISK = n 24, m 8, at CFL 0.5, which
+           agree to `ref_spread`): the figure by which the schemes are compared
   drift    largest |drift| of <stem>.ene over the run (the balance's error, share of E0)
   energy   K + U + kinetic correction at the end against E0 (share)
   tcon     (t_last - t_first) / (2 L / c) - 1, the contact interval against the 1-D value
@@ -18,7 +22,11 @@ the pair's method LAGRange (the seed's scheme) and LAGRange,ENERgy. Figures of a
   warn     the run's output names a penetration warning
 
 usage: lagr_family.py EXIC [--sample N] [--seed S] [--out bench/results/lagr_family] [--plot
-       doc/impact_family.png] [--only bar|disk] [--workdir DIR] [--method-b TEXT]
+       doc/impact_family.png] [--only bar|disk] [--workdir DIR] [--methods 'A;B']
+       [--reuse OLD.json] [--refs REFS.json]
+--reuse takes the figures of a method from an earlier run's json where the case and the method
+record match (the seed's scheme gives the same bits whatever the build: run it once with the
+reference binary); --refs caches the reference runs.
 The full family is the cartesian product below; --sample N draws N bars (and N/4 disks) of it
 with a fixed random stream (the same draw every time for the same seed), always including the
 corners listed in CORNERS.
@@ -52,6 +60,9 @@ CORNERS = [('bar', 40, 4, 0.0, 0.8, 0.1 / math.sqrt(1e4 / 0.1)), ('bar', 20, 2, 
            ('bar', 160, 2, 0.0, 0.5, 0.001), ('disk', 8, 4, 0.3, 0.9, 1.0 / math.sqrt(1000 * 0.7 / 1.3 / 0.4))]
 
 L, H, E_BAR, RHO_BAR = 30.0, 4.0, 1.0e4, 0.1
+# the reference meshes of the converged rebound (both schemes, CFL 0.5)
+REF_BAR = (320, 40)
+REF_DISK = (24, 8)
 
 BATCH = """BATCh
   TRANsient,EXPLicit
@@ -212,6 +223,43 @@ def figures(base, info, rc, text):
     return f
 
 
+def reference(exic, work, methods, kind, nu, s, geos, cache):
+    """The converged rebound of (kind, nu, s): mean over the methods on the reference mesh,
+    and their spread; bars with nu = 0 have the exact 0."""
+    key = f'{kind}_{nu}_{s:.6g}'
+    if key in cache:
+        return cache[key]
+    if kind == 'bar' and nu == 0.0:
+        cache[key] = dict(ref=0.0, spread=0.0)
+        return cache[key]
+    vals = []
+    for mi, method in enumerate(methods):
+        if kind == 'bar':
+            deck, info = bar_deck(REF_BAR[0], REF_BAR[1], nu, 0.5, s, method)
+        else:
+            deck, info = disk_deck(REF_DISK[0], REF_DISK[1], nu, 0.5, s, method, geo_file(work, geos, *REF_DISK))
+        stem = f'ref_{kind}_{nu}_{s:.3g}_{mi}'.replace('.', 'p')
+        rc, text, base = run(exic, work, stem, deck)
+        f = figures(base, info, rc, text)
+        if 'failed' in f:
+            raise SystemExit(f'reference run {stem} failed: {f["message"]}')
+        vals.append(f['rebound'])
+    cache[key] = dict(ref=float(np.mean(vals)), spread=float(max(vals) - min(vals)))
+    return cache[key]
+
+
+def geo_file(work, geos, a, b):
+    if (a, b) not in geos:
+        geos[(a, b)] = os.path.join(work, f'disk_{a}_{b}.geo')
+        with open(geos[(a, b)], 'w') as f:
+            f.write(disk_geo(a, b))
+    return geos[(a, b)]
+
+
+def case_key(kind, a, b, nu, cfl, s):
+    return f'{kind}_{a}_{b}_{nu}_{cfl}_{s:.6g}'
+
+
 def cases(args):
     bars = list(itertools.product(NX, NY, NU, CFL, SPEED))
     disks = list(itertools.product(DN, DM, [0.0, 0.3, 0.45], CFL, [0.001, 0.01, 0.1]))
@@ -235,30 +283,52 @@ def main():
     ap.add_argument('--workdir')
     ap.add_argument('--methods', default='LAGRange;LAGRange,ENERgy',
                     help='the method records compared, separated by ;')
+    ap.add_argument('--reuse', help='json of an earlier run whose figures are taken for the same case and method')
+    ap.add_argument('--refs', help='json cache of the reference runs (read if present, written)')
     args = ap.parse_args()
     methods = args.methods.split(';')
     work = args.workdir or tempfile.mkdtemp(prefix='lagr_family_')
+    os.makedirs(work, exist_ok=True)
+    old = {}
+    if args.reuse:
+        with open(args.reuse) as f:
+            prev = json.load(f)
+        for r in prev['rows']:
+            for mi, m in enumerate(prev['methods']):
+                old[(case_key(r['kind'], r['a'], r['b'], r['nu'], r['cfl'], r['speed']), m)] = r[f'm{mi}']
+    refs = {}
+    if args.refs and os.path.exists(args.refs):
+        with open(args.refs) as f:
+            refs = json.load(f)
     rows = []
     geos = {}
     for case in cases(args):
         kind, a, b, nu, cfl, s = case
         row = dict(kind=kind, a=a, b=b, nu=nu, cfl=cfl, speed=s)
         for mi, method in enumerate(methods):
+            if (case_key(*case), method) in old:
+                row[f'm{mi}'] = old[(case_key(*case), method)]
+                continue
             if kind == 'bar':
                 deck, info = bar_deck(a, b, nu, cfl, s, method)
             else:
-                if (a, b) not in geos:
-                    geos[(a, b)] = os.path.join(work, f'disk_{a}_{b}.geo')
-                    with open(geos[(a, b)], 'w') as f:
-                        f.write(disk_geo(a, b))
-                deck, info = disk_deck(a, b, nu, cfl, s, method, geos[(a, b)])
+                deck, info = disk_deck(a, b, nu, cfl, s, method, geo_file(work, geos, a, b))
             stem = f'{kind}_{a}_{b}_{nu}_{cfl}_{s:.3g}_{mi}'.replace('.', 'p')
             rc, text, base = run(args.exic, work, stem, deck)
             row[f'm{mi}'] = figures(base, info, rc, text)
+        ref = reference(args.exic, work, methods, kind, nu, s, geos, refs)
+        if args.refs:
+            with open(args.refs, 'w') as f:
+                json.dump(refs, f, indent=1)
+        row['ref'], row['ref_spread'] = ref['ref'], ref['spread']
+        for mi in range(len(methods)):
+            if 'rebound' in row[f'm{mi}']:
+                row[f'm{mi}']['rerr'] = row[f'm{mi}']['rebound'] - ref['ref']
         rows.append(row)
         print(json.dumps(row), flush=True)
     with open(args.out + '.json', 'w') as f:
-        json.dump(dict(methods=methods, sample=args.sample, seed=args.seed, rows=rows), f, indent=1)
+        json.dump(dict(methods=methods, sample=args.sample, seed=args.seed, ref_bar=REF_BAR, ref_disk=REF_DISK,
+                       references=refs, rows=rows), f, indent=1)
     table(rows, methods, args.out + '.md')
     if args.plot:
         plot(rows, methods, args.plot)
@@ -286,7 +356,7 @@ def table(rows, methods, path):
     lines = ['| kind | figure | ' + ' | '.join(f'worst, {m}' for m in methods) + ' |',
              '|---|---|' + '---|' * len(methods)]
     for kind in ('bar', 'disk'):
-        for key in ('rebound', 'energy', 'drift', 'tcon', 'pen'):
+        for key in ('rebound', 'rerr', 'energy', 'drift', 'tcon', 'pen'):
             cells = []
             for mi in range(len(methods)):
                 w = worst(rows, mi, key, kind)
@@ -297,15 +367,29 @@ def table(rows, methods, path):
     lines.append(f'{len(rows)} cases; failed runs: {len(failed)}')
     for lab, mi, f in failed:
         lines.append(f'- {lab}, {methods[mi]}: {f["message"]}')
-    # ENERgy rebound against the seed's, per case
+    # the second method's rebound error against the first's, per case, and the map by speed
     if len(methods) == 2:
-        worse = [r for r in rows if 'rebound' in r['m0'] and 'rebound' in r['m1']
-                 and abs(r['m1']['rebound']) > abs(r['m0']['rebound']) + 1e-4]
-        lines.append(f'cases where {methods[1]} rebounds worse than {methods[0]} by more than 0.01 %: {len(worse)}')
+        ok = [r for r in rows if 'rerr' in r['m0'] and 'rerr' in r['m1']]
+        worse = [r for r in ok if abs(r['m1']['rerr']) > abs(r['m0']['rerr']) + 1e-4]
+        lines.append(f'cases where {methods[1]} has a larger rebound error (against the reference) than '
+                     f'{methods[0]} by more than 0.01 % of p0: {len(worse)} of {len(ok)}')
         for r in worse:
-            lines.append(f"- {label(r)}: {r['m1']['rebound']:+.3e} against {r['m0']['rebound']:+.3e}")
+            lines.append(f"- {label(r)}: {r['m1']['rerr']:+.3e} against {r['m0']['rerr']:+.3e}")
+        lines.append('')
+        lines.append(f'| kind | v0/c | cases | {methods[1]} rebound error worse | largest excess | '
+                     f'energy past 0.1 % ({methods[1]}) | worst energy ({methods[1]}) | worst energy ({methods[0]}) |')
+        lines.append('|---|---|---|---|---|---|---|---|')
+        for kind in ('bar', 'disk'):
+            for sp in sorted({r['speed'] for r in ok if r['kind'] == kind}):
+                g = [r for r in ok if r['kind'] == kind and r['speed'] == sp]
+                nw = sum(abs(r['m1']['rerr']) > abs(r['m0']['rerr']) + 1e-4 for r in g)
+                ex = max(abs(r['m1']['rerr']) - abs(r['m0']['rerr']) for r in g)
+                e1 = max(g, key=lambda r: abs(r['m1']['energy']))['m1']['energy']
+                e0 = max(g, key=lambda r: abs(r['m0']['energy']))['m0']['energy']
+                ne = sum(abs(r['m1']['energy']) > 1e-3 for r in g)
+                lines.append(f'| {kind} | {sp:.3g} | {len(g)} | {nw} | {ex:+.2e} | {ne} | {e1:+.2e} | {e0:+.2e} |')
     lines.append('')
-    lines.append('| case | ' + ' | '.join(f'{m}: rebound, energy, drift, tcon, pen' for m in methods) + ' |')
+    lines.append('| case | ' + ' | '.join(f'{m}: rebound, rerr, energy, drift, tcon, pen' for m in methods) + ' |')
     lines.append('|---|' + '---|' * len(methods))
     for r in rows:
         cells = []
@@ -314,12 +398,12 @@ def table(rows, methods, path):
             if 'failed' in f:
                 cells.append('failed')
             else:
-                cells.append(f"{f['rebound']:+.2e}, {f['energy']:+.2e}, {f['drift']:.1e}, "
+                cells.append(f"{f['rebound']:+.2e}, {f.get('rerr', float('nan')):+.2e}, {f['energy']:+.2e}, {f['drift']:.1e}, "
                              f"{f.get('tcon', float('nan')):+.2e}, {f['pen']:.1e}")
         lines.append(f'| {label(r)} | ' + ' | '.join(cells) + ' |')
     with open(path, 'w') as f:
         f.write('\n'.join(lines) + '\n')
-    print('\n'.join(lines[:2 + 10 + 3]))
+    print('\n'.join(lines[:lines.index('| case | ' + ' | '.join(f'{m}: rebound, rerr, energy, drift, tcon, pen' for m in methods) + ' |')]))
 
 
 def plot(rows, methods, path):
@@ -328,12 +412,12 @@ def plot(rows, methods, path):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 3, figsize=(13, 4))
     for mi, m in enumerate(methods):
-        for ax, key, kind in ((axes[0], 'rebound', 'bar'), (axes[1], 'energy', 'bar'), (axes[2], 'pen', 'disk')):
+        for ax, key, kind in ((axes[0], 'rerr', 'bar'), (axes[1], 'energy', 'bar'), (axes[2], 'pen', 'disk')):
             pts = [(r['a'], abs(r[f'm{mi}'][key])) for r in rows if r['kind'] == kind and key in r[f'm{mi}']]
             if pts:
                 x, y = zip(*pts)
                 ax.scatter(np.array(x) * (1.03 if mi else 0.97), np.maximum(y, 1e-17), s=12, label=m)
-    axes[0].set(xscale='log', yscale='log', xlabel='bar: elements along', ylabel='|rebound error|')
+    axes[0].set(xscale='log', yscale='log', xlabel='bar: elements along', ylabel='|rebound error against the reference|')
     axes[1].set(xscale='log', yscale='log', xlabel='bar: elements along', ylabel='|final energy error|')
     axes[2].set(yscale='log', xlabel='disk: elements along a quarter rim', ylabel='largest penetration / edge')
     for ax in axes:
