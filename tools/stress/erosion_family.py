@@ -3,7 +3,7 @@
 variants, reporting the worst energy error and the deepest projectile node inside the plate.
 
     python3 tools/stress/erosion_family.py --exic PATH [--quick] [--out DIR] [--limit 0.01]
-                                           [--depth-limit X]
+                                           [--depth-limit X] [--only TEXT] [--entries]
 
 The plate (length 4, thickness h, clamped at both ends, NEOHookean 200e3 0.3, density 7.8e-3,
 elastic or PLAStic MISEs 500) is meshed with nx x ny elements of QUADrature 1 or 2; the projectile
@@ -18,7 +18,7 @@ or deformable (with --quick: rigid, CFL 0.9). Each runs for a travel of 6 at its
 Measured per variant:
   - from <stem>.ene: the largest |drift| of the energy balance over the run (the balance includes
     the column `eroded`, doc/erosion.md (R3)); the number of eroded elements from <stem>.out;
-  - from <stem>.h5 (OUTPut,HDF5 every 1/OUTPUTS of the run, 20): at every output time every node of the
+  - from <stem>.h5 (OUTPut,HDF5 every 1/100 of the run): at every output time every node of the
     projectile's live elements is tested against the plate's live elements (the element value
     `status`): the deepest one inside, as its distance to the plate's free boundary over the
     length of the nearest boundary edge (tools/stress/analyse.py, inside_depth).
@@ -61,7 +61,7 @@ BLOCk
 
 REGIon,2
 BLOCk
-  CARTesian,2,4,100001,0,2
+  CARTesian,2,4,1001,0,2
     1,1.9,{y0}
     2,2.1,{y0}
     3,2.1,{y1}
@@ -94,7 +94,7 @@ STOP
 """
 
 #: field output times of a run (each costs a flush of the .h5)
-OUTPUTS = 20
+OUTPUTS = 100
 
 RIGID = "  RIGId,FREE\n    DENSity 2\n"
 DEFORMABLE = ("  SOLId\n    ELAStic NEOHookean 2e6 0.3\n    DENSity 2\n    QUADrature {q}\n"
@@ -137,7 +137,56 @@ def deepest(h5_path, plate=1, projectile=2):
     return best
 
 
-def run(exic, work, name, text):
+def entries(h5_path, limit=0.05, plate=1, projectile=2):
+    """With a field output every step: each time a projectile node enters the plate's live
+    elements deeper than `limit` edges, whether the nearest plate boundary edge appeared at that
+    output (exposed by an erosion of that step) or was there before. Returns (entries through a
+    newly exposed edge, entries through an older edge, first step of an entry, first erosion
+    step)."""
+    import h5py
+    with h5py.File(h5_path, "r") as f:
+        nt = int(f["n_times"][0]) if "n_times" in f else len(f["time"])
+        x0 = f["mesh/coordinates"][()]
+        conn = f["mesh/connectivity"][()]
+        region = f["mesh/region"][()]
+        steps = f["step"][:nt]
+        disp = f["fields/displacement"][:nt]
+        comps = f["fields/stress"].attrs["components"]
+        comps = (comps.decode() if isinstance(comps, bytes) else str(comps)).split()
+        status = f["fields/stress"][:nt, :, comps.index("status")]
+    new = old = 0
+    first = first_erosion = None
+    prev_keys, prev_in = None, set()
+    for k in range(nt):
+        x = x0 + disp[k]
+        live = status[k] == 0
+        if first_erosion is None and not live.all():
+            first_erosion = int(steps[k])
+        edges = analyse.boundary_edges(conn[(region == plate) & live])
+        keys = set(map(tuple, np.sort(edges, axis=1)))
+        nodes = np.unique(conn[(region == projectile) & live])
+        depth, elen = analyse.inside_depth(x[nodes], x, edges)
+        a, b = x[edges[:, 0]], x[edges[:, 1]]
+        now = set()
+        for i in np.where(depth / elen > limit)[0]:
+            p = nodes[i]
+            now.add(p)
+            if p in prev_in:
+                continue
+            ab = b - a
+            t = np.clip(((x[p] - a) * ab).sum(1) / (ab * ab).sum(1), 0.0, 1.0)
+            j = int(np.argmin(np.hypot(*(x[p] - (a + t[:, None] * ab)).T)))
+            if prev_keys is not None and tuple(sorted(edges[j])) not in prev_keys:
+                new += 1
+            else:
+                old += 1
+            if first is None:
+                first = int(steps[k])
+        prev_keys, prev_in = keys, now
+    return new, old, first, first_erosion
+
+
+def run(exic, work, name, text, keep_fields=False):
     """Run one deck; (error text or None, largest |drift|, eroded energy, elements eroded,
     (deepest, its time))."""
     deck = work / (name + '.inp')
@@ -153,6 +202,8 @@ def run(exic, work, name, text):
     drift = max(abs(float(r[idrift])) for r in rows)
     out = (work / (name + '.out')).read_text()
     pen = deepest(work / (name + '.h5'))
+    if keep_fields:
+        return None, drift, float(rows[-1][iero]), out.count('erosion: element'), pen
     for ext in ('.h5', '.xdmf', '_series.xdmf', '.his'):
         try:
             (work / (name + ext)).unlink()
@@ -170,8 +221,10 @@ def variants(quick):
     cfls = [0.5, 0.7, 0.9, 0.95]
     out = []
     for k, (v, h, m, q, law) in enumerate(grid):
-        # CFL cycles with the index, the projectile kind with every other group of four
-        out.append((v, h, m, q, law, cfls[k % 4], 'rigid' if (k // 4) % 2 == 0 else 'deformable'))
+        # k = 4 g + c, c the (QUADrature, law) pair: each pair meets every CFL (shifted by the
+        # group g) with both projectiles (rigid for g mod 8 < 4)
+        g, c = divmod(k, 4)
+        out.append((v, h, m, q, law, cfls[(c + g) % 4], 'rigid' if g % 8 < 4 else 'deformable'))
     return out
 
 
@@ -183,6 +236,10 @@ def main():
     ap.add_argument('--limit', type=float, default=0.01)
     ap.add_argument('--depth-limit', type=float, default=None)
     ap.add_argument('--only', default=None, help='run the variants whose name contains this text')
+    ap.add_argument('--entries', action='store_true',
+                    help='fields every step, and for each variant the entries of projectile nodes '
+                         'into the plate deeper than 0.05 edges: through an edge exposed at that '
+                         'step or through an older one, the first entry and the first erosion')
     a = ap.parse_args()
     work = pathlib.Path(a.out) if a.out else pathlib.Path(tempfile.mkdtemp(prefix='erosion_family_'))
     work.mkdir(parents=True, exist_ok=True)
@@ -194,15 +251,25 @@ def main():
         plastic = '    PLAStic MISEs 500\n' if law == 'plastic' else ''
         t_end = 6.0/v
         text = DECK.format(q=q, plastic=plastic, nx=nx, ny=ny, h=h, y0=h + 0.01, y1=h + 0.41, mv=-v,
-                           t_end='%.6g' % t_end, dt_out="%.6g" % (t_end/OUTPUTS), cfl=cfl,
+                           t_end='%.6g' % t_end, dt_out="%.6g" % (t_end/(1e6 if a.entries else OUTPUTS)),
+                           cfl=cfl,
                            projectile=RIGID if proj == 'rigid' else DEFORMABLE.format(q=q))
-        err, drift, eroded, n, pen = run(a.exic, work, name, text)
+        err, drift, eroded, n, pen = run(a.exic, work, name, text, a.entries)
         if err is not None:
             print('%-52s FAILED: %s' % (name, err), flush=True)
             failed.append(name)
             continue
         print('%-52s drift %.3e  eroded %3d elements, energy %.4g  deepest %.3g edges (t %.4g)'
               % (name, drift, n, eroded, pen[0], pen[1]), flush=True)
+        if a.entries:
+            ne, no, first, ferosion = entries(work / (name + '.h5'))
+            print('    entries deeper than 0.05 edges: %d through a newly exposed edge, %d through an older '
+                  'one; first entry at step %s, first erosion at step %s' % (ne, no, first, ferosion), flush=True)
+            for ext in ('.h5', '.xdmf', '_series.xdmf', '.his'):
+                try:
+                    (work / (name + ext)).unlink()
+                except OSError:
+                    pass
         if worst is None or drift > worst[1]:
             worst = (name, drift)
         if deep is None or pen[0] > deep[1]:

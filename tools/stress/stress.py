@@ -6,12 +6,16 @@ and JSON results under doc/stability/.
 
     tools/stress/stress.py [--exic PATH] [--seed N] [--scenes N] [--fuzz N] [--kills N] [--long]
                            [--only scenes,fuzz,cfl,long,kills] [--jobs 2] [--keep]
+                           [--erosion 'EROSion INVErted'] [--save-as NAME]
 
 `make stress` builds the release binary and runs this with the defaults (500 scenes of seed
 20240610, 2,000 fuzzed decks, CFL 0.1-1.0, long runs of 2e4-5e4 steps; about 20 minutes on
 two cores); `make stress STRESS_ARGS=--long` runs the long cases for 10^6 steps. Each section
 saves its JSON as it ends, so `--only` reruns one section and the report is rebuilt from
 every saved result. Exit code 0 when the suite ran (whatever it found), 2 on a usage error.
+`--erosion` writes the given EROSion records (";" between several) into every deformable body of
+the random scenes (doc/erosion.md; the scenes are otherwise the same decks), keeps their results
+as doc/stability/<NAME>.json (default scenes_erosion) and saves no deck into test/data/stress.
 `tools/stress/inversions.py` classifies the scenes of a campaign that stopped on an inverted
 element (its JSON, doc/stability/inversions_<seed>.json, is section 1a of the report).
 """
