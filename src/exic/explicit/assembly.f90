@@ -559,9 +559,9 @@ contains
    real(wp) function kinetic_power(st) result(q)
       type(state_t), intent(in) :: st
       if (allocated(st%mass_dof)) then
-         q = cd_kinetic_power(st%nnode, st%mass, st%minv, st%fext, st%fint, st%a, st%mass_dof) + st%body_power
+         q = cd_kinetic_power(st%nnode, st%minv, st%fext, st%fint, st%a, st%mass_dof) + st%body_power
       else
-         q = cd_kinetic_power(st%nnode, st%mass, st%minv, st%fext, st%fint, st%a) + st%body_power
+         q = cd_kinetic_power(st%nnode, st%minv, st%fext, st%fint, st%a) + st%body_power
       end if
    end function kinetic_power
 
