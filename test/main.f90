@@ -28,6 +28,7 @@ program exic_tests
    use test_layers, only: run_layers_tests
    use test_gmsh, only: run_gmsh_tests
    use test_loads, only: run_loads_tests
+   use test_punch, only: run_punch_tests
    use test_rigid, only: run_rigid_tests
    use test_plasticity, only: run_plasticity_tests
    use test_axisymmetric, only: run_axisymmetric_tests
@@ -77,6 +78,7 @@ program exic_tests
    call r%run('gmsh', run_gmsh_tests)
    call r%run('erosion', run_erosion_tests)
    call r%run('loads', run_loads_tests)
+   call r%run('punch', run_punch_tests)
    call r%run('rigid', run_rigid_tests)
    call r%run('friction', run_friction_tests)
    call r%run('dissipation', run_dissipation_tests)

@@ -561,9 +561,9 @@ contains
       if (st%power_known) then
          q = st%power_nodes + st%body_power
       else if (allocated(st%mass_dof)) then
-         q = cd_kinetic_power(st%nnode, st%mass, st%minv, st%fext, st%fint, st%a, st%mass_dof) + st%body_power
+         q = cd_kinetic_power(st%nnode, st%minv, st%fext, st%fint, st%a, st%mass_dof) + st%body_power
       else
-         q = cd_kinetic_power(st%nnode, st%mass, st%minv, st%fext, st%fint, st%a) + st%body_power
+         q = cd_kinetic_power(st%nnode, st%minv, st%fext, st%fint, st%a) + st%body_power
       end if
    end function kinetic_power
 

@@ -312,9 +312,9 @@ contains
          call kinetic_range(m, mass(i0), v(1, i0), pk(c), px(c), py(c))
          if (with_power) then
             if (fext_zero) then
-               call power_range(m, mass(i0), minv(1, i0), ZERO_FORCES, fint(1, i0), a(1, i0), pr(c))
+               call power_range(m, minv(1, i0), ZERO_FORCES, fint(1, i0), a(1, i0), pr(c))
             else
-               call power_range(m, mass(i0), minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), pr(c))
+               call power_range(m, minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), pr(c))
             end if
          end if
       end subroutine update_chunk
@@ -375,9 +375,9 @@ contains
          end if
          call kinetic_range(m, mass(i0), v(1, i0), p(2, c), p(3, c), p(4, c))
          if (fext_zero) then
-            call power_range(m, mass(i0), minv(1, i0), ZERO_FORCES, fint(1, i0), a(1, i0), p(5, c))
+            call power_range(m, minv(1, i0), ZERO_FORCES, fint(1, i0), a(1, i0), p(5, c))
          else
-            call power_range(m, mass(i0), minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), p(5, c))
+            call power_range(m, minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), p(5, c))
          end if
       end subroutine part_chunk
    end subroutine cd_update_plain_chunks
@@ -504,12 +504,12 @@ contains
    !> Q = sum_j r_j a_j over the dofs of n nodes, the rate of the correction of the kinetic
    !> energy (doc/decisions.md, "Energy balance", eq. E.3: c = -dt^2/8 Q), with r = F - P where the
    !> dof has mass and is free (minv > 0; the contact force is booked by half kicks, work_range)
-   !> and r = m a elsewhere (prescribed dofs; rigid and fixed dofs have a = 0, massless ones
-   !> m = 0). Summed per chunk of CHUNK nodes and the chunks in order (the same bits for every
-   !> number of threads).
-   function cd_kinetic_power(n, mass, minv, fext, fint, a, mass_dof) result(q)
+   !> and r = 0 elsewhere (a prescribed dof's inertia is booked as the exact change of its kinetic
+   !> energy, doc/loads.md eq. P.3; fixed and rigid dofs have a = 0). `mass_dof` present: masses
+   !> per dof (the sum node by node, as before). Summed per chunk of CHUNK nodes and the chunks
+   !> in order (the same bits for every number of threads).
+   function cd_kinetic_power(n, minv, fext, fint, a, mass_dof) result(q)
       integer, intent(in) :: n
-      real(wp), intent(in) :: mass(n)
       real(wp), intent(in), dimension(2, n) :: minv, fext, fint, a
       real(wp), intent(in), optional :: mass_dof(2, n)
       real(wp) :: q, pr((n + CHUNK - 1)/CHUNK)
@@ -518,7 +518,7 @@ contains
          ! masses per dof: r = 0 on a massless dof, whatever the node's other dof holds
          q = 0.0_wp
          do k = 1, n
-            q = q + sum(merge(fext(:, k) - fint(:, k), mass_dof(:, k)*a(:, k), minv(:, k) > 0.0_wp)*a(:, k))
+            q = q + sum(merge(fext(:, k) - fint(:, k), 0.0_wp, minv(:, k) > 0.0_wp)*a(:, k))
          end do
          return
       end if
@@ -541,21 +541,20 @@ contains
          integer :: i0, m
          i0 = (c - 1)*CHUNK + 1
          m = min(CHUNK, n - i0 + 1)
-         call power_range(m, mass(i0), minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), pr(c))
+         call power_range(m, minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), pr(c))
       end subroutine power_chunk
    end function cd_kinetic_power
 
    !> Q of cd_kinetic_power over m nodes (lane_sum).
-   pure subroutine power_range(m, mass, minv, fext, fint, a, s)
+   pure subroutine power_range(m, minv, fext, fint, a, s)
       integer, intent(in) :: m
-      real(wp), intent(in) :: mass(m)
       real(wp), intent(in), dimension(2, m) :: minv, fext, fint, a
       real(wp), intent(out) :: s
       real(wp) :: p(CHUNK)
       integer :: i
       do i = 1, m
-         p(i) = merge(fext(1, i) - fint(1, i), mass(i)*a(1, i), minv(1, i) > 0.0_wp)*a(1, i) + &
-                merge(fext(2, i) - fint(2, i), mass(i)*a(2, i), minv(2, i) > 0.0_wp)*a(2, i)
+         p(i) = merge(fext(1, i) - fint(1, i), 0.0_wp, minv(1, i) > 0.0_wp)*a(1, i) + &
+                merge(fext(2, i) - fint(2, i), 0.0_wp, minv(2, i) > 0.0_wp)*a(2, i)
       end do
       s = lane_sum(m, p)
    end subroutine power_range

@@ -496,7 +496,7 @@ contains
       self%active = self%active .or. self%track_work
       if (started .and. self%track_work .and. .not. was) then
          do j = 1, self%npres
-            self%rold(j) = reaction(st, self%pnode(j), self%pdof(j))
+            self%rold(j) = static_reaction(st, self%pnode(j), self%pdof(j))
          end do
       end if
    end subroutine loading_velocities_set
@@ -635,7 +635,7 @@ contains
       real(wp), intent(in) :: h
       logical, intent(in) :: first
       integer :: j, i, k, ib
-      real(wp) :: r, w, wp2
+      real(wp) :: r, w, wp2, dk, m
       do j = 1, self%ndisp
          i = self%dnode(j)
          k = self%ddof(j)
@@ -671,18 +671,27 @@ contains
       if (.not. self%track_work) return
       w = 0.0_wp
       wp2 = 0.0_wp
+      dk = 0.0_wp
       do j = 1, self%npres
          i = self%pnode(j)
          k = self%pdof(j)
-         r = reaction(st, i, k)
+         ! the reaction without its inertia M a (eq. P.2): the inertia is booked as the change
+         ! of the dof's kinetic energy, dk (eq. P.3)
+         r = static_reaction(st, i, k)
          if (.not. first) then
             w = w + (self%rold(j) + r)*du(k, i)
             wp2 = wp2 + (self%rold(j) + r)*(self%vold(k, i) + st%v(k, i))
+            m = dof_mass(st, i, k)
+            if (m /= 0.0_wp) dk = dk + m*(st%v(k, i)**2 - self%vold(k, i)**2)
          end if
          self%rold(j) = r
       end do
       st%energy%wpm = st%energy%wpm + 0.5_wp*w
       self%wpm_p = self%wpm_p + 0.5_wp*h*wp2
+      if (dk /= 0.0_wp) then
+         st%energy%wpm = st%energy%wpm + 0.5_wp*dk
+         self%wpm_p = self%wpm_p + 0.5_wp*dk
+      end if
    end subroutine loading_finish
 
    !> The energy put in by the loads and the prescribed motion, W_ext + W_pm, as the larger of
@@ -724,6 +733,26 @@ contains
       end do
       st%body_power = s
    end subroutine loading_energy
+
+   !> The lumped mass of dof k of node i.
+   pure real(wp) function dof_mass(st, i, k) result(m)
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: i, k
+      if (allocated(st%mass_dof)) then
+         m = st%mass_dof(k, i)
+      else
+         m = st%mass(i)
+      end if
+   end function dof_mass
+
+   !> The reaction of dof k of node i without its inertia, R - M a = P - F - fcon (doc/loads.md,
+   !> section 3, eq. P.2): the part of the reaction whose work W_pm books by the trapezoid rule.
+   pure real(wp) function static_reaction(st, i, k) result(r)
+      type(state_t), intent(in) :: st
+      integer, intent(in) :: i, k
+      r = st%fint(k, i) - st%fext(k, i)
+      if (st%fcon(k, i) /= 0.0_wp) r = r - st%fcon(k, i)
+   end function static_reaction
 
    !> The force the support (or the driver) exerts on dof k of node i (doc/loads.md, section 3):
    !> R = M a + P - F - fcon; on a fixed dof without contact the old R = P - F, to the last bit.

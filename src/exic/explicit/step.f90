@@ -679,7 +679,10 @@ contains
          ! frictional dissipation is energy that left the bodies (doc/friction.md, section 5)
          if (self%contact%friction) e = e + st%energy%friction
          if (self%ld%active) then
-            ! loads and prescribed motion: the larger of two estimates of their work (loading.f90)
+            ! loads and prescribed motion: the energy the scheme conserves, with the kinetic
+            ! correction (doc/loads.md, section 3, eq. P.4), against the larger of two estimates
+            ! of their work (loading.f90)
+            e = e + kinetic_correction(st)
             w_in = self%ld%work_in(st)
             put_in = abs(st%energy%total0) + max(abs(st%energy%wext) + abs(st%energy%wpm), abs(w_in))
          else

@@ -1,0 +1,94 @@
+!> A deformable punch resting on a block (touching at t = 0) and driven into it by DISPlacement
+!> of its top nodes (doc/loads.md, section 3): the work of the prescribed motion is counted from
+!> the first step, whatever the order of first touch and first motion (issue 32, item 1).
+!>
+!> Block 2 x 1 (8 x 4 elements, neo-Hookean E = 1e4, nu = 0.3, rho = 1), its base fixed by
+!> EBOUndary; punch 0.5 x 0.2 (2 x 2 elements, E = 1e5) on its top face, the punch's face nodes
+!> on the block's; NTOS punch nodes against the block. The punch's top nodes move down at
+!> v = 1 (v / c = 0.009): from t = 0 (the unit ramp p = t: the velocity jumps at the start) or
+!> from t0 = 0.005 (a table: at rest while touching, then the jump). Before the booking of
+!> eq. P.3 and the guard of eq. P.4 (exic 1d04b3f) the first warned (9.0 % at step 1) and the
+!> second stopped at the jump (4329 % at step 22: the kinetic energy the jump gives the driven
+!> nodes' mass was no work).
+!> Asserted: the run ends with no warning; the balance of <stem>.ene (total) stays within
+!> 1e-3 of W_pm (prescribed_work at the end); with the constant velocity, W_pm equals the
+!> trapezoid rule in time of the reaction (reac,REGIon,2,2 of <stem>.his) times -v to round-off.
+module test_punch
+   use exic_base_kinds, only: wp
+   use exic_base_strings, only: rtoa
+   use testing, only: suite_t, check
+   use deck_runner, only: run_dir, run_deck, read_table, column, file_has
+   implicit none
+   private
+
+   public :: run_punch_tests
+
+   character(len=*), parameter :: nl = new_line('a')
+
+contains
+
+   subroutine run_punch_tests(s)
+      type(suite_t), intent(inout) :: s
+      call driven_punch(s, 'punch_touch', '', 'from t = 0')
+      call driven_punch(s, 'punch_late', '2, 0'//nl//'0, 0, 0.005, 0, 0.05, 0.045', 'from t0 = 0.005')
+   end subroutine run_punch_tests
+
+   !> The deck with function 1 given by `fn` (blank: the unit ramp) and its checks.
+   subroutine driven_punch(s, name, fn, what)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name, fn, what
+      character(len=:), allocatable :: deck, msg
+      character(len=64), allocatable :: hn(:), en(:)
+      real(wp), allocatable :: h(:, :), e(:, :)
+      integer :: stage, i, itot, iwpm
+      real(wp) :: wpm, drift, w
+      real(wp), parameter :: v = 1.0_wp
+      deck = 'FEAP * * driven deformable punch'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1e4 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'MATErial,2'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1e5 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,8,4,1,1,1'//nl//'    1,0,0'//nl//'    2,2,0'//nl// &
+             '    3,2,1'//nl//'    4,0,1'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,2,2,46,33,2'//nl//'    1,0.75,1'//nl//'    2,1.25,1'//nl// &
+             '    3,1.25,1.2'//nl//'    4,0.75,1.2'//nl//nl// &
+             'EBOUndary'//nl//'  2,0,1,1'//nl//nl//'BOUNdary'//nl//'  52,1,1,1'//nl//'  54,0,1,1'//nl//nl// &
+             'DISPlacement'//nl//'  52,1,0,-1'//nl//'  54,0,0,-1'//nl//nl// &
+             'FPROportional'//nl//'  52,1,1,1'//nl//'  54,0,1,1'//nl//nl// &
+             'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
+             '  PAIR,1,NTOS,2,1'//nl//'END CONTact'//nl//nl//'END'//nl//'BATCh'//nl//'  PROPortional,,1'//nl// &
+             '  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,1000000'//nl//'    TIME,,0.04'//nl// &
+             '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//fn_data(fn)//'  reac,REGIon,2,2'//nl//nl//'STOP'
+      call run_deck(name, deck, stage, msg)
+      call check(s, stage == 0, 'a deformable punch touching a block, driven '//what//', runs to the end', msg)
+      if (stage /= 0) return
+      call check(s, .not. file_has(run_dir//'/'//name//'.out', 'warning:'), &
+                 'driven '//what//': no warning (energy guard)')
+      call read_table(run_dir//'/'//name//'.ene', en, e)
+      call read_table(run_dir//'/'//name//'.his', hn, h)
+      itot = column(en, 'total')
+      iwpm = column(en, 'prescribed_work')
+      wpm = e(iwpm, size(e, 2))
+      drift = maxval(abs(e(itot, :) - e(itot, 1)))/max(wpm, tiny(1.0_wp))
+      call check(s, wpm > 0.0_wp .and. drift <= 1.0e-3_wp, 'driven '//what//': the balance closes within '// &
+                 '0.1 % of the work of the prescribed motion', 'W_pm '//rtoa(wpm)//', largest drift '//rtoa(drift))
+      if (len(fn) > 0) return
+      ! constant velocity -v: W_pm = sum 1/2 (R(n) + R(n+1)) (-v) (t(n+1) - t(n))
+      w = 0.0_wp
+      do i = 1, size(h, 2) - 1
+         w = w - 0.5_wp*(h(2, i) + h(2, i + 1))*v*(h(1, i + 1) - h(1, i))
+      end do
+      call check(s, abs(w - wpm) <= 1.0e-9_wp*wpm, 'driven '//what//': W_pm = the integral of the reaction '// &
+                 'times the velocity (.his)', 'int R v dt '//rtoa(w)//', W_pm '//rtoa(wpm))
+   end subroutine driven_punch
+
+   !> The data of function 1 with its closing blank record (blank alone: the unit ramp p = t).
+   function fn_data(fn) result(text)
+      character(len=*), intent(in) :: fn
+      character(len=:), allocatable :: text
+      if (len(fn) > 0) then
+         text = fn//nl//nl
+      else
+         text = nl
+      end if
+   end function fn_data
+
+end module test_punch
