@@ -88,6 +88,12 @@ contains
                         'warning limit (stopped at step 1 as "appeared with no energy put in")')
       call check(s, index(out, 'warning:') == 0 .and. index(out, 'Infinity') == 0 .and. index(out, 'NaN') == 0, &
                  'no warning and no non-finite number in <stem>.out')
+      call section(s, 'stress decks: an impulsive start (velocities at 3 single nodes, nu 0.49, CFL 0.8)')
+      call run_saved(s, 'impulse_12x6_nu049', out)
+      call check_final_time(s, out, 0.5_wp, 'runs to its final time 0.5 (stopped at step 1, 18 % growth of '// &
+                            'K + strain: the highest modes)')
+      call check_growth(s, out, 'the conserved energy K + C + strain below the warning limit of 1 %')
+      call check(s, index(out, 'warning:') == 0, 'no warning in <stem>.out')
       call section(s, 'stress decks: scene 86 of seed 20261125, two one-point blocks, a corner impact')
       call run_saved(s, 'barrier_20261125_0086', out)
       call check_final_time(s, out, 2.4756629_wp, 'corner barrier: final time 2.4757 (stopped at '// &
