@@ -14,7 +14,7 @@ submodule(exic_contact_contact) exic_contact_contact_setup
 
 contains
 
-   !> contact_init (its arguments are declared in contact.f90).
+   !> Surfaces and passes from the CONTact block, the refusal of overlapping bodies (interface: contact.f90).
    module procedure contact_init
       integer :: k, np, nsurf, nlen
       integer, allocatable :: head(:), list(:)

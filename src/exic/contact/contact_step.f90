@@ -14,7 +14,7 @@ submodule(exic_contact_contact) exic_contact_contact_step
 
 contains
 
-   !> contact_correct (its arguments are declared in contact.f90).
+   !> The contact correction of one step (interface: contact.f90).
    module procedure contact_correct
       integer :: k, j, i, node
       real(wp) :: c, gnow, pen, t0, t1, mu
@@ -122,7 +122,7 @@ contains
       self%fcon_clean = self%cs%n == 0 .and. .not. touched
    end procedure contact_correct
 
-   !> auto_passes (its arguments are declared in contact.f90).
+   !> The passes of AUTOmatic contact for this search (interface: contact.f90).
    module procedure auto_passes
       integer :: g, need
       type(pass_t), allocatable :: tmp(:)
@@ -163,7 +163,7 @@ contains
       self%npass = need
    end procedure auto_passes
 
-   !> surface_normals (its arguments are declared in contact.f90).
+   !> Node normals of surface sf at positions x, once per search (interface: contact.f90).
    module procedure surface_normals
       if (sf%nrm_stamp == self%stamp) return
       call node_normals(nnode, x, sf%nseg, sf%seg, sf%nnode, sf%where, sf%nrm)

@@ -8,7 +8,7 @@ submodule(exic_output_fields) exic_output_fields_layout
 
 contains
 
-   !> write_mesh (its arguments are declared in fields.f90).
+   !> The /mesh group and the file's identification attributes (interface: fields.f90).
    module procedure write_mesh
       integer, allocatable :: base0(:, :)
 
@@ -36,7 +36,7 @@ contains
                                                    'node pairs of the contact surface edges, 0-based', err)
    end procedure write_mesh
 
-   !> create_field_series (its arguments are declared in fields.f90).
+   !> The empty series /time, /step and /fields/*, with their XDMF views (interface: fields.f90).
    module procedure create_field_series
       integer :: i, nn, ne
       integer :: none(0)
@@ -76,7 +76,7 @@ contains
       end associate
    end procedure create_field_series
 
-   !> create_last_buffers (its arguments are declared in fields.f90).
+   !> The two last-state buffers /last/a and /last/b (interface: fields.f90).
    module procedure create_last_buffers
       real(wp), allocatable :: zero3(:, :), zero_node(:), zero_cell(:)
       integer, allocatable :: izero(:)
@@ -102,7 +102,7 @@ contains
       end do
    end procedure create_last_buffers
 
-   !> write_last_buffer (its arguments are declared in fields.f90).
+   !> Output time k, batch slot j, into its last-state buffer mod(k, 2) (interface: fields.f90).
    module procedure write_last_buffer
       integer :: i, n, b
 
@@ -125,7 +125,7 @@ contains
       if (.not. allocated(err)) call self%held%write_whole(self%id_last(n + 2*self%ncomp + 1, b), k, err)
    end procedure write_last_buffer
 
-   !> create_energy_series (its arguments are declared in fields.f90).
+   !> One series /energies/<name> per energy (interface: fields.f90).
    module procedure create_energy_series
       integer :: i, j
       integer :: none(0)

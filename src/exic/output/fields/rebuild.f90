@@ -9,7 +9,7 @@ submodule(exic_output_fields) exic_output_fields_rebuild
 
 contains
 
-   !> close_live (its arguments are declared in fields.f90).
+   !> Release the held datasets and close the live file (interface: fields.f90).
    module procedure close_live
       type(error_t), allocatable :: err2
       call self%held%release(err)
@@ -17,7 +17,7 @@ contains
       if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
    end procedure close_live
 
-   !> open_live (its arguments are declared in fields.f90).
+   !> Open the live file write-through and hold its datasets (interface: fields.f90).
    module procedure open_live
       character(len=:), allocatable :: g
       integer :: i, b, j
@@ -57,7 +57,7 @@ contains
       end do
    end procedure open_live
 
-   !> rebuild (its arguments are declared in fields.f90).
+   !> Change the metadata as a copy renamed over the file (interface: fields.f90).
    module procedure rebuild
       type(hdf5_file_t) :: tmp
       type(error_t), allocatable :: err2
@@ -124,7 +124,7 @@ contains
       names = [character(len=64) :: names, '/time', '/step']
    end function series_names
 
-   !> complete_times (its arguments are declared in fields.f90).
+   !> The number of complete output times of a field file (interface: fields.f90).
    module procedure complete_times
       type(hdf5_file_t) :: f
       type(error_t), allocatable :: err2
