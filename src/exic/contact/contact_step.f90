@@ -93,7 +93,7 @@ contains
          if (self%friction) then
             call self%fr%solve(self%corr, self%cs, nnode, minv, c, x, self%xp, a, fcon, self%ffric, err, rb)
          else if (self%face%active) then
-            call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb, self%face)
+            call face_solve(self, nnode, x, minv, c, a, fcon, err, rb)
          else
             call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb)
          end if
