@@ -164,7 +164,7 @@ def energy_figures(run, first_row=0, span=0.005, active=None):
 
 
 def stable_estimate(x0, x, conn, lam, mu, rho):
-    """Per-element stable step of exic's estimate (src/exic/element/quad4.f90, q4_stable_dt,
+    """Per-element stable step of exic's estimate (src/exic/element/q4_stable.f90, q4_stable_dt,
     2x2 quadrature): phi L / c with L = A / longest diagonal, c^2 = (lambda + 2 mu - 2 lambda
     ln J)/rho0, phi^2 = (1 - 1/sqrt 3) + (2/sqrt 3) T_min/A."""
     s3 = 1.0 / np.sqrt(3.0)

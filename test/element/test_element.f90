@@ -7,8 +7,9 @@ module test_element
    use exic_base_strings, only: itoa
    use exic_material_material, only: lame_from_young
    use exic_material_neohookean, only: nh_cauchy, nh_piola, nh_wave_speed2
+   use exic_element_q4_stable, only: block_minimum
    use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
-                                 q4_stable_dt, q4_stress, q4_deformation, NBLOCK, q4b_block_minimum
+                                 q4_stable_dt, q4_stress, q4_deformation, NBLOCK
    use testing, only: suite_t, check, check_close, section, gradient_error
    use, intrinsic :: iso_fortran_env, only: output_unit, int64
    implicit none
@@ -804,7 +805,7 @@ contains
          dm = d0
          em = e0
          fm = f0
-         call q4b_block_minimum(nb, 100, dt2, good, dm, em, fm)
+         call block_minimum(nb, 100, dt2, good, dm, em, fm)
          if (transfer(dm, 1_int64) /= transfer(dr, 1_int64) .or. em /= er .or. fm /= fr) bad = bad + 1
       end do
       call check(s, bad == 0, 'the scan''s minimum (same bits), element and fold on 4000 blocks', &

@@ -1,5 +1,5 @@
 !> Tests of the assumed-strain (physical) hourglass stabilization of the one-point quadrilateral
-!> (doc/hourglass.md; src/exic/element/quad4.f90, asqbi_forces): zero for affine fields,
+!> (doc/hourglass.md; src/exic/element/q4_1pt.f90, asqbi_forces): zero for affine fields,
 !> objective, forces = derivative of the energy at finite strain and rotation, the stable step
 !> of the element holds, the bending energy of a rectangle is the beam's, and a cantilever of
 !> one-point elements under pure bending gets the exact tip displacement (the 2x2 element locks;

@@ -58,7 +58,7 @@ def corner_j(x):
 def one_point_measures(xr, ue):
     """det F of the mean deformation gradient (the one-point element's J) and the
     Flanagan-Belytschko hourglass displacement |q| over the element size sqrt(A0), for the
-    reference corners xr(4, 2) and displacements ue(4, 2) (src/exic/element/quad4.f90,
+    reference corners xr(4, 2) and displacements ue(4, 2) (src/exic/element/q4_1pt.f90,
     q4_force_1pt: gam_a = 1/4 (h_a - (h.X) b_a/A0), q_i = sum_a gam_a u_ia). For the mode of
     nodal values +-c (h = (1,-1,1,-1)) q = c; a square of side L folds at c about L/2."""
     x, y = xr[:, 0], xr[:, 1]

@@ -187,7 +187,7 @@ def _inversions(data, w):
       "neighbours, all three in contact; the corner's det J is within 1e-6 of its reference value of "
       "zero, in 7 of them within round-off: the element is a triangle, not folded, and was stopped by "
       "the sign of a rounding error. A corner triangle within 1e-10 of the element's area is "
-      "flat (src/exic/element/quad4.f90, `stable_block`; doc/decisions.md); with that rule 7 of these "
+      "flat (src/exic/element/q4_stable.f90, `stable_block`; doc/decisions.md); with that rule 7 of these "
       "scenes run to the end (60, 101, 131, 151, 293, 319, 363), 3 stop later when the node slides on "
       "past its neighbour and the corner folds for real (29, 52, 303) and 2 at the same step (253, "
       "323: folded by more than 1e-10); scene 101 is a regression test (test/session/test_stress_decks.f90).")

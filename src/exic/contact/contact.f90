@@ -16,31 +16,28 @@
 !> and per step the positions, velocities, accelerations and inverse masses. The deck path
 !> (src/exic/explicit/step.f90) and the legacy API (src/exic/legacy) call the same two entries,
 !> `init` and `correct`.
+!>
+!> The module holds the types and the queries (stable step of penalty springs, pair values,
+!> summary, edges); its submodules the rest: contact_setup.f90 (init: surfaces, passes, the
+!> overlap check), contact_step.f90 (correct: the step's search, constraints, corrector and
+!> penalty passes), narrow.f90 (the narrow phase, on the threads) and faces.f90 (the massless
+!> faces: their nodes and dofs, the corrector's solve with them).
 module exic_contact_contact
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, rtoa
-   use exic_base_error, only: error_t, make_error
-   use exic_base_clock, only: wall_time
-   use exic_base_grow, only: grow
-   use exic_base_sort, only: sorted_unique
+   use exic_base_error, only: error_t
    use exic_base_text_buffer, only: text_buffer_t
-   use exic_contact_spec, only: SURF_REGION, SURF_MATERIAL, SURF_FACETS, SURF_NODES, PAIR_NTOS, &
-                                PAIR_SYMMETRIC, PAIR_SELF, METHOD_LAGRANGE, METHOD_PENALTY, &
-                                DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t, spec_penalty_finite
-   use exic_mesh_boundary, only: free_edges, free_edges_of, bodies_elements, &
-                                 surface_nodes, segment_links, locate_nodes, node_normals, &
-                                 node_segments
-   use exic_contact_broad, only: broad_t, broad_search, broad_search_kept, drop_flat_fixed
+   use exic_contact_spec, only: METHOD_LAGRANGE, METHOD_PENALTY, DETECT_SWEPT, contact_spec_t
+   use exic_mesh_boundary, only: node_normals, bodies_elements
+   use exic_contact_broad, only: broad_t, broad_search_kept, drop_flat_fixed
    use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: contact_set_t, detect_contacts
    use exic_contact_corrector, only: constraints_t, corrector_t
-   use exic_contact_friction, only: friction_t, coulomb_mu
-   use exic_contact_penalty, only: penalty_forces, penalty_history_t, smallest_mass, spring_dt, &
-                                   auto_spring_dt
+   use exic_contact_friction, only: friction_t
+   use exic_contact_penalty, only: penalty_history_t, smallest_mass, spring_dt, auto_spring_dt
    use exic_contact_pair_history, only: pair_history_t
    use exic_contact_rigid_dofs, only: rigid_dofs_t
    use exic_contact_massless_face, only: massless_face_t
-   use exic_contact_overlap, only: node_element_lists, inside_near
    implicit none
    private
 
@@ -167,6 +164,61 @@ module exic_contact_contact
    end type contact_t
 
    interface
+      !> Build surfaces and passes from the CONTact block `spec`; refuse bodies that overlap.
+      !> xref(2, nnode): the positions whose segment lengths set the search depth (the reference
+      !> mesh); x(2, nnode): the positions now (checked for overlap); conn(4, nelem), region(nelem),
+      !> mat(nelem): the elements whose free boundaries make REGIon, MATErial and AUTOmatic surfaces;
+      !> modulus: the largest constrained modulus lambda + 2 mu of the solids (PENAlty,SCALe).
+      module subroutine contact_init(self, spec, nnode, xref, x, nelem, conn, region, mat, modulus, err)
+         class(contact_t), intent(inout) :: self
+         type(contact_spec_t), intent(in) :: spec
+         integer, intent(in) :: nnode, nelem
+         real(wp), intent(in) :: xref(2, nnode), x(2, nnode)
+         integer, intent(in) :: conn(4, nelem), region(nelem), mat(nelem)
+         real(wp), intent(in) :: modulus
+         type(error_t), allocatable, intent(out) :: err
+      end subroutine contact_init
+
+      !> Correct the predicted accelerations so that every active gap closes at t(n+2): the one
+      !> entry of the step (the deck's stepper and the legacy API's hosts call it with their own
+      !> arrays). x = x(n+1), vt = v~(n+1) (eq. 4.4), a = a~(n+1) on entry and a(n+1) on exit,
+      !> minv the inverse mass per dof (0: rigid, prescribed or inactive), dt_prev = dt(n) (0 at
+      !> t = 0), dt = dt(n+1); fcon = nodal contact forces, nactive = constraints in force.
+      !> `rb`: the free rigid bodies, three-dof bodies in the corrector (doc/loads.md, section 5);
+      !> the caller moves them with the contact forces on their nodes. With friction
+      !> (doc/friction.md) fcon carries the friction forces too; they are also in self%ffric.
+      !> fext, fint: the external and internal forces at t(n+1), needed by massless faces
+      !> (LAGRange,ENERgy, doc/impact.md eq. I.5) once `face` is set up.
+      module subroutine contact_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err, rb, fext, fint)
+         class(contact_t), intent(inout) :: self
+         integer, intent(in) :: nnode
+         real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode), dt_prev, dt
+         real(wp), intent(inout) :: a(2, nnode)
+         real(wp), intent(inout) :: fcon(2, nnode)
+         integer, intent(out) :: nactive
+         type(error_t), allocatable, intent(out) :: err
+         type(rigid_dofs_t), intent(inout), optional :: rb
+         real(wp), intent(in), optional :: fext(2, nnode), fint(2, nnode)
+      end subroutine contact_correct
+
+      !> The passes of AUTOmatic contact for this search: one search over every AUTOmatic
+      !> surface (src/exic/contact/broad_all.f90) over x0 -> x1 with margin, then one pass per pair
+      !> of surfaces with candidates, after the fixed passes, holding those candidates.
+      module subroutine auto_passes(self, nnode, x0, x1, margin, kept)
+         type(contact_t), intent(inout) :: self
+         integer, intent(in) :: nnode
+         real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
+         logical, intent(in), optional :: kept    !< answer from the kept list (the step's search)
+      end subroutine auto_passes
+
+      !> Node normals of surface sf at positions x, once per search.
+      module subroutine surface_normals(self, sf, nnode, x)
+         type(contact_t), intent(in) :: self
+         type(surface_t), intent(inout) :: sf
+         integer, intent(in) :: nnode
+         real(wp), intent(in) :: x(2, nnode)
+      end subroutine surface_normals
+
       !> The narrow phase of the Lagrange passes k1 ... k2, on the threads when there is enough
       !> of it (src/exic/contact/narrow.f90).
       module subroutine narrow_passes(self, nnode, x, minv, k1, k2)
@@ -204,637 +256,6 @@ module exic_contact_contact
    end interface
 
 contains
-
-   !> Build surfaces and passes from the CONTact block `spec`; refuse bodies that overlap.
-   !> xref(2, nnode): the positions whose segment lengths set the search depth (the reference
-   !> mesh); x(2, nnode): the positions now (checked for overlap); conn(4, nelem), region(nelem),
-   !> mat(nelem): the elements whose free boundaries make REGIon, MATErial and AUTOmatic surfaces;
-   !> modulus: the largest constrained modulus lambda + 2 mu of the solids (PENAlty,SCALe).
-   subroutine contact_init(self, spec, nnode, xref, x, nelem, conn, region, mat, modulus, err)
-      class(contact_t), intent(inout) :: self
-      type(contact_spec_t), intent(in) :: spec
-      integer, intent(in) :: nnode, nelem
-      real(wp), intent(in) :: xref(2, nnode), x(2, nnode)
-      integer, intent(in) :: conn(4, nelem), region(nelem), mat(nelem)
-      real(wp), intent(in) :: modulus
-      type(error_t), allocatable, intent(out) :: err
-      integer :: k, np, nsurf, nlen
-      integer, allocatable :: head(:), list(:)
-      real(wp) :: len_sum
-
-      self%active = spec%active
-      if (.not. self%active) return
-      call build_surfaces(self, spec, nelem, conn, region, mat, err)
-      if (allocated(err)) return
-      call build_passes(self, spec, err)
-      if (allocated(err)) return
-      nsurf = size(self%surfaces)
-      len_sum = 0.0_wp
-      nlen = 0
-      do k = 1, nsurf
-         associate (sf => self%surfaces(k))
-            len_sum = len_sum + sum(norm2(xref(:, sf%seg(2, :)) - xref(:, sf%seg(1, :)), dim=1))
-            nlen = nlen + sf%nseg
-         end associate
-      end do
-      if (nlen > 0) self%lref = len_sum/nlen
-      self%depth = DEPTH_SHARE*self%lref
-      self%corr%gap_tol = 1.0e-13_wp*self%lref
-      allocate (self%xp(2, nnode), source=0.0_wp)
-      call contact_nodes(self, nnode)
-      np = size(self%passes)
-      do k = 1, np
-         if (self%passes(k)%method == METHOD_PENALTY) self%any_penalty = .true.
-      end do
-      if (self%auto_pass%auto .and. self%auto_pass%method == METHOD_PENALTY) self%any_penalty = .true.
-      call penalty_stiffness(self, modulus)
-      call spec_penalty_finite(spec, modulus, err)
-      if (allocated(err)) return
-      call friction_arrays(self, nnode, x)
-      if (self%energy .and. self%friction) then
-         ! the massless faces enter the normal problem only (doc/impact.md, section 3.3)
-         call make_error(err, 'LAGRange,ENERgy (massless contact faces) together with Coulomb friction '// &
-                         'in one model is not supported: expected friction only on LAGRange pairs of a '// &
-                         'model without ENERgy')
-         return
-      end if
-      call node_element_lists(nnode, nelem, conn, head, list)
-      call check_overlap(self, nnode, x, nelem, conn, head, list, err)
-   end subroutine contact_init
-
-   !> The friction state of the passes and of the model (at init): allocated only when some
-   !> pass has friction (x: the positions now).
-   subroutine friction_arrays(self, nnode, x)
-      type(contact_t), intent(inout) :: self
-      integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode)
-      integer :: k
-      self%friction = .false.
-      do k = 1, size(self%passes)
-         associate (ps => self%passes(k))
-            ps%friction = ps%law(1) > 0.0_wp
-            if (ps%friction) self%friction = .true.
-            if (ps%friction .and. ps%method == METHOD_PENALTY .and. .not. allocated(ps%hist%q)) &
-               call ps%hist%init(nnode)
-         end associate
-      end do
-      ! the options of the AUTOmatic passes (auto_passes copies them)
-      self%auto_pass%friction = self%auto_pass%auto .and. self%auto_pass%law(1) > 0.0_wp
-      if (self%auto_pass%friction) self%friction = .true.
-      if (self%auto_pass%friction .and. self%auto_pass%method == METHOD_PENALTY .and. &
-          .not. allocated(self%hwork%q)) call self%hwork%init(nnode)
-      if (.not. self%friction) return
-      if (.not. allocated(self%vslip)) allocate (self%vslip(nnode), source=-1.0_wp)
-      if (.not. allocated(self%ffric)) allocate (self%ffric(2, nnode), source=0.0_wp)
-      if (.not. allocated(self%xold)) allocate (self%xold(2, nnode), source=x)
-   end subroutine friction_arrays
-
-   !> Surfaces of the SURFace records, plus one per region for AUTOmatic.
-   subroutine build_surfaces(self, spec, nelem, conn, region, mat, err)
-      type(contact_t), intent(inout) :: self
-      type(contact_spec_t), intent(in) :: spec
-      integer, intent(in) :: nelem
-      integer, intent(in) :: conn(4, nelem), region(nelem), mat(nelem)
-      type(error_t), allocatable, intent(out) :: err
-      integer :: ns, nauto, k
-      integer, allocatable :: regions(:), rfirst(:), relems(:)
-      logical, allocatable :: sel(:)
-
-      ns = 0
-      if (allocated(spec%surfaces)) ns = size(spec%surfaces)
-      nauto = 0
-      if (spec%automatic) then
-         call bodies_elements(nelem, region, regions, rfirst, relems)
-         nauto = size(regions)
-      end if
-      allocate (self%surfaces(ns + nauto))
-      allocate (sel(nelem))
-      do k = 1, ns
-         associate (sp => spec%surfaces(k), sf => self%surfaces(k))
-            sf%id = sp%id
-            select case (sp%by)
-            case (SURF_REGION)
-               sel = region == sp%ref
-               call free_edges(nelem, conn, sel, sf%seg, err)
-            case (SURF_MATERIAL)
-               sel = mat == sp%ref
-               call free_edges(nelem, conn, sel, sf%seg, err)
-            case (SURF_FACETS)
-               sf%seg = sp%facets
-            case (SURF_NODES)
-               ! slave nodes without segments: no normals, so no facing test (see detect_pairs)
-               allocate (sf%seg(2, 0))
-               if (size(sp%nodes) > 0) sf%nodes = sorted_unique(sp%nodes)
-            end select
-            if (allocated(err)) then
-               err%message = 'SURFace '//itoa(sp%id)//': '//err%message
-               return
-            end if
-            if (size(sf%seg, 2) == 0 .and. sp%by /= SURF_NODES) then
-               call make_error(err, 'SURFace '//itoa(sp%id)//' has no segments')
-               return
-            end if
-         end associate
-      end do
-      do k = 1, nauto
-         associate (sf => self%surfaces(ns + k))
-            sf%id = -regions(k) - 1          ! automatic surface of region regions(k)
-            call free_edges_of(nelem, conn, relems(rfirst(k):rfirst(k + 1) - 1), sf%seg, err)
-            if (allocated(err)) return
-         end associate
-      end do
-      do k = 1, size(self%surfaces)
-         associate (sf => self%surfaces(k))
-            sf%nseg = size(sf%seg, 2)
-            allocate (sf%link(2, sf%nseg), sf%where(2, sf%nseg))
-            call segment_links(sf%nseg, sf%seg, sf%link)
-            if (.not. allocated(sf%nodes)) call surface_nodes(sf%nseg, sf%seg, sf%nodes)
-            sf%nnode = size(sf%nodes)
-            call locate_nodes(sf%nseg, sf%seg, sf%nnode, sf%nodes, sf%where)
-            allocate (sf%nrm(2, sf%nnode), sf%sn(4, sf%nseg), sf%sn_stamp(sf%nseg))
-            sf%sn_stamp = -1
-            call node_segments(sf%nseg, sf%where, sf%nnode, sf%nhead, sf%nsegs)
-         end associate
-      end do
-   end subroutine build_surfaces
-
-   !> Passes of the PAIR records (two for SYMMetric); AUTOmatic's are made per step (auto_passes).
-   subroutine build_passes(self, spec, err)
-      type(contact_t), intent(inout) :: self
-      type(contact_spec_t), intent(in) :: spec
-      type(error_t), allocatable, intent(out) :: err
-      integer :: npair, np, k, i, j, nauto, ns, maxid, npass
-      type(pass_t), allocatable :: p(:)
-
-      npair = 0
-      if (allocated(spec%pairs)) npair = size(spec%pairs)
-      ns = 0
-      if (allocated(spec%surfaces)) ns = size(spec%surfaces)
-      nauto = size(self%surfaces) - ns
-      allocate (p(2*npair + 1))
-      maxid = 0
-      np = 0
-      allocate (self%results(npair + merge(1, 0, nauto > 0)))
-      do k = 1, npair
-         associate (ps => spec%pairs(k))
-            self%results(k)%id = ps%id
-            maxid = max(maxid, ps%id)
-            i = surface_index(self, ps%slave)
-            j = surface_index(self, ps%master)
-            if (i == 0 .or. j == 0) then
-               call make_error(err, 'PAIR '//itoa(ps%id)//' names a surface that is not defined')
-               return
-            end if
-            if (self%surfaces(j)%nseg == 0 .or. (ps%kind /= PAIR_NTOS .and. self%surfaces(i)%nseg == 0)) then
-               call make_error(err, 'PAIR '//itoa(ps%id)//': a node set can only be the slave side of a one-pass pair')
-               return
-            end if
-            select case (ps%kind)
-            case (PAIR_NTOS)
-               call add_pass(p, np, k, i, j, ps)
-            case (PAIR_SYMMETRIC)
-               call add_pass(p, np, k, i, j, ps)
-               call add_pass(p, np, k, j, i, ps)
-            case (PAIR_SELF)
-               call add_pass(p, np, k, i, i, ps)
-            end select
-         end associate
-      end do
-      if (nauto > 0) then
-         ! AUTOmatic: one search over all its surfaces per step makes the passes of the pairs
-         ! of surfaces found near (auto_passes), in the order of i, then j
-         self%results(npair + 1)%id = maxid + 1
-         call add_pass(p, np, npair + 1, 0, 0, spec%auto_options)
-         self%auto_pass = p(np)
-         self%auto_pass%auto = .true.
-         self%auto_pass%energy = self%auto_pass%energy .and. self%auto_pass%method == METHOD_LAGRANGE
-         if (self%auto_pass%energy) self%energy = .true.
-         np = np - 1
-         self%auto_first = ns
-         do i = ns + 1, ns + nauto
-            call self%auto%add_surface(self%surfaces(i)%nodes, self%surfaces(i)%seg)
-         end do
-      end if
-      npass = np
-      self%nfixed = npass
-      self%npass = npass
-      allocate (self%passes(npass))
-      do k = 1, npass
-         self%passes(k)%pair = p(k)%pair
-         self%passes(k)%slave = p(k)%slave
-         self%passes(k)%master = p(k)%master
-         self%passes(k)%method = p(k)%method
-         self%passes(k)%energy = p(k)%energy .and. p(k)%method == METHOD_LAGRANGE
-         if (self%passes(k)%energy) self%energy = .true.
-         self%passes(k)%detection = p(k)%detection
-         self%passes(k)%k = p(k)%k
-         self%passes(k)%law = p(k)%law
-      end do
-   end subroutine build_passes
-
-   !> Append a pass with the options of `ps`.
-   subroutine add_pass(p, np, pair, slave, master, ps)
-      type(pass_t), intent(inout) :: p(:)
-      integer, intent(inout) :: np
-      integer, intent(in) :: pair, slave, master
-      type(pair_spec_t), intent(in) :: ps
-      np = np + 1
-      p(np)%pair = pair
-      p(np)%slave = slave
-      p(np)%master = master
-      p(np)%method = ps%method
-      p(np)%energy = ps%energy
-      p(np)%detection = ps%detection
-      p(np)%k = ps%penalty
-      if (ps%penalty_scaled) p(np)%k = -ps%penalty   ! scale factor, resolved in penalty_stiffness
-      p(np)%law = [ps%mus, ps%mud, ps%decay]
-   end subroutine add_pass
-
-   !> PENAlty,SCALe,f: k = f x modulus, the largest constrained modulus lambda + 2 mu of the solids.
-   subroutine penalty_stiffness(self, modulus)
-      type(contact_t), intent(inout) :: self
-      real(wp), intent(in) :: modulus
-      integer :: k
-      do k = 1, size(self%passes)
-         if (self%passes(k)%k < 0.0_wp) self%passes(k)%k = -self%passes(k)%k*modulus
-      end do
-      if (self%auto_pass%k < 0.0_wp) self%auto_pass%k = -self%auto_pass%k*modulus
-   end subroutine penalty_stiffness
-
-   !> Index of the surface with deck id `id` (0 if none).
-   integer function surface_index(self, id) result(k)
-      type(contact_t), intent(in) :: self
-      integer, intent(in) :: id
-      do k = 1, size(self%surfaces)
-         if (self%surfaces(k)%id == id) return
-      end do
-      k = 0
-   end function surface_index
-
-   !> Bodies that overlap at the start are an error naming the worst node, segment and depth: a
-   !> node behind a segment that lies inside an element next to it (src/exic/contact/overlap.f90).
-   subroutine check_overlap(self, nnode, x, nelem, conn, head, list, err)
-      type(contact_t), intent(inout) :: self
-      integer, intent(in) :: nnode, nelem, conn(4, nelem), head(:), list(:)
-      real(wp), intent(in) :: x(2, nnode)
-      type(error_t), allocatable, intent(out) :: err
-      integer :: k, j, worst_node, worst_m(2)
-      real(wp) :: worst
-      worst = 0.0_wp
-      worst_node = 0
-      call auto_passes(self, nnode, x, x, 0.5_wp*self%lref)
-      do k = 1, self%npass
-         associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
-                    ms => self%surfaces(self%passes(k)%master))
-            call surface_normals(self, sl, nnode, x)
-            if (.not. ps%auto) call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, &
-                                                 0.5_wp*self%lref)
-            call detect_contacts(ps%hits, DETECT_STATIC, nnode, x, x, sl%nnode, sl%nodes, &
-                                 sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
-                                 0.5_wp*self%lref, FACING)
-            do j = 1, ps%hits%n
-               if (-ps%hits%gap(j) > worst) then
-                  if (.not. inside_near(ps%hits%slave(j), ps%hits%master(:, j), nnode, x, nelem, conn, &
-                                        head, list)) cycle
-                  worst = -ps%hits%gap(j)
-                  worst_node = ps%hits%slave(j)
-                  worst_m = ps%hits%master(:, j)
-               end if
-            end do
-         end associate
-      end do
-      if (worst > 1.0e-8_wp*self%lref) call make_error(err, 'bodies overlap at the start: node '//itoa(worst_node)// &
-                                                       ' is inside segment '//itoa(worst_m(1))//'-'// &
-                                                       itoa(worst_m(2))//' by '//rtoa(worst)// &
-                                                       ' (move the bodies apart or fix the mesh)')
-   end subroutine check_overlap
-
-   !> Correct the predicted accelerations so that every active gap closes at t(n+2): the one
-   !> entry of the step (the deck's stepper and the legacy API's hosts call it with their own
-   !> arrays). x = x(n+1), vt = v~(n+1) (eq. 4.4), a = a~(n+1) on entry and a(n+1) on exit,
-   !> minv the inverse mass per dof (0: rigid, prescribed or inactive), dt_prev = dt(n) (0 at
-   !> t = 0), dt = dt(n+1); fcon = nodal contact forces, nactive = constraints in force.
-   !> `rb`: the free rigid bodies, three-dof bodies in the corrector (doc/loads.md, section 5);
-   !> the caller moves them with the contact forces on their nodes. With friction
-   !> (doc/friction.md) fcon carries the friction forces too; they are also in self%ffric.
-   !> fext, fint: the external and internal forces at t(n+1), needed by massless faces
-   !> (LAGRange,ENERgy, doc/impact.md eq. I.5) once `face` is set up.
-   subroutine contact_correct(self, nnode, x, vt, a, minv, dt_prev, dt, fcon, nactive, err, rb, fext, fint)
-      class(contact_t), intent(inout) :: self
-      integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode), dt_prev, dt
-      real(wp), intent(inout) :: a(2, nnode)
-      real(wp), intent(inout) :: fcon(2, nnode)
-      integer, intent(out) :: nactive
-      type(error_t), allocatable, intent(out) :: err
-      type(rigid_dofs_t), intent(inout), optional :: rb
-      real(wp), intent(in), optional :: fext(2, nnode), fint(2, nnode)
-      integer :: k, j, i, node
-      real(wp) :: c, gnow, pen, t0, t1, mu
-      logical :: touched
-
-      nactive = 0
-      if (.not. self%active) return
-      t0 = wall_time()
-      if (.not. (self%keep_fcon .and. self%fcon_clean)) fcon = 0.0_wp
-      self%fcon_clean = .false.
-      touched = .false.
-      call predicted_positions(self, nnode, x, vt, a, dt)
-      ! c = dt(n+1) (dt(n) + dt(n+1)) / 2, eq. 4.7
-      c = 0.5_wp*dt*(dt_prev + dt)
-      if (self%face%active) then
-         ! massless faces: the free solve places them at their trial positions (eq. I.5, I.7)
-         if (.not. (present(fext) .and. present(fint))) then
-            call make_error(err, 'LAGRange,ENERgy needs the forces of the step (contact_t%correct: fext, fint)')
-            return
-         end if
-         if (.not. allocated(self%fres)) allocate (self%fres(2, nnode))
-         self%fres = fext - fint
-         call self%face%trial(nnode, x, self%fres, c, self%xp, a, err)
-         if (allocated(err)) return
-      end if
-      do k = 1, size(self%results)
-         self%results(k)%fnormal = 0.0_wp
-         self%results(k)%force = 0.0_wp
-         self%results(k)%nactive = 0
-         self%results(k)%penetration = 0.0_wp
-         self%results(k)%pmax = 0.0_wp
-      end do
-      if (self%friction) call friction_begin(self)
-      self%cs%friction = self%friction
-      call self%cs%reserve(64)
-      if (self%auto_pass%method == METHOD_PENALTY) then
-         ! penalty: the springs act on the positions at t(n+1) (penalty_pass)
-         call auto_passes(self, nnode, x, x, self%depth, kept=.true.)
-      else
-         call auto_passes(self, nnode, x, self%xp, self%depth, kept=.true.)
-      end if
-      ! the narrow phase of every Lagrange pass at once (src/exic/contact/narrow.f90); with
-      ! penalty passes, which change node normals and forces, pass by pass in order
-      if (.not. self%any_penalty) call narrow_passes(self, nnode, x, minv, 1, self%npass)
-      do k = 1, self%npass
-         associate (ps => self%passes(k), sl => self%surfaces(self%passes(k)%slave), &
-                    ms => self%surfaces(self%passes(k)%master))
-            if (ps%method == METHOD_PENALTY) then
-               call surface_normals(self, sl, nnode, x)
-               call penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, dt_prev, fcon, nactive)
-               if (ps%broad%ncand > 0) touched = .true.
-               cycle
-            end if
-            if (self%any_penalty) call narrow_passes(self, nnode, x, minv, k, k)
-            if (ps%broad%ncand == 0) cycle
-            do j = 1, ps%hits%n
-               node = ps%hits%slave(j)
-               associate (m1 => ps%hits%master(1, j), m2 => ps%hits%master(2, j), &
-                          al => ps%hits%alpha(j), nr => ps%hits%normal(:, j))
-                  ! gap at t(n+1) along the frozen normal (eq. 3.19)
-                  gnow = dot_product(x(:, node) - (1.0_wp - al)*x(:, m1) - al*x(:, m2), nr)
-                  if (ps%friction) then
-                     ! the step's coefficient from the slave's last state (eq. F12)
-                     mu = coulomb_mu(ps%law(1), ps%law(2), ps%law(3), self%vslip(node))
-                     call self%cs%add(node, m1, m2, al, nr, ps%hits%gap(j), gnow, ps%pair, mu)
-                  else
-                     call self%cs%add(node, m1, m2, al, nr, ps%hits%gap(j), gnow, ps%pair)
-                  end if
-               end associate
-            end do
-         end associate
-      end do
-      t1 = wall_time()
-      self%time_search = self%time_search + (t1 - t0)
-      if (self%cs%n > 0) then
-         if (self%friction) then
-            call self%fr%solve(self%corr, self%cs, nnode, minv, c, x, self%xp, a, fcon, self%ffric, err, rb)
-         else if (self%face%active) then
-            call face_solve(self, nnode, x, minv, c, a, fcon, err, rb)
-         else
-            call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb)
-         end if
-         self%time_corrector = self%time_corrector + (wall_time() - t1)
-         if (allocated(err)) return
-         self%nredundant = self%nredundant + self%corr%nredundant
-         do i = 1, self%cs%n
-            associate (r => self%results(self%cs%pair(i)))
-               pen = max(0.0_wp, -self%cs%gap_now(i))
-               r%penetration = max(r%penetration, pen)
-               if (self%cs%p(i) <= 0.0_wp) cycle
-               r%nactive = r%nactive + 1
-               r%fnormal = r%fnormal + self%cs%p(i)
-               r%pmax = max(r%pmax, self%cs%p(i))
-               r%work = r%work - self%cs%p(i)*self%cs%gap_now(i)
-               r%force = r%force + self%cs%p(i)*self%cs%nrm(:, i)
-            end associate
-         end do
-         nactive = nactive + count(self%cs%p(1:self%cs%n) > 0.0_wp)
-      end if
-      if (self%friction) call friction_results(self, dt)
-      do k = 1, size(self%results)
-         self%max_penetration = max(self%max_penetration, self%results(k)%penetration)
-      end do
-      if (self%friction) self%xold = x
-      self%fcon_clean = self%cs%n == 0 .and. .not. touched
-   end subroutine contact_correct
-
-   !> The passes of AUTOmatic contact for this search: one search over every AUTOmatic
-   !> surface (src/exic/contact/broad_all.f90) over x0 -> x1 with margin, then one pass per pair
-   !> of surfaces with candidates, after the fixed passes, holding those candidates.
-   subroutine auto_passes(self, nnode, x0, x1, margin, kept)
-      type(contact_t), intent(inout) :: self
-      integer, intent(in) :: nnode
-      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), margin
-      logical, intent(in), optional :: kept    !< answer from the kept list (the step's search)
-      integer :: g, need
-      type(pass_t), allocatable :: tmp(:)
-      logical :: use_kept
-
-      use_kept = .false.
-      if (present(kept)) use_kept = kept
-      self%stamp = self%stamp + 1
-      self%npass = self%nfixed
-      if (.not. self%auto_pass%auto) return
-      if (use_kept) then
-         call self%auto%search_kept(nnode, x0, x1, margin)
-      else
-         call self%auto%search(nnode, x0, x1, margin)
-      end if
-      need = self%nfixed + self%auto%ngroup
-      if (need > size(self%passes)) then
-         allocate (tmp(max(need, 2*size(self%passes), 8)))
-         tmp(1:size(self%passes)) = self%passes
-         call move_alloc(tmp, self%passes)
-      end if
-      do g = 1, self%auto%ngroup
-         associate (ps => self%passes(self%nfixed + g))
-            ! the options of auto_pass (its work arrays stay those of the slot)
-            ps%pair = self%auto_pass%pair
-            ps%method = self%auto_pass%method
-            ps%detection = self%auto_pass%detection
-            ps%k = self%auto_pass%k
-            ps%law = self%auto_pass%law
-            ps%friction = self%auto_pass%friction
-            ps%energy = self%auto_pass%energy
-            ps%auto = .true.
-            ps%slave = self%auto_first + self%auto%gslave(g)
-            ps%master = self%auto_first + self%auto%gmaster(g)
-            call self%auto%take(g, ps%broad)
-         end associate
-      end do
-      self%npass = need
-   end subroutine auto_passes
-
-   !> Node normals of surface sf at positions x, once per search.
-   subroutine surface_normals(self, sf, nnode, x)
-      type(contact_t), intent(in) :: self
-      type(surface_t), intent(inout) :: sf
-      integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode)
-      if (sf%nrm_stamp == self%stamp) return
-      call node_normals(nnode, x, sf%nseg, sf%seg, sf%nnode, sf%where, sf%nrm)
-      sf%nrm_stamp = self%stamp
-   end subroutine surface_normals
-
-   !> Every node of every contact surface, once (cnodes).
-   subroutine contact_nodes(self, nnode)
-      type(contact_t), intent(inout) :: self
-      integer, intent(in) :: nnode
-      logical, allocatable :: on(:)
-      integer :: k
-      allocate (on(nnode), source=.false.)
-      do k = 1, size(self%surfaces)
-         on(self%surfaces(k)%nodes) = .true.
-      end do
-      self%cnodes = pack([(k, k=1, nnode)], on)
-   end subroutine contact_nodes
-
-   !> Predicted positions x~(n+2) = x + dt vt + dt^2/2 a (eq. 4.4) of the contact nodes, the
-   !> only ones the search and the corrector read; with massless faces of every node, since the
-   !> face's free solve (eq. I.5) reads the predicted motion of the interior nodes next to it.
-   subroutine predicted_positions(self, nnode, x, vt, a, dt)
-      type(contact_t), intent(inout) :: self
-      integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode), vt(2, nnode), a(2, nnode), dt
-      integer :: k, node
-      real(wp) :: h
-      h = 0.5_wp*dt*dt
-      if (self%face%active) then
-         self%xp = x + dt*vt + h*a
-         return
-      end if
-      do k = 1, size(self%cnodes)
-         node = self%cnodes(k)
-         self%xp(:, node) = x(:, node) + dt*vt(:, node) + h*a(:, node)
-      end do
-   end subroutine predicted_positions
-
-   !> At the start of a step with friction: the Coulomb work of the last step, whose interval
-   !> has now been stepped, joins the dissipation (doc/friction.md, eq. F17); the step's
-   !> friction results and forces start from zero.
-   subroutine friction_begin(self)
-      type(contact_t), intent(inout) :: self
-      integer :: k
-      self%dissipation = self%dissipation + self%pending
-      self%pending = 0.0_wp
-      do k = 1, size(self%results)
-         associate (r => self%results(k))
-            r%dissipation = r%dissipation + r%pending
-            r%pending = 0.0_wp
-            r%ftangent = 0.0_wp
-            r%nstick = 0
-            r%nslip = 0
-         end associate
-      end do
-      self%ffric = 0.0_wp
-   end subroutine friction_begin
-
-   !> After the frictional corrector: the pairs' friction results, the Coulomb work of the step
-   !> (eq. F16, booked at the next step) and each slave's slip speed for the next step's
-   !> coefficient (eq. F12); dt = dt(n+1).
-   subroutine friction_results(self, dt)
-      type(contact_t), intent(inout) :: self
-      real(wp), intent(in) :: dt
-      integer :: i, node
-      real(wp) :: d, tng(2)
-      self%vslip = -1.0_wp
-      do i = 1, self%cs%n
-         node = self%cs%node(1, i)
-         if (self%cs%state(i) == 0) cycle
-         associate (r => self%results(self%cs%pair(i)))
-            tng = [-self%cs%nrm(2, i), self%cs%nrm(1, i)]
-            r%force = r%force + self%cs%q(i)*tng
-            r%ftangent = r%ftangent + abs(self%cs%q(i))
-            if (self%cs%state(i) == 1) then
-               r%nstick = r%nstick + 1
-            else
-               r%nslip = r%nslip + 1
-               d = self%cs%mu(i)*self%cs%p(i)*abs(self%cs%slip(i))
-               r%pending = r%pending + d
-               self%pending = self%pending + d
-               self%vslip(node) = abs(self%cs%slip(i))/dt
-            end if
-         end associate
-      end do
-   end subroutine friction_results
-
-   !> Penalty baseline of one pass (src/exic/contact/penalty.f90): static detection at t(n+1),
-   !> forces k x penetration (plus damping) on the hits, with the regularised friction law when
-   !> the pass has friction; the pair's results. An AUTOmatic pass has its candidates from the
-   !> search over all surfaces (over x -> x with margin depth, as broad_search here) and its
-   !> tangential state from auto_hist, kept per pair of surfaces.
-   subroutine penalty_pass(self, ps, sl, ms, nnode, x, vt, a, minv, dt_prev, fcon, nactive)
-      type(contact_t), intent(inout) :: self
-      type(pass_t), intent(inout) :: ps
-      type(surface_t), intent(inout) :: sl
-      type(surface_t), intent(in) :: ms
-      integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode), vt(2, nnode), minv(2, nnode), dt_prev
-      real(wp), intent(inout) :: a(2, nnode), fcon(2, nnode)
-      integer, intent(inout) :: nactive
-      integer :: j, n
-      real(wp) :: diss
-      if (.not. ps%auto) call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, self%depth)
-      if (ps%broad%ncand == 0) return
-      call detect_contacts(ps%hits, DETECT_STATIC, nnode, x, x, sl%nnode, sl%nodes, &
-                           sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
-                           self%depth, FACING)
-      n = ps%hits%n
-      call grow(ps%pen, n)
-      call grow(ps%fn, n)
-      call grow(ps%f, n, 2)
-      diss = 0.0_wp
-      if (ps%friction) then
-         call grow(ps%q, n)
-         call grow(ps%state, n)
-         if (ps%auto) then
-            call self%auto_hist%load(ps%slave, ps%master, self%hwork)
-            call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n), &
-                                self%hwork, ps%law, self%xold, dt_prev, self%ffric, ps%q(1:n), ps%state(1:n), diss)
-            call self%auto_hist%store(ps%slave, ps%master, self%hwork)
-         else
-            call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n), &
-                                ps%hist, ps%law, self%xold, dt_prev, self%ffric, ps%q(1:n), ps%state(1:n), diss)
-         end if
-      else
-         call penalty_forces(ps%hits, ps%k, nnode, x, vt, minv, a, fcon, ps%pen(1:n), ps%fn(1:n), ps%f(:, 1:n))
-      end if
-      associate (r => self%results(ps%pair), pen => ps%pen, fn => ps%fn, f => ps%f)
-         do j = 1, n
-            if (pen(j) <= 0.0_wp) cycle
-            r%nactive = r%nactive + 1
-            r%fnormal = r%fnormal + fn(j)
-            r%pmax = max(r%pmax, fn(j))
-            r%force = r%force + f(:, j)
-            r%penetration = max(r%penetration, pen(j))
-            nactive = nactive + 1
-            if (.not. ps%friction) cycle
-            r%ftangent = r%ftangent + abs(ps%q(j))
-            if (ps%state(j) == 1) r%nstick = r%nstick + 1
-            if (ps%state(j) == 2) r%nslip = r%nslip + 1
-         end do
-         ! the realised slip of [t(n), t(n+1)] is booked at once
-         r%dissipation = r%dissipation + diss
-         self%dissipation = self%dissipation + diss
-      end associate
-   end subroutine penalty_pass
 
    !> Critical step of the penalty springs: 1 / sqrt(k (1/m_s + 1/m_master)) over the slave
    !> nodes, m_master the smallest mass of the pass's master nodes (huge when no pass uses

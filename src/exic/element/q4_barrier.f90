@@ -1,7 +1,7 @@
 !> The corner barrier of the one-point quadrilateral with the physical hourglass control
 !> (doc/hourglass.md section 5, (H13)-(H19)): the energy of the corner volume ratios, its exact
 !> gradient, its bound on the stable step and the kinematic step limit, on the structure-of-arrays
-!> blocks of src/exic/element/quad4.f90 (n lanes, (lane, local node)).
+!> blocks of src/exic/element/q4_1pt.f90 (n lanes, (lane, local node)).
 module exic_element_q4_barrier
    use exic_base_kinds, only: wp
    implicit none

@@ -2,13 +2,14 @@
 !> elements at a time as structure of arrays (NBLOCK, 4) (element, local node), the gather of
 !> node values into a block (as (x, y) pairs (2, NBLOCK, 4), or split into x and y arrays) and
 !> the scatter-add of a block's nodal forces, element by element in order (so that a node's sum
-!> does not depend on the block or thread that adds it).
+!> does not depend on the block or thread that adds it), and the checks of the Jacobians at a
+!> block's points (positive, check_points).
 module exic_element_q4_block
    use exic_base_kinds, only: wp
    implicit none
    private
 
-   public :: gather, gather_pairs, current, scatter, scatter_pairs, split_pairs
+   public :: gather, gather_pairs, current, scatter, scatter_pairs, split_pairs, positive, check_points
 
    !> Elements per block of the force kernels: the block's work arrays (about 90 values per
    !> element) stay in the L1 cache, and its loops run over 32 elements (4 AVX-512 vectors).
@@ -124,5 +125,44 @@ contains
          end do
       end do
    end subroutine split_pairs
+
+   !> js = J where J is a positive normal number, else 1 (so that the law stays finite on an
+   !> element the caller rejects: check_points rejects J < tiny, i.e. J <= 0 and the subnormal
+   !> J below 2.2e-308, whose logarithm the laws' ln_normal_block does not take).
+   pure subroutine positive(n, jac, js)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: jac(n)
+      real(wp), intent(out) :: js(n)
+      integer :: q
+      do q = 1, n
+         js(q) = merge(jac(q), 1.0_wp, jac(q) >= tiny(1.0_wp))
+      end do
+   end subroutine positive
+
+   !> jmin over the points jac(NBLOCK, np) of the block's nb elements; ebad (when 0) becomes the
+   !> first element off + k with J <= 0 at a point (or a subnormal J > 0, below tiny = 2.2e-308:
+   !> an element crushed that far is rejected as inverted, see positive).
+   pure subroutine check_points(nb, np, off, jac, jmin, ebad)
+      integer, intent(in) :: nb, np, off
+      real(wp), intent(in) :: jac(NBLOCK, np)
+      real(wp), intent(inout) :: jmin
+      integer, intent(inout) :: ebad
+      real(wp) :: m
+      integer :: k, g
+      m = huge(1.0_wp)
+      do g = 1, np
+         do k = 1, nb
+            m = min(m, jac(k, g))
+         end do
+      end do
+      jmin = min(jmin, m)
+      if (ebad /= 0 .or. m >= tiny(1.0_wp)) return
+      do k = 1, nb
+         if (any(jac(k, :) < tiny(1.0_wp))) then
+            ebad = off + k
+            return
+         end if
+      end do
+   end subroutine check_points
 
 end module exic_element_q4_block

@@ -8,7 +8,8 @@
 !> reached, which gives nh_piola's stress and energy, with F33 = r/R in axisymmetry). The
 !> plane-strain sets of laws without history keep the kernels of quad4.f90.
 !>
-!> Block steps (gather, kinematics, forces, stable step, scatter) are quad4.f90's; this module adds
+!> Block steps (gather, kinematics, forces, stable step, scatter) are those of the plane kernels
+!> (q4_block.f90, q4_2x2.f90, q4_1pt.f90, q4_stable.f90); this module adds
 !> the hoop terms (A1)-(A5), the mean dilatation (A10)-(A12), the history copies and the ring
 !> correction of the stable step (A7)-(A9).
 module exic_element_q4_general
@@ -20,13 +21,11 @@ module exic_element_q4_general
                                 law_cauchy_general, law_wave_speed2
    use exic_material_material, only: HOURGLASS_STIFFNESS, HOURGLASS_PHYSICAL
    use exic_element_q4_block, only: NBLOCK, gather, gather_pairs, split_pairs, current, scatter
-   use exic_element_quad4, only: kinematics_2x2 => q4b_kinematics_2x2, &
-                                 kinematics_1pt => q4b_kinematics_1pt, positive => q4b_positive, &
-                                 forces_2x2 => q4b_forces_2x2, forces_1pt => q4b_forces_1pt, &
-                                 asqbi_forces => q4b_asqbi_forces, &
-                                 check_points => q4b_check_points, &
-                                 stable_block => q4b_stable_block, &
-                                 block_minimum => q4b_block_minimum
+   use exic_element_q4_block, only: positive, check_points
+   use exic_element_q4_2x2, only: kinematics_2x2 => q4b_kinematics_2x2, forces_2x2 => q4b_forces_2x2
+   use exic_element_q4_1pt, only: kinematics_1pt => q4b_kinematics_1pt, forces_1pt => q4b_forces_1pt, &
+                                  asqbi_forces => q4b_asqbi_forces
+   use exic_element_q4_stable, only: q4_stable_dt, stable_block, block_minimum
    use exic_element_q4_barrier, only: corner_barrier, barrier_limit
    implicit none
    private
@@ -505,8 +504,8 @@ contains
       end do
    end subroutine ring_step
 
-   !> The stable step of nel elements at the current coordinates x (q4_stable_dt with the ring
-   !> correction (A9) in axisymmetry).
+   !> The stable step of nel elements at the current coordinates x: q4_stable_dt, with the ring
+   !> correction (A9) of each block's estimate in axisymmetry.
    pure subroutine q4g_stable_dt(o, nel, nnode, conn, x0, x, dtmin, emin, efold)
       type(q4_solid_t), intent(in) :: o
       integer, intent(in) :: nel, nnode
@@ -514,21 +513,11 @@ contains
       real(wp), intent(in) :: x0(2, nnode), x(2, nnode)
       real(wp), intent(out) :: dtmin
       integer, intent(out) :: emin, efold
-      real(wp), dimension(NBLOCK, 4) :: xr, yr, xc, yc
-      real(wp) :: dt2(NBLOCK), good(NBLOCK), dt2min
-      integer :: e0, nb
-
-      dt2min = huge(1.0_wp)
-      emin = 0
-      efold = 0
-      do e0 = 1, nel, NBLOCK
-         nb = min(NBLOCK, nel - e0 + 1)
-         call gather(nb, nnode, conn(:, e0:e0 + nb - 1), x0, x, xr, yr, xc, yc)
-         call stable_block(o%nq, xr, yr, xc, yc, o%law, dt2, good)
-         if (o%axi) call ring_step(o%nq, xr, yr, xc, yc, o%law, dt2)
-         call block_minimum(nb, e0 - 1, dt2, good, dt2min, emin, efold)
-      end do
-      dtmin = sqrt(dt2min)
+      if (o%axi) then
+         call q4_stable_dt(o%nq, nel, nnode, conn, x0, x, o%law, dtmin, emin, efold, ring_step)
+      else
+         call q4_stable_dt(o%nq, nel, nnode, conn, x0, x, o%law, dtmin, emin, efold)
+      end if
    end subroutine q4g_stable_dt
 
    !> Element outputs sig(NSIG, nel): the mean over the points of the Cauchy stress (sxx, syy,

@@ -36,7 +36,7 @@ module exic_explicit_erosion
    !> st%status values: why an element left the model (0: live).
    integer, parameter :: ERODED_INVERTED = 1, ERODED_STRAIN = 2, ERODED_TIMESTEP = 3
    character(len=*), parameter :: REASON(3) = [character(len=8) :: 'inverted', 'strain', 'timestep']
-   !> a corner triangle within FLAT of the area is flat, not folded (quad4.f90, corner_estimate)
+   !> a corner triangle within FLAT of the area is flat, not folded (q4_stable.f90, corner_estimate)
    real(wp), parameter :: FLAT = 1.0e-10_wp
 
    !> What the EROSion records of the materials ask, per element set.
@@ -203,7 +203,7 @@ contains
    end subroutine erosion_restore
 
    !> The quadrilateral with corners x(2, 4) is inverted or folded: area not positive, or a
-   !> corner triangle negative beyond round-off (the test of quad4.f90's corner_estimate).
+   !> corner triangle negative beyond round-off (the test of q4_stable.f90's corner_estimate).
    pure logical function folded(x)
       real(wp), intent(in) :: x(2, 4)
       real(wp) :: a2, t2, ex(4), ey(4)

@@ -16,6 +16,8 @@
 module exic_input_deck
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
+   use exic_base_grow, only: grow
+   use exic_input_deck_grow, only: grow
    use exic_model_model, only: model_t
    use exic_material_material, only: material_t
    use exic_base_strings, only: to_lower
@@ -287,20 +289,11 @@ contains
          integer, intent(in) :: i
          type(error_t), allocatable, intent(out) :: err
          type(material_t) :: mat
-         type(material_t), allocatable :: tm(:)
-         integer, allocatable :: tr(:)
-         integer :: ma, n
+         integer :: ma
          call cmd_material(rd, i, ma, mat, err)
          if (allocated(err)) return
-         if (ma > size(b%mats)) then
-            n = max(2*size(b%mats), ma)
-            allocate (tm(n), tr(n))
-            tr = 0
-            tm(1:size(b%mats)) = b%mats
-            tr(1:size(b%mats)) = b%mat_rec
-            call move_alloc(tm, b%mats)
-            call move_alloc(tr, b%mat_rec)
-         end if
+         call grow(b%mats, ma)
+         call grow(b%mat_rec, ma)
          if (b%mat_rec(ma) > 0) then
             call fail(rd, i, 'MATErial '//itoa(ma)//' is already defined at '// &
                       where(rd, b%mat_rec(ma))//': expected each material set once', err)

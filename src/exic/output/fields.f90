@@ -24,20 +24,25 @@
 !> which leaves a well-formed document (exic_output_fields_xdmf), the last-state file is written to a
 !> temporary name and renamed. A run killed at any moment leaves an HDF5 file whose count names
 !> its complete output times and XDMF files that parse and name only those.
+!>
+!> This module is the writer (open, reopen, output times, batches, close); its submodules hold
+!> the file layout (fields/layout.f90: the mesh, the series, the last-state buffers, the energy
+!> series) and the safe changes of the live file (fields/rebuild.f90: open and close it with
+!> its datasets held, the copy renamed over it, the count of complete output times).
 module exic_output_fields
    use exic_base_kinds, only: wp, i8
    use exic_base_flat, only: copy_flat, sum_flat
    use exic_base_strings, only: itoa
    use exic_base_error, only: error_t, make_error
    use exic_mesh_smoothing, only: nodal_average
-   use exic_hdf5_file, only: hdf5_file_t, DTYPE_REAL, DTYPE_INT, DTYPE_INT64
+   use exic_hdf5_file, only: hdf5_file_t
    use exic_hdf5_held, only: hdf5_held_t
    use exic_output_fields_checks, only: check_mesh, check_names
    use exic_output_fields_nodes, only: write_node_id
-   use exic_base_posix, only: rename_file, copy_file, remove_file
+   use exic_base_posix, only: rename_file, remove_file
    use exic_base_clock, only: wall_time
    use exic_output_fields_xdmf, only: xdmf_series_t, write_whole_file, xml_escape, real_text
-   use exic_output_fields_text, only: fields_text_t, NODE_VECTORS, BUFFER, series_path, xdmf_reference
+   use exic_output_fields_text, only: fields_text_t, NODE_VECTORS, series_path, xdmf_reference
    implicit none
    private
 
@@ -117,6 +122,83 @@ module exic_output_fields
       procedure :: flush_stale => writer_flush_stale
       procedure :: set_batch => writer_set_batch
    end type field_writer_t
+
+   interface
+      !> Write the /mesh group and the file's identification attributes.
+      module subroutine write_mesh(h5, x0, conn, region, mat, surf_edges, err)
+         type(hdf5_file_t), intent(inout) :: h5
+         real(wp), intent(in), contiguous :: x0(:, :)
+         integer, intent(in), contiguous :: conn(:, :), region(:), mat(:), surf_edges(:, :)
+         type(error_t), allocatable, intent(out) :: err
+      end subroutine write_mesh
+
+      !> Create the empty series /time, /step and /fields/*, the groups /energies and /xdmf, and the
+      !> 3-component views /xdmf/<vector> of the nodal vectors (unlimited in time).
+      module subroutine create_field_series(self, err)
+         type(field_writer_t), intent(inout) :: self
+         type(error_t), allocatable, intent(out) :: err
+      end subroutine create_field_series
+
+      !> Create the two last-state buffers /last/a and /last/b: plain arrays of one output time.
+      module subroutine create_last_buffers(self, err)
+         type(field_writer_t), intent(inout) :: self
+         type(error_t), allocatable, intent(out) :: err
+      end subroutine create_last_buffers
+
+      !> Write output time k, held in slot j of the batch, into its buffer mod(k, 2): the vectors
+      !> padded to 3 components, the contact flag, each element value component and its nodal
+      !> average, and k itself.
+      module subroutine write_last_buffer(self, k, j, err)
+         type(field_writer_t), intent(inout) :: self
+         integer, intent(in) :: k, j
+         type(error_t), allocatable, intent(out) :: err
+      end subroutine write_last_buffer
+
+      !> Create one series /energies/<name> per energy in the file `h5` (the one being made, or a
+      !> copy of the live file), with room for self%capacity output times.
+      module subroutine create_energy_series(self, h5, names, err)
+         class(field_writer_t), intent(inout) :: self
+         type(hdf5_file_t), intent(inout) :: h5
+         character(len=*), intent(in) :: names(:)
+         type(error_t), allocatable, intent(out) :: err
+      end subroutine create_energy_series
+
+      !> Release the held datasets and close the live file (nothing to do when it is closed).
+      module subroutine close_live(self, err)
+         type(field_writer_t), intent(inout) :: self
+         type(error_t), allocatable, intent(out) :: err
+      end subroutine close_live
+
+      !> Open the live file for writing, write-through, and hold every dataset an output time writes.
+      module subroutine open_live(self, err)
+         type(field_writer_t), intent(inout) :: self
+         type(error_t), allocatable, intent(out) :: err
+      end subroutine open_live
+
+      !> Change the file's metadata the only way that is safe while a run may be killed: close it,
+      !> copy it to <path>.tmp, change the copy, rename the copy over it. Every series is cut to
+      !> `nkeep` output times (the slabs beyond become unwritten again) and, unless `final`, given
+      !> room for `capacity`; the count is set to `nkeep` (made when missing: a file from before
+      !> the count was kept). `final`: the finished file instead (no room, the `failed` attribute
+      !> when the run failed), not opened again. `new_energies`: also create the energy series of
+      !> self%energy_names. Otherwise the live file is opened again and its datasets held. The file
+      !> at <path> is at every moment either the old whole file or the new whole file.
+      module subroutine rebuild(self, nkeep, capacity, final, err, new_energies)
+         type(field_writer_t), intent(inout) :: self
+         integer, intent(in) :: nkeep, capacity
+         logical, intent(in) :: final
+         type(error_t), allocatable, intent(out) :: err
+         logical, intent(in), optional :: new_energies
+      end subroutine rebuild
+
+      !> The number of complete output times of the field file `path`: its count `/n_times`, or
+      !> the length of `/time` in a file without the count (finished before the count was kept).
+      module subroutine complete_times(path, n, err)
+         character(len=*), intent(in) :: path
+         integer, intent(out) :: n
+         type(error_t), allocatable, intent(out) :: err
+      end subroutine complete_times
+   end interface
 
 contains
 
@@ -585,159 +667,6 @@ contains
       k = int(max(1_i8, min(int(capacity, i8), ESTIMATE_BYTES_MAX/per_time)))
    end function initial_capacity
 
-   !> Release the held datasets and close the live file (nothing to do when it is closed).
-   subroutine close_live(self, err)
-      type(field_writer_t), intent(inout) :: self
-      type(error_t), allocatable, intent(out) :: err
-      type(error_t), allocatable :: err2
-      call self%held%release(err)
-      call self%h5%close(err2)
-      if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
-   end subroutine close_live
-
-   !> Open the live file for writing, write-through, and hold every dataset an output time writes.
-   subroutine open_live(self, err)
-      type(field_writer_t), intent(inout) :: self
-      type(error_t), allocatable, intent(out) :: err
-      character(len=:), allocatable :: g
-      integer :: i, b, j
-      call self%h5%open(self%path_h5, .true., err, write_through=.true.)
-      if (allocated(err)) return
-      call self%held%hold(self%h5, COUNT_NAME, self%id_count, err)
-      do i = 1, self%nvec
-         if (.not. allocated(err)) call self%held%hold(self%h5, '/fields/'//trim(NODE_VECTORS(i)), self%id_vec(i), err)
-      end do
-      if (.not. allocated(err)) call self%held%hold(self%h5, '/fields/contact_active', self%id_active, err)
-      if (.not. allocated(err)) call self%held%hold(self%h5, '/fields/stress', self%id_stress, err)
-      if (.not. allocated(err)) call self%held%hold(self%h5, '/fields/nodal_stress', self%id_nodal, err)
-      if (.not. allocated(err)) call self%held%hold(self%h5, '/time', self%id_time, err)
-      if (.not. allocated(err)) call self%held%hold(self%h5, '/step', self%id_step, err)
-      if (allocated(self%id_energy)) deallocate (self%id_energy)
-      allocate (self%id_energy(max(self%nenergy, 0)))
-      do i = 1, self%nenergy
-         if (.not. allocated(err)) call self%held%hold(self%h5, '/energies/'//trim(self%energy_names(i)), &
-                                                     self%id_energy(i), err)
-      end do
-      if (allocated(self%id_last)) deallocate (self%id_last)
-      allocate (self%id_last(self%nvec + 2 + 2*self%ncomp, 0:1))
-      do b = 0, 1
-         g = '/last/'//BUFFER(b)//'/'
-            do i = 1, self%nvec
-               if (.not. allocated(err)) call self%held%hold(self%h5, g//trim(NODE_VECTORS(i)), self%id_last(i, b), err)
-            end do
-            j = self%nvec + 1
-            if (.not. allocated(err)) call self%held%hold(self%h5, g//'contact_active', self%id_last(j, b), err)
-            do i = 1, self%ncomp
-               if (.not. allocated(err)) call self%held%hold(self%h5, g//'cell_'//trim(self%comp_names(i)), &
-                                                           self%id_last(j + i, b), err)
-               if (.not. allocated(err)) call self%held%hold(self%h5, g//'node_'//trim(self%comp_names(i)), &
-                                                           self%id_last(j + self%ncomp + i, b), err)
-            end do
-            if (.not. allocated(err)) call self%held%hold(self%h5, g//'output', self%id_last(j + 2*self%ncomp + 1, b), err)
-      end do
-   end subroutine open_live
-
-   !> Change the file's metadata the only way that is safe while a run may be killed: close it,
-   !> copy it to <path>.tmp, change the copy, rename the copy over it. Every series is cut to
-   !> `nkeep` output times (the slabs beyond become unwritten again) and, unless `final`, given
-   !> room for `capacity`; the count is set to `nkeep` (made when missing: a file from before
-   !> the count was kept). `final`: the finished file instead (no room, the `failed` attribute
-   !> when the run failed), not opened again. `new_energies`: also create the energy series of
-   !> self%energy_names. Otherwise the live file is opened again and its datasets held. The file
-   !> at <path> is at every moment either the old whole file or the new whole file.
-   subroutine rebuild(self, nkeep, capacity, final, err, new_energies)
-      type(field_writer_t), intent(inout) :: self
-      integer, intent(in) :: nkeep, capacity
-      logical, intent(in) :: final
-      type(error_t), allocatable, intent(out) :: err
-      logical, intent(in), optional :: new_energies
-      type(hdf5_file_t) :: tmp
-      type(error_t), allocatable :: err2
-      character(len=:), allocatable :: path
-      integer :: i
-
-      path = self%path_h5//'.tmp'
-      call close_live(self, err)
-      if (allocated(err)) return
-      call copy_file(self%path_h5, path, err)
-      if (.not. allocated(err)) call tmp%open(path, .true., err)
-      if (allocated(err)) then
-         call remove_file(path)
-         return
-      end if
-      if (present(new_energies)) then
-         if (new_energies) call create_energy_series(self, tmp, self%energy_names, err)
-      end if
-      associate (names => series_names(self))
-         do i = 1, size(names)
-            if (allocated(err)) exit
-            call tmp%resize_series(trim(names(i)), nkeep, err)
-            if (.not. allocated(err) .and. .not. final) call tmp%resize_series(trim(names(i)), capacity, err)
-         end do
-      end associate
-      if (.not. allocated(err)) then
-         if (tmp%exists(COUNT_NAME(2:))) then
-            call tmp%rewrite(COUNT_NAME, [nkeep], err)
-         else
-            call tmp%write(COUNT_NAME, [nkeep], err)
-         end if
-      end if
-      if (.not. allocated(err) .and. final .and. allocated(self%failed)) &
-         call tmp%write_attr('/', 'failed', self%failed, err)
-      call tmp%close(err2)
-      if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
-      if (.not. allocated(err)) call rename_file(path, self%path_h5, err)
-      if (allocated(err)) then
-         call remove_file(path)
-      else if (.not. final) then
-         self%capacity = capacity
-      end if
-      ! the live file again (the old one when the copy failed), unless the run is over
-      if (.not. final) then
-         call open_live(self, err2)
-         if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
-      end if
-   end subroutine rebuild
-
-   !> Every series of the file: nodal vectors, contact flag, element values and their nodal
-   !> averages, energies, /time and /step.
-   function series_names(self) result(names)
-      type(field_writer_t), intent(in) :: self
-      character(len=64), allocatable :: names(:)
-      integer :: i
-      allocate (names(0))
-      do i = 1, self%nvec
-         names = [character(len=64) :: names, '/fields/'//trim(NODE_VECTORS(i))]
-      end do
-      names = [character(len=64) :: names, '/fields/contact_active', '/fields/stress', '/fields/nodal_stress']
-      do i = 1, max(self%nenergy, 0)
-         names = [character(len=64) :: names, '/energies/'//trim(self%energy_names(i))]
-      end do
-      names = [character(len=64) :: names, '/time', '/step']
-   end function series_names
-
-   !> The number of complete output times of the field file `path`: its count `/n_times`, or
-   !> the length of `/time` in a file without the count (finished before the count was kept).
-   subroutine complete_times(path, n, err)
-      character(len=*), intent(in) :: path
-      integer, intent(out) :: n
-      type(error_t), allocatable, intent(out) :: err
-      type(hdf5_file_t) :: f
-      type(error_t), allocatable :: err2
-      integer :: c(1)
-      n = 0
-      call f%open(path, .false., err)
-      if (allocated(err)) return
-      if (f%exists(COUNT_NAME(2:))) then
-         call f%read(COUNT_NAME, c, err)
-         n = c(1)
-      else
-         call f%series_length('/time', n, err)
-      end if
-      call f%close(err2)
-      if (.not. allocated(err) .and. allocated(err2)) call move_alloc(err2, err)
-   end subroutine complete_times
-
    !> True between a successful `open` and `close`.
    logical function writer_is_open(self)
       class(field_writer_t), intent(in) :: self
@@ -811,187 +740,5 @@ contains
          end do
       end if
    end subroutine check_step
-
-
-   ! ---------------------------------------------------------------------------- HDF5 content
-
-   !> Write the /mesh group and the file's identification attributes.
-   subroutine write_mesh(h5, x0, conn, region, mat, surf_edges, err)
-      type(hdf5_file_t), intent(inout) :: h5
-      real(wp), intent(in), contiguous :: x0(:, :)
-      integer, intent(in), contiguous :: conn(:, :), region(:), mat(:), surf_edges(:, :)
-      type(error_t), allocatable, intent(out) :: err
-      integer, allocatable :: base0(:, :)
-
-      call h5%write_attr('/', 'format', 'exic fields', err)
-      if (.not. allocated(err)) call h5%write_attr('/', 'format_version', 2, err)
-      if (.not. allocated(err)) call h5%write_attr('/', 'nnode', size(x0, 2), err)
-      if (.not. allocated(err)) call h5%write_attr('/', 'nelem', size(conn, 2), err)
-      if (.not. allocated(err)) call h5%write_attr('/', 'units', &
-                                                   'consistent units of the input deck', err)
-      if (.not. allocated(err)) call h5%create_group('/mesh', err)
-      if (.not. allocated(err)) call h5%write('/mesh/coordinates', x0, err)
-      if (.not. allocated(err)) call h5%write_attr('/mesh/coordinates', 'description', &
-                                                   'reference (initial) nodal coordinates x, y', err)
-      base0 = conn - 1
-      if (.not. allocated(err)) call h5%write('/mesh/connectivity', base0, err)
-      if (.not. allocated(err)) call h5%write_attr('/mesh/connectivity', 'index_base', 0, err)
-      if (.not. allocated(err)) call h5%write_attr('/mesh/connectivity', 'description', &
-                                                   'quad nodes counterclockwise, 0-based (exic node - 1)', err)
-      if (.not. allocated(err)) call h5%write('/mesh/region', region, err)
-      if (.not. allocated(err)) call h5%write('/mesh/material', mat, err)
-      base0 = surf_edges - 1
-      if (.not. allocated(err)) call h5%write('/mesh/contact_edges', base0, err)
-      if (.not. allocated(err)) call h5%write_attr('/mesh/contact_edges', 'index_base', 0, err)
-      if (.not. allocated(err)) call h5%write_attr('/mesh/contact_edges', 'description', &
-                                                   'node pairs of the contact surface edges, 0-based', err)
-   end subroutine write_mesh
-
-   !> Create the empty series /time, /step and /fields/*, the groups /energies and /xdmf, and the
-   !> 3-component views /xdmf/<vector> of the nodal vectors (unlimited in time).
-   subroutine create_field_series(self, err)
-      type(field_writer_t), intent(inout) :: self
-      type(error_t), allocatable, intent(out) :: err
-      integer :: i, nn, ne
-      integer :: none(0)
-      character(len=:), allocatable :: f
-
-      nn = self%nnode
-      ne = self%nelem
-      associate (h5 => self%h5)
-         call h5%create_series('/time', DTYPE_REAL, none, err, self%capacity)
-         if (.not. allocated(err)) call h5%create_series('/step', DTYPE_INT64, none, err, self%capacity)
-         if (.not. allocated(err)) call h5%create_group('/fields', err)
-         if (.not. allocated(err)) call h5%create_group('/xdmf', err)
-         do i = 1, self%nvec
-            if (allocated(err)) return
-            f = trim(NODE_VECTORS(i))
-            call h5%create_series('/fields/'//f, DTYPE_REAL, [2, nn], err, self%capacity)
-            if (.not. allocated(err)) call h5%write_attr('/fields/'//f, 'center', 'node', err)
-            if (.not. allocated(err)) call h5%create_series_view('/xdmf/'//f, '/fields/'//f, DTYPE_REAL, &
-                                                                  [3, nn], [0, 0], [2, nn], [0, 0], [2, nn], err)
-            if (.not. allocated(err)) call h5%write_attr('/xdmf/'//f, 'description', '/fields/'//f// &
-                                                         ' with a third (z) component 0, for XDMF readers', err)
-         end do
-         if (.not. allocated(err)) call h5%create_series('/fields/contact_active', DTYPE_INT, [nn], err, self%capacity)
-         if (.not. allocated(err)) call h5%write_attr('/fields/contact_active', 'center', 'node', err)
-         if (.not. allocated(err)) call h5%create_series('/fields/stress', DTYPE_REAL, [self%ncomp, ne], err, self%capacity)
-         if (.not. allocated(err)) call h5%write_attr('/fields/stress', 'center', 'cell', err)
-         if (.not. allocated(err)) call h5%write_attr('/fields/stress', 'components', join(self%comp_names), err)
-         if (.not. allocated(err)) call h5%create_series('/fields/nodal_stress', DTYPE_REAL, [self%ncomp, nn], err, &
-                                                                 self%capacity)
-         if (.not. allocated(err)) call h5%write_attr('/fields/nodal_stress', 'center', 'node', err)
-         if (.not. allocated(err)) call h5%write_attr('/fields/nodal_stress', 'components', &
-                                                      join(self%comp_names), err)
-         if (.not. allocated(err)) call h5%write_attr('/fields/nodal_stress', 'description', &
-                                                      'element values averaged at the nodes, weighted by '// &
-                                                      'the current element areas', err)
-         if (.not. allocated(err)) call h5%create_group('/energies', err)
-      end associate
-   end subroutine create_field_series
-
-   !> Create the two last-state buffers /last/a and /last/b: plain arrays of one output time.
-   subroutine create_last_buffers(self, err)
-      type(field_writer_t), intent(inout) :: self
-      type(error_t), allocatable, intent(out) :: err
-      real(wp), allocatable :: zero3(:, :), zero_node(:), zero_cell(:)
-      integer, allocatable :: izero(:)
-      character(len=:), allocatable :: g
-      integer :: b, i
-
-      allocate (zero3(3, self%nnode), zero_node(self%nnode), zero_cell(self%nelem), source=0.0_wp)
-      allocate (izero(self%nnode), source=0)
-      call self%h5%create_group('/last', err)
-      do b = 0, 1
-         if (allocated(err)) return
-         g = '/last/'//BUFFER(b)
-         call self%h5%create_group(g, err)
-         if (.not. allocated(err)) call self%h5%write(g//'/output', [-1], err)
-         do i = 1, self%nvec
-            if (.not. allocated(err)) call self%h5%write(g//'/'//trim(NODE_VECTORS(i)), zero3, err)
-         end do
-         if (.not. allocated(err)) call self%h5%write(g//'/contact_active', izero, err)
-         do i = 1, self%ncomp
-            if (.not. allocated(err)) call self%h5%write(g//'/cell_'//trim(self%comp_names(i)), zero_cell, err)
-            if (.not. allocated(err)) call self%h5%write(g//'/node_'//trim(self%comp_names(i)), zero_node, err)
-         end do
-      end do
-   end subroutine create_last_buffers
-
-   !> Write output time k, held in slot j of the batch, into its buffer mod(k, 2): the vectors
-   !> padded to 3 components, the contact flag, each element value component and its nodal
-   !> average, and k itself.
-   subroutine write_last_buffer(self, k, j, err)
-      type(field_writer_t), intent(inout) :: self
-      integer, intent(in) :: k, j
-      type(error_t), allocatable, intent(out) :: err
-      integer :: i, n, b
-
-      b = mod(k, 2)
-      n = self%nvec + 1
-      self%vec3(3, :) = 0.0_wp
-      do i = 1, self%nvec
-         if (allocated(err)) return
-         self%vec3(1:2, :) = self%bvec(:, :, j, i)
-         call self%held%write_whole(self%id_last(i, b), self%vec3, err)
-      end do
-      if (.not. allocated(err)) call self%held%write_whole(self%id_last(n, b), self%bact(:, j), err)
-      do i = 1, self%ncomp
-         if (allocated(err)) return
-         self%col_cell = self%bsig(i, :, j)
-         call self%held%write_whole(self%id_last(n + i, b), self%col_cell, err)
-         self%col_node = self%bnod(i, :, j)
-         if (.not. allocated(err)) call self%held%write_whole(self%id_last(n + self%ncomp + i, b), self%col_node, err)
-      end do
-      if (.not. allocated(err)) call self%held%write_whole(self%id_last(n + 2*self%ncomp + 1, b), k, err)
-   end subroutine write_last_buffer
-
-   !> Create one series /energies/<name> per energy in the file `h5` (the one being made, or a
-   !> copy of the live file), with room for self%capacity output times.
-   subroutine create_energy_series(self, h5, names, err)
-      class(field_writer_t), intent(inout) :: self
-      type(hdf5_file_t), intent(inout) :: h5
-      character(len=*), intent(in) :: names(:)
-      type(error_t), allocatable, intent(out) :: err
-      integer :: i, j
-      integer :: none(0)
-
-      do i = 1, size(names)
-         if (len_trim(names(i)) == 0 .or. index(names(i), '/') > 0 .or. &
-             adjustl(names(i)) /= names(i)) then
-            call make_error(err, "field output: energy name '"//trim(names(i))// &
-                            "' must be non-empty, without '/' or leading blanks")
-            return
-         end if
-         do j = 1, i - 1
-            if (trim(names(j)) == trim(names(i))) then
-               call make_error(err, "field output: energy name '"//trim(names(i))//"' given twice")
-               return
-            end if
-         end do
-      end do
-      do i = 1, size(names)
-         call h5%create_series('/energies/'//trim(names(i)), DTYPE_REAL, none, err, self%capacity)
-         if (.not. allocated(err) .and. i == size(names)) &
-            call h5%write_attr('/energies', 'names', join(names), err)
-         if (allocated(err)) return
-      end do
-      if (size(names) == 0) call h5%write_attr('/energies', 'names', '', err)
-      if (allocated(err)) return
-      self%energy_names = names
-      self%nenergy = size(names)
-   end subroutine create_energy_series
-
-   !> Names joined by single blanks.
-   function join(names) result(s)
-      character(len=*), intent(in) :: names(:)
-      character(len=:), allocatable :: s
-      integer :: i
-      s = ''
-      do i = 1, size(names)
-         if (i > 1) s = s//' '
-         s = s//trim(names(i))
-      end do
-   end function join
 
 end module exic_output_fields

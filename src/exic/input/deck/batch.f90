@@ -21,6 +21,7 @@ module exic_input_deck_batch
    use exic_base_kinds, only: wp
    use exic_base_constants, only: DEFAULT_CFL, ENERGY_WARN, ENERGY_STOP, PENETRATION_WARN
    use exic_base_error, only: error_t, make_error
+   use exic_input_deck_grow, only: grow
    use exic_mesh_mesh, only: mesh_t
    use exic_model_model, only: model_t
    use exic_model_program, only: MAX_LOOP_DEPTH, command_t, request_t, REQ_DISP, REQ_VELO, REQ_ACCE, REQ_STRE, &
@@ -60,7 +61,7 @@ contains
       integer, intent(in) :: ib
       type(model_t), intent(inout) :: model
       type(error_t), allocatable, intent(out) :: err
-      type(command_t), allocatable :: prog(:), tmp(:)
+      type(command_t), allocatable :: prog(:)
       integer :: i, n, depth, stack(MAX_LOOP_DEPTH)
       type(command_t) :: c
       logical :: cut
@@ -88,11 +89,7 @@ contains
          end if
          call parse_command(rd, i, model, c, err)
          if (allocated(err)) return
-         if (n == size(prog)) then
-            allocate (tmp(2*n))
-            tmp(1:n) = prog(1:n)
-            call move_alloc(tmp, prog)
-         end if
+         call grow(prog, n + 1)
          n = n + 1
          prog(n) = c
          if (c%name == 'loop') then
@@ -457,7 +454,6 @@ contains
       type(request_t), allocatable, intent(inout) :: req(:)
       integer, intent(inout) :: nreq
       type(error_t), allocatable, intent(out) :: err
-      type(request_t), allocatable :: tmp(:)
       type(request_t) :: r
       integer :: i
       logical :: skip
@@ -467,11 +463,7 @@ contains
          call parse_request(rd, i, model, map, r, skip, err)
          if (allocated(err)) return
          if (skip) cycle
-         if (nreq == size(req)) then
-            allocate (tmp(2*nreq))
-            tmp(1:nreq) = req(1:nreq)
-            call move_alloc(tmp, req)
-         end if
+         call grow(req, nreq + 1)
          nreq = nreq + 1
          req(nreq) = r
       end do

@@ -18,6 +18,8 @@
 module exic_input_deck_contact
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
+   use exic_base_grow, only: grow
+   use exic_input_deck_grow, only: grow
    use exic_contact_spec, only: contact_spec_t, surface_spec_t, pair_spec_t, SURF_REGION, &
                                 SURF_MATERIAL, SURF_FACETS, PAIR_NTOS, PAIR_SYMMETRIC, PAIR_SELF, &
                                 METHOD_LAGRANGE, METHOD_PENALTY, DETECT_SWEPT, DETECT_STATIC
@@ -98,7 +100,6 @@ contains
       subroutine new_surface(i, err)
          integer, intent(in) :: i
          type(error_t), allocatable, intent(out) :: err
-         type(surface_spec_t), allocatable :: tmp(:)
          integer :: id, k
          call int_field(rd, i, 2, 'SURFace,id', id, err)
          if (allocated(err)) return
@@ -113,11 +114,7 @@ contains
                return
             end if
          end do
-         if (nsurf == size(surf)) then
-            allocate (tmp(2*nsurf))
-            tmp(1:nsurf) = surf(1:nsurf)
-            call move_alloc(tmp, surf)
-         end if
+         call grow(surf, nsurf + 1)
          nsurf = nsurf + 1
          surf(nsurf)%id = id
          surf(nsurf)%where = where(rd, i)
@@ -168,7 +165,6 @@ contains
          type(error_t), allocatable, intent(out) :: err
          character(len=12), parameter :: kinds(3) = [character(len=12) :: 'NTOS', 'SYMMetric', 'SELF']
          character(len=*), parameter :: what = 'PAIR,id,NTOS|SYMMetric,slave,master or PAIR,id,SELF,s'
-         type(pair_spec_t), allocatable :: tmp(:)
          type(pair_spec_t) :: p
          integer :: k
          call int_field(rd, i, 2, what, p%id, err)
@@ -218,11 +214,7 @@ contains
             return
          end if
          p%where = where(rd, i)
-         if (npair == size(pair)) then
-            allocate (tmp(2*npair))
-            tmp(1:npair) = pair(1:npair)
-            call move_alloc(tmp, pair)
-         end if
+         call grow(pair, npair + 1)
          npair = npair + 1
          pair(npair) = p
          target = npair
@@ -462,7 +454,7 @@ contains
       type(surface_spec_t), intent(inout) :: s
       type(error_t), allocatable, intent(out) :: err
       character(len=*), parameter :: what = 'FACEts record f, ng, n1, n2'
-      integer, allocatable :: fac(:, :), tmp(:, :)
+      integer, allocatable :: fac(:, :)
       integer :: i, f, ng, nd(2), m, mg, mnd(2), e, k, nf
       allocate (fac(2, 16))
       fac = 0
@@ -493,12 +485,7 @@ contains
             call fail(rd, i, what//': expected two different node numbers >= 1', err)
             return
          end if
-         if (f > size(fac, 2)) then
-            allocate (tmp(2, max(2*size(fac, 2), f)))
-            tmp = 0
-            tmp(:, 1:size(fac, 2)) = fac
-            call move_alloc(tmp, fac)
-         end if
+         call grow(fac, f, 2)
          if (m > 0) then
             do e = m + 1, f - 1
                where (mnd /= 0) mnd = mnd + max(mg, 1)

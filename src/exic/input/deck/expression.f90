@@ -18,6 +18,7 @@ module exic_input_deck_expression
    use exic_base_kinds, only: wp
    use exic_base_strings, only: itoa, to_lower
    use exic_base_error, only: error_t, make_error
+   use exic_base_grow, only: grow
    implicit none
    private
 
@@ -62,8 +63,6 @@ contains
       type(param_table_t), intent(inout) :: tab
       character(len=*), intent(in) :: name
       real(wp), intent(in) :: value
-      character(len=MAX_NAME), allocatable :: tn(:)
-      real(wp), allocatable :: tv(:)
       integer :: k
       do k = 1, tab%n
          if (tab%name(k) == to_lower(name)) then
@@ -71,15 +70,8 @@ contains
             return
          end if
       end do
-      if (.not. allocated(tab%name)) then
-         allocate (tab%name(16), tab%value(16))
-      else if (tab%n == size(tab%name)) then
-         allocate (tn(2*tab%n), tv(2*tab%n))
-         tn(1:tab%n) = tab%name(1:tab%n)
-         tv(1:tab%n) = tab%value(1:tab%n)
-         call move_alloc(tn, tab%name)
-         call move_alloc(tv, tab%value)
-      end if
+      call grow(tab%name, tab%n + 1)
+      call grow(tab%value, tab%n + 1)
       tab%n = tab%n + 1
       tab%name(tab%n) = to_lower(name)
       tab%value(tab%n) = value

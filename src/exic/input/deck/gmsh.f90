@@ -27,7 +27,7 @@ module exic_input_deck_gmsh
    use exic_input_deck_reader, only: reader_t, next_in_set, field, word, has_field, int_field, fail, &
                              warn, where, itoa, check_data_record
    use exic_input_gmsh, only: gmsh_mesh_t, gmsh_read
-   use exic_input_deck_mesh, only: builder_t, pbou_t, ensure_node, ensure_elem, set_mode, MAX_NUMBER
+   use exic_input_deck_mesh, only: builder_t, pbou_t, grow, ensure_node, ensure_elem, set_mode, MAX_NUMBER
    use exic_base_memory, only: mesh_memory_message
    implicit none
    private
@@ -281,18 +281,13 @@ contains
          logical, intent(in) :: set
          type(error_t), allocatable, intent(out) :: err
          type(pbou_t) :: p
-         type(pbou_t), allocatable :: tmp(:)
          call int_field(rd, ir, k0, what, p%id, err)
          if (.not. allocated(err)) call int_field(rd, ir, k0 + 1, what, p%code(1), err)
          if (.not. allocated(err)) call int_field(rd, ir, k0 + 2, what, p%code(2), err)
          if (allocated(err)) return
          p%set = set
          p%rec = ir
-         if (b%npbou == size(b%pbou)) then
-            allocate (tmp(2*b%npbou))
-            tmp(1:b%npbou) = b%pbou(1:b%npbou)
-            call move_alloc(tmp, b%pbou)
-         end if
+         call grow(b%pbou, b%npbou + 1)
          b%npbou = b%npbou + 1
          b%pbou(b%npbou) = p
       end subroutine item

@@ -19,6 +19,8 @@
 module exic_input_deck_loads
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
+   use exic_base_grow, only: grow_size
+   use exic_input_deck_grow, only: grow
    use exic_material_material, only: MAT_SOLID, MAT_RIGID
    use exic_mesh_boundary, only: free_edges
    use exic_mesh_edge_set, only: find_edge_set, edge_set_ids
@@ -115,16 +117,14 @@ contains
       type(loads_builder_t), intent(inout) :: lb
       integer, intent(in) :: id, rec
       character(len=*), intent(in) :: what
-      type(fn_ref_t), allocatable :: tmp(:)
       integer :: n
-      if (.not. allocated(lb%refs)) allocate (lb%refs(0))
-      n = size(lb%refs)
-      allocate (tmp(n + 1))
-      tmp(1:n) = lb%refs
-      tmp(n + 1)%id = id
-      tmp(n + 1)%rec = rec
-      tmp(n + 1)%what = what
-      call move_alloc(tmp, lb%refs)
+      n = 0
+      if (allocated(lb%refs)) n = size(lb%refs)
+      ! the size is the count
+      call grow_fn_ref(lb%refs, n + 1, exact=.true.)
+      lb%refs(n + 1)%id = id
+      lb%refs(n + 1)%rec = rec
+      lb%refs(n + 1)%what = what
    end subroutine add_ref
 
    !> [ext] GRAVity,gx,gy[,prop] (one record).
@@ -600,15 +600,10 @@ contains
       integer, intent(in) :: n1, n2
       character(len=*), intent(in) :: cmd
       type(error_t), allocatable, intent(out) :: err
-      type(prop_fn_t), allocatable :: tmp(:)
       integer :: j, i, typ
 
-      if (.not. allocated(spec%fn)) allocate (spec%fn(0))
-      if (size(spec%fn) < n2) then
-         allocate (tmp(n2))
-         tmp(1:size(spec%fn)) = spec%fn
-         call move_alloc(tmp, spec%fn)
-      end if
+      ! the size is the number of functions (loading.f90)
+      call grow(spec%fn, n2, exact=.true.)
       do j = n1, n2
          call next_record(rd, i)
          if (i == 0) then
@@ -735,5 +730,19 @@ contains
       end if
       f%tab = tab
    end subroutine read_table
+
+   !> grow (exic_base_grow) for an array of fn_ref_t: at least n entries (exactly n with `exact`),
+   !> the contents kept, new entries default-initialized.
+   pure subroutine grow_fn_ref(a, n, exact)
+      type(fn_ref_t), allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      logical, intent(in), optional :: exact
+      type(fn_ref_t), allocatable :: tmp(:)
+      if (.not. allocated(a)) allocate (a(0))
+      if (size(a) >= n) return
+      allocate (tmp(grow_size(size(a), n, exact)))
+      tmp(1:size(a)) = a
+      call move_alloc(tmp, a)
+   end subroutine grow_fn_ref
 
 end module exic_input_deck_loads

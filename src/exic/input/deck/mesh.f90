@@ -7,7 +7,7 @@
 !> exic_input_deck_gmsh.
 module exic_input_deck_mesh
    use exic_base_kinds, only: wp
-   use exic_base_grow, only: grow
+   use exic_base_grow, only: grow, grow_size
    use exic_base_error, only: error_t
    use exic_base_memory, only: mesh_memory_message, MEMORY_CHECK_FROM
    use exic_mesh_mesh, only: mesh_t
@@ -20,6 +20,8 @@ module exic_input_deck_mesh
    private
 
    public :: builder_t, ebou_t, cbou_t, pbou_t, init_t, genvec_t
+   !> grow (exic_base_grow) with the specifics of the builder's record lists
+   public :: grow
    public :: builder_init, ensure_node, ensure_elem, gen_step, node_record
    public :: cmd_coordinates, cmd_elements, cmd_region, cmd_boundary, cmd_ebound, &
              cmd_cbound, cmd_nodal_values, cmd_global, cmd_initial, set_mode
@@ -94,6 +96,10 @@ module exic_input_deck_mesh
    end type builder_t
 
    character(len=12), parameter :: cbou_words(3) = [character(len=12) :: 'NODE', 'LINEar', 'GAP']
+
+   interface grow
+      module procedure grow_ebou, grow_pbou, grow_cbou, grow_init
+   end interface grow
 
 contains
 
@@ -276,7 +282,6 @@ contains
       integer, allocatable, intent(out), optional :: recs(:)
       type(genvec_t) :: g
       integer :: i, old
-      integer, allocatable :: tmp(:)
       cnt = 0
       if (present(recs)) allocate (recs(64))
       do
@@ -288,11 +293,7 @@ contains
          call node_record(rd, i, 1, what, 0, codes, g, nodes, vals, cnt, err)
          if (allocated(err)) return
          if (present(recs)) then
-            if (cnt > size(recs)) then
-               allocate (tmp(2*cnt))
-               tmp(1:old) = recs(1:old)
-               call move_alloc(tmp, recs)
-            end if
+            call grow(recs, cnt)
             recs(old + 1:cnt) = i
          end if
       end do
@@ -465,7 +466,6 @@ contains
       character(len=*), parameter :: what = 'EBOUndary record i, x_i, c1, c2'
       type(ebou_t) :: eb
       integer :: i
-      type(ebou_t), allocatable :: tmp(:)
       call set_mode(rd, icmd, .false., eb%set, err)
       if (allocated(err)) return
       do
@@ -483,11 +483,7 @@ contains
             return
          end if
          eb%rec = i
-         if (b%nebou == size(b%ebou)) then
-            allocate (tmp(2*b%nebou))
-            tmp(1:b%nebou) = b%ebou(1:b%nebou)
-            call move_alloc(tmp, b%ebou)
-         end if
+         call grow(b%ebou, b%nebou + 1)
          b%nebou = b%nebou + 1
          b%ebou(b%nebou) = eb
       end do
@@ -520,7 +516,6 @@ contains
       integer, intent(in) :: icmd
       type(error_t), allocatable, intent(out) :: err
       type(cbou_t) :: cb
-      type(cbou_t), allocatable :: tmp(:)
       integer :: i, k
       logical :: set
       real(wp) :: gap
@@ -558,11 +553,7 @@ contains
                                                           field(rd, i, 1), cbou_words, err)
             return
          end if
-         if (b%ncbou == size(b%cbou)) then
-            allocate (tmp(2*b%ncbou))
-            tmp(1:b%ncbou) = b%cbou(1:b%ncbou)
-            call move_alloc(tmp, b%cbou)
-         end if
+         call grow(b%cbou, b%ncbou + 1)
          b%ncbou = b%ncbou + 1
          b%cbou(b%ncbou) = cb
       end do
@@ -696,15 +687,66 @@ contains
    contains
       subroutine push_init(item)
          type(init_t), intent(in) :: item
-         type(init_t), allocatable :: tmp(:)
-         if (b%ninit == size(b%init)) then
-            allocate (tmp(2*b%ninit))
-            tmp(1:b%ninit) = b%init(1:b%ninit)
-            call move_alloc(tmp, b%init)
-         end if
+         call grow(b%init, b%ninit + 1)
          b%ninit = b%ninit + 1
          b%init(b%ninit) = item
       end subroutine push_init
    end subroutine cmd_initial
+
+   !> grow (exic_base_grow) for an array of ebou_t: at least n entries (exactly n with `exact`),
+   !> the contents kept, new entries default-initialized.
+   pure subroutine grow_ebou(a, n, exact)
+      type(ebou_t), allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      logical, intent(in), optional :: exact
+      type(ebou_t), allocatable :: tmp(:)
+      if (.not. allocated(a)) allocate (a(0))
+      if (size(a) >= n) return
+      allocate (tmp(grow_size(size(a), n, exact)))
+      tmp(1:size(a)) = a
+      call move_alloc(tmp, a)
+   end subroutine grow_ebou
+
+   !> grow (exic_base_grow) for an array of pbou_t: at least n entries (exactly n with `exact`),
+   !> the contents kept, new entries default-initialized.
+   pure subroutine grow_pbou(a, n, exact)
+      type(pbou_t), allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      logical, intent(in), optional :: exact
+      type(pbou_t), allocatable :: tmp(:)
+      if (.not. allocated(a)) allocate (a(0))
+      if (size(a) >= n) return
+      allocate (tmp(grow_size(size(a), n, exact)))
+      tmp(1:size(a)) = a
+      call move_alloc(tmp, a)
+   end subroutine grow_pbou
+
+   !> grow (exic_base_grow) for an array of cbou_t: at least n entries (exactly n with `exact`),
+   !> the contents kept, new entries default-initialized.
+   pure subroutine grow_cbou(a, n, exact)
+      type(cbou_t), allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      logical, intent(in), optional :: exact
+      type(cbou_t), allocatable :: tmp(:)
+      if (.not. allocated(a)) allocate (a(0))
+      if (size(a) >= n) return
+      allocate (tmp(grow_size(size(a), n, exact)))
+      tmp(1:size(a)) = a
+      call move_alloc(tmp, a)
+   end subroutine grow_cbou
+
+   !> grow (exic_base_grow) for an array of init_t: at least n entries (exactly n with `exact`),
+   !> the contents kept, new entries default-initialized.
+   pure subroutine grow_init(a, n, exact)
+      type(init_t), allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      logical, intent(in), optional :: exact
+      type(init_t), allocatable :: tmp(:)
+      if (.not. allocated(a)) allocate (a(0))
+      if (size(a) >= n) return
+      allocate (tmp(grow_size(size(a), n, exact)))
+      tmp(1:size(a)) = a
+      call move_alloc(tmp, a)
+   end subroutine grow_init
 
 end module exic_input_deck_mesh

@@ -15,6 +15,7 @@
 !> `TIE`) match on their own length.
 module exic_input_deck_records
    use exic_base_error, only: error_t, make_error
+   use exic_base_grow, only: grow_size
    use exic_base_strings, only: itoa, to_lower
    use exic_base_posix, only: file_kind, FILE_REGULAR, FILE_DIRECTORY, FILE_MISSING
    implicit none
@@ -189,17 +190,12 @@ contains
       type(source_t), intent(inout) :: src
       type(record_t), intent(in) :: rec
       type(error_t), allocatable, intent(out) :: err
-      type(record_t), allocatable :: tmp(:)
       integer :: stat
-      if (src%n == size(src%rec)) then
-         allocate (tmp(2*size(src%rec)), stat=stat)
-         if (stat /= 0) then
-            call make_error(err, 'out of memory after '//itoa(src%n)//' records: expected a '// &
-                            'smaller deck', rec%file, rec%line)
-            return
-         end if
-         tmp(1:src%n) = src%rec(1:src%n)
-         call move_alloc(tmp, src%rec)
+      call grow_record(src%rec, src%n + 1, stat)
+      if (stat /= 0) then
+         call make_error(err, 'out of memory after '//itoa(src%n)//' records: expected a '// &
+                         'smaller deck', rec%file, rec%line)
+         return
       end if
       src%n = src%n + 1
       src%rec(src%n) = rec
@@ -365,12 +361,7 @@ contains
       type(field_t), allocatable, intent(inout) :: f(:)
       integer, intent(inout) :: nf
       character(len=*), intent(in) :: s
-      type(field_t), allocatable :: tmp(:)
-      if (nf == size(f)) then
-         allocate (tmp(2*nf))
-         tmp(1:nf) = f(1:nf)
-         call move_alloc(tmp, f)
-      end if
+      call grow_field(f, nf + 1)
       nf = nf + 1
       f(nf)%s = s
    end subroutine add_field
@@ -429,5 +420,35 @@ contains
       end do
       edit_distance = d(len(a), len(b))
    end function edit_distance
+
+   !> grow (exic_base_grow) for an array of field_t: at least n entries (exactly n with `exact`),
+   !> the contents kept, new entries default-initialized.
+   pure subroutine grow_field(a, n, exact)
+      type(field_t), allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      logical, intent(in), optional :: exact
+      type(field_t), allocatable :: tmp(:)
+      if (.not. allocated(a)) allocate (a(0))
+      if (size(a) >= n) return
+      allocate (tmp(grow_size(size(a), n, exact)))
+      tmp(1:size(a)) = a
+      call move_alloc(tmp, a)
+   end subroutine grow_field
+
+   !> grow (exic_base_grow) for the records of a source: at least n entries, the contents kept;
+   !> stat /= 0 (and `a` unchanged) when the memory for them cannot be had.
+   subroutine grow_record(a, n, stat)
+      type(record_t), allocatable, intent(inout) :: a(:)
+      integer, intent(in) :: n
+      integer, intent(out) :: stat
+      type(record_t), allocatable :: tmp(:)
+      stat = 0
+      if (.not. allocated(a)) allocate (a(0))
+      if (size(a) >= n) return
+      allocate (tmp(grow_size(size(a), n)), stat=stat)
+      if (stat /= 0) return
+      tmp(1:size(a)) = a
+      call move_alloc(tmp, a)
+   end subroutine grow_record
 
 end module exic_input_deck_records
