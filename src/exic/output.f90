@@ -240,10 +240,14 @@ contains
       integer :: k
       real(wp) :: sig(NSIG), total, drift, kc
       type(energy_t) :: en
+      integer :: ids(size(self%values))
 
       ! several MPI ranks: the history of the elements whose stresses the row holds (doc/parallel.md)
-      call decomposition_gather_history(stp%dd, stp%st, stp%sets, &
-                                        pack(model%requests%id, model%requests%kind == REQ_STRE))
+      ids = 0
+      do k = 1, size(ids)
+         if (model%requests(k)%kind == REQ_STRE) ids(k) = model%requests(k)%id
+      end do
+      call decomposition_gather_history(stp%dd, stp%st, stp%sets, ids)
       do k = 1, size(self%values)
          associate (q => model%requests(k), st => stp%st)
             select case (q%kind)

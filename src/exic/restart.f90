@@ -360,11 +360,15 @@ contains
       call ar%item('stepper.growth_max', stp%growth_max)
       call ar%item('stepper.growth_max_t', stp%growth_max_t)
       call ar%item('stepper.pass_limit_warnings', stp%pass_limit_warnings)
-      call ar%item('stepper.x', stp%x)
-      call ar%item('stepper.du', stp%du)
-      call ar%item('stepper.a_old', stp%a_old)
-      call ar%item('stepper.vt', stp%vt)
-      call ar%item('stepper.fcon_old', stp%fcon_old)
+      ! the work arrays of a step that is not plain (stepper_t%work_arrays): a plain run (no
+      ! contact, loads or rigid bodies; the same deck decides alike when it is read) has none
+      if (allocated(stp%x)) then
+         call ar%item('stepper.x', stp%x)
+         call ar%item('stepper.du', stp%du)
+         call ar%item('stepper.a_old', stp%a_old)
+         call ar%item('stepper.vt', stp%vt)
+         call ar%item('stepper.fcon_old', stp%fcon_old)
+      end if
       call ar%item('stepper.time_forces', stp%time_forces)
       call ar%item('stepper.time_steps', stp%time_steps)
       if (allocated(stp%st%status)) then

@@ -95,7 +95,8 @@ contains
       do i = 1, size(elems)
          e = elems(i)
          m = values_of(st, sets, e)
-         if (m == 0 .or. self%elem_owner(e) /= self%rank) cycle
+         if (m == 0) cycle
+         if (self%elem_owner(e) /= self%rank) cycle
          k = st%eset(e)
          j = st%eloc(e)
          send(p + 1:p + m) = reshape(sets(k)%hist(:, :, j), [m])
