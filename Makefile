@@ -185,7 +185,10 @@ baseline: setup
 
 # The exic program, libexic.a, the module files and the C header, nothing else (no benchmark
 # program): tools/install.sh installs with fpm into build/install-stage and copies those.
+# the archive is made anew (STALE drops it): one left by `make test-release` also holds the
+# objects of the test helpers (test_support/, doc/decisions.md "Tests by folder")
 install: setup
+	@$(STALE)
 	EXIC_FPM=$(abspath $(FPM)) tools/install.sh $(or $(PREFIX),$(CURDIR)/dist) $(RELEASE)
 
 legacy-host: install

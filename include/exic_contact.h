@@ -55,6 +55,13 @@ void exic_c_contact_step(int ih, int nnode, const double *x, const double *v, do
  * face dofs' rows of the initial stiffness (1-based CSR) */
 void exic_c_contact_set_face(int ih, int nnode, const double *amass, int nf, const int *iface,
                              const int *irp, const int *ici, const double *val, int *ierr);
+/* the same with massless dofs per direction (doc/impact.md eq. I.3a, I.3b): amass[2 nnode]
+ * the masses per dof, ifdof[2 nf] 1 where dof d of iface[k] is massless, else 0 */
+void exic_c_contact_set_face_dofs(int ih, int nnode, const double *amass, int nf, const int *iface,
+                                  const int *ifdof, const int *irp, const int *ici,
+                                  const double *val, int *ierr);
+/* ifdof[2 nnode]: 1 on the dofs the rule of decks makes massless (doc/impact.md 3.1) */
+void exic_c_contact_face_rule(int ih, int nnode, int *ifdof, int *ierr);
 /* the step of a handle with massless faces: r = f_ext - f_int at t(n+1) */
 void exic_c_contact_step_face(int ih, int nnode, const double *x, const double *v, double *a,
                               const double *r, double dtprev, double dt, double *fcon,

@@ -1,5 +1,5 @@
 !> The exic test driver: runs the suites the command line selects and prints
-!> 'N passed, M failed' last (test/testing.f90).
+!> 'N passed, M failed' last (test_support/src/testing.f90).
 !>
 !>     fpm test                      every suite
 !>     fpm test -- contact legacy    the suites whose name contains 'contact' or 'legacy'
@@ -12,6 +12,7 @@ program exic_tests
    use test_element, only: run_element_tests
    use test_hourglass, only: run_hourglass_tests
    use test_fields, only: run_fields_tests
+   use test_fields_nodes, only: run_fields_nodes_tests
    use test_xdmf, only: run_xdmf_tests
    use test_viewers, only: run_viewers_tests
    use test_physics, only: run_physics_tests
@@ -61,6 +62,7 @@ program exic_tests
    call r%run('plastic_decks', run_plastic_decks_tests)
    call r%run('plastic_step', run_plastic_step_tests)
    call r%run('fields', run_fields_tests)
+   call r%run('fields_nodes', run_fields_nodes_tests)
    call r%run('xdmf', run_xdmf_tests)
    call r%run('viewers', run_viewers_tests)
    call r%run('physics', run_physics_tests)

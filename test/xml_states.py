@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Helper of test/test_xdmf.f90: every file DIR/state_*.xml must be a well-formed XDMF document
+"""Helper of test/output/test_xdmf.f90: every file DIR/state_*.xml must be a well-formed XDMF document
 whose temporal collection holds OLD grids, or OLD + 1 with the last one named NEW and complete
 (with its Time); once a state shows OLD + 1 grids, every later one must too.
 

@@ -4,12 +4,16 @@ Xdmf3 reader sees it, and both against each other.
 
     check_xdmf.py STEM.xdmf [--steps N] [--points NN] [--cells NE] [--time K,T]
                   [--point-value NAME,K,NODE,COMP,VALUE] [--cell-value NAME,K,CELL,VALUE]
-                  [--convert OUT.vtu] [--tol TOL]
+                  [--convert OUT.vtu] [--tol TOL] [--node-ids LIST|none] [--free LIST]
 
 K is an output index (0-based) of the series file, or `last`: the value is then read from
 STEM.xdmf by meshio.read (and must also be the value of the series' last output). Every run
 also checks that every attribute of STEM.xdmf equals, bit for bit, the same attribute of the
 series' last grid. --convert runs `meshio convert STEM.xdmf OUT.vtu` and reads OUT.vtu back.
+--node-ids LIST (numbers and ranges, "11-25,101,300") checks a mesh whose node numbers have
+gaps: the points are exactly those nodes, in that order, in meshio.read, in the series and in
+the .h5 (/mesh/node_id); every point is used by a cell except the nodes of --free LIST (nodes
+that no element uses); `--node-ids none` checks that the file has no node_id (numbers 1..n).
 
 The series file addresses slabs of the HDF5 datasets in Xdmf3's form
 "file.h5:/dataset|start:stride:count:dims" (C order), which meshio's readers do not know; this
@@ -42,6 +46,23 @@ def fields(n):
     return split
 
 
+def id_list(text):
+    """argparse type: 'none', or comma-separated numbers and ranges a-b, as a list of ints."""
+    if text == "none":
+        return None
+    out = []
+    try:
+        for item in text.split(","):
+            if "-" in item:
+                a, b = item.split("-")
+                out.extend(range(int(a), int(b) + 1))
+            elif item:
+                out.append(int(item))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' must be numbers and ranges a-b, comma-separated")
+    return out
+
+
 def parse_args(argv):
     p = argparse.ArgumentParser(description="Check an exic .xdmf field output (last state through "
                                             "meshio.read, the series as Xdmf3 reads it).")
@@ -61,6 +82,11 @@ def parse_args(argv):
     p.add_argument("--convert", metavar="OUT", help="also run `meshio convert` into OUT and read it back")
     p.add_argument("--tol", type=float, default=0.0,
                    help="absolute tolerance of value checks (default 0: exact)")
+    p.add_argument("--node-ids", type=id_list, default=False, metavar="LIST|none",
+                   help="the deck numbers of the points, in order (e.g. 11-25,101,300), or "
+                        "'none': the file has no node_id")
+    p.add_argument("--free", type=id_list, default=[], metavar="LIST",
+                   help="with --node-ids: the nodes no cell uses (every other point is in a cell)")
     return p.parse_args(argv)
 
 
@@ -119,6 +145,41 @@ class Series:
     def mesh(self, k):
         g = self.grids[k]
         return self.item(g.find("Geometry/DataItem")), self.item(g.find("Topology/DataItem"))
+
+
+def check_node_ids(args, last, series, expect):
+    """--node-ids and --free: the points are exactly the deck's nodes (no orphan point)."""
+    import h5py
+    import numpy as np
+    want = args.node_ids
+    stem = args.xdmf[:-5] if args.xdmf.endswith(".xdmf") else args.xdmf
+    with h5py.File(stem + ".h5", "r") as f:
+        got_h5 = f["mesh/node_id"][()] if "mesh/node_id" in f else None
+        nnode = int(f.attrs["nnode"])
+    if want is None:
+        expect(got_h5 is None, ".h5: /mesh/node_id present, want none (numbers 1..n)")
+        expect(last is None or "node_id" not in last.point_data, "last: a node_id point field")
+        return
+    expect(got_h5 is not None and np.array_equal(got_h5, want),
+           f".h5: /mesh/node_id {None if got_h5 is None else got_h5.tolist()}, want {want}")
+    expect(nnode == len(want), f".h5: nnode {nnode}, want {len(want)}")
+    if last is not None:
+        ids = last.point_data.get("node_id")
+        expect(len(last.points) == len(want), f"last: {len(last.points)} points, want {len(want)}")
+        expect(ids is not None and np.array_equal(np.asarray(ids).ravel(), want),
+               f"last: node_id {None if ids is None else np.asarray(ids).ravel().tolist()}, want {want}")
+        used = np.zeros(len(last.points), dtype=bool)
+        for block in last.cells:
+            used[np.asarray(block.data).ravel()] = True
+        unused = sorted(np.asarray(want)[~used].tolist()) if len(want) == len(used) else None
+        expect(unused == sorted(args.free),
+               f"last: points used by no cell are nodes {unused}, want {sorted(args.free)}")
+    if series is not None and len(series.grids) > 0:
+        k = len(series.grids) - 1
+        ids = series.attributes(k).get(("node_id", "Node"))
+        pts, _ = series.mesh(k)
+        expect(len(pts) == len(want) and ids is not None and np.array_equal(ids.ravel(), want),
+               "series: the points of the last output are not the nodes of --node-ids")
 
 
 def main(argv=None):
@@ -203,6 +264,8 @@ def main(argv=None):
                 failures.append(f"cell field {name} missing at output {k}")
                 continue
             expect(close(got, want), f"{name}[{cell}] at output {k}: got {float(got)!r}, want {want}")
+        if args.node_ids is not False:
+            check_node_ids(args, last, series, expect)
         if args.convert and last is not None:
             cli = shutil.which("meshio", path=os.path.dirname(sys.executable)) or shutil.which("meshio")
             if cli is None:

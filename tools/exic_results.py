@@ -230,7 +230,7 @@ def boundary_edges(conn, elems):
 def penetration_history(h5path):
     """Largest depth of any boundary node of one region inside another region, at every field
     output time, measured from the deformed mesh alone (independent of the contact search):
-    (t, depth, (node 1-based, its region, region entered) of the deepest at each time)."""
+    (t, depth, (node's deck number, its region, region entered) of the deepest at each time)."""
     with h5py.File(h5path, "r") as f:
         nt = complete_times(f)
         x0 = f["mesh/coordinates"][()]
@@ -238,6 +238,8 @@ def penetration_history(h5path):
         reg = f["mesh/region"][()]
         times = f["time"][:nt]
         disp = f["fields/displacement"][:nt]
+        # deck numbers of the points: /mesh/node_id when the numbering has gaps (doc/fields.md)
+        node_id = f["mesh/node_id"][()] if "mesh/node_id" in f else np.arange(1, len(x0) + 1)
     regions = np.unique(reg)
     bnd = {r: boundary_edges(conn, np.nonzero(reg == r)[0]) for r in regions}
     bnodes = {r: np.unique(bnd[r].ravel()) for r in regions}
@@ -276,7 +278,7 @@ def penetration_history(h5path):
                 j = int(np.argmax(dist))
                 if dist[j] > depth[k]:
                     depth[k] = dist[j]
-                    who[k] = (int(nodes[inside][j]) + 1, int(q), int(r))
+                    who[k] = (int(node_id[nodes[inside][j]]), int(q), int(r))
     return times, depth, who
 
 

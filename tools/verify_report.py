@@ -602,7 +602,7 @@ def section_75(ctx):
 # --- 1-D decks ----------------------------------------------------------------------------------
 def impulse_measures(t, f, fexact):
     """Impulse-based mean force and duration (first contact to the last crossing of half the
-    exact force), as in test/test_contact.f90."""
+    exact force), as in test/contact/test_contact.f90."""
     impulse = 0.0
     n = len(t)
     t_end = t[0]
@@ -622,7 +622,7 @@ def section_1d(ctx):
            "Z = 31.623), v0 = 0.1, bars 30 x 4. Exact values from wave theory "
            "(doc/contact-verification.md); the mean force is the impulse over the contact "
            "time, the contact ends at the last crossing of half the exact force. Tolerances "
-           "are those of the test suite (`test/test_inputs.f90` runs these decks).\n"]
+           "are those of the test suite (`test/input/test_inputs.f90` runs these decks).\n"]
     E, rho, v0, L, H = 1e4, 0.1, 0.1, 30.0, 4.0
     c = math.sqrt(E / rho)
     Z = rho * c

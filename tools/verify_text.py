@@ -100,21 +100,22 @@ def differences(ctx):
     l30, l60 = loss.get("wall_30x6", float("nan")), loss.get("wall_60x12", float("nan"))
     rises = getattr(ctx, "recaptures_72", (0, 0))
     return f"""
-## Faults these examples found in exic (fixed)
+## Two contact rules these examples test
 
-Running the seed's examples brought two faults of the contact step to light; both are fixed and
-tested in `test/test_inputs.f90` (doc/decisions.md, section Contact):
+The seed's examples depend on two rules of the contact step, tested in
+`test/input/test_inputs.f90` (these decks) and `test/contact/test_corrector.f90`
+(doc/decisions.md, section Contact):
 
-- **Nodes lost behind a turning face (7.2).** A slave node found behind a master segment at the
-  start of a step was caught only if no deeper than 1e-6 of a segment. The frozen normal leaves
-  the struck corners of 7.2 about 1e-4 behind the indented face after a step; they were given up
-  and sank into the vertical bar (0.25 deep within ten steps; only the centre node kept contact).
-  The depth is now 0.1 of a segment.
-- **Released constraints never re-checked (7.4).** The corrector's active-set loop released
-  every tensile multiplier at once and did not re-check the gaps of the released ones. Two nearly
-  dependent constraints (the coincident bar ends, two-pass) both came out tensile, both were
-  dropped, and the bar ends passed through each other by 0.05. The loop is now block principal
-  pivoting, which solves the complementarity problem exactly.
+- **A node behind a turning face is caught up to 0.1 of a segment deep (7.2).** A slave node
+  found behind a master segment at the start of a step stays a candidate when it is no deeper
+  than 0.1 of a segment. The frozen normal leaves the struck corners of 7.2 about 1e-4 behind the
+  indented face after a step: with a limit of 1e-6 of a segment they are given up and sink into
+  the vertical bar (0.25 deep within ten steps; only the centre node keeps contact).
+- **The active set solves the complementarity problem exactly (7.4).** The corrector finds it
+  by block principal pivoting, which re-checks the gap of every released constraint. Releasing
+  every tensile multiplier at once without that check drops both of two nearly dependent
+  constraints that come out tensile (the coincident bar ends, two-pass), and the bar ends pass
+  through each other by 0.05.
 
 ## Where exic differs from the seed's description
 

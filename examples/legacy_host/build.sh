@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install exic into PREFIX (tools/install.sh: the program, the library, the module files and
 # the C header) and build the legacy hosts against that installation into OUT. Used by the test
-# suite (test/test_legacy.f90):
+# suite (test/legacy/test_legacy.f90):
 #   examples/legacy_host/build.sh PREFIX OUT
 # The fpm command is $EXIC_FPM if set (make test sets it to the project's .venv/bin/fpm),
 # else fpm on PATH. The default (debug) profile is used, the one `fpm test` has built.

@@ -21,10 +21,11 @@ C     STABLE STEP, RECOMPUTED EVERY STEP. IVFORM 1: FULL-STEP VELOCITIES
 C     V(N) (EXIC'S SCHEME); 2: HALF-STEP VELOCITIES V(N+1/2) (DYNA'S).
 C     METHOD 3 (LAGRANGE WITH MASSLESS CONTACT FACES, EXIC'S
 C     LAGRANGE,ENERGY): THE NF NODES GIVEN ARE THE CANDIDATE FACE; LHOST
-C     DROPS RIGID AND FIXED NODES AND THOSE OF ELEMENTS WITH EVERY NODE
-C     ON THE FACE, MOVES THE FACE NODES' MASS TO THE OTHER NODES OF
-C     THEIR ELEMENTS, HANDS EXIC THE FACE ROWS OF ITS INITIAL (LINEAR)
-C     STIFFNESS AND STEPS WITH EXIC_CONTACT_STEP_FACE (R = -FINT).
+C     DROPS RIGID AND FIXED NODES, TAKES THE MASSLESS DOFS OF THE RULE OF
+C     DECKS (EXIC_CONTACT_FACE_RULE), MOVES THEIR MASS PER DIRECTION TO
+C     THE OTHER NODES OF THEIR ELEMENTS, HANDS EXIC THE FACE ROWS OF ITS
+C     INITIAL (LINEAR) STIFFNESS (EXIC_CONTACT_SET_FACE_DOFS) AND STEPS
+C     WITH EXIC_CONTACT_STEP_FACE (R = -FINT).
 C     OUTPUT ON UNIT 6: ONE ROW PER STEP,
 C       T  UX VX AX (NODE ITIP)  FN NACT PEN PMAX (PAIR 1)  GMIN
 C     GMIN IS THE SMALLEST CORRECTED GAP AT T(N+2) OF THE CONSTRAINTS
@@ -42,18 +43,19 @@ C
       CALL LMASS
       CALL MKPAIR(IH, IERR)
       IF (IERR .NE. 0) GOTO 900
+      CALL EXIC_CONTACT_SET_FIXED(IH, NNODE, IFIX, IERR)
+      IF (IERR .NE. 0) GOTO 900
       IF (NFACE .GT. 0) THEN
-         CALL FACESU
-         CALL EXIC_CONTACT_SET_FACE(IH, NNODE, AMASS, NFACE, IFACE, KRP,
-     &                              KCI, KVAL, IERR)
+         CALL FACESU(IH, IERR)
+         IF (IERR .NE. 0) GOTO 900
+         CALL EXIC_CONTACT_SET_FACE_DOFS(IH, NNODE, AMASD, NFACE, IFACE,
+     &                                   IFDF, KRP, KCI, KVAL, IERR)
          IF (IERR .NE. 0) GOTO 900
       END IF
       IF (IVF .EQ. 2) THEN
          CALL EXIC_CONTACT_SET_OPTION(IH, 1, 2, IERR)
          IF (IERR .NE. 0) GOTO 900
       END IF
-      CALL EXIC_CONTACT_SET_FIXED(IH, NNODE, IFIX, IERR)
-      IF (IERR .NE. 0) GOTO 900
 C
 C     T = 0: FORCES, STEP, PREDICTED AND CORRECTED A(0) (DT(N) = 0)
       T = 0.0D0
@@ -194,77 +196,89 @@ C     FACES EXIC_CONTACT_STEP_FACE WITH R = F_EXT - F_INT = -FINT
       END
 C
 C=======================================================================
-      SUBROUTINE FACESU
-C     MASSLESS FACES (DOC/IMPACT.MD 3.1-3.2): KEEP THE CANDIDATES THAT
-C     ARE NEITHER RIGID NOR FIXED AND NOT IN AN ELEMENT WITH EVERY NODE
-C     ON THE FACE; MOVE THEIR LUMPED MASS TO THE OTHER NODES OF EACH
-C     ELEMENT IN PROPORTION TO THEIR OWN (EQ. I.3); THE FACE ROWS OF THE
-C     INITIAL STIFFNESS (THE LINEAR ONE, ALSO THE NEO-HOOKEAN TANGENT AT
-C     F = 1) IN CSR, ROW 2(K-1)+D FOR DOF D OF FACE NODE K.
+      SUBROUTINE FACESU(IH, IERR)
+C     MASSLESS FACES (DOC/IMPACT.MD 3.1-3.2): OF THE CANDIDATES THAT ARE
+C     NEITHER RIGID NOR FIXED, THE DOFS THE RULE OF DECKS MAKES MASSLESS
+C     (EXIC_CONTACT_FACE_RULE: ALONG THE NORMAL, AGAINST RIGID BODIES ON
+C     THE SEGMENTS THAT FACE THEM, NOT IN AN ELEMENT WITH EVERY NODE
+C     MASSLESS ALONG THAT DOF); MOVE THEIR LUMPED MASS PER DIRECTION TO
+C     THE OTHER NODES OF EACH ELEMENT IN PROPORTION TO THEIR OWN (EQ.
+C     I.3); THE FACE ROWS OF THE INITIAL STIFFNESS (THE LINEAR ONE, ALSO
+C     THE NEO-HOOKEAN TANGENT AT F = 1) IN CSR, ROW 2(K-1)+D FOR DOF D
+C     OF FACE NODE K.
       IMPLICIT NONE
       INCLUDE 'host.inc'
+      INTEGER IH, IERR
       LOGICAL CAND(MXNODE)
-      INTEGER I, K, E, N, NC, L, D, R, B, DD, POS(2*MXFACE)
+      INTEGER I, K, E, N, L, D, R, B, DD, POS(2*MXFACE)
       DOUBLE PRECISION ME(4), MOVED, KEEP, KE(8,8)
+      CALL EXIC_CONTACT_FACE_RULE(IH, NNODE, IFDOF, IERR)
+      IF (IERR .NE. 0) RETURN
       DO 10 I = 1, NNODE
          CAND(I) = .FALSE.
          IFR(I) = 0
+         AMASD(1,I) = AMASS(I)
+         AMASD(2,I) = AMASS(I)
    10 CONTINUE
       DO 20 K = 1, NFACE
          I = IFACE(K)
          IF (.NOT. RIGID(I) .AND. IFIX(1,I) .EQ. 0 .AND.
      &       IFIX(2,I) .EQ. 0) CAND(I) = .TRUE.
    20 CONTINUE
-      DO 30 E = 1, NELEM
-         IF (KIND(IMAT(E)) .EQ. 0) GOTO 30
-         IF (CAND(IX(1,E)) .AND. CAND(IX(2,E)) .AND. CAND(IX(3,E))
-     &       .AND. CAND(IX(4,E))) THEN
-            DO 25 K = 1, 4
-               IFR(IX(K,E)) = -1
-   25       CONTINUE
-         END IF
-   30 CONTINUE
       NFACE = 0
       DO 40 I = 1, NNODE
-         IF (CAND(I) .AND. IFR(I) .EQ. 0) THEN
+         IF (.NOT. CAND(I)) THEN
+            IFDOF(1,I) = 0
+            IFDOF(2,I) = 0
+         END IF
+         IF (IFDOF(1,I) + IFDOF(2,I) .GT. 0) THEN
             NFACE = NFACE + 1
             IFACE(NFACE) = I
+            IFDF(1,NFACE) = IFDOF(1,I)
+            IFDF(2,NFACE) = IFDOF(2,I)
             IFR(I) = NFACE
-         ELSE
-            IFR(I) = 0
          END IF
    40 CONTINUE
-C     MASS TRANSFER AND ROW LENGTHS (8 ENTRIES PER ELEMENT AND FACE DOF)
+C     MASS TRANSFER PER DIRECTION AND ROW LENGTHS (8 ENTRIES PER ELEMENT
+C     AND FACE DOF)
       DO 50 R = 1, 2*NFACE
          POS(R) = 0
    50 CONTINUE
       DO 70 E = 1, NELEM
          IF (KIND(IMAT(E)) .EQ. 0) GOTO 70
-         NC = 0
+         N = 0
          DO 55 K = 1, 4
-            IF (IFR(IX(K,E)) .GT. 0) NC = NC + 1
+            IF (IFR(IX(K,E)) .GT. 0) N = N + 1
    55    CONTINUE
-         IF (NC .EQ. 0) GOTO 70
+         IF (N .EQ. 0) GOTO 70
          CALL EMASS(E, ME)
-         MOVED = 0.0D0
-         KEEP = 0.0D0
-         DO 60 K = 1, 4
-            IF (IFR(IX(K,E)) .GT. 0) THEN
-               MOVED = MOVED + ME(K)
-            ELSE
-               KEEP = KEEP + ME(K)
-            END IF
-   60    CONTINUE
-         DO 65 K = 1, 4
+         DO 68 D = 1, 2
+            MOVED = 0.0D0
+            KEEP = 0.0D0
+            DO 60 K = 1, 4
+               IF (IFDOF(D,IX(K,E)) .EQ. 1) THEN
+                  MOVED = MOVED + ME(K)
+               ELSE
+                  KEEP = KEEP + ME(K)
+               END IF
+   60       CONTINUE
+            IF (MOVED .EQ. 0.0D0) GOTO 68
+            DO 65 K = 1, 4
+               I = IX(K,E)
+               IF (IFDOF(D,I) .EQ. 1) THEN
+                  AMASD(D,I) = AMASD(D,I) - ME(K)
+               ELSE
+                  AMASD(D,I) = AMASD(D,I) + MOVED*ME(K)/KEEP
+               END IF
+   65       CONTINUE
+   68    CONTINUE
+         DO 69 K = 1, 4
             I = IX(K,E)
             IF (IFR(I) .GT. 0) THEN
-               AMASS(I) = AMASS(I) - ME(K)
                POS(2*IFR(I)-1) = POS(2*IFR(I)-1) + 8
                POS(2*IFR(I)) = POS(2*IFR(I)) + 8
-            ELSE
-               AMASS(I) = AMASS(I) + MOVED*ME(K)/KEEP
             END IF
-   65    CONTINUE
+   69    CONTINUE
    70 CONTINUE
       KRP(1) = 1
       DO 75 R = 1, 2*NFACE
@@ -298,18 +312,16 @@ C     MASS TRANSFER AND ROW LENGTHS (8 ENTRIES PER ELEMENT AND FACE DOF)
    89       CONTINUE
    90    CONTINUE
    95 CONTINUE
-C     THE FACE NODES CARRY NO MASS: NO PREDICTED ACCELERATION
-      DO 99 K = 1, NFACE
-         I = IFACE(K)
-         AMASS(I) = 0.0D0
-         AMINV(1,I) = 0.0D0
-         AMINV(2,I) = 0.0D0
-   99 CONTINUE
+C     THE MASSLESS DOFS CARRY NO MASS: NO PREDICTED ACCELERATION
       DO 100 I = 1, NNODE
-         IF (IFR(I) .EQ. 0 .AND. AMINV(1,I) .GT. 0.0D0)
-     &      AMINV(1,I) = 1.0D0/AMASS(I)
-         IF (IFR(I) .EQ. 0 .AND. AMINV(2,I) .GT. 0.0D0)
-     &      AMINV(2,I) = 1.0D0/AMASS(I)
+         DO 99 D = 1, 2
+            IF (IFDOF(D,I) .EQ. 1) THEN
+               AMASD(D,I) = 0.0D0
+               AMINV(D,I) = 0.0D0
+            ELSE IF (AMINV(D,I) .GT. 0.0D0) THEN
+               AMINV(D,I) = 1.0D0/AMASD(D,I)
+            END IF
+   99    CONTINUE
   100 CONTINUE
       RETURN
       END
@@ -764,7 +776,12 @@ C     LINEAR W = 1/2 EPS : D : EPS, AT THE 2X2 GAUSS POINTS
       INTEGER I, E, G, K
       EKIN = 0.0D0
       DO 10 I = 1, NNODE
-         EKIN = EKIN + 0.5D0*AMASS(I)*(V(1,I)**2 + V(2,I)**2)
+         IF (NFACE .GT. 0) THEN
+            EKIN = EKIN + 0.5D0*(AMASD(1,I)*V(1,I)**2 +
+     &                           AMASD(2,I)*V(2,I)**2)
+         ELSE
+            EKIN = EKIN + 0.5D0*AMASS(I)*(V(1,I)**2 + V(2,I)**2)
+         END IF
    10 CONTINUE
       ESTR = 0.0D0
       DO 40 E = 1, NELEM

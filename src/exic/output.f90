@@ -16,6 +16,7 @@ module exic_output
    use exic_mesh_edge_set, only: find_edge_set, edge_set_nodes
    use exic_output_text_history, only: history_files_t
    use exic_output_fields, only: field_writer_t, STRESS_NAMES
+   use exic_output_fields_nodes, only: written_nodes, renumbered
    use exic_base_posix, only: file_kind, FILE_MISSING
    use exic_explicit_step, only: stepper_t, first_nonfinite
    use exic_explicit_assembly, only: element_stress, all_stresses, NSIG, energy_balance
@@ -49,6 +50,9 @@ module exic_output
       integer, allocatable :: region_of_node(:)     !< region of the elements that use each node
       type(node_list_t), allocatable :: sums(:)     !< nodes of each reaction-sum request
       real(wp) :: field_dt = 0.0_wp                 !< OUTPut,HDF5 interval (0: no field output)
+      !> the node numbers the field output writes when some numbers are unused (gaps), in
+      !> increasing order; unallocated: every number 1..nnode (exic_output_fields_nodes)
+      integer, allocatable :: field_nodes(:)
       real(wp) :: field_next = 0.0_wp               !< time of the next field output
       real(wp) :: field_last = -huge(1.0_wp)        !< time of the last field output
       real(wp) :: field_t0 = 0.0_wp                 !< time of OUTPut,HDF5 (the schedule's origin)
@@ -107,6 +111,8 @@ contains
       logical, intent(out) :: fresh
       type(error_t), allocatable, intent(out) :: err
       character(len=:), allocatable :: present_files, missing
+      real(wp), allocatable :: x(:, :)
+      integer, allocatable :: conn(:, :), edges(:, :)
       self%base = base
       self%files%with = model_energies(model%materials)
       present_files = ''
@@ -131,23 +137,27 @@ contains
       end if
       ! the .h5 first: when it cannot be continued, the text files stay as they are
       if (self%field_dt > 0.0_wp) then
+         call field_mesh(self, model, stp, x, conn, edges)
          if (allocated(stp%st%status)) then
-            call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
-                                    model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
+            call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', size(x, 2), &
+                                    model%mesh%nelem, x, conn, self%saved_field_times, &
                                     pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, cell_names=status_names(stp), &
                                     friction=stp%contact%friction, &
-                                    capacity=expected_field_times(model, stp%st%t, self%field_dt))
+                                    capacity=expected_field_times(model, stp%st%t, self%field_dt), &
+                                    node_id=self%field_nodes)
          else if (stp%st%has_plastic) then
-            call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
-                                    model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
+            call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', size(x, 2), &
+                                    model%mesh%nelem, x, conn, self%saved_field_times, &
                                     pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, cell_names=PLASTIC_CELL_NAMES, &
                                     friction=stp%contact%friction, &
-                                    capacity=expected_field_times(model, stp%st%t, self%field_dt))
+                                    capacity=expected_field_times(model, stp%st%t, self%field_dt), &
+                                    node_id=self%field_nodes)
          else
-            call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
-                                    model%mesh%nelem, model%mesh%x, model%mesh%conn, self%saved_field_times, &
+            call self%fields%reopen(self%base//'.h5', self%base//'.xdmf', size(x, 2), &
+                                    model%mesh%nelem, x, conn, self%saved_field_times, &
                                     pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, friction=stp%contact%friction, &
-                                    capacity=expected_field_times(model, stp%st%t, self%field_dt))
+                                    capacity=expected_field_times(model, stp%st%t, self%field_dt), &
+                                    node_id=self%field_nodes)
          end if
          if (allocated(err)) return
       end if
@@ -410,27 +420,52 @@ contains
       type(model_t), intent(in) :: model
       type(stepper_t), intent(in) :: stp
       type(error_t), allocatable, intent(out) :: err
+      real(wp), allocatable :: x(:, :)
+      integer, allocatable :: conn(:, :), edges(:, :)
+      call field_mesh(self, model, stp, x, conn, edges)
       if (allocated(stp%st%status)) then
          ! erosion: the element status as one more element value (doc/erosion.md)
-         call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
-                               model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
-                               model%mesh%mat, stp%contact%edges(), err, cell_names=status_names(stp), &
+         call self%fields%open(self%base//'.h5', self%base//'.xdmf', size(x, 2), &
+                               model%mesh%nelem, x, conn, model%mesh%region, &
+                               model%mesh%mat, edges, err, cell_names=status_names(stp), &
                                energy_names=pack(ENERGY_NAMES, energy_mask(stp, self%files)), &
-                               friction=stp%contact%friction, capacity=expected_field_times(model, stp%st%t, self%field_dt))
+                               friction=stp%contact%friction, capacity=expected_field_times(model, stp%st%t, self%field_dt), &
+                               node_id=self%field_nodes)
       else if (stp%st%has_plastic) then
-         call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
-                               model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
-                               model%mesh%mat, stp%contact%edges(), err, cell_names=PLASTIC_CELL_NAMES, &
+         call self%fields%open(self%base//'.h5', self%base//'.xdmf', size(x, 2), &
+                               model%mesh%nelem, x, conn, model%mesh%region, &
+                               model%mesh%mat, edges, err, cell_names=PLASTIC_CELL_NAMES, &
                                energy_names=pack(ENERGY_NAMES, energy_mask(stp, self%files)), friction=stp%contact%friction, &
-                               capacity=expected_field_times(model, stp%st%t, self%field_dt))
+                               capacity=expected_field_times(model, stp%st%t, self%field_dt), node_id=self%field_nodes)
       else
-         call self%fields%open(self%base//'.h5', self%base//'.xdmf', model%mesh%nnode, &
-                               model%mesh%nelem, model%mesh%x, model%mesh%conn, model%mesh%region, &
-                               model%mesh%mat, stp%contact%edges(), err, &
+         call self%fields%open(self%base//'.h5', self%base//'.xdmf', size(x, 2), &
+                               model%mesh%nelem, x, conn, model%mesh%region, &
+                               model%mesh%mat, edges, err, &
                                energy_names=pack(ENERGY_NAMES, energy_mask(stp, self%files)), friction=stp%contact%friction, &
-                               capacity=expected_field_times(model, stp%st%t, self%field_dt))
+                               capacity=expected_field_times(model, stp%st%t, self%field_dt), node_id=self%field_nodes)
       end if
    end subroutine create_fields
+
+   !> The mesh of the field output (doc/fields.md, "Node numbers"): with unused node numbers,
+   !> the nodes alone (self%field_nodes: their numbers), the connectivity and contact edges
+   !> renumbered to them; otherwise the mesh as it is.
+   subroutine field_mesh(self, model, stp, x, conn, edges)
+      type(output_t), intent(inout) :: self
+      type(model_t), intent(in) :: model
+      type(stepper_t), intent(in) :: stp
+      real(wp), allocatable, intent(out) :: x(:, :)
+      integer, allocatable, intent(out) :: conn(:, :), edges(:, :)
+      call written_nodes(model%mesh%defined, self%field_nodes)
+      edges = stp%contact%edges()
+      if (allocated(self%field_nodes)) then
+         x = model%mesh%x(:, self%field_nodes)
+         conn = renumbered(model%mesh%conn, self%field_nodes, model%mesh%nnode)
+         edges = renumbered(edges, self%field_nodes, model%mesh%nnode)
+      else
+         x = model%mesh%x
+         conn = model%mesh%conn
+      end if
+   end subroutine field_mesh
 
    !> The number of field output times a run writes from t on, every dt_out, up to the end time
    !> of its BATCh program (its largest TIME), plus the final state: the room the field file is
@@ -536,6 +571,7 @@ contains
       logical, intent(out), optional :: nonfinite   !< the error is a non-finite value (nothing written)
       real(wp), allocatable :: sig(:, :)
       integer, allocatable :: flag(:)
+      real(wp), allocatable :: u(:, :), v(:, :), acc(:, :), fcon(:, :), ffric(:, :)
       real(wp) :: energies(NENERGY)
       integer :: nc
       associate (st => stp%st)
@@ -558,17 +594,41 @@ contains
             return
          end if
          flag = merge(1, 0, st%fcon(1, :) /= 0.0_wp .or. st%fcon(2, :) /= 0.0_wp)
-         if (stp%contact%friction) then
-            call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                        pack(energies, energy_mask(stp, self%files)), &
-                                        pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, stp%contact%ffric)
+         if (allocated(self%field_nodes)) then
+            ! the nodes alone (field_mesh)
+            associate (k => self%field_nodes)
+               u = st%u(:, k)
+               v = st%v(:, k)
+               acc = st%a(:, k)
+               fcon = st%fcon(:, k)
+               flag = flag(k)
+               if (stp%contact%friction) then
+                  ffric = stp%contact%ffric(:, k)
+                  call put(u, v, acc, fcon, flag, ffric)
+               else
+                  call put(u, v, acc, fcon, flag)
+               end if
+            end associate
+         else if (stp%contact%friction) then
+            call put(st%u, st%v, st%a, st%fcon, flag, stp%contact%ffric)
          else
-            call self%fields%write_step(st%t, st%step, st%u, st%v, st%a, sig, st%fcon, flag, &
-                                        pack(energies, energy_mask(stp, self%files)), &
-                                        pack(ENERGY_NAMES, energy_mask(stp, self%files)), err)
+            call put(st%u, st%v, st%a, st%fcon, flag)
          end if
          self%field_last = st%t
       end associate
+
+   contains
+
+      !> One output time of the nodal values given (every node, or the nodes of field_mesh).
+      subroutine put(u, v, a, fcon, active, ffric)
+         real(wp), intent(in), contiguous :: u(:, :), v(:, :), a(:, :), fcon(:, :)
+         integer, intent(in), contiguous :: active(:)
+         real(wp), intent(in), contiguous, optional :: ffric(:, :)
+         call self%fields%write_step(stp%st%t, stp%st%step, u, v, a, sig, fcon, active, &
+                                     pack(energies, energy_mask(stp, self%files)), &
+                                     pack(ENERGY_NAMES, energy_mask(stp, self%files)), err, ffric)
+      end subroutine put
+
    end subroutine write_fields
 
    !> The final state: its history row and fields, unless already written.

@@ -2,7 +2,7 @@
 """Rerun the scenes of a campaign that stopped, with the generator's hourglass record of today
 (doc/stability.md, section 1b).
 
-    tools/stress/hourglass_rerun.py --scenes doc/stability/scenes.json [--exic PATH]
+    tools/stress/hourglass_rerun.py --scenes doc/stability/scenes_20261124.json [--exic PATH]
                                     [--hourglass 'HOURglass,PHYSical']
                                     [--out doc/stability/hourglass_<seed>.json]
 

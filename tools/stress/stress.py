@@ -118,6 +118,16 @@ def judge_scene(r):
     return f
 
 
+def report_commit():
+    """The commit the campaign runs on (its results name it: doc/stability.md)."""
+    import subprocess
+    try:
+        return subprocess.run(["git", "-C", ROOT, "log", "-1", "--format=%h"], capture_output=True,
+                              text=True, timeout=10).stdout.strip() or "?"
+    except Exception:  # noqa: BLE001
+        return "?"
+
+
 def run_scenes(exic, seed, n, jobs, timeout):
     log(f"scenes: {n} random scenes of seed {seed}, timeout {timeout} s, {jobs} at a time")
     t0 = time.time()
@@ -137,7 +147,7 @@ def run_scenes(exic, seed, n, jobs, timeout):
                 log(f"  {k}/{n} scenes, {time.time() - t0:.0f} s")
     results.sort(key=lambda r: r["index"])
     data = {"seed": seed, "count": n, "timeout": timeout, "seconds": round(time.time() - t0, 1),
-            "scenes": results}
+            "commit": report_commit(), "metals": scenes.METALS, "scenes": results}
     save("scenes", data)
     save_failing_scenes(results, decks, seed)
     return data

@@ -29,7 +29,7 @@ module exic_contact_contact
                                 DETECT_SWEPT, DETECT_STATIC, pair_spec_t, contact_spec_t, spec_penalty_finite
    use exic_mesh_boundary, only: free_edges, free_edges_of, bodies_elements, &
                                  surface_nodes, segment_links, locate_nodes, node_normals, &
-                                 node_segments, normal_dofs
+                                 node_segments
    use exic_contact_broad, only: broad_t, broad_search, broad_search_kept, drop_flat_fixed
    use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: contact_set_t, detect_contacts
@@ -174,6 +174,33 @@ module exic_contact_contact
          integer, intent(in) :: nnode, k1, k2
          real(wp), intent(in) :: x(2, nnode), minv(2, nnode)
       end subroutine narrow_passes
+
+      !> The corrector's solve with massless faces, detecting again on the corrected positions
+      !> (src/exic/contact/faces.f90).
+      module subroutine face_solve(self, nnode, x, minv, c, a, fcon, err, rb)
+         type(contact_t), intent(inout) :: self
+         integer, intent(in) :: nnode
+         real(wp), intent(in) :: x(2, nnode), minv(2, nnode), c
+         real(wp), intent(inout) :: a(2, nnode), fcon(2, nnode)
+         type(error_t), allocatable, intent(out) :: err
+         type(rigid_dofs_t), intent(inout), optional :: rb
+      end subroutine face_solve
+
+      !> Candidate nodes of the massless faces (src/exic/contact/faces.f90).
+      module function contact_face_nodes(self, nnode) result(on)
+         class(contact_t), intent(in) :: self
+         integer, intent(in) :: nnode
+         logical :: on(nnode)
+      end function contact_face_nodes
+
+      !> Massless dofs of the faces, eq. I.3a and I.3b (src/exic/contact/faces.f90).
+      module function contact_face_dofs(self, nnode, x, rigid) result(dofs)
+         class(contact_t), intent(in) :: self
+         integer, intent(in) :: nnode
+         real(wp), intent(in) :: x(2, nnode)
+         logical, intent(in) :: rigid(nnode)
+         logical :: dofs(2, nnode)
+      end function contact_face_dofs
    end interface
 
 contains
@@ -579,7 +606,7 @@ contains
          if (self%friction) then
             call self%fr%solve(self%corr, self%cs, nnode, minv, c, x, self%xp, a, fcon, self%ffric, err, rb)
          else if (self%face%active) then
-            call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb, self%face)
+            call face_solve(self, nnode, x, minv, c, a, fcon, err, rb)
          else
             call self%corr%solve(self%cs, nnode, minv, c, a, fcon, err, rb)
          end if
@@ -921,74 +948,5 @@ contains
          n = n + self%surfaces(k)%nseg
       end do
    end function contact_edges
-
-   !> Nodes of the surfaces (slave and master) of the passes that ask for LAGRange,ENERgy: the
-   !> candidates for massless faces (doc/impact.md, section 3.1; the caller removes rigid and
-   !> prescribed nodes and those of elements that would keep no mass).
-   function contact_face_nodes(self, nnode) result(on)
-      class(contact_t), intent(in) :: self
-      integer, intent(in) :: nnode
-      logical :: on(nnode)
-      integer :: k
-      on = .false.
-      if (.not. self%active) return
-      do k = 1, self%nfixed
-         if (.not. self%passes(k)%energy) cycle
-         on(self%surfaces(self%passes(k)%slave)%nodes) = .true.
-         on(self%surfaces(self%passes(k)%master)%nodes) = .true.
-      end do
-      ! AUTOmatic: every one of its surfaces can meet another one
-      if (self%auto_pass%auto .and. self%auto_pass%energy) then
-         do k = self%auto_first + 1, self%auto_first + self%auto%nsurf
-            on(self%surfaces(k)%nodes) = .true.
-         end do
-      end if
-   end function contact_face_nodes
-
-   !> The massless dofs of the surfaces of the passes that ask for LAGRange,ENERgy, at the
-   !> positions x (doc/impact.md, section 3.1); rigid(nnode): the nodes of rigid bodies. A surface
-   !> that meets a deformable body (a partner surface with a node not in `rigid`) is massless
-   !> along its normals only: dofs(d, i) when a segment at node i has a normal n with
-   !> |n_d| >= |n_other| (eq. I.3a; a node where the surface turns, a body's corner, gets both).
-   !> A surface that meets rigid bodies only is massless along both dofs.
-   function contact_face_dofs(self, nnode, x, rigid) result(dofs)
-      class(contact_t), intent(in) :: self
-      integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode)
-      logical, intent(in) :: rigid(nnode)
-      logical :: dofs(2, nnode)
-      ! per surface: 0 no ENERgy pass, 1 every partner rigid, 2 a deformable partner
-      integer :: meets(size(self%surfaces))
-      integer :: k, s, m, ndef
-      dofs = .false.
-      if (.not. self%active) return
-      meets = 0
-      do k = 1, self%nfixed
-         if (.not. self%passes(k)%energy) cycle
-         s = self%passes(k)%slave
-         m = self%passes(k)%master
-         meets(s) = max(meets(s), merge(2, 1, deformable(m)))
-         meets(m) = max(meets(m), merge(2, 1, deformable(s)))
-      end do
-      if (self%auto_pass%auto .and. self%auto_pass%energy) then
-         ! AUTOmatic: every one of its surfaces can meet every other one
-         ndef = 0
-         do k = self%auto_first + 1, self%auto_first + self%auto%nsurf
-            if (deformable(k)) ndef = ndef + 1
-         end do
-         do k = self%auto_first + 1, self%auto_first + self%auto%nsurf
-            meets(k) = max(meets(k), merge(2, 1, ndef - merge(1, 0, deformable(k)) > 0))
-         end do
-      end if
-      do k = 1, size(self%surfaces)
-         if (meets(k) == 1) dofs(:, self%surfaces(k)%nodes) = .true.
-         if (meets(k) == 2) call normal_dofs(nnode, x, self%surfaces(k)%nseg, self%surfaces(k)%seg, dofs)
-      end do
-   contains
-      logical function deformable(k)
-         integer, intent(in) :: k
-         deformable = .not. all(rigid(self%surfaces(k)%nodes))
-      end function deformable
-   end function contact_face_dofs
 
 end module exic_contact_contact

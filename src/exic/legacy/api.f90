@@ -97,6 +97,31 @@ subroutine exic_contact_set_face(ih, nnode, amass, nf, iface, irp, ici, val, ier
    call problem_set_face('EXIC_CONTACT_SET_FACE', ih, nnode, amass, nf, iface, irp, ici, val, ierr)
 end subroutine exic_contact_set_face
 
+!> EXIC_CONTACT_SET_FACE with the massless dofs per direction (doc/impact.md eq. I.3a, I.3b):
+!> AMASS(2, NNODE) the masses per dof after the transfer of eq. I.3 per direction, IFDOF(2, NF)
+!> 1 where dof d of IFACE(K) is massless, 0 where it keeps its mass.
+subroutine exic_contact_set_face_dofs(ih, nnode, amass, nf, iface, ifdof, irp, ici, val, ierr)
+   use exic_legacy_problem, only: problem_set_face_dofs
+   implicit none
+   integer, intent(in) :: ih, nnode, nf
+   double precision, intent(in) :: amass(2, nnode)
+   integer, intent(in) :: iface(nf), ifdof(2, nf), irp(2*nf + 1), ici(*)
+   double precision, intent(in) :: val(*)
+   integer, intent(out) :: ierr
+   call problem_set_face_dofs('EXIC_CONTACT_SET_FACE_DOFS', ih, nnode, amass, nf, iface, ifdof, irp, ici, val, ierr)
+end subroutine exic_contact_set_face_dofs
+
+!> IFDOF(2, NNODE): 1 on the dofs that the rule of decks (doc/impact.md section 3.1, eq. I.3a,
+!> I.3b) makes massless on the surfaces of the method-3 pairs, at the reference positions.
+subroutine exic_contact_face_rule(ih, nnode, ifdof, ierr)
+   use exic_legacy_problem, only: problem_face_rule
+   implicit none
+   integer, intent(in) :: ih, nnode
+   integer, intent(out) :: ifdof(2, nnode)
+   integer, intent(out) :: ierr
+   call problem_face_rule('EXIC_CONTACT_FACE_RULE', ih, nnode, ifdof, ierr)
+end subroutine exic_contact_face_rule
+
 !> EXIC_CONTACT_STEP of a handle with massless faces: R = f_ext - f_int at t(n+1) (read on the
 !> face dofs); on return A holds on the face dofs the acceleration that places them (eq. I.7).
 subroutine exic_contact_step_face(ih, nnode, x, v, a, r, dtprev, dt, fcon, nactive, ierr)

@@ -196,6 +196,31 @@ subroutine exic_c_contact_set_face(ih, nnode, amass, nf, iface, irp, ici, val, i
    call problem_set_face('exic_c_contact_set_face', ih, nnode, amass, nf, iface, irp, ici, val, ierr)
 end subroutine exic_c_contact_set_face
 
+!> C twin of exic_contact_set_face_dofs.
+subroutine exic_c_contact_set_face_dofs(ih, nnode, amass, nf, iface, ifdof, irp, ici, val, ierr) &
+   bind(C, name='exic_c_contact_set_face_dofs')
+   use, intrinsic :: iso_c_binding, only: c_int, c_double
+   use exic_legacy_problem, only: problem_set_face_dofs
+   implicit none
+   integer(c_int), value :: ih, nnode, nf
+   real(c_double), intent(in) :: amass(2, nnode)
+   integer(c_int), intent(in) :: iface(nf), ifdof(2, nf), irp(2*nf + 1), ici(*)
+   real(c_double), intent(in) :: val(*)
+   integer(c_int), intent(out) :: ierr
+   call problem_set_face_dofs('exic_c_contact_set_face_dofs', ih, nnode, amass, nf, iface, ifdof, irp, ici, val, ierr)
+end subroutine exic_c_contact_set_face_dofs
+
+!> C twin of exic_contact_face_rule.
+subroutine exic_c_contact_face_rule(ih, nnode, ifdof, ierr) bind(C, name='exic_c_contact_face_rule')
+   use, intrinsic :: iso_c_binding, only: c_int
+   use exic_legacy_problem, only: problem_face_rule
+   implicit none
+   integer(c_int), value :: ih, nnode
+   integer(c_int), intent(out) :: ifdof(2, nnode)
+   integer(c_int), intent(out) :: ierr
+   call problem_face_rule('exic_c_contact_face_rule', ih, nnode, ifdof, ierr)
+end subroutine exic_c_contact_face_rule
+
 !> C twin of exic_contact_step_face.
 subroutine exic_c_contact_step_face(ih, nnode, x, v, a, r, dtprev, dt, fcon, nactive, ierr) &
    bind(C, name='exic_c_contact_step_face')

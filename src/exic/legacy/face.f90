@@ -15,21 +15,23 @@ module exic_legacy_face
 contains
 
    !> spos(nnode) > 0 on contact surface nodes, rigid(nnode), fixed(2, nnode) of the handle;
-   !> mass, nf, iface, irp, ici, val as EXIC_CONTACT_SET_FACE. On success msg = '' and rp, ci,
-   !> v the face rows with sorted, merged columns; else msg says what is wrong.
-   subroutine check_face(nnode, spos, rigid, fixed, mass, nf, iface, irp, ici, val, rp, ci, v, msg)
+   !> mass(2, nnode) per dof, nf, iface, ifdof(2, nf) (1: massless dof), irp, ici, val as
+   !> EXIC_CONTACT_SET_FACE_DOFS. On success msg = '' and rp, ci, v the face rows with sorted,
+   !> merged columns; else msg says what is wrong. The symmetry of the face block is checked
+   !> between massless dofs (the rows of dofs with mass are not read).
+   subroutine check_face(nnode, spos, rigid, fixed, mass, nf, iface, ifdof, irp, ici, val, rp, ci, v, msg)
       integer, intent(in) :: nnode, nf
       integer, intent(in) :: spos(nnode), fixed(2, nnode)
       logical, intent(in) :: rigid(nnode)
-      real(wp), intent(in) :: mass(nnode)
-      integer, intent(in) :: iface(nf), irp(2*nf + 1), ici(*)
+      real(wp), intent(in) :: mass(2, nnode)
+      integer, intent(in) :: iface(nf), ifdof(2, nf), irp(2*nf + 1), ici(*)
       real(wp), intent(in) :: val(*)
       integer, allocatable, intent(out) :: rp(:), ci(:)
       real(wp), allocatable, intent(out) :: v(:)
       character(len=:), allocatable, intent(out) :: msg
       integer, allocatable :: fidx(:), trip(:, :)
       real(wp), allocatable :: vals(:)
-      integer :: k, i, r, q, nnz, nd, col, rt, qt
+      integer :: k, i, r, q, nnz, nd, col, rt, qt, d
       real(wp) :: vmax, vt
       logical :: found
       msg = ''
@@ -53,14 +55,24 @@ contains
                       'prescribed (doc/impact.md, section 3.1)')
             return
          end if
+         if (any(ifdof(:, k) /= 0 .and. ifdof(:, k) /= 1) .or. all(ifdof(:, k) == 0)) then
+            msg = ('IFDOF(:, '//itoa(k)//') of face node '//itoa(i)//' is '//itoa(ifdof(1, k))//', '// &
+                   itoa(ifdof(2, k))//' (each 0 or 1, one massless dof at least)')
+            return
+         end if
          fidx(i) = k
       end do
       do i = 1, nnode
-         if (fidx(i) /= 0) cycle
-         if (.not. (mass(i) > 0.0_wp .and. ieee_is_finite(mass(i)))) then
-            msg = ('mass of node '//itoa(i)//' (off the face) is '//rtoa(mass(i))//' (must be positive)')
-            return
-         end if
+         do d = 1, 2
+            if (fidx(i) /= 0) then
+               if (ifdof(d, fidx(i)) == 1) cycle
+            end if
+            if (.not. (mass(d, i) > 0.0_wp .and. ieee_is_finite(mass(d, i)))) then
+               msg = ('mass of node '//itoa(i)//' along dof '//itoa(d)//' (off the face) is '//rtoa(mass(d, i))// &
+                      ' (must be positive)')
+               return
+            end if
+         end do
       end do
       if (irp(1) /= 1 .or. any(irp(2:) < irp(:2*nf))) then
          msg = ('IRP must start at 1 and never decrease')
@@ -85,9 +97,11 @@ contains
       vmax = 0.0_wp
       if (size(v) > 0) vmax = maxval(abs(v))
       do r = 1, 2*nf
+         if (ifdof(2 - mod(r, 2), (r + 1)/2) /= 1) cycle
          do q = rp(r), rp(r + 1) - 1
             nd = (ci(q) + 1)/2
             if (fidx(nd) == 0) cycle
+            if (ifdof(ci(q) - 2*(nd - 1), fidx(nd)) /= 1) cycle
             rt = 2*(fidx(nd) - 1) + ci(q) - 2*(nd - 1)
             col = 2*(iface((r + 1)/2) - 1) + r - 2*((r + 1)/2 - 1)
             found = .false.
@@ -144,6 +158,8 @@ contains
          else
             p%xcor(:, p%spos(i)) = x(:, i) + dt*v(:, i) + c*a(:, i) - p%contact%xp(:, i)
          end if
+         ! a dof with mass moves by c M^-1 G p, which the queries add themselves
+         where (.not. p%ffree(:, k)) p%xcor(:, p%spos(i)) = 0.0_wp
       end do
    end subroutine face_motion
 

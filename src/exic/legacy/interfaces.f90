@@ -10,7 +10,7 @@ module exic_legacy_interfaces
    public :: exic_contact_pair_results, exic_contact_ncon, exic_contact_constraints
    public :: exic_contact_work, exic_contact_free, exic_contact_error_message
    public :: exic_contact_set_friction, exic_contact_pair_friction
-   public :: exic_contact_set_face, exic_contact_step_face
+   public :: exic_contact_set_face, exic_contact_step_face, exic_contact_set_face_dofs, exic_contact_face_rule
 
    interface
       !> See api.f90 and doc/api.md.
@@ -78,6 +78,24 @@ module exic_legacy_interfaces
          double precision, intent(in) :: val(*)
          integer, intent(out) :: ierr
       end subroutine exic_contact_set_face
+
+      !> See api.f90 and doc/api.md.
+      subroutine exic_contact_set_face_dofs(ih, nnode, amass, nf, iface, ifdof, irp, ici, val, ierr)
+         implicit none
+         integer, intent(in) :: ih, nnode, nf
+         double precision, intent(in) :: amass(2, nnode)
+         integer, intent(in) :: iface(nf), ifdof(2, nf), irp(2*nf + 1), ici(*)
+         double precision, intent(in) :: val(*)
+         integer, intent(out) :: ierr
+      end subroutine exic_contact_set_face_dofs
+
+      !> See api.f90 and doc/api.md.
+      subroutine exic_contact_face_rule(ih, nnode, ifdof, ierr)
+         implicit none
+         integer, intent(in) :: ih, nnode
+         integer, intent(out) :: ifdof(2, nnode)
+         integer, intent(out) :: ierr
+      end subroutine exic_contact_face_rule
 
       !> See api.f90 and doc/api.md.
       subroutine exic_contact_step_face(ih, nnode, x, v, a, r, dtprev, dt, fcon, nactive, ierr)

@@ -44,6 +44,7 @@ module exic_legacy_problem
    public :: problem_set_option, problem_step, problem_pair_results, problem_ncon
    public :: problem_constraints, problem_work, problem_free, problem_message
    public :: problem_set_friction, problem_pair_friction, problem_set_face, problem_step_face
+   public :: problem_set_face_dofs, problem_face_rule
 
    !> Option codes of problem_set_option.
    integer, parameter, public :: OPT_VELOCITY_FORM = 1
@@ -127,6 +128,27 @@ module exic_legacy_problem
          real(wp), intent(in) :: val(*)
          integer, intent(out) :: ierr
       end subroutine problem_set_face
+
+      !> problem_set_face with the massless dofs per direction: mass(2, nnode) per dof,
+      !> ifdof(2, nf) 1 on the massless dofs of iface(k) (doc/impact.md, eq. I.3a, I.3b).
+      module subroutine problem_set_face_dofs(who, h, nnode, mass, nf, iface, ifdof, irp, ici, val, ierr)
+         character(len=*), intent(in) :: who
+         integer, intent(in) :: h, nnode, nf
+         real(wp), intent(in) :: mass(2, nnode)
+         integer, intent(in) :: iface(max(nf, 0)), ifdof(2, max(nf, 0)), irp(2*max(nf, 0) + 1)
+         integer, intent(in) :: ici(*)
+         real(wp), intent(in) :: val(*)
+         integer, intent(out) :: ierr
+      end subroutine problem_set_face_dofs
+
+      !> ifdof(2, nnode): 1 on the dofs the deck's rule makes massless (doc/impact.md, section
+      !> 3.1) at the reference positions.
+      module subroutine problem_face_rule(who, h, nnode, ifdof, ierr)
+         character(len=*), intent(in) :: who
+         integer, intent(in) :: h, nnode
+         integer, intent(out) :: ifdof(2, nnode)
+         integer, intent(out) :: ierr
+      end subroutine problem_face_rule
 
       !> One contact step: x = x(n+1), v = v~(n+1) (or v(n+1/2), option 1), a = a~(n+1) on entry
       !> and a(n+1) on exit, dtprev = dt(n) (0 at t = 0), dt = dt(n+1); fcon = nodal contact

@@ -151,7 +151,7 @@ contains
       integer :: k
       p%nnode = nnode
       p%npair = npair
-      p%mass = mass
+      p%mass = spread(mass, 1, 2)
       allocate (p%fixed(2, nnode), source=0)
       p%x0 = x0
       allocate (p%minv(2, nnode), source=0.0_wp)

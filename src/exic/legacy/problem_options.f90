@@ -121,7 +121,8 @@ contains
    !> nodes (surface nodes, neither rigid nor prescribed), irp(2 nf + 1), ici, val the rows of
    !> the host's initial stiffness for the face dofs in 1-based CSR (row 2 (k-1) + d for dof d of
    !> iface(k), columns the global dofs 2 (i-1) + d). The face block must be symmetric; it is
-   !> factorized (SuiteSparse LDL) when the contact object is rebuilt here.
+   !> factorized (SuiteSparse LDL) when the contact object is rebuilt here. Both dofs of a face
+   !> node are massless.
    module subroutine problem_set_face(who, h, nnode, mass, nf, iface, irp, ici, val, ierr)
       character(len=*), intent(in) :: who
       integer, intent(in) :: h, nnode, nf
@@ -130,9 +131,69 @@ contains
       integer, intent(in) :: ici(*)
       real(wp), intent(in) :: val(*)
       integer, intent(out) :: ierr
+      call set_face(who, h, nnode, spread(mass, 1, 2), nf, iface, spread(spread(1, 1, max(nf, 0)), 1, 2), &
+                    irp, ici, val, ierr)
+   end subroutine problem_set_face
+
+   !> problem_set_face with massless dofs per direction (doc/impact.md, eq. I.3a, I.3b):
+   !> mass(2, nnode) the host's lumped masses per dof after the transfer of eq. I.3 per direction
+   !> (> 0 on every dof with mass, ignored on the massless ones), ifdof(2, nf) 1 where dof d of
+   !> iface(k) is massless, 0 where it keeps its mass (every face node has one massless dof at
+   !> least); the rows of the dofs with mass are not read.
+   module subroutine problem_set_face_dofs(who, h, nnode, mass, nf, iface, ifdof, irp, ici, val, ierr)
+      character(len=*), intent(in) :: who
+      integer, intent(in) :: h, nnode, nf
+      real(wp), intent(in) :: mass(2, nnode)
+      integer, intent(in) :: iface(max(nf, 0)), ifdof(2, max(nf, 0)), irp(2*max(nf, 0) + 1)
+      integer, intent(in) :: ici(*)
+      real(wp), intent(in) :: val(*)
+      integer, intent(out) :: ierr
+      call set_face(who, h, nnode, mass, nf, iface, ifdof, irp, ici, val, ierr)
+   end subroutine problem_set_face_dofs
+
+   !> The massless dofs the deck's rule gives the handle's method-3 surfaces (doc/impact.md,
+   !> section 3.1, eq. I.3a and I.3b, at the reference positions): ifdof(d, i) = 1 where dof d of
+   !> node i is massless, 0 elsewhere. Rigid and prescribed nodes get none; built from
+   !> connectivity, so do the dofs d of elements whose every node would be massless along d
+   !> (bodies one element thick); a host that gave segments drops those itself.
+   module subroutine problem_face_rule(who, h, nnode, ifdof, ierr)
+      character(len=*), intent(in) :: who
+      integer, intent(in) :: h, nnode
+      integer, intent(out) :: ifdof(2, nnode)
+      integer, intent(out) :: ierr
+      type(problem_t), pointer :: p
+      logical, allocatable :: dofs(:, :)
+      integer :: e, d
+      ifdof = 0
+      p => lookup(who, h, ierr)
+      if (.not. associated(p)) return
+      if (nnode /= p%nnode) then
+         ierr = IERR_ARGUMENT
+         call fail(h, who//': NNODE = '//itoa(nnode)//' differs from the '//itoa(p%nnode)//' of the handle')
+         return
+      end if
+      dofs = p%contact%face_dofs(nnode, p%x0, p%rigid) .and. spread(p%contact%face_nodes(nnode) .and. &
+             .not. p%rigid, 1, 2) .and. spread(all(p%fixed == 0, 1), 1, 2)
+      do e = 1, p%nelem
+         do d = 1, 2
+            if (all(dofs(d, p%conn(:, e)))) dofs(d, p%conn(:, e)) = .false.
+         end do
+      end do
+      ifdof = merge(1, 0, dofs)
+   end subroutine problem_face_rule
+
+   !> Both set-ups of the face: mass(2, nnode) per dof, ifdof(2, nf) the massless dofs.
+   subroutine set_face(who, h, nnode, mass, nf, iface, ifdof, irp, ici, val, ierr)
+      character(len=*), intent(in) :: who
+      integer, intent(in) :: h, nnode, nf
+      real(wp), intent(in) :: mass(2, nnode)
+      integer, intent(in) :: iface(max(nf, 0)), ifdof(2, max(nf, 0)), irp(2*max(nf, 0) + 1)
+      integer, intent(in) :: ici(*)
+      real(wp), intent(in) :: val(*)
+      integer, intent(out) :: ierr
       type(problem_t), pointer :: p
       integer, allocatable :: rp(:), ci(:)
-      real(wp), allocatable :: v(:), mass_old(:)
+      real(wp), allocatable :: v(:), mass_old(:, :)
       character(len=:), allocatable :: msg
       integer :: k
       p => lookup(who, h, ierr)
@@ -142,15 +203,18 @@ contains
          call fail(h, who//': NNODE = '//itoa(nnode)//' differs from the '//itoa(p%nnode)//' of the handle')
          return
       end if
-      call check_face(nnode, p%spos, p%rigid, p%fixed, mass, nf, iface, irp, ici, val, rp, ci, v, msg)
+      call check_face(nnode, p%spos, p%rigid, p%fixed, mass, nf, iface, ifdof, irp, ici, val, rp, ci, v, msg)
       if (len(msg) > 0) then
          call fail(h, who//': '//msg)
          return
       end if
       mass_old = p%mass
       p%mass = mass
-      p%mass(iface) = 0.0_wp
       p%face = iface
+      p%ffree = ifdof == 1
+      do k = 1, nf
+         where (p%ffree(:, k)) p%mass(:, iface(k)) = 0.0_wp
+      end do
       p%frp = rp
       p%fci = ci
       p%fval = v
@@ -165,6 +229,6 @@ contains
          call rebuild(who, p, k)
          ierr = IERR_SETUP
       end if
-   end subroutine problem_set_face
+   end subroutine set_face
 
 end submodule exic_legacy_problem_options

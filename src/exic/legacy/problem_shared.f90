@@ -87,7 +87,8 @@ contains
       end do
       p%snodes = pack([(k, k=1, p%nnode)], mark)
       ! the massless faces of method-3 pairs (doc/impact.md, section 3): K_FF factorized again
-      if (p%face_set) call p%contact%face%init(p%nnode, size(p%face), p%face, p%frp, p%fci, p%fval, err)
+      if (p%face_set) call p%contact%face%init(p%nnode, size(p%face), p%face, p%frp, p%fci, p%fval, err, &
+                                               p%ffree)
       if (allocated(err)) then
          ierr = IERR_SETUP
          call fail(0, who//': '//err%message)
@@ -134,15 +135,20 @@ contains
    !> minv = 1/m per dof; 0 on rigid-master nodes and on dofs the host prescribes.
    subroutine inverse_masses(p)
       type(problem_t), intent(inout) :: p
-      integer :: i
+      integer :: i, k
       do i = 1, p%nnode
          p%minv(:, i) = 0.0_wp
-         if (p%mass(i) > 0.0_wp) p%minv(:, i) = 1.0_wp/p%mass(i)
+         where (p%mass(:, i) > 0.0_wp) p%minv(:, i) = 1.0_wp/p%mass(:, i)
          if (p%rigid(i)) p%minv(:, i) = 0.0_wp
          where (p%fixed(:, i) /= 0) p%minv(:, i) = 0.0_wp
       end do
-      ! massless face nodes carry no mass: the face block places them (doc/impact.md, eq. I.5)
-      if (p%face_set) p%minv(:, p%face) = 0.0_wp
+      ! the massless dofs of the face carry no mass: the face block places them (doc/impact.md,
+      ! eq. I.5)
+      if (p%face_set) then
+         do k = 1, size(p%face)
+            where (p%ffree(:, k)) p%minv(:, p%face(k)) = 0.0_wp
+         end do
+      end if
    end subroutine inverse_masses
 
    !> The live problem of h, or null with ierr = IERR_HANDLE and a message.

@@ -64,8 +64,8 @@ contains
          return
       end if
       if (present(r)) then
-         ! the residual is read on the face dofs; the host's a~ there means nothing (no mass):
-         ! the face's x~(n+2) is x*, eq. I.7
+         ! the residual is read on the face dofs; the host's a~ on the massless dofs means
+         ! nothing (no mass): their x~(n+2) is x*, eq. I.7
          do k = 1, size(p%face)
             i = p%face(k)
             if (nonfinite(r(1, i)) + nonfinite(r(2, i)) > 0) then
@@ -74,7 +74,7 @@ contains
                fcon = 0.0_wp
                return
             end if
-            a(:, i) = 0.0_wp
+            where (p%ffree(:, k)) a(:, i) = 0.0_wp
          end do
       end if
       ! the velocities and accelerations the corrector reads: those of the surface nodes

@@ -45,7 +45,7 @@ module exic_legacy_registry
       real(wp), allocatable :: x0(:, :)       !< (2, nnode) reference coordinates
       real(wp), allocatable :: minv(:, :)     !< (2, nnode) inverse mass per dof (0: rigid or fixed)
       type(contact_t) :: contact
-      real(wp), allocatable :: mass(:)        !< (nnode) lumped masses as given
+      real(wp), allocatable :: mass(:, :)     !< (2, nnode) lumped masses per dof as given
       integer, allocatable :: fixed(:, :)     !< (2, nnode) non-zero: dof prescribed by the host
       logical, allocatable :: rigid(:)        !< (nnode) node of a rigid master
       integer, allocatable :: options(:, :)   !< (4, npair) method, detection, passes, rigid master
@@ -66,6 +66,7 @@ module exic_legacy_registry
       ! again when the contact object is rebuilt
       logical :: face_set = .false.
       integer, allocatable :: face(:)         !< (nf) face nodes
+      logical, allocatable :: ffree(:, :)     !< (2, nf) the massless dofs of the face nodes
       integer, allocatable :: frp(:), fci(:)  !< (2 nf + 1), (nnz) rows and global dof columns
       real(wp), allocatable :: fval(:)        !< (nnz) values
       real(wp), allocatable :: zero(:, :)     !< (2, nnode) zeros: the internal force argument

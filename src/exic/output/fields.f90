@@ -33,6 +33,7 @@ module exic_output_fields
    use exic_hdf5_file, only: hdf5_file_t, DTYPE_REAL, DTYPE_INT, DTYPE_INT64
    use exic_hdf5_held, only: hdf5_held_t
    use exic_output_fields_checks, only: check_mesh, check_names
+   use exic_output_fields_nodes, only: write_node_id
    use exic_base_posix, only: rename_file, copy_file, remove_file
    use exic_base_clock, only: wall_time
    use exic_output_fields_xdmf, only: xdmf_series_t, write_whole_file, xml_escape, real_text
@@ -129,9 +130,10 @@ contains
    !> one directory unless `path_h5` is absolute. `friction`: the run has friction; every output
    !> time then also holds the nodal friction force. `capacity`: the number of output times the
    !> run expects (room is made for them at once; more are possible, at the cost of a copy of
-   !> the file each time the room doubles).
+   !> the file each time the room doubles). `node_id`: the deck number of each node, when the
+   !> nodes written are not the numbers 1..nnode (exic_output_fields_nodes).
    subroutine writer_open(self, path_h5, path_xdmf, nnode, nelem, x0, conn, region, mat, &
-                          surf_edges, err, cell_names, energy_names, friction, capacity)
+                          surf_edges, err, cell_names, energy_names, friction, capacity, node_id)
       class(field_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path_h5, path_xdmf
       integer, intent(in) :: nnode, nelem
@@ -142,6 +144,7 @@ contains
       character(len=*), intent(in), optional :: energy_names(:)
       logical, intent(in), optional :: friction
       integer, intent(in), optional :: capacity
+      integer, intent(in), optional, contiguous :: node_id(:)
       type(error_t), allocatable :: err2
 
       if (self%h5%is_open()) then
@@ -158,7 +161,13 @@ contains
       else
          self%comp_names = STRESS_NAMES
       end if
-      call prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err, friction)
+      if (present(node_id)) then
+         if (size(node_id) /= nnode) then
+            call make_error(err, "field output '"//path_h5//"': node_id must have nnode entries")
+            return
+         end if
+      end if
+      call prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err, friction, present(node_id))
       if (allocated(err)) return
 
       self%capacity = initial_capacity(self, capacity, energy_names)
@@ -168,6 +177,7 @@ contains
       call self%h5%create(path_h5//'.tmp', err)
       if (allocated(err)) return
       call write_mesh(self%h5, x0, conn, region, mat, surf_edges, err)
+      if (.not. allocated(err) .and. present(node_id)) call write_node_id(self%h5, node_id, err)
       if (.not. allocated(err)) call create_field_series(self, err)
       if (.not. allocated(err)) call create_last_buffers(self, err)
       if (.not. allocated(err) .and. present(energy_names)) &
@@ -189,7 +199,7 @@ contains
    end subroutine writer_open
 
    !> The writer's set-up for a mesh (names, sizes, work arrays), before its files are made.
-   subroutine prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err, friction)
+   subroutine prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err, friction, node_id)
       type(field_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path_h5, path_xdmf
       integer, intent(in) :: nnode, nelem
@@ -197,6 +207,7 @@ contains
       integer, intent(in) :: conn(:, :)
       type(error_t), allocatable, intent(out) :: err
       logical, intent(in), optional :: friction
+      logical, intent(in) :: node_id                !< the file has /mesh/node_id
       character(len=:), allocatable :: ref
       call xdmf_reference(path_h5, path_xdmf, ref, err)
       if (allocated(err)) return
@@ -210,7 +221,7 @@ contains
          if (friction) self%nvec = 5
       end if
       self%ncomp = size(self%comp_names)
-      call self%text%init(xml_escape(ref, dash=.true.), nnode, nelem, self%nvec, self%comp_names)
+      call self%text%init(xml_escape(ref, dash=.true.), nnode, nelem, self%nvec, self%comp_names, node_id)
       self%x0 = x0
       self%conn = conn
       if (allocated(self%x)) deallocate (self%x, self%vec3, self%col_cell, self%col_node)
@@ -232,9 +243,9 @@ contains
    !> or left by a killed run), keep its first `ntime` output times (those written before the
    !> restart point), make room for `capacity` more (default START_CAPACITY) by a copy of the
    !> file renamed over it, and write the series file anew for the times kept. The last-state
-   !> file is rewritten at the next output time.
+   !> file is rewritten at the next output time. `node_id`: as given to `open`.
    subroutine writer_reopen(self, path_h5, path_xdmf, nnode, nelem, x0, conn, ntime, energy_names, err, &
-                            cell_names, friction, capacity)
+                            cell_names, friction, capacity, node_id)
       class(field_writer_t), intent(inout) :: self
       character(len=*), intent(in) :: path_h5, path_xdmf
       integer, intent(in) :: nnode, nelem, ntime
@@ -245,6 +256,7 @@ contains
       character(len=*), intent(in), optional :: cell_names(:)
       logical, intent(in), optional :: friction
       integer, intent(in), optional :: capacity
+      integer, intent(in), optional, contiguous :: node_id(:)
       type(error_t), allocatable :: err2
       real(wp), allocatable :: times(:)
       integer(i8), allocatable :: steps(:)
@@ -255,7 +267,7 @@ contains
       else
          self%comp_names = STRESS_NAMES
       end if
-      call prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err, friction)
+      call prepare(self, path_h5, path_xdmf, nnode, nelem, x0, conn, err, friction, present(node_id))
       if (allocated(err)) return
       self%energy_names = energy_names
       self%nenergy = size(energy_names)

@@ -574,20 +574,22 @@ contains
    end subroutine check_contact
 
    !> `LAGRange,ENERgy` on a whole-boundary surface (REGIon, MATErial or AUTOmatic) of a
-   !> deformable body makes every boundary row of that body massless, not only the struck face:
-   !> measured less accurate on equal bars and wrong on unequal bars and on the seed's 2-D
-   !> examples (doc/impact.md, section 4). A warning at the pair names the surface.
+   !> deformable body whose partner is deformable makes every boundary row of that body massless
+   !> along its normals (eq. I.3a), not only the struck face: measured less accurate on equal bars
+   !> and on the seed's 2-D examples (doc/impact.md, section 4). A warning at the pair names the
+   !> surface. Against a rigid partner only the segments that face it are massless (eq. I.3b): no
+   !> warning.
    subroutine energy_warnings(rd, spec, mesh, materials)
       type(reader_t), intent(inout) :: rd
       type(contact_spec_t), intent(in) :: spec
       type(mesh_t), intent(in) :: mesh
       type(material_t), intent(in) :: materials(:)
       character(len=*), parameter :: why = ' makes the whole boundary of its bodies a massless '// &
-         'face (along its normals where it meets a deformable body, doc/impact.md section 3.1), '// &
+         'face (along its normals where it meets a deformable body, doc/impact.md section 3.1, eq. I.3a), '// &
          'not only the struck face; its energy is verified to 0.1 % with the struck faces declared '// &
          '(FACEts or PHYSical) and small strains, to 0.5 % on the seed''s examples (doc/impact.md, '// &
          'section 4)'
-      integer :: k, j, id
+      integer :: k, j, id, other
       if (.not. spec%active) return
       if (spec%automatic .and. spec%auto_options%energy) &
          call warn_at(rd, spec%auto_options%where, 'AUTOmatic with LAGRange,ENERgy'//why)
@@ -596,7 +598,9 @@ contains
          if (.not. spec%pairs(k)%energy) cycle
          do j = 1, 2
             id = merge(spec%pairs(k)%slave, spec%pairs(k)%master, j == 1)
-            if (deformable_whole_boundary(id)) then
+            other = merge(spec%pairs(k)%master, spec%pairs(k)%slave, j == 1)
+            ! against a rigid partner only the segments that face it are massless (eq. I.3b)
+            if (deformable_whole_boundary(id) .and. deformable_surface(other)) then
                call warn_at(rd, spec%pairs(k)%where, 'PAIR '//itoa(spec%pairs(k)%id)//' with '// &
                             'LAGRange,ENERgy on SURFace '//itoa(id)//' (REGIon or MATErial)'//why)
                exit
@@ -626,6 +630,34 @@ contains
             end do
          end do
       end function deformable_whole_boundary
+
+      !> Surface `id` has a node of an element of a non-rigid material.
+      logical function deformable_surface(id)
+         integer, intent(in) :: id
+         logical :: on(mesh%nnode)
+         integer :: s, e, m, a
+         deformable_surface = deformable_whole_boundary(id)
+         if (deformable_surface) return
+         on = .false.
+         do s = 1, size(spec%surfaces)
+            if (spec%surfaces(s)%id /= id) cycle
+            if (allocated(spec%surfaces(s)%facets)) on(pack(spec%surfaces(s)%facets, &
+                                                            spec%surfaces(s)%facets >= 1 .and. &
+                                                            spec%surfaces(s)%facets <= mesh%nnode)) = .true.
+            if (allocated(spec%surfaces(s)%nodes)) on(pack(spec%surfaces(s)%nodes, spec%surfaces(s)%nodes >= 1 .and. &
+                                                           spec%surfaces(s)%nodes <= mesh%nnode)) = .true.
+         end do
+         do e = 1, mesh%nelem
+            m = mesh%mat(e)
+            if (m < 1 .or. m > size(materials)) cycle
+            if (materials(m)%kind == MAT_RIGID) cycle
+            do a = 1, size(mesh%conn, 1)
+               if (mesh%conn(a, e) < 1 .or. mesh%conn(a, e) > mesh%nnode) cycle
+               if (on(mesh%conn(a, e))) deformable_surface = .true.
+            end do
+            if (deformable_surface) return
+         end do
+      end function deformable_surface
    end subroutine energy_warnings
 
    !> TIE record `i` (after END): `TIE` merges all coincident element nodes; `TIE,REGIon,r1,r2`

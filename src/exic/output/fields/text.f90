@@ -40,6 +40,7 @@ module exic_output_fields_text
    type :: fields_text_t
       character(len=:), allocatable :: h5_ref       !< the .h5 file as the XDMF files name it
       integer :: nnode = 0, nelem = 0, nvec = 4, ncomp = 0
+      logical :: node_id = .false.                  !< the file has /mesh/node_id (numbering gaps)
       character(len=16), allocatable :: comp_names(:)
       type(piece_t), allocatable :: pieces(:)
       integer :: fixed_len = 0                      !< characters of the pieces together
@@ -53,12 +54,14 @@ module exic_output_fields_text
 contains
 
    !> Set up the text of a field file: the .h5 as the XDMF files name it (escaped), the mesh
-   !> sizes, the number of nodal vectors, the element value names; build the grid template.
-   subroutine text_init(self, h5_ref, nnode, nelem, nvec, comp_names)
+   !> sizes, the number of nodal vectors, the element value names, whether the file has the
+   !> nodes' deck numbers (`/mesh/node_id`); build the grid template.
+   subroutine text_init(self, h5_ref, nnode, nelem, nvec, comp_names, node_id)
       class(fields_text_t), intent(inout) :: self
       character(len=*), intent(in) :: h5_ref
       integer, intent(in) :: nnode, nelem, nvec
       character(len=*), intent(in) :: comp_names(:)
+      logical, intent(in) :: node_id
       character(len=:), allocatable :: grid
       integer :: i, n, start
 
@@ -68,6 +71,7 @@ contains
       self%nvec = nvec
       self%ncomp = size(comp_names)
       self%comp_names = comp_names
+      self%node_id = node_id
       grid = grid_text(self, MARK_K, MARK_K1, MARK_SIX, MARK_T)
       n = 1
       do i = 1, len(grid)
@@ -262,7 +266,7 @@ contains
           '        </Geometry>'//NL
    end function mesh_items
 
-   !> Region and material of every element.
+   !> Region and material of every element; the deck number of every node when the file has it.
    function static_attributes(self) result(s)
       type(fields_text_t), intent(in) :: self
       character(len=:), allocatable :: s
@@ -270,6 +274,8 @@ contains
       f = self%h5_ref//':'
       s = attribute('region', 'Scalar', 'Cell', data_item(itoa(self%nelem), 'Int', '4', f//'/mesh/region'))// &
           attribute('material', 'Scalar', 'Cell', data_item(itoa(self%nelem), 'Int', '4', f//'/mesh/material'))
+      if (self%node_id) s = s//attribute('node_id', 'Scalar', 'Node', &
+                                         data_item(itoa(self%nnode), 'Int', '4', f//'/mesh/node_id'))
    end function static_attributes
 
    !> k with six digits at least.

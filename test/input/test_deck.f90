@@ -475,6 +475,13 @@ contains
       call check(s, .not. allocated(err), 'ENERgy against a rigid REGIon surface reads', error_text(err))
       call check(s, .not. has(m%warnings, 'ENERgy'), 'no warning for a rigid body''s REGIon surface', &
                  m%warnings)
+      ! a deformable body's REGIon surface against a rigid body: only the facing segments (eq. I.3b)
+      call write_lines(tmp//'ew.inp', [character(len=L) :: deck(1:29), ' SURFace,1', '  REGIon,1', ' SURFace,2', &
+                       '  REGIon,2', ' PAIR,1,NTOS,1,2', '  LAGRange,ENERgy', 'END CONTact', '', 'END', 'BATCh', 'END', &
+                       'STOP'])
+      call read_deck(tmp//'ew.inp', m, err)
+      call check(s, .not. allocated(err) .and. .not. has(m%warnings, 'ENERgy'), 'no warning for a deformable '// &
+                 'body''s REGIon surface against a rigid body (only its facing segments are massless)', m%warnings)
    end subroutine test_energy_warning
 
    !> HOURglass h (Flanagan-Belytschko coefficient) and HOURglass,PHYSical[,s] (doc/hourglass.md);

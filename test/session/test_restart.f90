@@ -10,7 +10,7 @@ module test_restart
    use exic_base_strings, only: itoa, rtoa
    use testing, only: suite_t, check, section, skip, have_command
    use deck_runner, only: run_dir, write_text
-   use test_contact_auto, only: sliding_blocks_deck, blocks_contact
+   use scene_decks, only: sliding_blocks_deck, blocks_contact
    use exic_base_progress, only: eta_seconds, eta_known
    implicit none
    private

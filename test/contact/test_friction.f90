@@ -12,7 +12,7 @@ module test_friction
    use exic_model_model, only: model_t
    use exic_input_deck, only: read_deck
    use testing, only: suite_t, check, section, skip, have_command, error_text, file_text
-   use test_fields, only: h5dump
+   use h5dump_reader, only: h5dump
    use deck_runner, only: run_dir, run_deck, read_table, column, write_text
    implicit none
    private

@@ -22,9 +22,10 @@ module test_legacy
                                      exic_contact_set_fixed, exic_contact_set_pair, exic_contact_set_option, &
                                      exic_contact_step, exic_contact_pair_results, exic_contact_ncon, &
                                      exic_contact_constraints, exic_contact_work, exic_contact_free, &
-                                     exic_contact_error_message, exic_contact_set_face, exic_contact_step_face
+                                     exic_contact_error_message, exic_contact_face_rule
    use testing, only: suite_t, check, check_close, section, skip, fpm_command, file_text
    use deck_runner, only: run_dir, run_deck, read_table, column
+   use test_legacy_face, only: face_argument_tests, bad
    implicit none
    private
 
@@ -295,79 +296,6 @@ contains
       call exic_contact_work(h, w, pen, ierr)
       call bad(s, ierr, h, 2, 'names no live', 'query a freed handle')
    end subroutine bad_argument_tests
-
-   !> Massless contact faces (method 3): a handle with a method-3 pair steps only with its face
-   !> set and EXIC_CONTACT_STEP_FACE; bad face nodes, an unsymmetric or singular face block
-   !> are refused with a message; with a face, the node falling on the rigid segment is placed
-   !> on it by the face block in one step (gap at t(n+2) closed, no mass involved).
-   subroutine face_argument_tests(s)
-      type(suite_t), intent(inout) :: s
-      real(wp) :: x0(2, 6), mass(6), x(2, 6), v(2, 6), a(2, 6), f(2, 6), r(2, 6), pp(1), rcon(6, 1)
-      integer :: iseg(3, 1), isn(2, 1), h, ierr, nact, ncon, icon(4, 1)
-      real(wp), parameter :: k = 100.0_wp
-      x0 = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, &
-                    2.0_wp, -0.5_wp, -1.0_wp, -0.5_wp], [2, 6])
-      mass = 1.0_wp
-      pp = 0.0_wp
-      iseg(:, 1) = [5, 6, 2]
-      isn(:, 1) = [1, 1]
-      ! node 1 over the rigid segment 5 -> 6 (0.5 below it), method 3
-      call exic_contact_create_segments(6, x0, mass, 1, iseg, 1, isn, 1, [1, 2, 3, 1, 1, 1], pp, h, ierr)
-      call check(s, ierr == 0 .and. h > 0, 'a pair of method 3 (massless contact faces) is accepted')
-      if (ierr /= 0) return
-      x = x0
-      v = 0.0_wp
-      v(2, 1) = -100.0_wp
-      v(2, 4) = -100.0_wp
-      a = 0.0_wp
-      r = 0.0_wp
-      call exic_contact_step(h, 6, x, v, a, 0.0_wp, 1.0e-2_wp, f, nact, ierr)
-      call bad(s, ierr, h, 3, 'EXIC_CONTACT_SET_FACE', 'method 3: step before the face is set')
-      call exic_contact_step_face(h, 6, x, v, a, r, 0.0_wp, 1.0e-2_wp, f, nact, ierr)
-      call bad(s, ierr, h, 3, 'EXIC_CONTACT_SET_FACE', 'method 3: face step before the face is set')
-      call exic_contact_set_face(h, 6, mass, 1, [2], [1, 2, 3], [3, 4], [k, k], ierr)
-      call bad(s, ierr, h, 1, 'not a node of a contact surface', 'face node 2 off the contact surfaces')
-      call exic_contact_set_face(h, 6, mass, 1, [5], [1, 2, 3], [9, 10], [k, k], ierr)
-      call bad(s, ierr, h, 1, 'rigid', 'a rigid face node')
-      call exic_contact_set_face(h, 6, mass, 1, [1], [1, 3, 4], [1, 2, 2], [k, 0.5_wp*k, k], ierr)
-      call bad(s, ierr, h, 1, 'not symmetric', 'an unsymmetric face block')
-      call exic_contact_set_face(h, 6, mass, 1, [1], [1, 2, 3], [1, 13], [k, k], ierr)
-      call bad(s, ierr, h, 1, 'column 13', 'a column outside the dofs')
-      call exic_contact_set_face(h, 6, mass, 1, [1], [1, 2, 3], [1, 2], [0.0_wp, k], ierr)
-      call bad(s, ierr, h, 3, 'singular at node 1', 'a singular face block')
-      ! node 1 tied to node 4 by springs k in x and y: K_FF = k I
-      call exic_contact_set_face(h, 6, mass, 1, [1], [1, 3, 5], [1, 7, 2, 8], [k, -k, k, -k], ierr)
-      call check(s, ierr == 0, 'a valid face is accepted', 'ierr '//itoa(ierr))
-      if (ierr /= 0) return
-      call exic_contact_step(h, 6, x, v, a, 0.0_wp, 1.0e-2_wp, f, nact, ierr)
-      call bad(s, ierr, h, 3, 'EXIC_CONTACT_STEP_FACE', 'a handle with a face: plain step refused')
-      ! node 4 falls by dt v = 1 over the step; the free solve moves the face node with it, 0.5
-      ! below the segment; the face block places it on the segment (gap 0 at t(n+2)) with the
-      ! static force k 0.5 of the springs
-      call exic_contact_step_face(h, 6, x, v, a, r, 0.0_wp, 1.0e-2_wp, f, nact, ierr)
-      call exic_contact_constraints(h, 1, ncon, icon, rcon, ierr)
-      call check(s, ierr == 0 .and. nact == 1 .and. ncon == 1, 'the face step makes one constraint', &
-                 'ierr '//itoa(ierr)//', active '//itoa(nact))
-      if (ierr /= 0 .or. ncon /= 1) return
-      call check(s, abs(rcon(6, 1)) < 1.0e-12_wp .and. abs(f(2, 1) - k*0.5_wp) < 1.0e-9_wp*k, &
-                 'face step: the face node ends on the segment (gap at t(n+2) 0), held by K_FF times its '// &
-                 'trial penetration', 'gap '//rtoa(rcon(6, 1))//', force '//rtoa(f(2, 1)))
-      call exic_contact_free(h, ierr)
-   end subroutine face_argument_tests
-
-   !> One bad call: ierr /= 0 (= code when code > 0), h = 0 after a failed creation, and the
-   !> message of handle `hq` names `key`.
-   subroutine bad(s, ierr, hq, code, key, what)
-      type(suite_t), intent(inout) :: s
-      integer, intent(in) :: ierr, hq, code
-      character(len=*), intent(in) :: key, what
-      character(len=300) :: msg
-      integer :: lmsg, ierr2
-      call exic_contact_error_message(hq, msg, lmsg, ierr2)
-      call check(s, ierr /= 0 .and. (code == 0 .or. ierr == code) .and. index(msg, key) > 0 .and. &
-                 lmsg == len_trim(msg), 'bad argument: '//what//' -> ierr '//itoa(ierr), &
-                 'message "'//msg(1:min(lmsg, 300))//'"')
-   end subroutine bad
 
    ! ------------------------------------------------------------------ in-process host
 
@@ -852,6 +780,7 @@ contains
       real(wp) :: wcon, penmax, en(2), en0(2), w0, p0, edeck, worst, rel
       logical :: ok, ok0
       integer :: j
+      call face_rule_test(s, model)
       call write_host_input(run_dir//'/legacy_wall_energy_nh.dat', model, 1, dt_fixed, 1)
       call run_host('legacy_wall_energy_nh', rows, wcon, penmax, ok, en)
       call check(s, ok, 'legacy_wall_energy: lhost with method 3 and its own face set-up runs')
@@ -885,6 +814,33 @@ contains
                  'difference '//rtoa((en(1) + en(2) - en0(1) - en0(2))/energy0)//' E0, 1/60 = '// &
                  rtoa(1.0_wp/60.0_wp))
    end subroutine host_energy_test
+
+   !> EXIC_CONTACT_FACE_RULE on the bar on a rigid wall (the bar's whole boundary the surface of
+   !> a method-3 pair with a rigid master): the rule of decks (doc/impact.md eq. I.3b) makes the
+   !> struck end massless along x, its ny + 1 = 7 nodes at x = L, and nothing else, as the deck's
+   !> `<stem>.out` says of the same scene.
+   subroutine face_rule_test(s, model)
+      type(suite_t), intent(inout) :: s
+      type(model_t), intent(in) :: model
+      integer, allocatable :: ipair(:, :), ifd(:, :)
+      real(wp), allocatable :: pp(:), mass(:)
+      integer :: h, ierr, nn, k
+      logical :: ok
+      nn = model%mesh%nnode
+      call host_pairs(model, ipair, pp)
+      allocate (mass(nn), source=1.0_wp)
+      call exic_contact_create_mesh(nn, model%mesh%x, mass, model%mesh%nelem, model%mesh%conn, model%mesh%region, &
+                                    size(ipair, 2), ipair, pp, h, ierr)
+      call check(s, ierr == 0, 'face rule: the bar on a rigid wall with method 3 is created', 'ierr '//itoa(ierr))
+      if (ierr /= 0) return
+      allocate (ifd(2, nn))
+      call exic_contact_face_rule(h, nn, ifd, ierr)
+      ok = ierr == 0 .and. count(ifd(1, :) == 1) == 7 .and. count(ifd(2, :) == 1) == 0
+      if (ok) ok = all(abs(model%mesh%x(1, pack([(k, k=1, nn)], ifd(1, :) == 1)) - blen) < 1.0e-12_wp*blen)
+      call check(s, ok, 'face rule: the bar''s struck end (7 nodes at x = L) massless along x, nothing else', &
+                 'ierr '//itoa(ierr)//', along x '//itoa(count(ifd(1, :) == 1))//', along y '//itoa(count(ifd(2, :) == 1)))
+      call exic_contact_free(h, ierr)
+   end subroutine face_rule_test
 
    !> Compare rows(8, n) (t, tip u, v, a, pair 1 force, active, penetration, multiplier) with
    !> the deck's history: same number of rows, every column within 1e-10 of its largest value,
