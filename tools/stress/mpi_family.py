@@ -17,7 +17,9 @@ same (tools/h5_same.py: every dataset's values and every attribute). With --rest
 variant is also continued from its mid-run restart file written on P ranks on Q ranks
 (P -> Q cycling through the pairs of --pairs, 1 meaning the serial program without mpirun):
 the outputs must be those of the uninterrupted serial run. Prints one line per variant and the
-summary (the count of variants and of runs that differ or fail).
+summary (the count of variants and of runs that differ or fail). A variant the serial program
+stops with an error (an element inverted under the punch, say) must stop on every P with an
+error too and the same .his and .ene up to there.
 
     nice -n 10 python3 tools/stress/mpi_family.py --exic BINARY [--n 24] [--np 2 3 4] [--seed 1]
         [--restarts] [--pairs 2:1 1:3 3:2 4:2 2:4 3:1]
@@ -164,7 +166,7 @@ def main():
     rnd = random.Random(args.seed)
     exic = str(pathlib.Path(args.exic).resolve())
     pairs = [tuple(int(v) for v in p.split(":")) for p in args.pairs]
-    bad = runs = 0
+    bad = runs = failed = 0
     with tempfile.TemporaryDirectory() as tmp:
         for i in range(args.n):
             deck, label = variant(rnd)
@@ -173,10 +175,22 @@ def main():
             inp = d / "v.inp"
             inp.write_text(deck)
             r = run(exic, 1, inp, d / "serial")
-            if r.returncode != 0:
-                print(f"v{i} {label}: serial run failed ({r.returncode}): {r.stderr.strip()[:300]}")
-                (pathlib.Path(tmp).parent / f"mpi_family_failed_v{i}.inp").write_text(deck)
-                bad += 1
+            code = r.returncode
+            if code != 0:
+                # a scene the serial program stops (an inverted element, say): every parallel run
+                # must stop with an error too, with the same .his and .ene up to there
+                errors = [x for x in r.stderr.splitlines() if "error" in x]
+                failed += 1
+                res = [f"serial exit {code} ({errors[-1][:120] if errors else ''})"]
+                for p in args.np:
+                    runs += 1
+                    rp = run(exic, p, inp, d / f"np{p}")
+                    diff = "" if rp.returncode != 0 else "exit 0"
+                    diff += "".join(f" {x}" for x in ("his", "ene") if (d / "serial" / f"v.{x}").read_bytes() !=
+                                    (d / f"np{p}" / f"v.{x}").read_bytes())
+                    res.append(f"P={p} {'the same failure' if not diff else 'DIFFERENT: ' + diff}")
+                    bad += bool(diff)
+                print(f"v{i} {label}: {', '.join(res)}", flush=True)
                 continue
             res = []
             for p in args.np:
@@ -202,7 +216,7 @@ def main():
                 shutil.rmtree(d)
     print(f"{args.n} variants, {runs} parallel or continued runs (P = {args.np}"
           f"{', restarts ' + ' '.join(args.pairs) if args.restarts else ''}): {bad} differ from the serial "
-          f"outputs or failed")
+          f"outputs or fail where it does not; {failed} variants the serial program stops with an error")
     return 1 if bad else 0
 
 
