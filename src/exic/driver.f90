@@ -16,7 +16,9 @@ module exic_driver
    use exic_model_program, only: MAX_LOOP_DEPTH, loop_end
    use exic_output_text_report, only: report_preamble, report_summary, report_final, console_summary
    use exic_session_run, only: fields_observer, run_t, INSIDE_STEPS, resume, save_restart, init_inside, &
-                               check_inside, start, step, after_step, finish_progress, pass_messages
+                               check_inside, start, step, after_step, finish_progress, pass_messages, &
+                              gather_nodes_due
+   use exic_explicit_decomposition_nodes, only: decomposition_gather_nodes
    implicit none
    private
 
@@ -90,6 +92,9 @@ contains
       end if
       if (.not. allocated(err) .and. allocated(r%out%files%io_error)) &
          call make_error(err, r%out%files%io_error)
+      ! the whole nodal state for what follows (divided among MPI ranks, doc/parallel.md; after a
+      ! stepper's error it is gathered already)
+      if (.not. allocated(err) .and. ran .and. r%stp%started) call decomposition_gather_nodes(r%stp%dd, r%stp%st)
       ! the restart file of the end (SAVE) or of the interruption comes before the final rows
       ! and fields: a run continued from it writes them again, as the run that went on would
       ! (an interruption wrote its restart file after its step, in after_step)
@@ -165,6 +170,7 @@ contains
                end if
             case ('time')
                call start(r, model, err)
+               if (.not. allocated(err)) call gather_nodes_due(r)
                if (.not. allocated(err)) call r%out%record(model, r%stp)
                nfields = r%out%fields%count()
                nflushed = r%out%fields%flushed()

@@ -67,6 +67,7 @@ module exic_output
       procedure :: resume => output_resume
       procedure :: begin => output_begin
       procedure :: record => output_record
+      procedure :: reads_state => output_reads_state
       procedure :: open_fields => output_open_fields
       procedure :: fields_due => output_fields_due
       procedure :: final => output_final
@@ -241,6 +242,21 @@ contains
       if (.not. due .or. self%last_row_step == stp%st%step) return
       call write_rows(self, model, stp)
    end subroutine output_record
+
+   !> The rows (output_record) or the fields (output_fields_due) of the state now are due: they
+   !> read the nodal state (with the nodal state divided among MPI ranks, doc/parallel.md, it is
+   !> gathered first). The same answer on every rank (steps and times only).
+   logical function output_reads_state(self, stp) result(due)
+      class(output_t), intent(in) :: self
+      type(stepper_t), intent(in) :: stp
+      due = self%his_inc > 0
+      if (due) due = mod(stp%st%step, int(self%his_inc, i8)) == 0
+      if (stp%st%step == 0) due = .true.
+      if (self%last_row_step == stp%st%step) due = .false.
+      if (self%fields%is_open()) then
+         if (stp%st%t >= self%field_next*(1.0_wp - TIME_TOL)) due = .true.
+      end if
+   end function output_reads_state
 
    !> History and energy rows of the current state.
    subroutine write_rows(self, model, stp)

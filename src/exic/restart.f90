@@ -360,9 +360,9 @@ contains
       call ar%item('stepper.growth_max', stp%growth_max)
       call ar%item('stepper.growth_max_t', stp%growth_max_t)
       call ar%item('stepper.pass_limit_warnings', stp%pass_limit_warnings)
-      ! the work arrays of a step that is not plain (stepper_t%work_arrays): a plain run (no
-      ! contact, loads or rigid bodies; the same deck decides alike when it is read) has none
       if (allocated(stp%x)) then
+         ! the work arrays of steps that are not plain: a plain run (no contact, loads or masses
+         ! per dof) has none, and the deck allocates them alike when the run is continued
          call ar%item('stepper.x', stp%x)
          call ar%item('stepper.du', stp%du)
          call ar%item('stepper.a_old', stp%a_old)

@@ -9,6 +9,13 @@
 !> across rank counts; a deck with a feature not yet supported on several ranks is refused with
 !> its name.
 !>
+!> Plain scenes (no contact, no loads: doc/parallel.md, "Divided nodes") run with the nodal
+!> state divided in chunk ranges: two BLOCks of 2x2 and one-point elements with a gap in the
+!> node numbers, a fixed edge and its reaction, histories every 3 steps, fields (their .h5
+!> datasets equal too, h5dump with 17 digits) and a velocity set between steps; a small
+!> one-point block whose nodes are all in one chunk (rank 0 owns them all); and a plain deck
+!> with VISCosity BULK and DAMPing MASS, which keeps the replicated state (METIS parts).
+!>
 !> Skipped, with the reason, when mpirun is missing (the Makefile installs openmpi-bin).
 module test_mpi
    use testing, only: suite_t, check, section, skip, have_command, file_text
@@ -24,16 +31,16 @@ module test_mpi
    character(len=*), parameter :: MPIRUN = 'mpirun --oversubscribe --allow-run-as-root'
    character(len=*), parameter :: HEAD = 'FEAP * * mpi scene'//nl//'0 0 0 2 2 4'//nl
    !> Checks of the suite: 13 per scene, 1 of the dissipation scene's columns, the family's, 1
-   !> of the refusal, 2 of the failure on one rank.
-   integer, parameter :: NCHECKS = 5*13 + 1 + FAMILY_CHECKS + 1 + 2
+   !> of the refusal, 2 of the failure on one rank, 3 of the .h5 files, 7 of the unstable scene.
+   integer, parameter :: NCHECKS = 7*13 + 1 + FAMILY_CHECKS + 1 + 2 + 3 + 7
 
 contains
 
    subroutine run_mpi_tests(s)
       type(suite_t), intent(inout) :: s
       character(len=:), allocatable :: exic
-      character(len=*), parameter :: names(5) = [character(len=11) :: 'auto', 'friction', 'free_rigid', 'one_point', &
-                                                 'dissipation']
+      character(len=*), parameter :: names(7) = [character(len=12) :: 'auto', 'friction', 'free_rigid', 'one_point', &
+                                                 'dissipation', 'plain_blocks', 'plain_bulk']
       integer :: k
       call section(s, 'mpi: mpirun -np 1..4 writes the serial .his and .ene byte for byte')
       exic = exic_program()
@@ -48,6 +55,7 @@ contains
       do k = 1, size(names)
          call scene_test(s, exic, trim(names(k)))
       end do
+      call unstable_test(s, exic)
       call section(s, 'mpi: plastic and hypoelastic bodies, their fields and restarts across rank counts')
       call run_mpi_family(s, exic)
       call refusal_test(s, exic)
@@ -118,6 +126,39 @@ contains
                 'INITial,VELOcity'//nl//'  REGIon,2,4,0'//nl//'  REGIon,1,1,0'//nl//nl// &
                 'CONTact'//nl//'  AUTOmatic'//nl//'END CONTact'//nl//nl//'GRAVity,0,-10'//nl//nl//'END'//nl// &
                 batch('0.3')//'  disp,5,1'//nl//'  velo,60,2'//nl//nl//'STOP'
+      case ('plain_blocks', 'plain_unstable')
+         ! plain steps, the nodal state divided: a 2x2 block (nu 0.3) with its bottom edge fixed
+         ! and a one-point block (nu 0.45) above it, whose nodes start at 2500 (nodes 1626-2499
+         ! are used by no element): 4124 nodes, 5 chunks; initial velocities that vary linearly
+         ! with the node number (every element deforms); histories every 3 steps (nodes at chunk
+         ! boundaries), fields, the upper block stopped between two loops (INITial,REGIon,2,0,0);
+         ! 'plain_unstable': the same with histories every step and DT,,0.0025 (2.5 x the
+         ! stable step) between the loops: the energy guard warns, then stops the run (both
+         ! name the element whose nodes carry the most kinetic energy: every node read)
+         deck = HEAD//solid1//nl//'MATErial,2'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 2000 0.45'//nl// &
+                '    DENSity 1'//nl//'    QUADrature 1'//nl//'    HOURglass 0.1'//nl//nl// &
+                'REGIon,1'//nl//block(64, 24, 1, 0.0, 0.0, 8.0, 3.0)// &
+                'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,64,24,2500,0,2'//nl//'    1,0.0,3.5'//nl// &
+                '    2,8.0,3.5'//nl//'    3,8.0,6.5'//nl//'    4,0.0,6.5'//nl//nl// &
+                'BOUNdary'//nl//'  1,1,1,1'//nl//'  65,0,1,1'//nl//nl// &
+                'INITial,VELOcity'//nl//'  1,1,1,2'//nl//'  1625,0,-1,-2'//nl//'  2500,1,-1,0.5'//nl// &
+                '  4124,0,1,-0.5'//nl//nl//'END'//nl// &
+                'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,'//merge('3', '1', name == 'plain_blocks')//nl// &
+                '  OUTPut,HDF5,0.004'//nl// &
+                '  LOOP,,100000'//nl//'    TIME,,0.02'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl// &
+                merge('  INITial,REGIon,2,0,0', '  DT,,0.0025          ', name == 'plain_blocks')//nl// &
+                '  LOOP,,100000'//nl//'    TIME,,0.04'//nl// &
+                '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
+                '  disp,1025,1'//nl//'  velo,1024,2'//nl//'  acce,3073,1'//nl//'  velo,4124,1'//nl// &
+                '  reac,1,2'//nl//'  stre,700,1'//nl//'  stre,2300,2'//nl//nl//'STOP'
+      case ('plain_bulk')
+         ! the scene 'one_point' with VISCosity BULK and DAMPing MASS: plain steps whose works
+         ! are sums over every node in order, so the nodal state stays replicated
+         deck = HEAD//solid1//'    QUADrature 1'//nl//'    HOURglass 0.1'//nl//'    VISCosity BULK'//nl// &
+                '    DAMPing MASS 2 0.03'//nl//nl// &
+                'REGIon,1'//nl//block(20, 5, 1, 0.0, 0.0, 5.0, 1.25)// &
+                'INITial,VELOcity'//nl//'  REGIon,1,1,2'//nl//nl//'END'//nl//batch('0.05')// &
+                '  disp,7,1'//nl//'  velo,100,2'//nl//nl//'STOP'
       case default
          ! one-point elements, no contact, no loads: the plain step
          deck = HEAD//solid1//'    QUADrature 1'//nl//'    HOURglass 0.1'//nl//nl// &
@@ -185,14 +226,97 @@ contains
          same = file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.his') == his .and. &
                 file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.ene') == ene
          call check(s, same, name//': -np '//itoa(np)//': .his and .ene equal the serial files byte for byte')
-         if (np > 1) then
-            out = file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.out')
+         out = file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.out')
+         if (np > 1 .and. (name == 'one_point' .or. name == 'plain_blocks')) then
+            ! divided nodes: the one-point scene's 126 nodes are one chunk (rank 0's); the
+            ! blocks' 5 chunks are shared, and few blocks are computed twice
+            if (name == 'one_point') then
+               call check(s, index(out, 'MPI: '//itoa(np)//' ranks; nodal state divided in chunks of 1024 nodes, '// &
+                                  'chunks per rank 1 0') > 0, name//': -np '//itoa(np)// &
+                          ': the report states the divided nodal state, one chunk on rank 0')
+            else
+               call check(s, index(out, 'MPI: '//itoa(np)//' ranks; nodal state divided in chunks of 1024 nodes') > 0 &
+                          .and. number_after(out, 'chunks per rank ') < 5 .and. &
+                          4*number_after(out, 'computed again by another rank ') < number_after(out, ' (of '), &
+                          name//': -np '//itoa(np)//': the report states the divided nodal state, rank 0 owns '// &
+                          'some of the 5 chunks, under a quarter of the blocks are computed twice')
+            end if
+         else if (np > 1) then
             call check(s, index(out, 'MPI: '//itoa(np)//' ranks; METIS parts of the element blocks cut ') > 0 .and. &
                        owned_by_rank0(out) < total_blocks(out), name//': -np '//itoa(np)// &
                        ': the report names the decomposition, and rank 0 owns only some of the blocks')
          end if
+         if (name == 'plain_blocks' .and. np > 1) call check(s, h5_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.h5') &
+                                                            == h5_text(dir//'/serial/mpi_'//name//'.h5') .and. &
+                                                            len(h5_text(dir//'/serial/mpi_'//name//'.h5')) > 1000, &
+                                                            name//': -np '//itoa(np)//': the .h5 datasets equal '// &
+                                                            'the serial ones (h5dump, 17 digits)')
       end do
    end subroutine scene_test
+
+   !> The scene 'plain_unstable' stops with the energy guard: on 2 and 3 ranks (divided nodes)
+   !> the same exit code, .his, .ene, and the same warning and error lines in the .out (their
+   !> largest contributor found from every node after the gather) as the serial run.
+   subroutine unstable_test(s, exic)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: exic
+      character(len=*), parameter :: name = 'plain_unstable'
+      character(len=:), allocatable :: dir, deck, ref, out
+      integer :: code, np
+      dir = run_dir//'/mpi_'//name
+      deck = dir//'.inp'
+      call execute_command_line('rm -rf '//dir)
+      call write_text(deck, scene(name))
+      call execute_command_line(exic//' -q '//deck//' -o '//dir//'/serial > '//dir//'_serial.log 2>&1', &
+                                exitstat=code)
+      ref = file_text(dir//'/serial/mpi_'//name//'.out')
+      call check(s, code == 1 .and. index(ref, 'error: the physical energy') > 0 .and. &
+                 index(ref, 'warning: the physical energy') > 0 .and. index(ref, 'largest contributor: element') > 0, &
+                 name//': the serial run warns, then stops with the energy guard naming an element', &
+                 file_text(dir//'_serial.log'))
+      do np = 2, 3
+         call execute_command_line(MPIRUN//' -np '//itoa(np)//' '//exic//' -q '//deck//' -o '//dir//'/np'// &
+                                   itoa(np)//' > '//dir//'_np'//itoa(np)//'.log 2>&1', exitstat=code)
+         out = file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.out')
+         call check(s, code /= 0 .and. index(out, 'nodal state divided') > 0, name//': -np '//itoa(np)// &
+                    ': the divided run stops too', file_text(dir//'_np'//itoa(np)//'.log'))
+         call check(s, file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.his') == &
+                    file_text(dir//'/serial/mpi_'//name//'.his') .and. &
+                    file_text(dir//'/np'//itoa(np)//'/mpi_'//name//'.ene') == &
+                    file_text(dir//'/serial/mpi_'//name//'.ene'), name//': -np '//itoa(np)// &
+                    ': .his and .ene equal the serial files byte for byte')
+         call check(s, lines_with(out, 'warning: the physical energy') == lines_with(ref, 'warning: the physical energy') &
+                    .and. lines_with(out, 'error: the physical energy') == lines_with(ref, 'error: the physical energy'), &
+                    name//': -np '//itoa(np)//': the warning and the error (time, growth, element) are the serial ones')
+      end do
+   end subroutine unstable_test
+
+   !> The lines of text that contain `word`, in order.
+   function lines_with(text, word) result(found)
+      character(len=*), intent(in) :: text, word
+      character(len=:), allocatable :: found
+      integer :: i, j
+      found = ''
+      i = 1
+      do while (i <= len(text))
+         j = index(text(i:), new_line('a'))
+         if (j == 0) j = len(text) - i + 2
+         if (index(text(i:i + j - 2), word) > 0) found = found//text(i:i + j - 2)//new_line('a')
+         i = i + j
+      end do
+   end function lines_with
+
+   !> Every dataset of an .h5 file as h5dump prints it with 17 significant digits, without its
+   !> first line (the file's name).
+   function h5_text(path) result(text)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: text
+      integer :: k
+      call execute_command_line('h5dump -m %.17g '//path//' > '//path//'.txt 2>&1')
+      text = file_text(path//'.txt')
+      k = index(text, new_line('a'))
+      if (k > 0) text = text(k + 1:)
+   end function h5_text
 
    !> O of 'rank 0 computes B blocks of N and owns O' in a report (huge when missing).
    integer function owned_by_rank0(out) result(o)

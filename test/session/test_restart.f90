@@ -46,6 +46,8 @@ contains
       call continued(s, exic, 'punch', punch_deck())
       call continued(s, exic, 'free_body', free_body_deck())
       call continued(s, exic, 'one_point', one_point_deck())
+      call section(s, 'restart: a plain run (no contact, loads or rigid bodies: no work arrays of the step)')
+      call continued(s, exic, 'plain', plain_deck())
       call section(s, 'restart: plastic history and Coulomb friction across the restart point')
       call continued(s, exic, 'friction_plastic', friction_plastic_deck())
       ! penalty friction under AUTOmatic: the tangential state kept per pair of surfaces
@@ -455,6 +457,20 @@ contains
              '  LOOP,,60'//nl//'    TIME'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
              '  disp,13,1'//nl//'  velo,13,1'//nl//'  stre,5,1'//nl//'  cont,1,1'//nl//nl//'STOP'
    end function one_point_deck
+
+   !> A 2x2 bar (12 x 2) held at x = 0 and moving at (0.5, 0.2) at t = 0, nothing else: every step is plain
+   !> (src/exic/explicit/step.f90, plain_step), so the stepper has no work arrays to save.
+   function plain_deck() result(deck)
+      character(len=:), allocatable :: deck
+      deck = 'FEAP * * a plain run with restart files'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'BLOCk'//nl//'  CARTesian,12,2,0,0,1'//nl//'    1,0,0'//nl//'    2,6,0'//nl// &
+             '    3,6,1'//nl//'    4,0,1'//nl//nl// &
+             'EBOUndary'//nl//'  1,0,1,1'//nl//nl//'INITial,VELOcity'//nl//'  MATErial,1,0.5,0.2'//nl//nl// &
+             'END'//nl//'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  OUTPut,HDF5,2e-3'//nl// &
+             '  SAVE,,0.03'//nl//'  LOOP,,100000'//nl//'    TIME,,0.06'//nl//'    FORM,EXPLicit'//nl// &
+             '  NEXT'//nl//'END'//nl//'  disp,13,1'//nl//'  velo,27,2'//nl//'  stre,5,1'//nl//nl//'STOP'
+   end function plain_deck
 
    !> one_point_deck with DAMPing MASS 20 until 0.045 and VISCosity BULK (doc/damping.md): the
    !> damping ends and the bar is compressed after the restart point (0.03); their nodal forces

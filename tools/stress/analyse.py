@@ -170,7 +170,8 @@ def energy_growth(ene_path):
     e = read_table(ene_path)
     if not e or "kinetic" not in e:
         return None
-    phys = e["kinetic"] + e["strain"] + e.get("plastic_work", 0.0)
+    # the energy eroded elements and orphaned nodes took out of the model (doc/erosion.md (R3))
+    phys = e["kinetic"] + e["strain"] + e.get("plastic_work", 0.0) + e.get("eroded", 0.0)
     w = e["external_work"]
     wpm = e.get("prescribed_work", np.zeros_like(w))
     e0 = phys[0]
@@ -224,7 +225,9 @@ def inside_depth(points, x, edges):
 def penetration(h5_path):
     """The deepest node of any body inside any other body, over every output time of the
     fields: dict with depth, depth over the length of the nearest boundary edge of the body it
-    is in, node (1-based), bodies, time; None without fields."""
+    is in, node (1-based), bodies, time; None without fields. With erosion (the element value
+    `status`, doc/erosion.md) the bodies are their live elements at each output time, and a
+    node no live element holds any more is no body's."""
     import h5py
     try:
         f = h5py.File(h5_path, "r")
@@ -239,21 +242,37 @@ def penetration(h5_path):
         region = f["mesh/region"][()]
         times = f["time"][:nt]
         disp = f["fields/displacement"][:nt]
+        comps = f["fields/stress"].attrs.get("components", b"")
+        comps = (comps.decode() if isinstance(comps, bytes) else str(comps)).split()
+        status = f["fields/stress"][:nt, :, comps.index("status")] if "status" in comps else None
     regions = np.unique(region)
-    edges = {r: boundary_edges(conn[region == r]) for r in regions}
-    nodes = {r: np.unique(conn[region == r]) for r in regions}
+
+    def bodies(live):
+        sel = {r: (region == r) & live for r in regions}
+        return ({r: boundary_edges(conn[sel[r]]) if sel[r].any() else np.zeros((0, 2), dtype=int)
+                 for r in regions}, {r: np.unique(conn[sel[r]]) for r in regions})
+
+    alive = np.ones(len(region), dtype=bool)
+    edges, nodes = bodies(alive)
     best = {"depth": 0.0, "relative": 0.0, "node": 0, "in_body": 0, "of_body": 0, "t": 0.0,
             "times": int(nt)}
     for k in range(nt):
         x = x0 + disp[k]
         if not np.isfinite(x).all():
             continue
+        if status is not None and not np.array_equal(status[k] == 0, alive):
+            alive = status[k] == 0
+            edges, nodes = bodies(alive)
         for ra in regions:
             pa = x[nodes[ra]]
+            if len(pa) == 0:
+                continue
             for rb in regions:
                 if ra == rb:
                     continue
                 eb = edges[rb]
+                if len(eb) == 0:
+                    continue
                 xb = x[np.unique(eb)]
                 lo, hi = xb.min(axis=0), xb.max(axis=0)
                 sel = np.all((pa >= lo) & (pa <= hi), axis=1)

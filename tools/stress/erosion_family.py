@@ -1,25 +1,43 @@
 #!/usr/bin/env python3
-"""A free rigid projectile through a clamped plate with EROSion INVErted (doc/erosion.md): a
-family of variants, reporting the worst energy error.
+"""A projectile through a clamped plate with EROSion INVErted (doc/erosion.md): a family of
+variants, reporting the worst energy error and the deepest projectile node inside the plate.
 
-    python3 tools/stress/erosion_family.py --exic PATH [--quick] [--out DIR]
+    python3 tools/stress/erosion_family.py --exic PATH [--quick] [--out DIR] [--limit 0.01]
+                                           [--depth-limit X] [--only TEXT] [--entries]
 
 The plate (length 4, thickness h, clamped at both ends, NEOHookean 200e3 0.3, density 7.8e-3,
-elastic or PLAStic MISEs Y0) is meshed with nx x ny elements of QUADrature 1 or 2; the projectile
-(0.2 x 0.4, RIGId,FREE, density 2) starts 0.01 above its middle at speed v downwards (the deck of
-`fpm test -- erosion`). Varied: v, h, the mesh (nx, ny), QUADrature, elastic or plastic.
-Measured from <stem>.ene: the largest |drift| of the energy balance over the run (the balance
-includes the column `eroded`, (R3)), and the number of eroded elements from <stem>.out.
+elastic or PLAStic MISEs 500) is meshed with nx x ny elements of QUADrature 1 or 2; the projectile
+(0.2 x 0.4, density 2, 2 x 4 elements) starts 0.01 above its middle at speed v downwards (the deck
+of `fpm test -- erosion`), rigid (RIGId,FREE) or deformable (NEOHookean 2e6 0.3, the plate's
+QUADrature, EROSion INVErted too). Varied over the product: v (800, 1500, 2500), h (0.2, 0.4),
+the mesh (20 x 2, 40 x 4, 40 x 8: element aspect ratios 1 to 4), QUADrature 1 and 2, elastic or
+plastic (72 variants; --quick: v 1000, 1500, 2500 on h 0.4, 40 x 4: 12); cycled over the
+variants (every value met in the family): DT,CFL 0.5, 0.7, 0.9, 0.95 and the projectile rigid
+or deformable (with --quick: rigid, CFL 0.9). Each runs for a travel of 6 at its initial speed.
 
-Prints one line per variant and the worst drift; exits 1 when a run fails or a drift exceeds
---limit (default 0.02).
+Measured per variant:
+  - from <stem>.ene: the largest |drift| of the energy balance over the run (the balance includes
+    the column `eroded`, doc/erosion.md (R3)); the number of eroded elements from <stem>.out;
+  - from <stem>.h5 (OUTPut,HDF5 every 1/100 of the run): at every output time every node of the
+    projectile's live elements is tested against the plate's live elements (the element value
+    `status`): the deepest one inside, as its distance to the plate's free boundary over the
+    length of the nearest boundary edge (tools/stress/analyse.py, inside_depth).
+
+Prints one line per variant and the worst of each measure; exits 1 when a run fails, a drift
+exceeds --limit (default 0.01, the 1 % of issue 33) or a depth exceeds --depth-limit (when given).
 """
 import argparse
 import itertools
+import os
 import pathlib
 import subprocess
 import sys
 import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import analyse  # noqa: E402
 
 DECK = """FEAP * * erosion family
 0 0 0 2 2 4
@@ -32,9 +50,7 @@ MATErial,1
 {plastic}    EROSion INVErted
 
 MATErial,2
-  RIGId,FREE
-    DENSity 2
-
+{projectile}
 REGIon,1
 BLOCk
   CARTesian,{nx},{ny},0,0,1
@@ -45,7 +61,7 @@ BLOCk
 
 REGIon,2
 BLOCk
-  CARTesian,2,4,100001,0,2
+  CARTesian,2,4,1001,0,2
     1,1.9,{y0}
     2,2.1,{y0}
     3,2.1,{y1}
@@ -66,7 +82,8 @@ END
 
 BATCh
   TRANsient,EXPLicit
-  DT,CFL,0.9
+  DT,CFL,{cfl}
+  OUTPut,HDF5,{dt_out}
   LOOP,,100000000
     TIME,,{t_end}
     FORM,EXPLicit
@@ -76,22 +93,139 @@ END
 STOP
 """
 
+#: field output times of a run (each costs a flush of the .h5)
+OUTPUTS = 100
 
-def run(exic, work, name, text):
-    """Run one deck; return (error text or None, largest |drift|, eroded energy, elements eroded)."""
+RIGID = "  RIGId,FREE\n    DENSity 2\n"
+DEFORMABLE = ("  SOLId\n    ELAStic NEOHookean 2e6 0.3\n    DENSity 2\n    QUADrature {q}\n"
+              "    EROSion INVErted\n")
+
+
+def deepest(h5_path, plate=1, projectile=2):
+    """The deepest node of the projectile's live elements inside the plate's live elements over
+    the output times: (depth in lengths of the nearest plate boundary edge, time)."""
+    import h5py
+    with h5py.File(h5_path, "r") as f:
+        nt = int(f["n_times"][0]) if "n_times" in f else len(f["time"])
+        x0 = f["mesh/coordinates"][()]
+        conn = f["mesh/connectivity"][()]
+        region = f["mesh/region"][()]
+        times = f["time"][:nt]
+        disp = f["fields/displacement"][:nt]
+        comps = f["fields/stress"].attrs["components"]
+        comps = (comps.decode() if isinstance(comps, bytes) else str(comps)).split()
+        status = f["fields/stress"][:nt, :, comps.index("status")]
+    best = (0.0, 0.0)
+    for k in range(nt):
+        x = x0 + disp[k]
+        live = status[k] == 0
+        pel = (region == plate) & live
+        qel = (region == projectile) & live
+        if not pel.any() or not qel.any():
+            continue
+        edges = analyse.boundary_edges(conn[pel])
+        pts = x[np.unique(conn[qel])]
+        xb = x[np.unique(edges)]
+        lo, hi = xb.min(axis=0), xb.max(axis=0)
+        sel = np.all((pts >= lo) & (pts <= hi), axis=1)
+        if not sel.any():
+            continue
+        depth, elen = analyse.inside_depth(pts[sel], x, edges)
+        rel = float(np.max(depth / elen))
+        if rel > best[0]:
+            best = (rel, float(times[k]))
+    return best
+
+
+def entries(h5_path, limit=0.05, plate=1, projectile=2):
+    """With a field output every step: each time a projectile node enters the plate's live
+    elements deeper than `limit` edges, whether the nearest plate boundary edge appeared at that
+    output (exposed by an erosion of that step) or was there before. Returns (entries through a
+    newly exposed edge, entries through an older edge, first step of an entry, first erosion
+    step)."""
+    import h5py
+    with h5py.File(h5_path, "r") as f:
+        nt = int(f["n_times"][0]) if "n_times" in f else len(f["time"])
+        x0 = f["mesh/coordinates"][()]
+        conn = f["mesh/connectivity"][()]
+        region = f["mesh/region"][()]
+        steps = f["step"][:nt]
+        disp = f["fields/displacement"][:nt]
+        comps = f["fields/stress"].attrs["components"]
+        comps = (comps.decode() if isinstance(comps, bytes) else str(comps)).split()
+        status = f["fields/stress"][:nt, :, comps.index("status")]
+    new = old = 0
+    first = first_erosion = None
+    prev_keys, prev_in = None, set()
+    for k in range(nt):
+        x = x0 + disp[k]
+        live = status[k] == 0
+        if first_erosion is None and not live.all():
+            first_erosion = int(steps[k])
+        edges = analyse.boundary_edges(conn[(region == plate) & live])
+        keys = set(map(tuple, np.sort(edges, axis=1)))
+        nodes = np.unique(conn[(region == projectile) & live])
+        depth, elen = analyse.inside_depth(x[nodes], x, edges)
+        a, b = x[edges[:, 0]], x[edges[:, 1]]
+        now = set()
+        for i in np.where(depth / elen > limit)[0]:
+            p = nodes[i]
+            now.add(p)
+            if p in prev_in:
+                continue
+            ab = b - a
+            t = np.clip(((x[p] - a) * ab).sum(1) / (ab * ab).sum(1), 0.0, 1.0)
+            j = int(np.argmin(np.hypot(*(x[p] - (a + t[:, None] * ab)).T)))
+            if prev_keys is not None and tuple(sorted(edges[j])) not in prev_keys:
+                new += 1
+            else:
+                old += 1
+            if first is None:
+                first = int(steps[k])
+        prev_keys, prev_in = keys, now
+    return new, old, first, first_erosion
+
+
+def run(exic, work, name, text, keep_fields=False):
+    """Run one deck; (error text or None, largest |drift|, eroded energy, elements eroded,
+    (deepest, its time))."""
     deck = work / (name + '.inp')
     deck.write_text(text)
     p = subprocess.run([exic, str(deck), '-o', str(work), '-q'], capture_output=True, text=True,
-                       timeout=600)
+                       timeout=1200)
     if p.returncode != 0:
-        return (p.stderr.strip().splitlines() or ['exit %d' % p.returncode])[-1], None, None, None
+        return (p.stderr.strip().splitlines() or ['exit %d' % p.returncode])[-1], None, None, None, None
     ene = (work / (name + '.ene')).read_text().splitlines()
     cols = ene[0].lstrip('#').split()
     idrift, iero = cols.index('drift'), cols.index('eroded')
     rows = [line.split() for line in ene[1:] if line.strip()]
     drift = max(abs(float(r[idrift])) for r in rows)
     out = (work / (name + '.out')).read_text()
-    return None, drift, float(rows[-1][iero]), out.count('erosion: element')
+    pen = deepest(work / (name + '.h5'))
+    if keep_fields:
+        return None, drift, float(rows[-1][iero]), out.count('erosion: element'), pen
+    for ext in ('.h5', '.xdmf', '_series.xdmf', '.his'):
+        try:
+            (work / (name + ext)).unlink()
+        except OSError:
+            pass
+    return None, drift, float(rows[-1][iero]), out.count('erosion: element'), pen
+
+
+def variants(quick):
+    if quick:
+        grid = itertools.product([1000, 1500, 2500], [0.4], [(40, 4)], [1, 2], ['elastic', 'plastic'])
+        return [(v, h, m, q, law, 0.9, 'rigid') for v, h, m, q, law in grid]
+    grid = itertools.product([800, 1500, 2500], [0.2, 0.4], [(20, 2), (40, 4), (40, 8)], [1, 2],
+                             ['elastic', 'plastic'])
+    cfls = [0.5, 0.7, 0.9, 0.95]
+    out = []
+    for k, (v, h, m, q, law) in enumerate(grid):
+        # k = 4 g + c, c the (QUADrature, law) pair: each pair meets every CFL (shifted by the
+        # group g) with both projectiles (rigid for g mod 8 < 4)
+        g, c = divmod(k, 4)
+        out.append((v, h, m, q, law, cfls[(c + g) % 4], 'rigid' if g % 8 < 4 else 'deformable'))
+    return out
 
 
 def main():
@@ -99,37 +233,56 @@ def main():
     ap.add_argument('--exic', required=True)
     ap.add_argument('--quick', action='store_true', help='a smaller family (12 variants)')
     ap.add_argument('--out', help='keep the runs in this directory')
-    ap.add_argument('--limit', type=float, default=0.02)
+    ap.add_argument('--limit', type=float, default=0.01)
+    ap.add_argument('--depth-limit', type=float, default=None)
+    ap.add_argument('--only', default=None, help='run the variants whose name contains this text')
+    ap.add_argument('--entries', action='store_true',
+                    help='fields every step, and for each variant the entries of projectile nodes '
+                         'into the plate deeper than 0.05 edges: through an edge exposed at that '
+                         'step or through an older one, the first entry and the first erosion')
     a = ap.parse_args()
-    if a.quick:
-        speeds, thick, meshes, quads, laws = [1000, 1500, 2500], [0.4], [(40, 4)], [1, 2], ['elastic', 'plastic']
-    else:
-        speeds, thick, meshes, quads, laws = [800, 1500, 2500], [0.2, 0.4], [(20, 2), (40, 4), (40, 8)], \
-            [1, 2], ['elastic', 'plastic']
     work = pathlib.Path(a.out) if a.out else pathlib.Path(tempfile.mkdtemp(prefix='erosion_family_'))
     work.mkdir(parents=True, exist_ok=True)
-    worst, failed = None, []
-    for v, h, (nx, ny), q, law in itertools.product(speeds, thick, meshes, quads, laws):
-        name = 'ero_v%d_h%g_%dx%d_q%d_%s' % (v, h, nx, ny, q, law)
+    worst, deep, failed = None, None, []
+    for v, h, (nx, ny), q, law, cfl, proj in variants(a.quick):
+        name = 'ero_v%d_h%g_%dx%d_q%d_%s_cfl%g_%s' % (v, h, nx, ny, q, law, cfl, proj)
+        if a.only and a.only not in name:
+            continue
         plastic = '    PLAStic MISEs 500\n' if law == 'plastic' else ''
-        # the time the projectile of `fpm test -- erosion` takes at 1500 to pass the plate (4e-3),
-        # scaled with the speed: a travel of 6 at its initial speed
-        t_end = '%.6g' % (6.0/v)
+        t_end = 6.0/v
         text = DECK.format(q=q, plastic=plastic, nx=nx, ny=ny, h=h, y0=h + 0.01, y1=h + 0.41, mv=-v,
-                           t_end=t_end)
-        err, drift, eroded, n = run(a.exic, work, name, text)
+                           t_end='%.6g' % t_end, dt_out="%.6g" % (t_end/(1e6 if a.entries else OUTPUTS)),
+                           cfl=cfl,
+                           projectile=RIGID if proj == 'rigid' else DEFORMABLE.format(q=q))
+        err, drift, eroded, n, pen = run(a.exic, work, name, text, a.entries)
         if err is not None:
-            print('%-36s FAILED: %s' % (name, err))
+            print('%-52s FAILED: %s' % (name, err), flush=True)
             failed.append(name)
             continue
-        print('%-36s drift %.3e  eroded %d elements, energy %.4g' % (name, drift, n, eroded))
+        print('%-52s drift %.3e  eroded %3d elements, energy %.4g  deepest %.3g edges (t %.4g)'
+              % (name, drift, n, eroded, pen[0], pen[1]), flush=True)
+        if a.entries:
+            ne, no, first, ferosion = entries(work / (name + '.h5'))
+            print('    entries deeper than 0.05 edges: %d through a newly exposed edge, %d through an older '
+                  'one; first entry at step %s, first erosion at step %s' % (ne, no, first, ferosion), flush=True)
+            for ext in ('.h5', '.xdmf', '_series.xdmf', '.his'):
+                try:
+                    (work / (name + ext)).unlink()
+                except OSError:
+                    pass
         if worst is None or drift > worst[1]:
             worst = (name, drift)
+        if deep is None or pen[0] > deep[1]:
+            deep = (name, pen[0])
     if worst:
         print('worst drift: %s %.3e (limit %g)' % (worst[0], worst[1], a.limit))
+        print('deepest projectile node in the plate: %s %.3g edges%s' % (
+            deep[0], deep[1], '' if a.depth_limit is None else ' (limit %g)' % a.depth_limit))
     if failed:
         print('failed: ' + ', '.join(failed))
-    sys.exit(1 if failed or (worst and worst[1] > a.limit) else 0)
+    bad = failed or (worst and worst[1] > a.limit) or \
+        (a.depth_limit is not None and deep and deep[1] > a.depth_limit)
+    sys.exit(1 if bad else 0)
 
 
 if __name__ == '__main__':

@@ -19,6 +19,10 @@ probability 1/2, elastic-plastic (`PLAStic MISEs Y0` with Y0 = E 10^(-3..-2), an
 with probability 1/2, MIXEd (mean dilatation). These choices come from a random stream of
 their own, so the geometry, speeds and elastic constants of a scene are those of the
 generator without metals (`stress.py --elastic-only` reproduces the earlier campaigns).
+
+Erosion (EROSION, off by default): the record(s) written into every deformable body's material,
+e.g. "EROSion INVErted" (`stress.py --erosion 'EROSion INVErted'`, doc/erosion.md); the scene is
+otherwise the same deck.
 """
 import math
 import random
@@ -399,6 +403,8 @@ def _block_text(region, mat, nr, ns, corners, mids=None):
 #: the hourglass record of the one-point (QUADrature 1) bodies: the assumed-strain control
 #: (doc/hourglass.md); campaigns up to seed 20261124 wrote "HOURglass 0.1" (stress.py --hourglass)
 HOURGLASS = "HOURglass,PHYSical"
+#: the EROSion records of every deformable body, one per line (empty: none, the default)
+EROSION = ""
 
 
 def _body_text(k, b):
@@ -415,6 +421,9 @@ def _body_text(k, b):
             mat += "    MIXEd\n"
         if m.quad == 1:
             mat += f"    {HOURGLASS}\n"
+        for rec in EROSION.split(";"):
+            if rec.strip():
+                mat += f"    {rec.strip()}\n"
         mat += "\n"
     cx, cy = b.center
     mesh = f"REGIon,{k}\n"

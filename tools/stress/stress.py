@@ -6,12 +6,16 @@ and JSON results under doc/stability/.
 
     tools/stress/stress.py [--exic PATH] [--seed N] [--scenes N] [--fuzz N] [--kills N] [--long]
                            [--only scenes,fuzz,cfl,long,kills] [--jobs 2] [--keep]
+                           [--erosion 'EROSion INVErted'] [--save-as NAME]
 
 `make stress` builds the release binary and runs this with the defaults (500 scenes of seed
 20240610, 2,000 fuzzed decks, CFL 0.1-1.0, long runs of 2e4-5e4 steps; about 20 minutes on
 two cores); `make stress STRESS_ARGS=--long` runs the long cases for 10^6 steps. Each section
 saves its JSON as it ends, so `--only` reruns one section and the report is rebuilt from
 every saved result. Exit code 0 when the suite ran (whatever it found), 2 on a usage error.
+`--erosion` writes the given EROSion records (";" between several) into every deformable body of
+the random scenes (doc/erosion.md; the scenes are otherwise the same decks), keeps their results
+as doc/stability/<NAME>.json (default scenes_erosion) and saves no deck into test/data/stress.
 `tools/stress/inversions.py` classifies the scenes of a campaign that stopped on an inverted
 element (its JSON, doc/stability/inversions_<seed>.json, is section 1a of the report).
 """
@@ -71,7 +75,7 @@ DEPTH_LIMIT = 1e-3
 
 def one_scene(exic, seed, index, timeout):
     sc = scenes.make_scene(seed, index)
-    d = os.path.join(WORK, "scenes")
+    d = os.path.join(WORK, "scenes_erosion" if scenes.EROSION else "scenes")
     os.makedirs(d, exist_ok=True)
     name = f"scene_{seed}_{index:04d}"
     deck = os.path.join(d, name + ".inp")
@@ -128,7 +132,7 @@ def report_commit():
         return "?"
 
 
-def run_scenes(exic, seed, n, jobs, timeout):
+def run_scenes(exic, seed, n, jobs, timeout, save_as="scenes", keep_decks=True):
     log(f"scenes: {n} random scenes of seed {seed}, timeout {timeout} s, {jobs} at a time")
     t0 = time.time()
     results = []
@@ -148,8 +152,11 @@ def run_scenes(exic, seed, n, jobs, timeout):
     results.sort(key=lambda r: r["index"])
     data = {"seed": seed, "count": n, "timeout": timeout, "seconds": round(time.time() - t0, 1),
             "commit": report_commit(), "metals": scenes.METALS, "scenes": results}
-    save("scenes", data)
-    save_failing_scenes(results, decks, seed)
+    if scenes.EROSION:
+        data["erosion"] = scenes.EROSION
+    save(save_as, data)
+    if keep_decks:
+        save_failing_scenes(results, decks, seed)
     return data
 
 
@@ -206,6 +213,12 @@ def main():
     ap.add_argument("--hourglass", default=None,
                     help='the hourglass record of one-point bodies (default: scenes.HOURGLASS; '
                          '"HOURglass 0.1" as in the campaigns up to seed 20261124)')
+    ap.add_argument("--erosion", default=None,
+                    help='EROSion records for every deformable body, separated by ";" (e.g. '
+                         '"EROSion INVErted"; doc/erosion.md); the scenes results go to '
+                         'doc/stability/scenes_erosion.json, no deck is saved into test/data/stress')
+    ap.add_argument("--save-as", default="scenes",
+                    help="the name of the scenes results under doc/stability (default scenes)")
     ap.add_argument("--elastic-only", action="store_true",
                     help="scenes without plastic and MIXEd bodies, as in the campaigns up to seed 20261210")
     args = ap.parse_args()
@@ -213,6 +226,10 @@ def main():
         scenes.HOURGLASS = args.hourglass
     if args.elastic_only:
         scenes.METALS = False
+    if args.erosion:
+        scenes.EROSION = args.erosion
+        if args.save_as == "scenes":
+            args.save_as = "scenes_erosion"
     exic = os.path.abspath(args.exic or find_exic())
     if not os.path.exists(exic):
         sys.exit(f"stress: no exic at {exic}")
@@ -220,7 +237,7 @@ def main():
     only = set(args.only.split(","))
     os.makedirs(WORK, exist_ok=True)
     if "scenes" in only:
-        run_scenes(exic, args.seed, args.scenes, jobs, args.timeout)
+        run_scenes(exic, args.seed, args.scenes, jobs, args.timeout, args.save_as, not args.erosion)
     if "fuzz" in only:
         import fuzz
         fuzz.run_fuzz(exic, args.seed, args.fuzz, jobs, WORK, save, log)

@@ -558,7 +558,9 @@ contains
    !> Q of eq. E.3 over the nodes and the free bodies.
    real(wp) function kinetic_power(st) result(q)
       type(state_t), intent(in) :: st
-      if (allocated(st%mass_dof)) then
+      if (st%power_known) then
+         q = st%power_nodes + st%body_power
+      else if (allocated(st%mass_dof)) then
          q = cd_kinetic_power(st%nnode, st%mass, st%minv, st%fext, st%fint, st%a, st%mass_dof) + st%body_power
       else
          q = cd_kinetic_power(st%nnode, st%mass, st%minv, st%fext, st%fint, st%a) + st%body_power

@@ -24,6 +24,7 @@ module exic_explicit_central
 
    public :: cd_displacement, cd_predictor, cd_velocity, positions, cd_zero, cd_kinetic
    public :: cd_kinetic_power, cd_displacement_plain, cd_update_plain
+   public :: cd_displacement_plain_at, cd_update_plain_chunks, cd_plain_fold
    public :: positions_at, predictor_velocity_at
 
    !> Nodes per chunk (fixed: the order of the additions of a sum must not depend on threads).
@@ -318,6 +319,87 @@ contains
          end if
       end subroutine update_chunk
    end subroutine cd_update_plain
+
+   !> u = u + (dt v + dt^2/2 a) at the nodes `list` only: cd_displacement_plain's operations
+   !> on those values (the nodes of a rank's elements that another rank owns, doc/parallel.md).
+   pure subroutine cd_displacement_plain_at(nnode, dt, v, a, list, u)
+      integer, intent(in) :: nnode
+      real(wp), intent(in) :: dt, v(2, nnode), a(2, nnode)
+      integer, intent(in) :: list(:)
+      real(wp), intent(inout) :: u(2, nnode)
+      real(wp) :: h
+      integer :: k, i
+      h = 0.5_wp*dt*dt
+      do k = 1, size(list)
+         i = list(k)
+         u(1, i) = u(1, i) + (dt*v(1, i) + h*a(1, i))
+         u(2, i) = u(2, i) + (dt*v(2, i) + h*a(2, i))
+      end do
+   end subroutine cd_displacement_plain_at
+
+   !> cd_update_plain on the chunks c1 .. c2 of the n nodes only (the chunks a rank owns,
+   !> doc/parallel.md): the same chunk kernels, each chunk's sums left in p(:, c - c1 + 1) =
+   !> (F . du, m |v|^2, m vx, m vy, Q) unfolded, Q always formed. cd_plain_fold folds the sums
+   !> of every chunk in chunk order as cd_update_plain does.
+   subroutine cd_update_plain_chunks(n, c1, c2, dt, minv, fext, fext_zero, fint, mass, a, v, p)
+      integer, intent(in) :: n, c1, c2
+      real(wp), intent(in) :: dt
+      real(wp), intent(in), dimension(2, n) :: minv, fext, fint
+      logical, intent(in) :: fext_zero
+      real(wp), intent(in) :: mass(n)
+      real(wp), intent(inout) :: a(2, n), v(2, n)
+      real(wp), intent(out) :: p(5, c1:c2)
+      integer :: c
+      if (threaded((c2 - c1 + 1)*CHUNK, PAR_MIN_NODES)) then
+         !$omp parallel do default(none) shared(c1, c2) private(c) schedule(dynamic)
+         do c = c1, c2
+            call part_chunk(c)
+         end do
+         !$omp end parallel do
+      else
+         do c = c1, c2
+            call part_chunk(c)
+         end do
+      end if
+   contains
+      !> The nodes of chunk c (cd_update_plain's update_chunk with the power).
+      subroutine part_chunk(c)
+         integer, intent(in) :: c
+         integer :: i0, m
+         i0 = (c - 1)*CHUNK + 1
+         m = min(CHUNK, n - i0 + 1)
+         if (fext_zero) then
+            call update_plain_range(2*m, dt, minv(1, i0), ZERO_FORCES, fint(1, i0), a(1, i0), v(1, i0), p(1, c))
+         else
+            call update_plain_range(2*m, dt, minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), v(1, i0), p(1, c))
+         end if
+         call kinetic_range(m, mass(i0), v(1, i0), p(2, c), p(3, c), p(4, c))
+         if (fext_zero) then
+            call power_range(m, mass(i0), minv(1, i0), ZERO_FORCES, fint(1, i0), a(1, i0), p(5, c))
+         else
+            call power_range(m, mass(i0), minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), p(5, c))
+         end if
+      end subroutine part_chunk
+   end subroutine cd_update_plain_chunks
+
+   !> The sums of cd_update_plain from the chunks' sums p(5, nc) of cd_update_plain_chunks
+   !> (every chunk, in order): wext += F . du, kinetic energy, momentum and Q, the same
+   !> ordered_sum and kinetic_total, hence the same bits.
+   pure subroutine cd_plain_fold(nc, p, wext, kinetic, momentum, power)
+      integer, intent(in) :: nc
+      real(wp), intent(in) :: p(5, nc)
+      real(wp), intent(inout) :: wext
+      real(wp), intent(out) :: kinetic, momentum(2), power
+      real(wp) :: pe(nc), pk(nc), px(nc), py(nc), pr(nc)
+      pe = p(1, :)
+      pk = p(2, :)
+      px = p(3, :)
+      py = p(4, :)
+      pr = p(5, :)
+      wext = wext + ordered_sum(nc, pe)
+      call kinetic_total(nc, pk, px, py, kinetic, momentum)
+      power = ordered_sum(nc, pr)
+   end subroutine cd_plain_fold
 
    !> cd_update_plain's velocity update on m values: displacement_range's du, acceleration_range's
    !> a and velocity_range's v and F . du, in one loop.

@@ -17,6 +17,7 @@
 !> do); the first inverted and the first folded element likewise: exact reductions.
 module exic_explicit_decomposition
    use exic_base_kinds, only: wp
+   use, intrinsic :: iso_fortran_env, only: int64
    use exic_base_error, only: error_t, make_error
    use exic_base_strings, only: itoa
    use exic_base_threads, only: threaded
@@ -24,6 +25,8 @@ module exic_explicit_decomposition
    use exic_element_quad4, only: q4_force_2x2, q4_force_1pt, NBLOCK
    use exic_element_q4_general, only: q4g_force
    use exic_element_q4_bulk_viscosity, only: q4_bulk_viscosity
+   use exic_base_clock, only: wall_time
+   use exic_explicit_central, only: CHUNK
    use exic_parallel_mpi, only: par_rank, par_size, par_allgatherv, par_allgather_int
    use exic_parallel_partition, only: partition_mesh, node_owners
    use exic_explicit_state, only: state_t, element_set_t
@@ -47,6 +50,8 @@ module exic_explicit_decomposition
       integer, allocatable :: e0(:)       !< first element (local to the set) of the block
       integer, allocatable :: gid(:)      !< global block number
       integer, allocatable :: slot(:)     !< position in the rank's owned blocks, 0: not owned
+      !> divided nodes: (nrange) position of range r in the rank's owned ranges, 0: not owned
+      integer, allocatable :: rslot(:)
    end type set_blocks_t
 
    !> One rank's part of the decomposition.
@@ -70,7 +75,27 @@ module exic_explicit_decomposition
       integer, allocatable :: block_order(:)  !< (nblock) blocks by owner, ascending in each
       integer, allocatable :: rec_counts(:)   !< (nrank) values each rank sends of its blocks
       real(wp), allocatable :: fsend(:), frecv(:), bsend(:), brecv(:)
-      real(wp), allocatable :: bval(:, :)     !< (3, nblock) w, whg, wd of every block
+      real(wp), allocatable :: bval(:, :)     !< (3, nunit) w, whg, wd of every block (range)
+      ! the nodal state divided (doc/parallel.md, "Divided nodes"): steps without contact, loads
+      ! or masses per dof, decks without VISCosity BULK and DAMPing MASS
+      logical :: nodes = .false.
+      logical :: whole = .true.               !< every rank holds the whole nodal state now
+      integer :: nunit = 0                    !< units of the energy sums: blocks, or ranges (nodes)
+      integer, allocatable :: set_range(:)    !< (nset + 1) first global range of each set
+      integer, allocatable :: cbound(:)       !< (nrank + 1) rank r owns chunks cbound(r+1) .. cbound(r+2)-1
+      integer :: c1 = 1, c2 = 0               !< this rank's chunks
+      integer :: n1 = 1, n2 = 0               !< this rank's nodes
+      integer, allocatable :: ghost(:)        !< nodes of its computed blocks that others own
+      integer, allocatable :: nb(:)           !< neighbours (ranks it sends to or receives from)
+      integer, allocatable :: sfirst(:), snodes(:)   !< nodes sent to nb(k): snodes(sfirst(k):sfirst(k+1)-1)
+      integer, allocatable :: rfirst(:), rnodes(:)   !< nodes received from nb(k)
+      real(wp), allocatable :: sbuf(:), rbuf(:)
+      integer, allocatable :: pcounts(:), pdispls(:), ncounts(:), ndispls(:)
+      real(wp), allocatable :: pall(:, :)     !< (5, nchunk) the chunks' sums (cd_update_plain_chunks)
+      integer :: redundant = 0                !< blocks computed by more than one rank (sum over ranks - all)
+      ! wall time of the divided steps on this rank (seconds) and their count
+      real(wp) :: t_elements = 0.0_wp, t_exchange = 0.0_wp, t_nodal = 0.0_wp
+      integer :: nsteps = 0
    end type decomposition_t
 
    !> Values per rank after its blocks' energies: per set the smallest squared step, its
@@ -99,11 +124,16 @@ contains
 
    !> The decomposition of the sets' elements over every rank (same result on every rank);
    !> inactive (nothing done) on one rank.
-   subroutine decomposition_init(self, st, sets, conn, err)
+   !> divide: the steps will all be plain (no contact, loads or masses per dof) and the deck has
+   !> no VISCosity BULK or DAMPing MASS: the nodal state is divided in chunk ranges (node
+   !> owners) and the energy sums come per range of elements (doc/parallel.md, "Divided nodes");
+   !> else METIS parts of the blocks and the replicated nodal state.
+   subroutine decomposition_init(self, st, sets, conn, divide, err)
       type(decomposition_t), intent(out) :: self
       type(state_t), intent(in) :: st
       type(element_set_t), intent(in) :: sets(:)
       integer, intent(in) :: conn(:, :)
+      logical, intent(in) :: divide
       type(error_t), allocatable, intent(out) :: err
       integer, allocatable :: weight(:), every(:), first(:)
       logical, allocatable :: mark(:)
@@ -120,9 +150,12 @@ contains
       call element_weights(ne, sets, weight)
 
       ! global blocks: per solid set, blocks of NBLOCK from the start of each range
-      allocate (self%set_block(self%nset + 1), self%set_elem(self%nset + 1), self%sb(self%nset))
+      self%nodes = divide
+      allocate (self%set_block(self%nset + 1), self%set_elem(self%nset + 1), self%sb(self%nset), &
+                self%set_range(self%nset + 1))
       self%set_block(1) = 1
       self%set_elem(1) = 0
+      self%set_range(1) = 1
       do k = 1, self%nset
          associate (s => sets(k))
             nb = 0
@@ -138,11 +171,16 @@ contains
             end if
             self%set_block(k + 1) = self%set_block(k) + nb
             self%set_elem(k + 1) = self%set_elem(k) + s%nel
+            self%set_range(k + 1) = self%set_range(k) + merge(s%nrange, 0, s%kind == MAT_SOLID)
          end associate
       end do
-      call partition_blocks(self, st%nnode, sets, weight, err)
-      if (allocated(err)) return
-      call node_owners(ne, st%nnode, conn, self%elem_owner, self%node_owner)
+      if (self%nodes) then
+         call chunk_owners(self, st%nnode, sets, weight)
+      else
+         call partition_blocks(self, st%nnode, sets, weight, err)
+         if (allocated(err)) return
+         call node_owners(ne, st%nnode, conn, self%elem_owner, self%node_owner)
+      end if
       allocate (mark(st%nnode))
       mark = self%node_owner == self%rank
       ncomp = 0
@@ -151,12 +189,35 @@ contains
          associate (s => sets(k), b => self%sb(k))
             allocate (b%rfirst(max(s%nrange, 0) + 1))
             b%rfirst(1) = 1
-            allocate (b%e0(0), b%gid(0), b%slot(0))
+            allocate (b%e0(0), b%gid(0), b%slot(0), b%rslot(max(s%nrange, 0)))
+            b%rslot = 0
             if (s%kind /= MAT_SOLID) then
                b%rfirst = 1
                cycle
             end if
             do r = 1, s%nrange
+               if (self%nodes) then
+                  ! whole ranges: the rank's ranges with an element at a node it owns; it owns
+                  ! those whose first element's first node it owns
+                  take = .false.
+                  do j = s%rfirst(r), s%rfirst(r + 1) - 1
+                     if (any(mark(s%conn(:, j)))) take = .true.
+                  end do
+                  if (take) then
+                     do e0 = s%rfirst(r), s%rfirst(r + 1) - 1, NBLOCK
+                        b%e0 = [b%e0, e0]
+                        b%gid = [b%gid, self%set_block(k) + (e0 - 1)/NBLOCK]
+                        b%slot = [b%slot, merge(1, 0, mark(s%conn(1, s%rfirst(r))))]
+                        ncomp = ncomp + 1
+                     end do
+                     if (mark(s%conn(1, s%rfirst(r)))) then
+                        nown = nown + 1
+                        b%rslot(r) = nown
+                     end if
+                  end if
+                  b%rfirst(r + 1) = size(b%e0) + 1
+                  cycle
+               end if
                do e0 = s%rfirst(r), s%rfirst(r + 1) - 1, NBLOCK
                   nb = min(NBLOCK, s%rfirst(r + 1) - e0)
                   g = self%set_block(k) + (e0 - 1)/NBLOCK
@@ -194,8 +255,13 @@ contains
       call by_owner(st%nnode, self%node_owner, self%nrank, self%node_order)
       call par_allgather_int(nown, every)
       self%rec_counts = 3*every + PER_SET*self%nset + TAIL
-      allocate (self%block_order(self%nblock))
-      call by_owner(self%nblock, self%block_owner, self%nrank, self%block_order)
+      if (self%nodes) then
+         self%nunit = self%set_range(self%nset + 1) - 1
+      else
+         self%nunit = self%nblock
+      end if
+      allocate (self%block_order(self%nunit))
+      call by_owner(self%nunit, self%block_owner, self%nrank, self%block_order)
       do i = 1, self%nrank
          if (count(self%block_owner == i - 1) /= every(i)) then
             call make_error(err, 'decomposition: rank '//itoa(i - 1)//' computes '//itoa(every(i))// &
@@ -204,8 +270,10 @@ contains
          end if
       end do
       p = sum(self%rec_counts)
-      allocate (self%fsend(2*size(self%mine)), self%frecv(2*st%nnode))
-      allocate (self%bsend(self%rec_counts(self%rank + 1)), self%brecv(p), self%bval(3, self%nblock))
+      if (.not. self%nodes) allocate (self%fsend(2*size(self%mine)), self%frecv(2*st%nnode))
+      allocate (self%bsend(self%rec_counts(self%rank + 1)), self%brecv(p), self%bval(3, self%nunit))
+      call par_allgather_int(ncomp, every)
+      self%redundant = sum(every) - self%nblock
    end subroutine decomposition_init
 
    !> The blocks of every solid set as the parts' units (doc/parallel.md, "Partition"): METIS's
@@ -259,14 +327,91 @@ contains
       end do
    end subroutine partition_blocks
 
+   !> Divided nodes (doc/parallel.md): rank r owns the chunks cbound(r+1) .. cbound(r+2) - 1 of
+   !> CHUNK consecutive nodes, the boundaries cutting the running sum of the elements' weights
+   !> (each element counted at the chunk of its first node) into nrank nearly equal parts; a
+   !> node's owner is its chunk's; a range of elements (the unit of the energy sums) is owned by
+   !> the owner of its first element's first node, and so are its elements. The same on every
+   !> rank (integers only).
+   subroutine chunk_owners(self, nnode, sets, weight)
+      type(decomposition_t), intent(inout) :: self
+      integer, intent(in) :: nnode
+      type(element_set_t), intent(in) :: sets(:)
+      integer, intent(in) :: weight(:)
+      integer(int64), allocatable :: cw(:)
+      integer(int64) :: total, run
+      integer :: nchunk, k, j, c, r, q, g
+      self%nblock = self%set_block(self%nset + 1) - 1
+      nchunk = (nnode + CHUNK - 1)/CHUNK
+      allocate (cw(nchunk), self%cbound(self%nrank + 1))
+      cw = 0
+      do k = 1, self%nset
+         associate (s => sets(k))
+            if (s%kind /= MAT_SOLID) cycle
+            do j = 1, s%nel
+               c = (s%conn(1, j) - 1)/CHUNK + 1
+               cw(c) = cw(c) + weight(s%elems(j))
+            end do
+         end associate
+      end do
+      ! a chunk of no element still costs its nodes' update
+      cw = cw + 1
+      total = sum(cw)
+      self%cbound(1) = 1
+      run = 0
+      q = 1
+      do c = 1, nchunk
+         run = run + cw(c)
+         ! rank q - 1 ends at the chunk where the running sum reaches q/nrank of the total
+         do while (q < self%nrank .and. run*self%nrank >= total*q)
+            q = q + 1
+            self%cbound(q) = c + 1
+         end do
+      end do
+      do r = q + 1, self%nrank + 1
+         self%cbound(r) = nchunk + 1
+      end do
+      self%c1 = self%cbound(self%rank + 1)
+      self%c2 = self%cbound(self%rank + 2) - 1
+      self%n1 = (self%c1 - 1)*CHUNK + 1
+      self%n2 = min(self%c2*CHUNK, nnode)
+      do r = 1, self%nrank
+         self%node_owner((self%cbound(r) - 1)*CHUNK + 1:min((self%cbound(r + 1) - 1)*CHUNK, nnode)) = r - 1
+      end do
+      allocate (self%block_owner(self%set_range(self%nset + 1) - 1))
+      self%elem_owner = huge(1)
+      do k = 1, self%nset
+         associate (s => sets(k))
+            if (s%kind /= MAT_SOLID) cycle
+            do r = 1, s%nrange
+               g = self%set_range(k) + r - 1
+               self%block_owner(g) = self%node_owner(s%conn(1, s%rfirst(r)))
+               self%elem_owner(s%elems(s%rfirst(r):s%rfirst(r + 1) - 1)) = self%block_owner(g)
+            end do
+         end associate
+      end do
+   end subroutine chunk_owners
+
    !> One line for the report: ranks, the cut, elements and nodes per rank, this rank's blocks.
    function decomposition_summary(self) result(text)
       type(decomposition_t), intent(in) :: self
       character(len=:), allocatable :: text
       integer :: r
-      text = 'MPI: '//itoa(self%nrank)//' ranks; METIS parts of the element blocks cut '//itoa(self%cut)// &
-             ' block edges; elements '// &
-             'per rank'
+      if (self%nodes) then
+         text = 'MPI: '//itoa(self%nrank)//' ranks; nodal state divided in chunks of '//itoa(CHUNK)// &
+                ' nodes, chunks per rank'
+         do r = 1, self%nrank
+            text = text//' '//itoa(self%cbound(r + 1) - self%cbound(r))
+         end do
+         text = text//'; blocks computed again by another rank '//itoa(self%redundant)//' (of '// &
+                itoa(self%nblock)//'); rank '//itoa(self%rank)//' has '//itoa(size(self%ghost))// &
+                ' ghost nodes, '//itoa(size(self%nb))//' neighbours, sends '//itoa(8*size(self%sbuf))// &
+                ' and receives '//itoa(8*size(self%rbuf))//' bytes of v and a a step; elements per rank'
+      else
+         text = 'MPI: '//itoa(self%nrank)//' ranks; METIS parts of the element blocks cut '//itoa(self%cut)// &
+                ' block edges; elements '// &
+                'per rank'
+      end if
       do r = 0, self%nrank - 1
          text = text//' '//itoa(count(self%elem_owner == r))
       end do
@@ -315,8 +460,19 @@ contains
       real(wp) :: d2(self%nset), q2(self%nset), jmin, w, whg, wd, pw, phg, pd, dset, wdamp, wbulk
       integer :: o2(self%nset), obad, ofold, k, i, r, q, base, p, g, orank, b1, b2
       integer :: ord
+      real(wp) :: t0
 
-      call forces_open(st, wdamp, wbulk)
+      t0 = wall_time()
+      if (self%nodes) then
+         ! divided nodes (no bulk viscosity, no mass damping): the forces start from +0 at the
+         ! nodes this rank's blocks touch, its own and its ghosts
+         wdamp = 0.0_wp
+         wbulk = 0.0_wp
+         st%fint(:, self%n1:self%n2) = 0.0_wp
+         st%fint(:, self%ghost) = 0.0_wp
+      else
+         call forces_open(st, wdamp, wbulk)
+      end if
       ! this rank's blocks, set by set, colour by colour (the serial order at every node)
       d2 = huge(1.0_wp)
       o2 = huge(1)
@@ -334,7 +490,7 @@ contains
             ! the owned blocks' values, in ascending global block order (the order of b%gid)
             do q = 1, size(b%e0)
                if (b%slot(q) == 0) cycle
-               self%bsend(3*b%slot(q) - 2:3*b%slot(q)) = bw(:, q)
+               if (.not. self%nodes) self%bsend(3*b%slot(q) - 2:3*b%slot(q)) = bw(:, q)
                jmin = min(jmin, bj(q))
                q2(k) = min(q2(k), bq(q))
                base = self%set_elem(k) + b%e0(q) - 1
@@ -348,6 +504,21 @@ contains
                   end if
                end if
             end do
+            if (self%nodes) then
+               ! an owned range's sums: its blocks in order from +0 (the fold below, done here)
+               do r = 1, s%nrange
+                  if (b%rslot(r) == 0) cycle
+                  pw = 0.0_wp
+                  phg = 0.0_wp
+                  pd = 0.0_wp
+                  do q = b%rfirst(r), b%rfirst(r + 1) - 1
+                     pw = pw + bw(1, q)
+                     phg = phg + bw(2, q)
+                     pd = pd + bw(3, q)
+                  end do
+                  self%bsend(3*b%rslot(r) - 2:3*b%rslot(r)) = [pw, phg, pd]
+               end do
+            end if
             deallocate (bw, bj, bd, bq, be, bm, bf)
          end associate
       end do
@@ -362,10 +533,16 @@ contains
       self%bsend(p + 2) = real(obad, wp)
       self%bsend(p + 3) = real(ofold, wp)
 
-      ! the owners' nodal forces (and bulk-viscosity forces) to every rank
-      call exchange_owned(self, st%nnode, st%fint)
-      if (allocated(st%gbulk)) call exchange_owned(self, st%nnode, st%gbulk)
+      ! the owners' nodal forces (and bulk-viscosity forces) to every rank; with divided nodes
+      ! they stay where they are (each rank updates its own nodes)
+      self%t_elements = self%t_elements + (wall_time() - t0)
+      t0 = wall_time()
+      if (.not. self%nodes) then
+         call exchange_owned(self, st%nnode, st%fint)
+         if (allocated(st%gbulk)) call exchange_owned(self, st%nnode, st%gbulk)
+      end if
       call par_allgatherv(size(self%bsend), self%bsend, self%rec_counts, self%brecv)
+      self%t_exchange = self%t_exchange + (wall_time() - t0)
 
       ! every block's energies in place; the ranks' step, ratio, jmin and first elements combined
       d2 = huge(1.0_wp)
@@ -406,16 +583,23 @@ contains
             whg = 0.0_wp
             wd = 0.0_wp
             do r = 1, s%nrange
-               b1 = self%set_block(k) + (s%rfirst(r) - 1)/NBLOCK
-               b2 = self%set_block(k) + (s%rfirst(r + 1) - 2)/NBLOCK
-               pw = 0.0_wp
-               phg = 0.0_wp
-               pd = 0.0_wp
-               do g = b1, b2
-                  pw = pw + self%bval(1, g)
-                  phg = phg + self%bval(2, g)
-                  pd = pd + self%bval(3, g)
-               end do
+               if (self%nodes) then
+                  g = self%set_range(k) + r - 1
+                  pw = self%bval(1, g)
+                  phg = self%bval(2, g)
+                  pd = self%bval(3, g)
+               else
+                  b1 = self%set_block(k) + (s%rfirst(r) - 1)/NBLOCK
+                  b2 = self%set_block(k) + (s%rfirst(r + 1) - 2)/NBLOCK
+                  pw = 0.0_wp
+                  phg = 0.0_wp
+                  pd = 0.0_wp
+                  do g = b1, b2
+                     pw = pw + self%bval(1, g)
+                     phg = phg + self%bval(2, g)
+                     pd = pd + self%bval(3, g)
+                  end do
+               end if
                w = w + pw
                wd = wd + pd
                whg = whg + phg

@@ -100,7 +100,6 @@ contains
       real(wp), intent(inout), optional, allocatable :: a_old(:, :)
       integer :: k, j, a, n
       real(wp) :: xc(2, 4), xp(2, 4), h
-      logical :: now, soon
       logical, allocatable :: gone(:)
       h = st%dt_prev
       do k = 1, size(sets)
@@ -113,16 +112,12 @@ contains
                   xc(:, a) = st%x0(:, n) + st%u(:, n)
                   xp(:, a) = xc(:, a) + h*(st%v(:, n) + h*st%a(:, n))
                end do
-               now = folded(xc)
-               soon = folded(xp)
-               gone(j) = now .or. soon
-               if (gone(j)) then
-                  ! the energy of its last valid configuration: x(n+1), or x(n) when it is inverted
-                  ! already (u(n) = u(n+1) - dt(n) v(n) - dt(n)^2/2 a(n), eq. 4.3)
-                  call book_element(st, s, j, now, ERODED_INVERTED, messages)
-               end if
+               gone(j) = folded(xc) .or. folded(xp)
+               ! its energy at x(n) and the work of its force f_e(n) over the half step the
+               ! kinetic energy took it in (doc/erosion.md (R3a))
+               if (gone(j)) call book_element(st, s, j, .true., ERODED_INVERTED, messages)
             end do
-            if (any(gone)) call remove(ero, st, s, gone, a_old)
+            if (any(gone)) call remove(ero, st, s, gone, a_old, .true.)
             deallocate (gone)
          end associate
       end do
@@ -263,9 +258,13 @@ contains
       if (st%axisymmetric .and. r0 > 0.0_wp .and. r1 > 0.0_wp) e = max(e, log(r1/r0))
    end function element_strain
 
-   !> Book the energy element j of set s holds (its one-element force pass at u(n+1), or at u(n)
-   !> when `back`) into st%energy%eroded, mark it with `why` and write its line into the report. `held`:
-   !> that energy is in st%energy%strain and st%energy%hourglass now (a pass at t(n+1) included the element).
+   !> Book the energy of element j of set s into st%energy%eroded, mark it with `why` and write its
+   !> line into the report. `back` (an element removed before the pass at t(n+1), (R1)): its
+   !> strain and hourglass energy W_e(n) at u(n) = u(n+1) - du, du = dt(n) v(n) + dt(n)^2/2 a(n)
+   !> (eq. 4.3), plus 1/2 f_e(n) . du, the half of the trapezoid work of its force f_e(n) that the
+   !> kinetic energy of the step does not receive (doc/erosion.md (R3a)); else (R2) its energy at
+   !> u(n+1). `held`: that energy is in st%energy%strain and st%energy%hourglass now (a pass at
+   !> t(n+1) included the element).
    subroutine book_element(st, s, j, back, why, messages, held)
       type(state_t), intent(inout) :: st
       type(element_set_t), intent(in) :: s
@@ -273,15 +272,17 @@ contains
       logical, intent(in) :: back
       type(messages_t), intent(inout) :: messages
       logical, intent(in), optional :: held
-      real(wp) :: x0(2, 4), u(2, 4), v(2, 4), f(2, 4), w, whg, wd, jm, d
+      real(wp) :: x0(2, 4), u(2, 4), v(2, 4), du(2, 4), f(2, 4), w, whg, wd, jm, d, wdu
       real(wp), allocatable :: hist(:, :, :)
       integer :: conn(4, 1), a, n, eb, em, ef
+      du = 0.0_wp
       do a = 1, 4
          n = s%conn(a, j)
          x0(:, a) = st%x0(:, n)
          u(:, a) = st%u(:, n)
          v(:, a) = st%v(:, n)
-         if (back) u(:, a) = u(:, a) - st%dt_prev*v(:, a) - 0.5_wp*st%dt_prev**2*st%a(:, n)
+         if (back) du(:, a) = st%dt_prev*v(:, a) + 0.5_wp*st%dt_prev**2*st%a(:, n)
+         u(:, a) = u(:, a) - du(:, a)
          conn(a, 1) = a
       end do
       f = 0.0_wp
@@ -300,7 +301,8 @@ contains
          call q4_force_1pt(1, 4, conn, x0, u, s%law, s%hourglass, f, w, whg, jm, eb, d, em, &
                            ef, s%hgkind, v)
       end if
-      st%energy%eroded = st%energy%eroded + w + whg
+      wdu = 0.5_wp*sum(f*du)
+      st%energy%eroded = st%energy%eroded + w + whg + wdu
       if (present(held)) then
          if (held) then
             st%energy%strain = st%energy%strain - w
@@ -310,19 +312,26 @@ contains
       st%status(s%elems(j)) = why
       st%neroded = st%neroded + 1
       call messages%add('erosion: element '//itoa(s%elems(j))//' at t = '//rtoa(st%t)//', step '// &
-                        itoa(int(st%step))//': '//trim(REASON(why))//', energy '//rtoa(w + whg)// &
+                        itoa(int(st%step))//': '//trim(REASON(why))//', energy '//rtoa(w + whg + wdu)// &
                         ' (count '//itoa(st%neroded)//')')
    end subroutine book_element
 
    !> Take the elements `gone` out of set s (compact); the nodes no live element holds leave
-   !> the model with their kinetic energy and momentum booked (doc/erosion.md (R4)).
-   subroutine remove(ero, st, s, gone, a_old)
+   !> the model with their kinetic energy and momentum booked (doc/erosion.md (R4)). `before`:
+   !> removed before the pass at t(n+1) (R1), with the terms of (R4a): the node's part of the
+   !> kinetic correction at t(n), -dt(n)^2/8 r.a (r = m a - f_con, eq. E.3), the half of the
+   !> trapezoid work of its contact force f_con(n) that its kinetic energy does not receive, and
+   !> less the part of 1/2 f_e(n) . du that book_element counted at it (f_e(n) there is st%fint).
+   subroutine remove(ero, st, s, gone, a_old, before)
       type(erosion_t), intent(inout) :: ero
       type(state_t), intent(inout) :: st
       type(element_set_t), intent(inout) :: s
       logical, intent(in) :: gone(:)
       real(wp), intent(inout), optional, allocatable :: a_old(:, :)
+      logical, intent(in), optional :: before
       integer :: j, a, n
+      real(wp) :: du(2), h
+      h = st%dt_prev
       do j = 1, s%nel
          if (.not. gone(j)) cycle
          do a = 1, 4
@@ -330,6 +339,13 @@ contains
             ero%nuse(n) = ero%nuse(n) - 1
             if (ero%nuse(n) > 0) cycle
             st%energy%eroded = st%energy%eroded + 0.5_wp*st%mass(n)*(st%v(1, n)**2 + st%v(2, n)**2)
+            if (present(before)) then
+               if (before) then
+                  du = h*st%v(:, n) + 0.5_wp*h*h*st%a(:, n)
+                  st%energy%eroded = st%energy%eroded - 0.125_wp*h*h*sum((st%mass(n)*st%a(:, n) - &
+                                     st%fcon(:, n))*st%a(:, n)) + 0.5_wp*sum((st%fcon(:, n) - st%fint(:, n))*du)
+               end if
+            end if
             st%eroded_momentum = st%eroded_momentum + st%mass(n)*st%v(:, n)
             st%v(:, n) = 0.0_wp
             st%a(:, n) = 0.0_wp

@@ -85,6 +85,11 @@ module exic_explicit_state
       real(wp), allocatable :: gdamp(:, :), gbulk(:, :)
       ! the kinetic correction of the energy balance (doc/decisions.md, "Energy balance", eq. E.3-E.4)
       real(wp) :: body_power = 0.0_wp           !< the free bodies' m |A|^2 + I alpha^2
+      !> Q's nodal part (cd_kinetic_power) of the state now, when the nodal state is divided among
+      !> MPI ranks (doc/parallel.md): the folded sums of the ranks' chunks, the bits of the pass
+      !> over every node, which one rank cannot make alone
+      logical :: power_known = .false.
+      real(wp) :: power_nodes = 0.0_wp
       real(wp) :: correction0 = 0.0_wp          !< the correction at t = 0
       real(wp) :: dt_residual = 0.0_wp          !< its sum over the changes of the step (E.4)
       real(wp) :: dt_booked = 0.0_wp            !< the step that sum is made for

@@ -45,6 +45,8 @@ module exic_explicit_step
    use exic_explicit_face, only: face_setup, face_refresh
    use exic_explicit_decomposition, only: decomposition_t, decomposition_init, decomposition_forces, &
                                           decomposition_summary
+   use exic_explicit_decomposition_nodes, only: nodes_init, nodes_displacement, nodes_update, &
+                                                decomposition_gather_nodes
    use exic_explicit_erosion, only: erosion_t, erosion_init, erosion_before, erosion_after
    use exic_explicit_erosion_contact, only: erosion_contact_t, erosion_contact_init, erosion_contact_rebuild
    implicit none
@@ -151,11 +153,28 @@ contains
       call assembly_init(mesh, materials, self%st, self%sets, err)
       if (allocated(err)) return
       call erosion_init(self%ero, self%st, self%sets, materials)
-      call decomposition_init(self%dd, self%st, self%sets, mesh%conn, err)
-      if (allocated(err)) return
-      if (self%dd%active) call self%messages%add(decomposition_summary(self%dd))
       call self%ld%init(mesh, materials, self%st, self%sets, err, loads)
       if (allocated(err)) return
+      ! the nodal state is divided among the ranks when every step will be plain (no contact,
+      ! loads or masses per dof) and no nodal sum runs over every node in order (the works of
+      ! VISCosity BULK and DAMPing MASS): doc/parallel.md, "Divided nodes"
+      call decomposition_init(self%dd, self%st, self%sets, mesh%conn, .not. (spec%active .or. self%ld%active .or. &
+                              allocated(self%st%gbulk) .or. allocated(self%st%gdamp)), err)
+      if (allocated(err)) return
+      ! a numbering without locality (ranges of elements that reach far apart in the node
+      ! numbers, as Gmsh's generation order) would have most blocks computed by several ranks:
+      ! past a quarter of them, METIS parts of the blocks and the replicated nodal state instead
+      if (self%dd%nodes .and. 4*self%dd%redundant > self%dd%nblock) then
+         call self%messages%add('MPI: with the nodal state divided in chunk ranges, '//itoa(self%dd%redundant)// &
+                                ' of the '//itoa(self%dd%nblock)//' element blocks would be computed by more '// &
+                                'than one rank (the element and node numbers have little locality): the '// &
+                                'nodal state stays replicated')
+         call decomposition_init(self%dd, self%st, self%sets, mesh%conn, .false., err)
+         if (allocated(err)) return
+      end if
+      if (self%dd%nodes) call nodes_init(self%dd, self%st, self%sets, err)
+      if (allocated(err)) return
+      if (self%dd%active) call self%messages%add(decomposition_summary(self%dd))
       n = self%st%nnode
       ! the work arrays of a step that is not plain (plain_step); contact_init reads x only when
       ! the contact is active, which such a step is
@@ -213,6 +232,10 @@ contains
       self%st%fext_zero = plus_zero(self%st%fext)
       if (.not. plain_step(self)) call work_arrays(self)
       call forces_and_dt(self, err)
+      ! divided nodes: the owners' forces to every rank, which then makes the state at t = 0 as
+      ! the serial program does
+      self%dd%whole = .false.
+      call decomposition_gather_nodes(self%dd, self%st)
       if (allocated(err)) return
       associate (st => self%st)
          if (self%ld%active) call self%ld%forces(st, self%x, .true.)
@@ -244,23 +267,41 @@ contains
       call check_health(self, err)
    end subroutine stepper_start
 
-   !> One explicit step (FORM,EXPLicit), steps 1-7 of the module header.
+   !> One explicit step (FORM,EXPLicit), steps 1-7 of the module header. With the nodal state
+   !> divided among ranks, an error (which comes from the state, on every rank at the same step)
+   !> returns with the whole state gathered, for the outputs of the failure.
    subroutine stepper_advance(self, err)
       class(stepper_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
+      call advance_step(self, err)
+      if (allocated(err)) call decomposition_gather_nodes(self%dd, self%st)
+   end subroutine stepper_advance
+
+   !> stepper_advance's step.
+   subroutine advance_step(self, err)
+      type(stepper_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
       real(wp) :: t0, t1, qnodes
-      logical :: contact_on, work_con, plain, power_q
+      logical :: contact_on, work_con, plain, power_q, divided
 
       t0 = wall_time()
       contact_on = self%has_contact()
       plain = plain_step(self)
+      divided = plain .and. self%dd%nodes
+      if (self%dd%nodes .and. .not. plain) then
+         call make_error(err, 'a step with contact, loads or masses per dof on several MPI ranks whose nodal '// &
+                         'state is divided (a contact hook attached after the start)')
+         return
+      end if
       power_q = .false.
       if (.not. plain) call work_arrays(self)
       associate (st => self%st)
          ! a step set between steps (BATCh DT) enters the kinetic correction (eq. E.4)
          call book_step_change(st)
          ! 1. x(n+1) = x(n) + dt(n) v(n) + dt(n)^2/2 a(n)
-         if (plain) then
+         if (divided) then
+            call nodes_displacement(self%dd, st)
+         else if (plain) then
             call cd_displacement_plain(st%nnode, st%dt, st%v, st%a, st%u)
          else
             call cd_displacement(st%nnode, st%dt, st%v, st%a, st%u, self%du, self%a_old)
@@ -290,7 +331,10 @@ contains
             ! when dt(n+1) differs from the booked step (step 7), Q of eq. E.3 comes from the same
             ! sweep, chunk by chunk, instead of another pass over the nodes (the same bits)
             power_q = st%dt /= st%dt_booked
-            if (power_q) then
+            if (divided) then
+               ! this rank's chunks; the chunks' sums folded on every rank (the serial bits)
+               call nodes_update(self%dd, st, qnodes)
+            else if (power_q) then
                call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, &
                                     st%a, st%v, st%energy%wext, st%energy%kinetic, st%momentum, qnodes)
             else
@@ -334,7 +378,7 @@ contains
       end if
       self%time_steps = self%time_steps + (wall_time() - t0)
       call check_health(self, err)
-   end subroutine stepper_advance
+   end subroutine advance_step
 
    !> Steps 2-3 (and at t = 0): internal forces and, from the same pass over the elements, their
    !> stable step at x = x0 + u; dt(n+1); the positions x = x0 + u when contact or loads (edge
@@ -497,6 +541,7 @@ contains
       class(stepper_t), intent(inout) :: self
       logical, intent(in) :: given(:)
       real(wp), intent(in) :: data(:, :)
+      call decomposition_gather_nodes(self%dd, self%st)
       associate (st => self%st)
          where (spread(given, 1, 2)) st%v = data
          where (st%minv == 0.0_wp .and. .not. spread(st%rigid, 1, 2)) st%v = 0.0_wp
@@ -521,6 +566,7 @@ contains
       integer, intent(out) :: emin
       integer :: efold
       real(wp), allocatable :: x(:, :)
+      call decomposition_gather_nodes(self%dd, self%st)
       if (allocated(self%x)) then
          call positions(self%st%nnode, self%st%x0, self%st%u, self%x)
          call stable_step(self%st, self%sets, self%x, dtmin, emin, efold)
@@ -625,6 +671,7 @@ contains
          if (self%contact%friction) st%energy%friction = self%contact%dissipation
          e = st%energy%physical()
          if (.not. (ieee_is_finite(e) .and. ieee_is_finite(st%energy%wext) .and. ieee_is_finite(st%energy%wcon))) then
+            call decomposition_gather_nodes(self%dd, st)
             call make_error(err, 'a value is not finite at t = '//rtoa(st%t)//', step '// &
                             itoa(int(st%step))//': '//first_nonfinite(self))
             return
@@ -661,6 +708,8 @@ contains
             what = 'kinetic + strain energy '//rtoa(e)//' appeared with no energy put in (round-off scale '// &
                    rtoa(self%energy_floor)//') at t = '//rtoa(st%t)//', step '//itoa(int(st%step))
          end if
+         ! contributor reads every node: the whole state first (every rank is here at this step)
+         if (growth > self%energy_stop .or. .not. self%energy_warned) call decomposition_gather_nodes(self%dd, st)
          if (growth > self%energy_stop) then
             call make_error(err, what//' (stop limit '//percent(self%energy_stop)//'); largest '// &
                             'contributor: '//contributor(self, put_in))

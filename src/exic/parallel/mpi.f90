@@ -13,12 +13,15 @@ module exic_parallel_mpi
    use mpi_f08, only: MPI_Init_thread, MPI_Initialized, MPI_Finalized, MPI_Finalize, MPI_Abort, &
                       MPI_Comm_rank, MPI_Comm_size, MPI_Allgather, MPI_Allgatherv, MPI_Allreduce, &
                       MPI_Bcast, MPI_Barrier, MPI_COMM_WORLD, MPI_THREAD_FUNNELED, &
-                      MPI_DOUBLE_PRECISION, MPI_INTEGER, MPI_LOGICAL, MPI_LOR, MPI_MAX, MPI_BOR
+                      MPI_DOUBLE_PRECISION, MPI_INTEGER, MPI_LOGICAL, MPI_LOR, MPI_MAX, MPI_BOR, &
+                      MPI_Alltoall, MPI_Alltoallv, MPI_Isend, MPI_Irecv, MPI_Waitall, MPI_Request, &
+                      MPI_STATUSES_IGNORE, MPI_IN_PLACE
    implicit none
    private
 
    public :: par_init, par_finalize, par_abort, par_rank, par_size, par_running
    public :: par_allgatherv, par_allgather_int, par_any, par_max_int, par_or_bits, par_barrier, par_bcast_int
+   public :: par_allgatherv_in_place, par_alltoallv_int, par_neighbour_exchange
 
    !> Environment variables of which one is set in a process that an MPI launcher started:
    !> OpenMPI's mpirun, PMIx (srun --mpi=pmix, OpenMPI 4), PMI-1/2 (srun --mpi=pmi2, MPICH's
@@ -160,6 +163,68 @@ contains
       all_bits = bits
       if (par_size() > 1) call MPI_Allreduce(bits, all_bits, 1, MPI_INTEGER, MPI_BOR, MPI_COMM_WORLD)
    end function par_or_bits
+
+   !> buf(displs(r+1)+1 : displs(r+1)+counts(r+1)) of rank r copied to every rank, in place
+   !> (MPI_Allgatherv with MPI_IN_PLACE: each rank's part is already where it belongs). One
+   !> rank: nothing.
+   subroutine par_allgatherv_in_place(n, buf, counts, displs)
+      integer, intent(in) :: n
+      real(wp), intent(inout) :: buf(n)
+      integer, intent(in) :: counts(:), displs(:)
+      if (size(counts) == 1) return
+      call MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DOUBLE_PRECISION, buf, counts, displs, MPI_DOUBLE_PRECISION, &
+                          MPI_COMM_WORLD)
+   end subroutine par_allgatherv_in_place
+
+   !> Integers to every rank: send(sdispl(r+1)+1 : ... + scounts(r+1)) goes to rank r; recv
+   !> gets from rank r rcounts(r+1) values (exchanged first with MPI_Alltoall), rank after rank.
+   subroutine par_alltoallv_int(send, scounts, recv, rcounts)
+      integer, intent(in) :: send(:), scounts(:)
+      integer, allocatable, intent(out) :: recv(:)
+      integer, intent(out) :: rcounts(:)
+      integer :: sd(size(scounts)), rd(size(scounts)), r
+      if (size(scounts) == 1) then
+         rcounts = scounts
+         recv = send(1:scounts(1))
+         return
+      end if
+      call MPI_Alltoall(scounts, 1, MPI_INTEGER, rcounts, 1, MPI_INTEGER, MPI_COMM_WORLD)
+      sd(1) = 0
+      rd(1) = 0
+      do r = 2, size(scounts)
+         sd(r) = sd(r - 1) + scounts(r - 1)
+         rd(r) = rd(r - 1) + rcounts(r - 1)
+      end do
+      allocate (recv(sum(rcounts)))
+      call MPI_Alltoallv(send, scounts, sd, MPI_INTEGER, recv, rcounts, rd, MPI_INTEGER, MPI_COMM_WORLD)
+   end subroutine par_alltoallv_int
+
+   !> Point-to-point exchange of values with the neighbours nb(:) (ranks): sbuf(sfirst(k) :
+   !> sfirst(k+1) - 1) goes to nb(k), rbuf(rfirst(k) : rfirst(k+1) - 1) comes from nb(k)
+   !> (MPI_Irecv, MPI_Isend, MPI_Waitall; values copied, never summed).
+   subroutine par_neighbour_exchange(nb, sfirst, sbuf, rfirst, rbuf)
+      integer, intent(in) :: nb(:), sfirst(:), rfirst(:)
+      real(wp), intent(in), asynchronous, contiguous, target :: sbuf(:)
+      real(wp), intent(inout), asynchronous, contiguous, target :: rbuf(:)
+      type(MPI_Request) :: req(2*size(nb))
+      integer :: k, n
+      n = 0
+      do k = 1, size(nb)
+         if (rfirst(k + 1) > rfirst(k)) then
+            n = n + 1
+            call MPI_Irecv(rbuf(rfirst(k):rfirst(k + 1) - 1), rfirst(k + 1) - rfirst(k), MPI_DOUBLE_PRECISION, nb(k), 31, &
+                           MPI_COMM_WORLD, req(n))
+         end if
+      end do
+      do k = 1, size(nb)
+         if (sfirst(k + 1) > sfirst(k)) then
+            n = n + 1
+            call MPI_Isend(sbuf(sfirst(k):sfirst(k + 1) - 1), sfirst(k + 1) - sfirst(k), MPI_DOUBLE_PRECISION, nb(k), 31, &
+                           MPI_COMM_WORLD, req(n))
+         end if
+      end do
+      if (n > 0) call MPI_Waitall(n, req(1:n), MPI_STATUSES_IGNORE)
+   end subroutine par_neighbour_exchange
 
    !> a(1:n) of rank 0 on every rank.
    subroutine par_bcast_int(n, a)

@@ -22,13 +22,14 @@ module exic_session_run
    use exic_session_program_change, only: adopt_program
    use exic_explicit_step, only: stepper_t
    use exic_explicit_history_gather, only: decomposition_gather_history
+   use exic_explicit_decomposition_nodes, only: decomposition_gather_nodes
    use exic_contact_inside, only: inside_t
    implicit none
    private
 
    public :: fields_observer, run_t, INSIDE_STEPS
    public :: resume, save_restart, init_inside, check_inside, start, step, after_step, &
-             finish_progress, pass_messages
+             finish_progress, pass_messages, gather_nodes_due
 
    !> Steps between two geometric penetration checks besides the field output times and the end.
    integer, parameter :: INSIDE_STEPS = 1000
@@ -113,6 +114,7 @@ contains
       type(run_t), intent(inout) :: r
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: err
+      call decomposition_gather_nodes(r%stp%dd, r%stp%st)
       call r%out%checkpoint(err)
       if (allocated(err)) return
       ! several MPI ranks: the element history of every block from its owner (doc/parallel.md)
@@ -206,6 +208,15 @@ contains
       if (len(warn) > 0) call r%stp%messages%add(warn)
       call pass_messages(r)
    end subroutine check_inside
+
+   !> Before a TIME command's outputs: the whole nodal state on every rank when its rows, fields
+   !> or penetration check are due and the state is divided among MPI ranks (doc/parallel.md).
+   subroutine gather_nodes_due(r)
+      type(run_t), intent(inout) :: r
+      if (.not. r%stp%dd%nodes) return
+      if (r%out%reads_state(r%stp) .or. (r%inside%active .and. r%stp%st%step - r%inside_step >= INSIDE_STEPS)) &
+         call decomposition_gather_nodes(r%stp%dd, r%stp%st)
+   end subroutine gather_nodes_due
 
    !> First use of the state: the history header, then the state at t = 0.
    subroutine start(r, model, err)

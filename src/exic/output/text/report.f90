@@ -13,6 +13,7 @@ module exic_output_text_report
    use exic_explicit_loads, only: FN_UNDEFINED
    use exic_explicit_state, only: state_t
    use exic_explicit_assembly, only: energy_balance
+   use exic_explicit_decomposition_nodes, only: decomposition_timing
    use exic_explicit_energy, only: energy_t
    use exic_contact_inside, only: inside_t
    !$ use omp_lib, only: omp_get_max_threads
@@ -139,6 +140,7 @@ contains
                            ' s, contact corrector '//rtoa(c%time_corrector)//' s')
             call files%say('steps per second '//rtoa(real(st%step, wp)/ts)// &
                            ', element-steps per second '//rtoa(real(st%step, wp)*st%nelem/ts))
+            if (len(decomposition_timing(stp%dd)) > 0) call files%say(decomposition_timing(stp%dd))
          end if
          if (c%active) then
             call files%say('contact: largest penetration over the run '//largest_penetration(stp, inside)// &
