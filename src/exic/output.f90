@@ -23,6 +23,7 @@ module exic_output
    use exic_explicit_loading, only: reaction
    use exic_explicit_energy, only: energy_t, model_energies, ENERGY_NAMES, NENERGY, E_WPM, E_FRICTION, E_PLASTIC
    use exic_explicit_rigid, only: RB_PLAIN, RB_FREE
+   use exic_explicit_history_gather, only: decomposition_gather_history, history_stale
    implicit none
    private
 
@@ -233,7 +234,7 @@ contains
    subroutine output_record(self, model, stp)
       class(output_t), intent(inout) :: self
       type(model_t), intent(in) :: model
-      type(stepper_t), intent(in) :: stp
+      type(stepper_t), intent(inout) :: stp
       logical :: due
       due = self%his_inc > 0
       if (due) due = mod(stp%st%step, int(self%his_inc, i8)) == 0
@@ -261,11 +262,18 @@ contains
    subroutine write_rows(self, model, stp)
       type(output_t), intent(inout) :: self
       type(model_t), intent(in) :: model
-      type(stepper_t), intent(in) :: stp
+      type(stepper_t), intent(inout) :: stp
       integer :: k
       real(wp) :: sig(NSIG), total, drift, kc
       type(energy_t) :: en
+      integer :: ids(size(self%values))
 
+      ! several MPI ranks: the history of the elements whose stresses the row holds (doc/parallel.md)
+      ids = 0
+      do k = 1, size(ids)
+         if (model%requests(k)%kind == REQ_STRE) ids(k) = model%requests(k)%id
+      end do
+      call decomposition_gather_history(stp%dd, stp%st, stp%sets, ids)
       do k = 1, size(self%values)
          associate (q => model%requests(k), st => stp%st)
             select case (q%kind)
@@ -535,7 +543,7 @@ contains
    !> step jumped over at once rather than one by one.
    subroutine output_fields_due(self, stp, err)
       class(output_t), intent(inout) :: self
-      type(stepper_t), intent(in) :: stp
+      type(stepper_t), intent(inout) :: stp
       type(error_t), allocatable, intent(out) :: err
       real(wp) :: behind, next
       if (.not. self%fields%is_open()) return
@@ -566,6 +574,7 @@ contains
       ! the rows written so far reach the disk first: after a kill the text files are never
       ! behind the .h5
       call self%files%flush_all()
+      call decomposition_gather_history(stp%dd, stp%st, stp%sets)
       call write_fields(self, stp, err)
    end subroutine output_fields_due
 
@@ -642,11 +651,14 @@ contains
    subroutine output_final(self, model, stp, err)
       class(output_t), intent(inout) :: self
       type(model_t), intent(in) :: model
-      type(stepper_t), intent(in) :: stp
+      type(stepper_t), intent(inout) :: stp
       type(error_t), allocatable, intent(out) :: err
       if (self%last_row_step /= stp%st%step) call write_rows(self, model, stp)
       call self%files%flush_all()
-      if (self%fields%is_open() .and. stp%st%t > self%field_last) call write_fields(self, stp, err)
+      if (self%fields%is_open() .and. stp%st%t > self%field_last) then
+         call decomposition_gather_history(stp%dd, stp%st, stp%sets)
+         call write_fields(self, stp, err)
+      end if
    end subroutine output_final
 
    !> After a failed run: the fields of the state the stepper holds (the step it stopped in), if
@@ -659,7 +671,11 @@ contains
       type(error_t), allocatable, intent(out) :: err
       logical :: nonfinite
       if (.not. self%fields%is_open()) return
-      if (stp%st%t > self%field_last) then
+      if (stp%st%t > self%field_last .and. history_stale(stp%dd, stp%sets)) then
+         ! an error may have come on this rank alone: no exchange, and no stale history written
+         call self%files%say('fields of the state at the failure not written (t = '//rtoa(stp%st%t)// &
+                             '): on several MPI ranks the element history is not gathered after an error')
+      else if (stp%st%t > self%field_last) then
          call write_fields(self, stp, err, nonfinite)
          if (nonfinite) then
             ! the failure names where the values appeared; the fields of t = field_last are the last

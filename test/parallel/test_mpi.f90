@@ -4,8 +4,10 @@
 !> viscosity and mass damping in AUTOmatic contact) run by `mpirun -np P`
 !> for P = 1, 2, 3, 4 must write .his and .ene files equal byte for byte to those of the same
 !> program run without mpirun (one rank); the report names the decomposition (a cut that is
-!> not empty: the partition boundaries cross the bodies and their contact surfaces); a deck
-!> with a feature not yet supported on several ranks is refused with its name.
+!> not empty: the partition boundaries cross the bodies and their contact surfaces); the decks
+!> with element history (plastic, hypoelastic) of test_mpi_family, their fields and restarts
+!> across rank counts; a deck with a feature not yet supported on several ranks is refused with
+!> its name.
 !>
 !> Plain scenes (no contact, no loads: doc/parallel.md, "Divided nodes") run with the nodal
 !> state divided in chunk ranges: two BLOCks of 2x2 and one-point elements with a gap in the
@@ -19,6 +21,7 @@ module test_mpi
    use testing, only: suite_t, check, section, skip, have_command, file_text
    use exic_base_strings, only: itoa
    use deck_runner, only: run_dir, write_text
+   use test_mpi_family, only: run_mpi_family, FAMILY_CHECKS
    implicit none
    private
 
@@ -27,9 +30,9 @@ module test_mpi
    character(len=*), parameter :: nl = new_line('a')
    character(len=*), parameter :: MPIRUN = 'mpirun --oversubscribe --allow-run-as-root'
    character(len=*), parameter :: HEAD = 'FEAP * * mpi scene'//nl//'0 0 0 2 2 4'//nl
-   !> Checks of the suite: 13 per scene, 1 of the dissipation scene's columns, 4 of the refusals,
-   !> 3 of the .h5 files, 7 of the unstable scene.
-   integer, parameter :: NCHECKS = 7*13 + 1 + 3 + 3 + 7
+   !> Checks of the suite: 13 per scene, 1 of the dissipation scene's columns, the family's, 1
+   !> of the refusal, 2 of the failure on one rank, 3 of the .h5 files, 7 of the unstable scene.
+   integer, parameter :: NCHECKS = 7*13 + 1 + FAMILY_CHECKS + 1 + 2 + 3 + 7
 
 contains
 
@@ -53,7 +56,10 @@ contains
          call scene_test(s, exic, trim(names(k)))
       end do
       call unstable_test(s, exic)
+      call section(s, 'mpi: plastic and hypoelastic bodies, their fields and restarts across rank counts')
+      call run_mpi_family(s, exic)
       call refusal_test(s, exic)
+      call rank_failure_test(s, exic)
    end subroutine run_mpi_tests
 
    !> The exic program built with the tests ('' when there is none).
@@ -374,50 +380,60 @@ contains
       end do
    end function count_lines
 
-   !> A plastic deck on 2 ranks is refused at the start, naming PLAStic; on 1 rank it runs. A
-   !> hypoelastic deck (ELAStic ISOTropic) and an eroding one (EROSion) on 2 ranks are refused
-   !> naming them.
+   !> An eroding deck (EROSion: its element sets change during the run) on 2 ranks is refused at
+   !> the start naming EROSion.
    subroutine refusal_test(s, exic)
       type(suite_t), intent(inout) :: s
       character(len=*), intent(in) :: exic
-      character(len=*), parameter :: deck = run_dir//'/mpi_plastic.inp'
+      character(len=*), parameter :: deck = run_dir//'/mpi_eroding.inp'
       character(len=:), allocatable :: log
       integer :: code
-      call write_text(deck, HEAD//'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'//nl// &
-                      '    PLAStic MISEs 10'//nl//'    DENSity 1'//nl//nl//'REGIon,1'//nl// &
-                      block(4, 2, 1, 0.0, 0.0, 2.0, 1.0)//'INITial,VELOcity'//nl//'  REGIon,1,1,0'//nl//nl// &
-                      'END'//nl//batch('0.01')//nl//'STOP')
-      call execute_command_line(MPIRUN//' -np 2 '//exic//' -q '//deck//' -o '//run_dir//'/mpi_plastic > '// &
-                                run_dir//'/mpi_plastic.log 2>&1', exitstat=code)
-      log = file_text(run_dir//'/mpi_plastic.log')
-      call check(s, code /= 0 .and. index(log, 'PLAStic') > 0 .and. &
-                 index(log, 'not yet supported on several MPI ranks') > 0, &
-                 'a plastic deck on 2 ranks is refused naming PLAStic', log)
-      call execute_command_line(exic//' -q '//deck//' -o '//run_dir//'/mpi_plastic > '//run_dir// &
-                                '/mpi_plastic.log 2>&1', exitstat=code)
-      call check(s, code == 0, 'the same deck runs on one rank', file_text(run_dir//'/mpi_plastic.log'))
-      ! the hypoelastic law keeps a history per point too
-      call write_text(deck, HEAD//'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic ISOTropic 1000 0.3'//nl// &
-                      '    DENSity 1'//nl//nl//'REGIon,1'//nl// &
-                      block(4, 2, 1, 0.0, 0.0, 2.0, 1.0)//'INITial,VELOcity'//nl//'  REGIon,1,1,0'//nl//nl// &
-                      'END'//nl//batch('0.01')//nl//'STOP')
-      call execute_command_line(MPIRUN//' -np 2 '//exic//' -q '//deck//' -o '//run_dir//'/mpi_plastic > '// &
-                                run_dir//'/mpi_plastic.log 2>&1', exitstat=code)
-      log = file_text(run_dir//'/mpi_plastic.log')
-      call check(s, code /= 0 .and. index(log, 'ELAStic ISOTropic') > 0 .and. &
-                 index(log, 'not yet supported on several MPI ranks') > 0, &
-                 'a hypoelastic deck on 2 ranks is refused naming ELAStic ISOTropic', log)
-      ! erosion changes the element sets during the run
       call write_text(deck, HEAD//'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1000 0.3'//nl// &
                       '    EROSion INVErted'//nl//'    DENSity 1'//nl//nl//'REGIon,1'//nl// &
                       block(4, 2, 1, 0.0, 0.0, 2.0, 1.0)//'INITial,VELOcity'//nl//'  REGIon,1,1,0'//nl//nl// &
                       'END'//nl//batch('0.01')//nl//'STOP')
-      call execute_command_line(MPIRUN//' -np 2 '//exic//' -q '//deck//' -o '//run_dir//'/mpi_plastic > '// &
-                                run_dir//'/mpi_plastic.log 2>&1', exitstat=code)
-      log = file_text(run_dir//'/mpi_plastic.log')
+      call execute_command_line(MPIRUN//' -np 2 '//exic//' -q '//deck//' -o '//run_dir//'/mpi_eroding > '// &
+                                run_dir//'/mpi_eroding.log 2>&1', exitstat=code)
+      log = file_text(run_dir//'/mpi_eroding.log')
       call check(s, code /= 0 .and. index(log, 'EROSion') > 0 .and. &
                  index(log, 'not yet supported on several MPI ranks') > 0, &
                  'an eroding deck on 2 ranks is refused naming EROSion', log)
    end subroutine refusal_test
+
+   !> An error on one rank only stops every rank: rank 0 cannot write its restart file (a folder
+   !> holds the name of the file it writes first, <stem>.rst.tmp) while the other ranks write
+   !> theirs in their scratch folders and step on into the next exchange. Rank 0 reports the
+   !> error and stops every rank (MPI_Abort): the run ends with an error, no rank waits forever
+   !> (`timeout` turns a hang into exit code 124, a failure of the check, instead of a suite
+   !> that never ends).
+   subroutine rank_failure_test(s, exic)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: exic
+      character(len=*), parameter :: dir = run_dir//'/mpi_rank_failure'
+      character(len=:), allocatable :: log, deck
+      integer :: code
+      call execute_command_line('rm -rf '//dir//'; mkdir -p '//dir//'/out/mpi_failing.rst.tmp')
+      deck = scene('one_point')
+      deck = deck(:index(deck, '  LOOP') - 1)//'  SAVE,,0.02'//nl//deck(index(deck, '  LOOP'):)
+      call write_text(dir//'/mpi_failing.inp', deck)
+      ! the deck writes its restart files on one rank (a plain step: no contact, loads or rigid
+      ! bodies), and continued from the one of mid-run it gives the uninterrupted run's files
+      call execute_command_line('touch '//dir//'/cont.log && '//exic//' -q '//dir//'/mpi_failing.inp -o '//dir// &
+                                '/full > '//dir//'/full.log 2>&1 && cp -r '//dir//'/full '//dir//'/cont && mv '// &
+                                dir//'/cont/mpi_failing.rst.prev '//dir//'/cont/mid.rst && '//exic//' -q '//dir// &
+                                '/mpi_failing.inp -o '//dir//'/cont --restart '//dir//'/cont/mid.rst > '//dir// &
+                                '/cont.log 2>&1 && cmp '//dir//'/full/mpi_failing.his '//dir//'/cont/mpi_failing.his && '// &
+                                'cmp '//dir//'/full/mpi_failing.ene '//dir//'/cont/mpi_failing.ene', exitstat=code)
+      call check(s, code == 0, 'a plain deck (no contact, loads or rigid bodies) writes its restart files '// &
+                 'and is continued from mid-run to the same .his and .ene', file_text(dir//'/full.log')// &
+                 file_text(dir//'/cont.log'))
+      call execute_command_line('timeout 300 '//MPIRUN//' -np 3 '//exic//' -q '//dir//'/mpi_failing.inp -o '// &
+                                dir//'/out > '//dir//'/run.log 2>&1', exitstat=code)
+      log = file_text(dir//'/run.log')
+      call check(s, code /= 0 .and. code /= 124 .and. index(log, 'exic: error: ') > 0 .and. &
+                 index(log, 'mpi_failing.rst.tmp') > 0 .and. &
+                 index(log, 'exic: rank ') == 0, 'an error on rank 0 alone (its restart file cannot be '// &
+                 'written) stops the 3 ranks with the error, no hang (exit code '//itoa(code)//')', log)
+   end subroutine rank_failure_test
 
 end module test_mpi

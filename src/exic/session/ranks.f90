@@ -8,8 +8,7 @@ module exic_session_ranks
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t, make_error
    use exic_base_strings, only: itoa
-   use exic_material_material, only: MAT_SOLID, material_law
-   use exic_material_law, only: law_has_history
+   use exic_material_material, only: MAT_SOLID
    use exic_model_model, only: model_t
    use exic_base_posix, only: remove_file
    implicit none
@@ -49,20 +48,10 @@ contains
       if (nranks <= 1) return
       do k = 1, size(model%materials)
          associate (m => model%materials(k))
-            if (m%kind == MAT_SOLID .and. m%plastic) then
-               msg = 'MATErial '//itoa(k)//': PLAStic (the plasticity history of the elements) is not yet '// &
-                     'supported on several MPI ranks; run this deck on one rank'
-               return
-            end if
             if (m%kind == MAT_SOLID .and. (m%erode_inverted .or. m%erode_strain > 0.0_wp .or. &
                                            m%erode_dt > 0.0_wp)) then
                msg = 'MATErial '//itoa(k)//': EROSion (elements removed during the run) is not yet '// &
                      'supported on several MPI ranks; run this deck on one rank'
-               return
-            end if
-            if (m%kind == MAT_SOLID .and. law_has_history(material_law(m))) then
-               msg = 'MATErial '//itoa(k)//': ELAStic ISOTropic (the hypoelastic law''s history of the elements) '// &
-                     'is not yet supported on several MPI ranks; run this deck on one rank'
                return
             end if
          end associate

@@ -21,6 +21,7 @@ module exic_session_run
    use exic_output_text_report, only: report_preamble
    use exic_session_program_change, only: adopt_program
    use exic_explicit_step, only: stepper_t
+   use exic_explicit_history_gather, only: decomposition_gather_history
    use exic_explicit_decomposition_nodes, only: decomposition_gather_nodes
    use exic_contact_inside, only: inside_t
    implicit none
@@ -116,6 +117,8 @@ contains
       call decomposition_gather_nodes(r%stp%dd, r%stp%st)
       call r%out%checkpoint(err)
       if (allocated(err)) return
+      ! several MPI ranks: the element history of every block from its owner (doc/parallel.md)
+      call decomposition_gather_history(r%stp%dd, r%stp%st, r%stp%sets)
       call write_restart(r%rst, model, r%stp, r%out, r%pos, err)
       if (allocated(err)) return
       r%saved_step = r%stp%st%step
