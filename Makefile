@@ -149,7 +149,7 @@ plots: build
 # to section impact). Results: bench/results/, figures: doc/perf_*.png.
 # Section compare runs the release build of BASELINE (a commit, built once in a detached git
 # worktree under build/baseline, with its own flags = RELEASE) side by side with this one.
-BENCH_ONLY ?= machine,compare,bodies,rate,profile,output,contact,workprec,impact,stability
+BENCH_ONLY ?= machine,compare,bodies,rate,profile,output,contact,workprec,impact,stability,mpi
 BASELINE   ?= 5744a35
 BASE_DIR   := build/baseline-$(BASELINE)
 bench: setup baseline

@@ -51,7 +51,7 @@ import decks  # noqa: E402
 RESULTS = os.path.join(HERE, "results")
 DOC = os.path.join(ROOT, "doc")
 WORK = os.path.join(ROOT, "build", "bench-runs")
-SECTIONS = ["machine", "rate", "profile", "output", "contact", "workprec", "impact", "stability"]
+SECTIONS = ["machine", "rate", "profile", "output", "contact", "workprec", "impact", "stability", "mpi"]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -889,6 +889,20 @@ def impact(args, run):
     return res
 
 
+def mpi(args, run):
+    """Strong scaling on 1 and 2 MPI ranks, one thread each (bench/mpi_scaling.py; doc/parallel.md,
+    "Measured"): 10^5 and 10^6 2x2 elements (10^5 only with --quick); results in
+    bench/results/mpi_scaling.json."""
+    sizes = "316" if args.quick else "1000,316"
+    done = subprocess.run([sys.executable, os.path.join(HERE, "mpi_scaling.py"), "--exic", run.exe,
+                           "--n", sizes, "--ranks", "1,2", "--reps", "3" if args.quick else "5"],
+                          capture_output=True, text=True)
+    for line in done.stdout.splitlines():
+        log(line)
+    if done.returncode != 0:
+        log("mpi: bench/mpi_scaling.py failed:\n" + done.stderr)
+
+
 def stability(args, run):
     """Which runs stay stable: energy growth (not loss: Lagrange contact loses the kinetic
     energy of the struck nodes by design) and refusals."""
@@ -1308,6 +1322,8 @@ def main(argv=None):
             compare(args, run)
         elif sec == "bodies":
             bodies(args, run)
+        elif sec == "mpi":
+            mpi(args, run)
         else:
             ap.error("unknown section " + sec)
         log(f"-- {sec}: {time.time() - t1:.0f} s (load average at its start {loads[sec]})")
