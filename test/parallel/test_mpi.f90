@@ -6,8 +6,8 @@
 !> program run without mpirun (one rank); the report names the decomposition (a cut that is
 !> not empty: the partition boundaries cross the bodies and their contact surfaces); the decks
 !> with element history (plastic, hypoelastic) of test_mpi_family, their fields and restarts
-!> across rank counts; a deck with a feature not yet supported on several ranks is refused with
-!> its name.
+!> across rank counts; the decks of inputs/ of test_mpi_decks, one for each feature that inputs/
+!> has; a deck with a feature not yet supported on several ranks is refused with its name.
 !>
 !> Plain scenes (no contact, no loads: doc/parallel.md, "Divided nodes") run with the nodal
 !> state divided in chunk ranges: two BLOCks of 2x2 and one-point elements with a gap in the
@@ -22,6 +22,7 @@ module test_mpi
    use exic_base_strings, only: itoa
    use deck_runner, only: run_dir, write_text
    use test_mpi_family, only: run_mpi_family, FAMILY_CHECKS
+   use test_mpi_decks, only: run_mpi_decks, DECK_CHECKS
    implicit none
    private
 
@@ -31,8 +32,9 @@ module test_mpi
    character(len=*), parameter :: MPIRUN = 'mpirun --oversubscribe --allow-run-as-root'
    character(len=*), parameter :: HEAD = 'FEAP * * mpi scene'//nl//'0 0 0 2 2 4'//nl
    !> Checks of the suite: 13 per scene, 1 of the dissipation scene's columns, the family's, 1
-   !> of the refusal, 2 of the failure on one rank, 3 of the .h5 files, 7 of the unstable scene.
-   integer, parameter :: NCHECKS = 7*13 + 1 + FAMILY_CHECKS + 1 + 2 + 3 + 7
+   !> of the refusal, 2 of the failure on one rank, 3 of the .h5 files, 7 of the unstable scene,
+   !> the decks of inputs/.
+   integer, parameter :: NCHECKS = 7*13 + 1 + FAMILY_CHECKS + 1 + 2 + 3 + 7 + DECK_CHECKS
 
 contains
 
@@ -58,6 +60,9 @@ contains
       call unstable_test(s, exic)
       call section(s, 'mpi: plastic and hypoelastic bodies, their fields and restarts across rank counts')
       call run_mpi_family(s, exic)
+      call section(s, 'mpi: decks of inputs/ (LAGRange,ENERgy, penalty, TIE, SYMMetric, driven punch, '// &
+                   'gravity, plasticity, axisymmetry) on 1..4 ranks')
+      call run_mpi_decks(s, exic)
       call refusal_test(s, exic)
       call rank_failure_test(s, exic)
    end subroutine run_mpi_tests
