@@ -9,6 +9,8 @@ node records), so that the start feeds the mesh's highest modes; one point or 2x
 CFL 0.5 to 0.95, to t = 0.5 (25 to 800 steps). No contact, no loads: every step is plain. Each variant must run to
 the end with no energy warning and its .ene balance must close (largest |drift| below 1e-3,
 with the kinetic correction of eq. E.3 of doc/decisions.md).
+--unstable more variants step at a fixed DT 2.5 to 4 times the stable step: each must stop with
+an error (the guard's conserved measure must not hide an instability, doc/decisions.md (G2)).
 Prints one line per failure and the worst growth and drift of the family; exit 1 on a failure.
 The guard's rule: doc/decisions.md, "Energy guard".
 """
@@ -21,7 +23,7 @@ import sys
 import tempfile
 
 
-def deck(rng):
+def deck(rng, unstable=False):
     nx = rng.choice([6, 12, 24, 40])
     ny = rng.choice([1, 2, 4, 6])
     nu = rng.choice([0.0, 0.2, 0.3, 0.45, 0.49])
@@ -33,12 +35,18 @@ def deck(rng):
     vel = "".join(f"  {n},0,{rng.uniform(-1, 1) * speed:.6e},{rng.uniform(-1, 1) * speed:.6e}\n"
                   for n in picks)
     hg = "    HOURglass 0.1\n" if quad == 1 else ""
+    step = f"DT,CFL,{cfl}"
+    if unstable:
+        # a fixed step 2.5 to 4 times the 1-D bound h/c_L on the shortest edge: unstable
+        lam, mu = 1000 * nu / ((1 + nu) * (1 - 2 * nu)), 1000 / (2 * (1 + nu))
+        h = min(6 / nx, 1 / ny)
+        step = f"DT,,{rng.choice([2.5, 3.0, 4.0]) * h / ((lam + 2 * mu) ** 0.5):.6e}"
     text = (f"FEAP * * impulsive start nx {nx} ny {ny} nu {nu} cfl {cfl} quad {quad}\n0 0 0 2 2 4\n"
             f"MATErial,1\n  SOLId\n    ELAStic NEOHookean 1000 {nu}\n    DENSity 1\n"
             f"    QUADrature {quad}\n{hg}\n"
             f"BLOCk\n  CARTesian,{nx},{ny},0,0,1\n    1,0,0\n    2,6,0\n    3,6,1\n    4,0,1\n\n"
             f"EBOUndary\n  1,0,1,1\n\nINITial,VELOcity\n{vel}\nEND\n"
-            f"BATCh\n  DT,CFL,{cfl}\n  TPLOt,,1\n  LOOP,,1000000\n    TIME,,0.5\n    FORM,EXPLicit\n  NEXT\nEND\n"
+            f"BATCh\n  {step}\n  TPLOt,,1\n  LOOP,,1000000\n    TIME,,0.5\n    FORM,EXPLicit\n  NEXT\nEND\n"
             f"  disp,{nnode},1\n\nSTOP\n")
     return text, dict(nx=nx, ny=ny, nu=nu, cfl=cfl, quad=quad, speed=speed, nodes=len(picks))
 
@@ -48,6 +56,8 @@ def main():
     ap.add_argument("--exic", required=True)
     ap.add_argument("--n", type=int, default=48)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--unstable", type=int, default=12,
+                    help="variants with a fixed DT 2.5-4 times the stable step: each must stop with an error")
     args = ap.parse_args()
     rng = random.Random(args.seed)
     worst_growth, worst_drift, failures = (-1.0, None), (0.0, None), 0
@@ -76,7 +86,16 @@ def main():
             if drift > 1e-3:
                 failures += 1
                 print(f"FAIL {what}: drift {drift:.3e}")
-    print(f"{args.n} variants, {failures} failures; worst guard growth {worst_growth[0]} % at {worst_growth[1]}; "
+        for i in range(args.unstable):
+            text, what = deck(rng, unstable=True)
+            d = pathlib.Path(tmp) / f"u{i}"
+            d.mkdir()
+            (d / "imp.inp").write_text(text)
+            done = subprocess.run([args.exic, "-q", "imp.inp"], cwd=d, capture_output=True, text=True)
+            if done.returncode != 1 or "error:" not in done.stderr:
+                failures += 1
+                print(f"FAIL unstable {what}: exit {done.returncode}, not stopped by the guard: {done.stderr.strip()[:300]}")
+    print(f"{args.n} variants and {args.unstable} unstable ones (each stopped), {failures} failures; worst guard growth {worst_growth[0]} % at {worst_growth[1]}; "
           f"worst |drift| {worst_drift[0]:.3e} at {worst_drift[1]}")
     sys.exit(1 if failures else 0)
 

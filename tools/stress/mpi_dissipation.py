@@ -13,11 +13,10 @@ Prints one line per variant and the summary (the failures, the worst being any d
 import argparse
 import pathlib
 import random
-import subprocess
 import sys
 import tempfile
 
-MPIRUN = ["mpirun", "--oversubscribe", "--allow-run-as-root"]
+from mpi_family import run  # noqa: E402  (the serial or mpirun command, one place)
 
 
 def block(nx, ny, mat, x0, y0, x1, y1):
@@ -75,7 +74,7 @@ def main():
             d.mkdir()
             inp = d / "v.inp"
             inp.write_text(deck)
-            r = subprocess.run([exic, "-q", str(inp), "-o", str(d / "serial")], capture_output=True, text=True)
+            r = run(exic, 1, inp, d / "serial")
             if r.returncode != 0:
                 print(f"v{i} {label}: serial run failed ({r.returncode}): {r.stderr.strip()[:200]}")
                 bad += 1
@@ -84,8 +83,7 @@ def main():
             res = []
             for p in args.np:
                 out = d / f"np{p}"
-                r = subprocess.run(MPIRUN + ["-np", str(p), exic, "-q", str(inp), "-o", str(out)],
-                                   capture_output=True, text=True)
+                r = run(exic, p, inp, out)
                 ok = r.returncode == 0 and [(out / f"v.{x}").read_bytes() for x in ("his", "ene")] == ref
                 res.append(f"P={p} {'same' if ok else 'DIFFERENT'}")
                 bad += not ok

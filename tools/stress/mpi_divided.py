@@ -21,11 +21,10 @@ import argparse
 import pathlib
 import random
 import re
-import subprocess
 import sys
 import tempfile
 
-MPIRUN = ["mpirun", "--oversubscribe", "--allow-run-as-root"]
+from mpi_family import run  # noqa: E402  (the serial or mpirun command, one place)
 
 
 def h5_equal(a, b):
@@ -109,7 +108,7 @@ def main():
             d.mkdir()
             inp = d / "v.inp"
             inp.write_text(deck)
-            r = subprocess.run([exic, "-q", str(inp), "-o", str(d / "serial")], capture_output=True, text=True)
+            r = run(exic, 1, inp, d / "serial")
             if r.returncode != 0:
                 print(f"v{i} {label}: serial run failed ({r.returncode}): {r.stderr.strip()[:300]}")
                 bad += 1
@@ -119,8 +118,7 @@ def main():
             res = []
             for p in args.np:
                 out = d / f"np{p}"
-                r = subprocess.run(MPIRUN + ["-np", str(p), exic, "-q", str(inp), "-o", str(out)],
-                                   capture_output=True, text=True)
+                r = run(exic, p, inp, out)
                 ok = r.returncode == 0 and [(out / f"v.{x}").read_bytes() for x in ("his", "ene")] == ref
                 report = (out / "v.out").read_text() if (out / "v.out").exists() else ""
                 m = re.search(r"blocks computed again by another rank (\d+) \(of (\d+)\)", report)

@@ -22,13 +22,7 @@ contains
    !> with its predicted gap at x~(n+2) (eq. 3.19, the normal and alpha of the new hit) and the
    !> problem is solved again from a~, until a search adds nothing (MAX_REDETECT at most).
    !> x = x(n+1); a holds a~(n+1) after the face's free solve on entry and a(n+1) on exit.
-   module subroutine face_solve(self, nnode, x, minv, c, a, fcon, err, rb)
-      type(contact_t), intent(inout) :: self
-      integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode), minv(2, nnode), c
-      real(wp), intent(inout) :: a(2, nnode), fcon(2, nnode)
-      type(error_t), allocatable, intent(out) :: err
-      type(rigid_dofs_t), intent(inout), optional :: rb
+   module procedure face_solve
       real(wp), allocatable :: a0(:, :), f0(:, :), xt(:, :)
       real(wp) :: g, gnow
       integer :: it, k, j, node, m, nnew
@@ -69,7 +63,7 @@ contains
          fcon = f0
       end do
       self%xp = xt
-   end subroutine face_solve
+   end procedure face_solve
 
    !> Nodes of the surfaces (slave and master) of the passes that ask for LAGRange,ENERgy: the
    !> candidates for massless faces (doc/impact.md, section 3.1; the caller removes rigid and

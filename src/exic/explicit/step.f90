@@ -54,6 +54,10 @@ module exic_explicit_step
 
    public :: stepper_t, contact_hook_t, first_nonfinite
 
+   !> The kernels of a step (advance_step): contact, loads or masses per dof; none of them; none
+   !> of them with the nodes divided among MPI ranks.
+   integer, parameter :: PATH_GENERAL = 1, PATH_PLAIN = 2, PATH_DIVIDED = 3
+
    !> Pass-limit warnings of the corrector written to the report; later ones are only counted.
    integer, parameter :: MAX_PASS_WARNINGS = 10
 
@@ -90,6 +94,8 @@ module exic_explicit_step
       type(erosion_t) :: ero                          !< element erosion (doc/erosion.md)
       type(erosion_contact_t) :: eroc                 !< the contact surfaces it rebuilds
       logical :: started = .false.                    !< `start` has made the state at t = 0
+      integer :: path = 0                             !< the kernels of a step (choose_path; 0: not yet)
+      logical :: path_hook = .false.                  !< a host's hook was attached when it was chosen
       ! time-step control
       logical :: cfl_mode = .true.                    !< DT,CFL (else a fixed DT)
       real(wp) :: cfl = DEFAULT_CFL
@@ -245,7 +251,8 @@ contains
       end if
       call self%ld%begin(self%st)
       self%st%fext_zero = plus_zero(self%st%fext)
-      if (.not. plain_step(self)) call work_arrays(self)
+      call choose_path(self, err)
+      if (allocated(err)) return
       call forces_and_dt(self, err)
       ! divided nodes: the owners' forces to every rank, which then makes the state at t = 0 as
       ! the serial program does
@@ -292,101 +299,52 @@ contains
       if (allocated(err)) call decomposition_gather_nodes(self%dd, self%st)
    end subroutine stepper_advance
 
-   !> stepper_advance's step.
+   !> stepper_advance's step: steps 1-7 of the module header, on the kernels of the path chosen
+   !> once (choose_path): PATH_GENERAL (contact, loads or masses per dof: the predictor, the
+   !> corrector and the velocity update apart), PATH_PLAIN (none of them: steps 4, 6 and 7's
+   !> kinetic energy in one sweep over the nodes) or PATH_DIVIDED (that sweep on this rank's node
+   !> chunks, doc/parallel.md "Divided nodes").
    subroutine advance_step(self, err)
       type(stepper_t), intent(inout) :: self
       type(error_t), allocatable, intent(out) :: err
       real(wp) :: t0, t1, qnodes
-      logical :: contact_on, work_con, plain, power_q, divided
+      logical :: power_q
 
       t0 = wall_time()
-      contact_on = self%has_contact()
-      plain = plain_step(self)
-      divided = plain .and. self%dd%nodes
-      if (self%dd%nodes .and. .not. plain) then
-         call make_error(err, 'a step with contact, loads or masses per dof on several MPI ranks whose nodal '// &
-                         'state is divided (a contact hook attached after the start)')
-         return
-      end if
-      power_q = .false.
-      if (.not. plain) call work_arrays(self)
-      associate (st => self%st)
-         ! a step set between steps (BATCh DT) enters the kinetic correction (eq. E.4)
-         call book_step_change(st)
-         ! 1. x(n+1) = x(n) + dt(n) v(n) + dt(n)^2/2 a(n)
-         if (divided) then
-            call nodes_displacement(self%dd, st)
-         else if (plain) then
-            call cd_displacement_plain(st%nnode, st%dt, st%v, st%a, st%u)
-         else
-            call cd_displacement(st%nnode, st%dt, st%v, st%a, st%u, self%du, self%a_old)
-         end if
-         st%t = st%t + st%dt
-         st%dt_prev = st%dt
-         st%step = st%step + 1
-         ! fcon_old = fcon(n): no copy while both are zero (no contact force in either step); a
-         ! flat copy (an assignment of these (2, n) components loops twice, about 10 instructions a value)
-         if (contact_on .and. .not. (self%fcon_old_clean .and. fcon_clean(self))) &
-            call copy_flat(size(st%fcon), st%fcon, self%fcon_old)
-         self%fcon_old_clean = fcon_clean(self)
-         if (self%ld%active) call self%ld%place(st, self%du)
-
-         ! 2-3. forces and dt(n+1) at t(n+1)
-         t1 = wall_time()
-         call forces_and_dt(self, err)
-         self%time_forces = self%time_forces + (wall_time() - t1)
+      ! chosen at the start; a host's contact hook attached or removed since then changes it
+      if (self%path == 0 .or. (associated(self%hook) .neqv. self%path_hook)) call choose_path(self, err)
+      if (allocated(err)) return
+      ! a step set between steps (BATCh DT) enters the kinetic correction (eq. E.4)
+      call book_step_change(self%st)
+      ! 1. x(n+1) = x(n) + dt(n) v(n) + dt(n)^2/2 a(n)
+      call displacement(self)
+      ! 2-3. forces and dt(n+1) at t(n+1)
+      t1 = wall_time()
+      call forces_and_dt(self, err)
+      self%time_forces = self%time_forces + (wall_time() - t1)
+      if (allocated(err)) return
+      if (self%ld%active) call self%ld%forces(self%st, self%x, .false.)
+      if (self%path == PATH_GENERAL) then
+         ! 4. predictor, eq. 4.3-4.4
+         call predict(self)
+         ! 5. contact corrector, eq. 4.5-4.7
+         call correct(self, self%vt, err)
          if (allocated(err)) return
-         if (self%ld%active) call self%ld%forces(st, self%x, .false.)
-         if (plain) then
-            ! no contact, loads or masses per dof: steps 4, 6 and 7 in one sweep over the nodes,
-            ! which forms du and reads a(n) where the other steps store them (the same operations
-            ! in the same order); the corrector has nothing to do (and reads no v~)
-            call correct(self, st%v, err)
-            if (allocated(err)) return
-            ! when dt(n+1) differs from the booked step (step 7), Q of eq. E.3 comes from the same
-            ! sweep, chunk by chunk, instead of another pass over the nodes (the same bits)
-            power_q = st%dt /= st%dt_booked
-            if (divided) then
-               ! this rank's chunks; the chunks' sums folded on every rank (the serial bits)
-               call nodes_update(self%dd, st, qnodes)
-            else if (power_q) then
-               call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, &
-                                    st%a, st%v, st%energy%wext, st%energy%kinetic, st%momentum, qnodes)
-            else
-               call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, &
-                                    st%a, st%v, st%energy%wext, st%energy%kinetic, st%momentum)
-            end if
-         else
-            ! 4. predictor, eq. 4.3-4.4 (v~ only when there is contact to search; exic's own
-            ! contact without loads reads it at its surface nodes only)
-            call cd_predictor(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%v, self%a_old, st%a, &
-                              contact_on .and. .not. surface_only(self), self%vt)
-            if (surface_only(self)) call predictor_velocity_at(st%nnode, st%dt_prev, st%v, self%a_old, st%a, &
-                                                               self%contact%cnodes, self%vt)
-            if (self%ld%active) call self%ld%predict(st, self%vt, 0.5_wp*st%dt_prev)
-            ! 5. contact corrector, eq. 4.5-4.7
-            call correct(self, self%vt, err)
-            if (allocated(err)) return
-            if (self%ld%active) call self%ld%corrected(st)
-            ! 6. v(n+1) and the work of external and contact forces over the step (trapezoid rule);
-            ! without a contact force at t(n) and t(n+1) the contact work's sum is +0 term by term
-            ! and is skipped (the same bits)
-            work_con = contact_on .and. .not. (self%fcon_old_clean .and. fcon_clean(self))
-            if (self%ld%varying) then
-               ! loads that vary in time: the trapezoid rule 1/2 (F(n) + F(n+1)) . du
-               call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, self%ld%favg, self%du, work_con, &
-                                self%fcon_old, st%fcon, st%minv, st%v, st%energy%wext, st%energy%wcon)
-            else
-               call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, st%fext, self%du, work_con, &
-                                self%fcon_old, st%fcon, st%minv, st%v, st%energy%wext, st%energy%wcon)
-            end if
-            if (self%ld%active) call self%ld%finish(st, self%du, 0.5_wp*st%dt_prev, .false.)
-         end if
-      end associate
-      ! 7. energies and health; the step dt(n+1) enters the kinetic correction (eq. E.4)
-      if (.not. plain) call kinetic_energy(self%st)
+         if (self%ld%active) call self%ld%corrected(self%st)
+         ! 6. v(n+1) and the works of the external and contact forces
+         call velocity(self)
+         ! 7. kinetic energy
+         call kinetic_energy(self%st)
+         power_q = .false.
+      else
+         ! 4-6 and 7's kinetic energy in one sweep; the corrector has nothing to do
+         call correct(self, self%st%v, err)
+         if (allocated(err)) return
+         call plain_update(self, power_q, qnodes)
+      end if
+      ! 7. energies of the bodies and health; dt(n+1) enters the kinetic correction (eq. E.4)
       if (self%ld%active) call self%ld%energy(self%st)
-      if (plain .and. power_q) then
+      if (power_q) then
          call book_step_change(self%st, qnodes)
       else
          call book_step_change(self%st)
@@ -394,6 +352,109 @@ contains
       self%time_steps = self%time_steps + (wall_time() - t0)
       call check_health(self, err)
    end subroutine advance_step
+
+   !> The kernels of the steps to come, from what the model has (contact, loads, masses per dof,
+   !> divided nodes, a host's hook): chosen at the start and when a hook is attached.
+   subroutine choose_path(self, err)
+      type(stepper_t), intent(inout) :: self
+      type(error_t), allocatable, intent(out) :: err
+      self%path_hook = associated(self%hook)
+      if (.not. plain_step(self)) then
+         if (self%dd%nodes) then
+            call make_error(err, 'a step with contact, loads or masses per dof on several MPI ranks whose nodal '// &
+                            'state is divided (a contact hook attached after the start)')
+            return
+         end if
+         self%path = PATH_GENERAL
+         call work_arrays(self)
+      else if (self%dd%nodes) then
+         self%path = PATH_DIVIDED
+      else
+         self%path = PATH_PLAIN
+      end if
+   end subroutine choose_path
+
+   !> Step 1: x(n+1) = x(n) + dt(n) v(n) + dt(n)^2/2 a(n) (eq. 4.3-4.4), the clock, fcon(n) kept
+   !> for the contact work of step 6, and the prescribed motion placed.
+   subroutine displacement(self)
+      type(stepper_t), intent(inout) :: self
+      associate (st => self%st)
+         select case (self%path)
+         case (PATH_DIVIDED)
+            call nodes_displacement(self%dd, st)
+         case (PATH_PLAIN)
+            call cd_displacement_plain(st%nnode, st%dt, st%v, st%a, st%u)
+         case default
+            call cd_displacement(st%nnode, st%dt, st%v, st%a, st%u, self%du, self%a_old)
+         end select
+         st%t = st%t + st%dt
+         st%dt_prev = st%dt
+         st%step = st%step + 1
+         ! fcon_old = fcon(n): no copy while both are zero (no contact force in either step); a
+         ! flat copy (an assignment of these (2, n) components loops twice, about 10 instructions a value)
+         if (self%has_contact() .and. .not. (self%fcon_old_clean .and. fcon_clean(self))) &
+            call copy_flat(size(st%fcon), st%fcon, self%fcon_old)
+         self%fcon_old_clean = fcon_clean(self)
+         if (self%ld%active) call self%ld%place(st, self%du)
+      end associate
+   end subroutine displacement
+
+   !> Step 4: a~ = M^-1 (F - P), v~ = v(n) + dt(n)/2 (a(n) + a~) (eq. 4.3-4.4); v~ only when there
+   !> is contact to search, and exic's own contact without loads reads it at its surface nodes only.
+   subroutine predict(self)
+      type(stepper_t), intent(inout) :: self
+      associate (st => self%st)
+         call cd_predictor(st%nnode, st%dt_prev, st%minv, st%fext, st%fint, st%v, self%a_old, st%a, &
+                           self%has_contact() .and. .not. surface_only(self), self%vt)
+         if (surface_only(self)) call predictor_velocity_at(st%nnode, st%dt_prev, st%v, self%a_old, st%a, &
+                                                            self%contact%cnodes, self%vt)
+         if (self%ld%active) call self%ld%predict(st, self%vt, 0.5_wp*st%dt_prev)
+      end associate
+   end subroutine predict
+
+   !> Step 6: v(n+1) = v(n) + dt(n)/2 (a(n) + a(n+1)) and the works of the external and contact
+   !> forces over the step (trapezoid rule); without a contact force at t(n) and t(n+1) the
+   !> contact work's sum is +0 term by term and is skipped (the same bits).
+   subroutine velocity(self)
+      type(stepper_t), intent(inout) :: self
+      logical :: work_con
+      associate (st => self%st)
+         work_con = self%has_contact() .and. .not. (self%fcon_old_clean .and. fcon_clean(self))
+         if (self%ld%varying) then
+            ! loads that vary in time: the trapezoid rule 1/2 (F(n) + F(n+1)) . du
+            call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, self%ld%favg, self%du, work_con, &
+                             self%fcon_old, st%fcon, st%minv, st%v, st%energy%wext, st%energy%wcon)
+         else
+            call cd_velocity(st%nnode, st%dt_prev, self%a_old, st%a, st%fext, self%du, work_con, &
+                             self%fcon_old, st%fcon, st%minv, st%v, st%energy%wext, st%energy%wcon)
+         end if
+         if (self%ld%active) call self%ld%finish(st, self%du, 0.5_wp*st%dt_prev, .false.)
+      end associate
+   end subroutine velocity
+
+   !> Steps 4, 6 and 7's kinetic energy of a plain step in one sweep over the nodes, which forms
+   !> du and reads a(n) where the other steps store them (the same operations in the same
+   !> order). power_q: dt(n+1) differs from the booked step, and qnodes, Q of eq. E.3, comes from
+   !> the same sweep, chunk by chunk, instead of another pass over the nodes (the same bits).
+   subroutine plain_update(self, power_q, qnodes)
+      type(stepper_t), intent(inout) :: self
+      logical, intent(out) :: power_q
+      real(wp), intent(out) :: qnodes
+      associate (st => self%st)
+         power_q = st%dt /= st%dt_booked
+         qnodes = 0.0_wp
+         if (self%path == PATH_DIVIDED) then
+            ! this rank's chunks; the chunks' sums folded on every rank (the serial bits)
+            call nodes_update(self%dd, st, qnodes)
+         else if (power_q) then
+            call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, &
+                                 st%a, st%v, st%energy%wext, st%energy%kinetic, st%momentum, qnodes)
+         else
+            call cd_update_plain(st%nnode, st%dt_prev, st%minv, st%fext, st%fext_zero, st%fint, st%mass, &
+                                 st%a, st%v, st%energy%wext, st%energy%kinetic, st%momentum)
+         end if
+      end associate
+   end subroutine plain_update
 
    !> Steps 2-3 (and at t = 0): internal forces and, from the same pass over the elements, their
    !> stable step at x = x0 + u; dt(n+1); the positions x = x0 + u when contact or loads (edge
