@@ -1,13 +1,14 @@
 !> The exic program on several MPI ranks (doc/parallel.md): a family of small scenes (AUTOmatic
 !> contact between bodies given in any order with gravity, Coulomb friction on a rigid floor,
 !> a free rigid disk striking a bar, one-point elements with no contact, bars with bulk
-!> viscosity and mass damping in AUTOmatic contact) run by `mpirun -np P`
-!> for P = 1, 2, 3, 4 must write .his and .ene files equal byte for byte to those of the same
-!> program run without mpirun (one rank); the report names the decomposition (a cut that is
-!> not empty: the partition boundaries cross the bodies and their contact surfaces); the decks
-!> with element history (plastic, hypoelastic) of test_mpi_family, their fields and restarts
-!> across rank counts; the decks of inputs/ of test_mpi_decks, one for each feature that inputs/
-!> has; a deck with a feature not yet supported on several ranks is refused with its name.
+!> viscosity and mass damping in AUTOmatic contact, a U whose arms meet in SELF contact) run by
+!> `mpirun -np P` for P = 1, 2, 3, 4 must write .his and .ene files equal byte for byte to
+!> those of the same program run without mpirun (one rank); the report names the decomposition
+!> (a cut that is not empty: the partition boundaries cross the bodies and their contact
+!> surfaces); the decks with element history (plastic, hypoelastic) of test_mpi_family, their
+!> fields and restarts across rank counts; the decks of inputs/ of test_mpi_decks, one for each
+!> feature that inputs/ has; a deck with a feature not yet supported on several ranks is refused
+!> with its name.
 !>
 !> Plain scenes (no contact, no loads: doc/parallel.md, "Divided nodes") run with the nodal
 !> state divided in chunk ranges: two BLOCks of 2x2 and one-point elements with a gap in the
@@ -31,18 +32,19 @@ module test_mpi
    character(len=*), parameter :: nl = new_line('a')
    character(len=*), parameter :: MPIRUN = 'mpirun --oversubscribe --allow-run-as-root'
    character(len=*), parameter :: HEAD = 'FEAP * * mpi scene'//nl//'0 0 0 2 2 4'//nl
-   !> Checks of the suite: 13 per scene, 1 of the dissipation scene's columns, the family's, 1
+   !> Checks of the suite: 13 per scene, 1 of the dissipation scene's columns, 1 of the self
+   !> contact's force, the family's, 1
    !> of the refusal, 2 of the failure on one rank, 3 of the .h5 files, 7 of the unstable scene,
    !> the decks of inputs/.
-   integer, parameter :: NCHECKS = 7*13 + 1 + FAMILY_CHECKS + 1 + 2 + 3 + 7 + DECK_CHECKS
+   integer, parameter :: NCHECKS = 8*13 + 1 + 1 + FAMILY_CHECKS + 1 + 2 + 3 + 7 + DECK_CHECKS
 
 contains
 
    subroutine run_mpi_tests(s)
       type(suite_t), intent(inout) :: s
       character(len=:), allocatable :: exic
-      character(len=*), parameter :: names(7) = [character(len=12) :: 'auto', 'friction', 'free_rigid', 'one_point', &
-                                                 'dissipation', 'plain_blocks', 'plain_bulk']
+      character(len=*), parameter :: names(8) = [character(len=12) :: 'auto', 'friction', 'free_rigid', 'one_point', &
+                                                 'dissipation', 'plain_blocks', 'plain_bulk', 'self']
       integer :: k
       call section(s, 'mpi: mpirun -np 1..4 writes the serial .his and .ene byte for byte')
       exic = exic_program()
@@ -116,6 +118,17 @@ contains
                 'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
                 '  PAIR,1,SYMMetric,1,2'//nl//'END CONTact'//nl//'END'//nl//'TIE,REGIon,2,2'//nl// &
                 batch('0.08')//'  disp,10,1'//nl//'  velo,80,2'//nl//nl//'STOP'
+      case ('self')
+         ! a U of three blocks of one material, tied (TIE), whose arms swing toward each other
+         ! and meet: PAIR,SELF on the surface of every region (the U of the contact suite, its
+         ! mesh three times finer, 8 blocks of elements); nodes 224 and 309 are the arms' inner
+         ! top corners
+         deck = HEAD//'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 100 0.3'//nl//'    DENSity 1'//nl// &
+                nl//block(18, 6, 1, 0.0, 0.0, 3.0, 1.0)//block(6, 12, 1, 0.0, 1.0, 1.0, 3.0)// &
+                block(6, 12, 1, 2.0, 1.0, 3.0, 3.0)//'INITial,VELOcity'//nl//'  134,1,1,0'//nl//'  224,0,1,0'//nl// &
+                '  225,1,-1,0'//nl//'  315,0,-1,0'//nl//nl//'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,0'//nl// &
+                '  PAIR,1,SELF,1'//nl//'END CONTact'//nl//nl//'END'//nl//'TIE'//nl//batch('1.5')// &
+                '  disp,224,1'//nl//'  disp,309,1'//nl//'  cont,1,1'//nl//nl//'STOP'
       case ('dissipation')
          ! the scene 'auto' with VISCosity BULK on both bars (the default and given q1 q2) and
          ! DAMPing MASS on the one-point bar until t = 0.15: the viscous forces of the blocks
@@ -223,6 +236,8 @@ contains
       if (name == 'dissipation') call check(s, last_value(ene, 'damping_dissipation') > 0.0 .and. &
                                             last_value(ene, 'bulk_viscosity') > 0.0, &
                                             name//': the damping and the bulk viscosity dissipate energy (.ene)')
+      if (name == 'self') call check(s, column_max(his, 4) > 1.0, name//': the arms meet (the self contact force '// &
+                                     'of the .his exceeds 1)')
       do np = 1, 4
          call execute_command_line(MPIRUN//' -np '//itoa(np)//' '//exic//' -q '//deck//' -o '//dir//'/np'// &
                                    itoa(np)//' > '//dir//'_np'//itoa(np)//'.log 2>&1', exitstat=code)
@@ -364,6 +379,24 @@ contains
       read (ene(b + 1:), *, iostat=ios) row(1:n)
       if (ios == 0) v = row(n)
    end function last_value
+
+   !> The largest value of column `col` over the rows of a .his text (after its '# ' header line;
+   !> -huge when no row is readable).
+   real function column_max(text, col) result(v)
+      character(len=*), intent(in) :: text
+      integer, intent(in) :: col
+      real :: row(col)
+      integer :: i, j, ios
+      v = -huge(1.0)
+      i = index(text, nl) + 1
+      do while (i > 1 .and. i <= len(text))
+         j = index(text(i:), nl)
+         if (j == 0) j = len(text) - i + 2
+         read (text(i:i + j - 2), *, iostat=ios) row
+         if (ios == 0) v = max(v, row(col))
+         i = i + j
+      end do
+   end function column_max
 
    !> Words separated by blanks in text.
    pure integer function count_words(text) result(n)

@@ -14,7 +14,7 @@
 !>   strain and the contact force (its last .his row), so the features act in the run compared.
 !>
 !> inputs/ has no deck with AUTOmatic, SELF, friction or a free rigid body: the generated scenes
-!> of test_mpi and test_mpi_family cover those.
+!> of test_mpi (auto, friction, free_rigid, self) and test_mpi_family cover those.
 module test_mpi_decks
    use testing, only: suite_t, check, file_text
    use exic_base_strings, only: itoa
@@ -98,7 +98,8 @@ contains
                                    np_dir//'.log 2>&1', exitstat=code)
          out = file_text(np_dir//'/'//stem//'.out')
          call check(s, code == 0 .and. (np == 1 .or. index(out, 'MPI: '//itoa(np)//' ranks') > 0), &
-                    label//': mpirun -np '//itoa(np)//' succeeds (the report names the ranks)', file_text(np_dir//'.log'))
+                    label//': mpirun -np '//itoa(np)//' succeeds (the report names the ranks)', &
+                    file_text(np_dir//'.log'))
          call check(s, file_text(np_dir//'/'//stem//'.his') == his .and. file_text(np_dir//'/'//stem//'.ene') == ene, &
                     label//': -np '//itoa(np)//': .his and .ene equal the serial files byte for byte')
       end do
