@@ -75,6 +75,7 @@ module exic_explicit_loading
    contains
       procedure :: init => loading_init
       procedure :: begin => loading_begin
+      procedure :: place_initial => loading_place_initial
       procedure :: place => loading_place
       procedure :: forces => loading_forces
       procedure :: predict => loading_predict
@@ -467,6 +468,21 @@ contains
       end do
       call self%velocities_set(st, .false.)
    end subroutine loading_begin
+
+   !> The positions at t = 0 of the dofs that DISPlacement prescribes, x = x0 + d p(0), into x
+   !> (which holds x0 + u): before `begin`, u there is still the full value d (the contact's
+   !> start-up overlap test reads x at set-up, doc/loads.md section 3).
+   subroutine loading_place_initial(self, st, x)
+      class(loading_t), intent(inout) :: self
+      type(state_t), intent(in) :: st
+      real(wp), intent(inout) :: x(:, :)
+      integer :: j
+      call evaluate(self, st%t)
+      do j = 1, self%ndisp
+         x(self%ddof(j), self%dnode(j)) = st%x0(self%ddof(j), self%dnode(j)) + &
+                                          self%dval(j)*self%pv(1, self%fpro(self%ddof(j), self%dnode(j)))
+      end do
+   end subroutine loading_place_initial
 
    !> After INITial velocities: free bodies take the rigid velocity nearest to their nodes'
    !> (mass weighted) and their nodes the rigid field of it; W_pm is booked from now on when a

@@ -200,6 +200,8 @@ contains
       ! the work arrays of a step that is not plain (plain_step); contact_init reads x only when
       ! the contact is active, which such a step is
       if (spec%active .or. self%ld%active) call work_arrays(self)
+      ! the contact's set-up (its start-up overlap test) sees the driven dofs at d p(0)
+      if (allocated(self%x) .and. self%ld%active) call self%ld%place_initial(self%st, self%x)
       ! PENAlty,SCALe refers to the largest constrained modulus of the solids
       modulus = 0.0_wp
       do k = 1, size(materials)
