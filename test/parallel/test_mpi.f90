@@ -23,7 +23,7 @@ module test_mpi
    use exic_base_strings, only: itoa
    use deck_runner, only: run_dir, write_text
    use test_mpi_family, only: run_mpi_family, FAMILY_CHECKS
-   use test_mpi_decks, only: run_mpi_decks, DECK_CHECKS
+   use test_mpi_decks, only: run_mpi_decks, DECK_CHECKS, count_lines
    implicit none
    private
 
@@ -407,16 +407,6 @@ contains
          if (text(i:i) /= ' ' .and. (i == 1 .or. text(max(i - 1, 1):max(i - 1, 1)) == ' ')) n = n + 1
       end do
    end function count_words
-
-   !> Newlines in text.
-   pure integer function count_lines(text) result(n)
-      character(len=*), intent(in) :: text
-      integer :: i
-      n = 0
-      do i = 1, len(text)
-         if (text(i:i) == nl) n = n + 1
-      end do
-   end function count_lines
 
    !> An eroding deck (EROSion: its element sets change during the run) on 2 ranks is refused at
    !> the start naming EROSion.

@@ -22,7 +22,7 @@ module test_mpi_decks
    implicit none
    private
 
-   public :: run_mpi_decks, DECK_CHECKS
+   public :: run_mpi_decks, DECK_CHECKS, count_lines
 
    character(len=*), parameter :: nl = new_line('a')
    character(len=*), parameter :: MPIRUN = 'mpirun --oversubscribe --allow-run-as-root'
