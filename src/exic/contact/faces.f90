@@ -68,10 +68,7 @@ contains
    !> Nodes of the surfaces (slave and master) of the passes that ask for LAGRange,ENERgy: the
    !> candidates for massless faces (doc/impact.md, section 3.1; the caller removes rigid and
    !> prescribed nodes and those of elements that would keep no mass).
-   module function contact_face_nodes(self, nnode) result(on)
-      class(contact_t), intent(in) :: self
-      integer, intent(in) :: nnode
-      logical :: on(nnode)
+   module procedure contact_face_nodes
       integer :: k
       on = .false.
       if (.not. self%active) return
@@ -86,7 +83,7 @@ contains
             on(self%surfaces(k)%nodes) = .true.
          end do
       end if
-   end function contact_face_nodes
+   end procedure contact_face_nodes
 
    !> The massless dofs of the surfaces of the passes that ask for LAGRange,ENERgy, at the
    !> positions x (doc/impact.md, section 3.1); rigid(nnode): the nodes of rigid bodies. A surface
@@ -94,12 +91,7 @@ contains
    !> along its normals only: dofs(d, i) when a segment at node i has a normal n with
    !> |n_d| >= |n_other| (eq. I.3a; a node where the surface turns, a body's corner, gets both).
    !> Against rigid bodies only, the segments that face a partner (eq. I.3b) are massless so.
-   module function contact_face_dofs(self, nnode, x, rigid) result(dofs)
-      class(contact_t), intent(in) :: self
-      integer, intent(in) :: nnode
-      real(wp), intent(in) :: x(2, nnode)
-      logical, intent(in) :: rigid(nnode)
-      logical :: dofs(2, nnode)
+   module procedure contact_face_dofs
       ! per surface: 0 no ENERgy pass, 1 every partner rigid, 2 a deformable partner
       integer :: meets(size(self%surfaces))
       logical :: pairs(size(self%surfaces), size(self%surfaces))   ! (k, m): m is a partner of k
@@ -140,6 +132,6 @@ contains
          integer, intent(in) :: k
          deformable = .not. all(rigid(self%surfaces(k)%nodes))
       end function deformable
-   end function contact_face_dofs
+   end procedure contact_face_dofs
 
 end submodule exic_contact_faces

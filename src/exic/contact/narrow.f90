@@ -34,10 +34,7 @@ contains
 
    !> The narrow phase of the Lagrange passes k1 ... k2 (penalty passes are left alone): their
    !> candidates and hits (ps%broad, ps%hits) at x(n+1) -> self%xp over the step.
-   module subroutine narrow_passes(self, nnode, x, minv, k1, k2)
-      type(contact_t), intent(inout) :: self
-      integer, intent(in) :: nnode, k1, k2
-      real(wp), intent(in) :: x(2, nnode), minv(2, nnode)
+   module procedure narrow_passes
       integer, allocatable :: sfirst(:), slist(:), mfirst(:), mlist(:)
       integer :: k, g, work, ns, nm
 
@@ -78,7 +75,7 @@ contains
             if (self%passes(k)%method == METHOD_LAGRANGE) call slave_passes(self, [k], nnode, x)
          end do
       end if
-   end subroutine narrow_passes
+   end procedure narrow_passes
 
    !> The Lagrange passes among k1 ... k2 grouped by their slave surface (`slave`), or the swept
    !> ones whose slave is not their master grouped by master surface: n groups, group g the

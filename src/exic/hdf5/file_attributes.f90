@@ -5,66 +5,43 @@ submodule(exic_hdf5_file) exic_hdf5_file_attributes
 contains
 
    !> Real scalar attribute.
-   module subroutine attr_real0(self, obj, name, value, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: obj, name
-      real(wp), intent(in), target :: value
-      type(error_t), allocatable, intent(out) :: err
+   module procedure attr_real0
       integer(hsize_t) :: dims(0)
       call attr_raw(self, obj, name, file_type(DTYPE_REAL), mem_type(DTYPE_REAL), dims, c_loc(value), err)
-   end subroutine attr_real0
+   end procedure attr_real0
 
    !> Real vector attribute.
-   module subroutine attr_real1(self, obj, name, value, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: obj, name
-      real(wp), intent(in), target, contiguous :: value(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure attr_real1
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(value) > 0) p = c_loc(value)
       call attr_raw(self, obj, name, file_type(DTYPE_REAL), mem_type(DTYPE_REAL), &
                     int(shape(value), hsize_t), p, err)
-   end subroutine attr_real1
+   end procedure attr_real1
 
    !> Integer scalar attribute.
-   module subroutine attr_int0(self, obj, name, value, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: obj, name
-      integer, intent(in), target :: value
-      type(error_t), allocatable, intent(out) :: err
+   module procedure attr_int0
       integer(hsize_t) :: dims(0)
       call attr_raw(self, obj, name, file_type(DTYPE_INT), mem_type(DTYPE_INT), dims, c_loc(value), err)
-   end subroutine attr_int0
+   end procedure attr_int0
 
    !> 64-bit integer scalar attribute.
-   module subroutine attr_int64_0(self, obj, name, value, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: obj, name
-      integer(i8), intent(in), target :: value
-      type(error_t), allocatable, intent(out) :: err
+   module procedure attr_int64_0
       integer(hsize_t) :: dims(0)
       call attr_raw(self, obj, name, file_type(DTYPE_INT64), mem_type(DTYPE_INT64), dims, c_loc(value), err)
-   end subroutine attr_int64_0
+   end procedure attr_int64_0
 
    !> Integer vector attribute.
-   module subroutine attr_int1(self, obj, name, value, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: obj, name
-      integer, intent(in), target, contiguous :: value(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure attr_int1
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(value) > 0) p = c_loc(value)
       call attr_raw(self, obj, name, file_type(DTYPE_INT), mem_type(DTYPE_INT), &
                     int(shape(value), hsize_t), p, err)
-   end subroutine attr_int1
+   end procedure attr_int1
 
    !> String attribute (fixed length, null padded; an empty string is stored as one null byte).
-   module subroutine attr_string(self, obj, name, value, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: obj, name, value
-      type(error_t), allocatable, intent(out) :: err
+   module procedure attr_string
       character(kind=c_char), allocatable, target :: buf(:)
       integer(hid_t) :: tid
       integer(hsize_t) :: dims(0)
@@ -87,16 +64,10 @@ contains
       end if
       call h5tclose_f(tid, st)
       if (st < 0 .and. .not. allocated(err)) call fail(self, err, 'close a string type of', obj)
-   end subroutine attr_string
+   end procedure attr_string
 
    !> Create (replacing any old one) the attribute `name` of object `obj` and write `p` into it.
-   module subroutine attr_raw(self, obj, name, ftype, mtype, dims, p, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: obj, name
-      integer(hid_t), intent(in) :: ftype, mtype
-      integer(hsize_t), intent(in) :: dims(:)
-      type(c_ptr), intent(in) :: p
-      type(error_t), allocatable, intent(out) :: err
+   module procedure attr_raw
       integer(hid_t) :: oid, space, aid
       integer :: st
       logical :: exists
@@ -133,6 +104,6 @@ contains
          end if
       end block steps
       call close_handles(err, self, obj, space=space, attr=aid, obj_id=oid)
-   end subroutine attr_raw
+   end procedure attr_raw
 
 end submodule exic_hdf5_file_attributes

@@ -5,61 +5,39 @@ submodule(exic_hdf5_file) exic_hdf5_file_datasets
 contains
 
    !> Write the real(wp) vector `x` as the new dataset `name`.
-   module subroutine write_real1(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      real(wp), intent(in), target, contiguous :: x(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure write_real1
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call write_raw(self, name, DTYPE_REAL, int(shape(x), hsize_t), p, err)
-   end subroutine write_real1
+   end procedure write_real1
 
    !> Write the real(wp) matrix `x` as the new dataset `name` (HDF5 shape reversed).
-   module subroutine write_real2(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      real(wp), intent(in), target, contiguous :: x(:, :)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure write_real2
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call write_raw(self, name, DTYPE_REAL, int(shape(x), hsize_t), p, err)
-   end subroutine write_real2
+   end procedure write_real2
 
    !> Write the integer vector `x` as the new dataset `name`.
-   module subroutine write_int1(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer, intent(in), target, contiguous :: x(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure write_int1
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call write_raw(self, name, DTYPE_INT, int(shape(x), hsize_t), p, err)
-   end subroutine write_int1
+   end procedure write_int1
 
    !> Write the integer matrix `x` as the new dataset `name` (HDF5 shape reversed).
-   module subroutine write_int2(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer, intent(in), target, contiguous :: x(:, :)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure write_int2
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call write_raw(self, name, DTYPE_INT, int(shape(x), hsize_t), p, err)
-   end subroutine write_int2
+   end procedure write_int2
 
    !> Create the fixed dataset `name` of shape `dims` and write the data at `p` (none when empty).
-   module subroutine write_raw(self, name, dtype, dims, p, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer, intent(in) :: dtype
-      integer(hsize_t), intent(in) :: dims(:)
-      type(c_ptr), intent(in) :: p
-      type(error_t), allocatable, intent(out) :: err
+   module procedure write_raw
       integer(hid_t) :: space, did
       integer :: st
 
@@ -86,52 +64,34 @@ contains
          end if
       end block steps
       call close_handles(err, self, name, dset=did, space=space)
-   end subroutine write_raw
+   end procedure write_raw
 
    !> Overwrite the real(wp) vector dataset `name` with `x` (same shape).
-   module subroutine rewrite_real1(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      real(wp), intent(in), target, contiguous :: x(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure rewrite_real1
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call rewrite_raw(self, name, DTYPE_REAL, int(shape(x), hsize_t), p, err)
-   end subroutine rewrite_real1
+   end procedure rewrite_real1
 
    !> Overwrite the real(wp) matrix dataset `name` with `x` (same shape).
-   module subroutine rewrite_real2(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      real(wp), intent(in), target, contiguous :: x(:, :)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure rewrite_real2
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call rewrite_raw(self, name, DTYPE_REAL, int(shape(x), hsize_t), p, err)
-   end subroutine rewrite_real2
+   end procedure rewrite_real2
 
    !> Overwrite the integer vector dataset `name` with `x` (same shape).
-   module subroutine rewrite_int1(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer, intent(in), target, contiguous :: x(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure rewrite_int1
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call rewrite_raw(self, name, DTYPE_INT, int(shape(x), hsize_t), p, err)
-   end subroutine rewrite_int1
+   end procedure rewrite_int1
 
    !> Write the data at `p` over the whole existing dataset `name`, whose shape must be `dims`.
-   module subroutine rewrite_raw(self, name, dtype, dims, p, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer, intent(in) :: dtype
-      integer(hsize_t), intent(in) :: dims(:)
-      type(c_ptr), intent(in) :: p
-      type(error_t), allocatable, intent(out) :: err
+   module procedure rewrite_raw
       integer(hsize_t), allocatable :: have(:)
       integer(hid_t) :: did
       integer :: st
@@ -153,20 +113,14 @@ contains
          end if
       end block steps
       call close_handles(err, self, name, dset=did)
-   end subroutine rewrite_raw
+   end procedure rewrite_raw
 
    !> Create the virtual dataset `name` that shows the whole series `source` at every time,
    !> now and as the series grows: a series itself, of Fortran shape (view_lead..., unlimited),
    !> whose block (view_start, view_count) of every slab is the block (src_start, src_count) of
    !> the same slab of `source` (both in the leading dimensions, 0-based); the rest reads as 0.
    !> Created once, it costs nothing per output time (the mapping is unlimited in time).
-   module subroutine file_create_series_view(self, name, source, dtype, view_lead, view_start, view_count, &
-                                      src_start, src_count, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name, source
-      integer, intent(in) :: dtype
-      integer, intent(in) :: view_lead(:), view_start(:), view_count(:), src_start(:), src_count(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure file_create_series_view
       integer(hsize_t) :: dims(size(view_lead) + 1), maxdims(size(view_lead) + 1)
       integer(hsize_t) :: start(size(view_lead) + 1), count(size(view_lead) + 1)
       integer(hid_t) :: vspace, sspace, dcpl, did
@@ -215,6 +169,6 @@ contains
          if (st < 0) call fail(self, err, 'create series view', name)
       end block steps
       call close_handles(err, self, name, dset=did, space=vspace, space2=sspace, plist=dcpl)
-   end subroutine file_create_series_view
+   end procedure file_create_series_view
 
 end submodule exic_hdf5_file_datasets

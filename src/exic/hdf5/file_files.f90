@@ -5,8 +5,7 @@ submodule(exic_hdf5_file) exic_hdf5_file_files
 contains
 
    !> Initialise the library (idempotent) and silence its own error printing: exic reports errors.
-   module subroutine library_init(err)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure library_init
       integer :: st
       call h5open_f(st)
       if (st < 0) then
@@ -15,13 +14,10 @@ contains
       end if
       call h5eset_auto_f(0, st)
       if (st < 0) call make_error(err, 'cannot switch off HDF5 error printing')
-   end subroutine library_init
+   end procedure library_init
 
    !> Create (or truncate) the file `path` for writing.
-   module subroutine file_create(self, path, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: path
-      type(error_t), allocatable, intent(out) :: err
+   module procedure file_create
       integer :: st
 
       if (self%fid >= 0) then
@@ -39,17 +35,12 @@ contains
          return
       end if
       self%path = path
-   end subroutine file_create
+   end procedure file_create
 
    !> Open the existing file `path`, for writing when `writable`. `write_through`: no chunk
    !> cache and no sieve buffer, so that every H5Dwrite is written to the file at once, in the
    !> order of the calls, and a flush has no raw data left to write (doc/fields.md, "Kill safety").
-   module subroutine file_open(self, path, writable, err, write_through)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: path
-      logical, intent(in) :: writable
-      type(error_t), allocatable, intent(out) :: err
-      logical, intent(in), optional :: write_through
+   module procedure file_open
       integer(hid_t) :: fapl
       integer :: st
       logical :: direct
@@ -95,7 +86,7 @@ contains
          return
       end if
       self%path = path
-   end subroutine file_open
+   end procedure file_open
 
    !> True while a file is open.
    module pure logical function file_is_open(self)
@@ -110,45 +101,36 @@ contains
    end function file_handle
 
    !> The path of the open file ('' when closed).
-   module function file_name(self) result(path)
-      class(hdf5_file_t), intent(in) :: self
-      character(len=:), allocatable :: path
+   module procedure file_name
       if (allocated(self%path) .and. self%fid >= 0) then
          path = self%path
       else
          path = ''
       end if
-   end function file_name
+   end procedure file_name
 
    !> Write everything cached to disk (data and metadata), so that the file is complete and
    !> readable as it stands even if the process dies before `close`.
-   module subroutine file_flush(self, err)
-      class(hdf5_file_t), intent(inout) :: self
-      type(error_t), allocatable, intent(out) :: err
+   module procedure file_flush
       integer :: st
       if (.not. check_open(self, 'flush', err)) return
       call h5fflush_f(self%fid, H5F_SCOPE_GLOBAL_F, st)
       if (st < 0) call make_error(err, "HDF5: cannot flush file '"//self%path//"'")
-   end subroutine file_flush
+   end procedure file_flush
 
    !> Close the file (nothing to do when none is open). Datasets held open on it
    !> (exic_hdf5_held) must be released first: HDF5 keeps a file open while one of its
    !> objects is.
-   module subroutine file_close(self, err)
-      class(hdf5_file_t), intent(inout) :: self
-      type(error_t), allocatable, intent(out) :: err
+   module procedure file_close
       integer :: st
       if (self%fid < 0) return
       call h5fclose_f(self%fid, st)
       self%fid = -1
       if (st < 0) call make_error(err, "HDF5: cannot close file '"//self%path//"'")
-   end subroutine file_close
+   end procedure file_close
 
    !> Create the group `name` (a full path such as '/mesh'; its parent must exist).
-   module subroutine file_create_group(self, name, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      type(error_t), allocatable, intent(out) :: err
+   module procedure file_create_group
       integer(hid_t) :: gid
       integer :: st
       if (.not. check_open(self, 'create group '//name, err)) return
@@ -159,7 +141,7 @@ contains
       end if
       call h5gclose_f(gid, st)
       if (st < 0) call fail(self, err, 'close group', name)
-   end subroutine file_create_group
+   end procedure file_create_group
 
    !> True when a file is open; otherwise set `err` saying what could not be done.
    module logical function check_open(self, what, err)
@@ -171,20 +153,13 @@ contains
    end function check_open
 
    !> Set `err` to "HDF5: cannot <what> '<obj>' in file '<path>'".
-   module subroutine fail(self, err, what, obj)
-      class(hdf5_file_t), intent(in) :: self
-      type(error_t), allocatable, intent(inout) :: err
-      character(len=*), intent(in) :: what, obj
+   module procedure fail
       call make_error(err, 'HDF5: cannot '//what//" '"//obj//"' in file '"//self%path//"'")
-   end subroutine fail
+   end procedure fail
 
    !> Close every handle given (those >= 0) and reset it to -1. A failing close sets `err`
    !> unless an earlier error is already there.
-   module subroutine close_handles(err, self, obj, dset, space, space2, plist, attr, obj_id)
-      type(error_t), allocatable, intent(inout) :: err
-      class(hdf5_file_t), intent(in) :: self
-      character(len=*), intent(in) :: obj
-      integer(hid_t), intent(inout), optional :: dset, space, space2, plist, attr, obj_id
+   module procedure close_handles
       integer :: st, worst
 
       worst = 0
@@ -211,17 +186,15 @@ contains
          obj_id = -1
       end if
       if (worst < 0 .and. .not. allocated(err)) call fail(self, err, 'close the handles of', obj)
-   end subroutine close_handles
+   end procedure close_handles
 
    !> Close the dataspace `space` when open; keep the worst status in `worst`.
-   module subroutine close_space(space, worst)
-      integer(hid_t), intent(inout) :: space
-      integer, intent(inout) :: worst
+   module procedure close_space
       integer :: st
       if (space < 0) return
       call h5sclose_f(space, st)
       worst = min(worst, st)
       space = -1
-   end subroutine close_space
+   end procedure close_space
 
 end submodule exic_hdf5_file_files

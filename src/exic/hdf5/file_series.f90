@@ -9,13 +9,7 @@ contains
    !> `capacity` slabs at once, its chunks allocated but not written (fill time "never": an
    !> unwritten slab holds no output, doc/fields.md), and no object times: writing slabs into it
    !> later changes no metadata.
-   module subroutine file_create_series(self, name, dtype, lead, err, capacity)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer, intent(in) :: dtype
-      integer, intent(in) :: lead(:)   !< leading (fixed) dimensions, may be empty
-      type(error_t), allocatable, intent(out) :: err
-      integer, intent(in), optional :: capacity
+   module procedure file_create_series
       integer(hsize_t) :: dims(size(lead) + 1), maxdims(size(lead) + 1), chunk(size(lead) + 1)
       integer(hid_t) :: space, dcpl, did
       integer :: st, rank
@@ -60,14 +54,10 @@ contains
          if (st < 0) call fail(self, err, 'create series', name)
       end block steps
       call close_handles(err, self, name, dset=did, space=space, plist=dcpl)
-   end subroutine file_create_series
+   end procedure file_create_series
 
    !> Number of slabs in the series `name` (its last dimension).
-   module subroutine file_series_length(self, name, n, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer, intent(out) :: n
-      type(error_t), allocatable, intent(out) :: err
+   module procedure file_series_length
       integer(hsize_t), allocatable :: dims(:)
       integer(hid_t) :: did
       n = 0
@@ -75,16 +65,11 @@ contains
       if (allocated(err)) return
       n = int(dims(size(dims)))
       call close_handles(err, self, name, dset=did)
-   end subroutine file_series_length
+   end procedure file_series_length
 
    !> Open the dataset (or series) `name` and return its handle and current dimensions (Fortran
    !> order).
-   module subroutine series_dims(self, name, did, dims, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer(hid_t), intent(out) :: did
-      integer(hsize_t), allocatable, intent(out) :: dims(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure series_dims
       integer(hsize_t), allocatable :: maxdims(:)
       integer(hid_t) :: space
       integer :: st, rank
@@ -110,72 +95,46 @@ contains
       end block steps
       call close_handles(err, self, name, space=space)
       if (allocated(err)) call close_handles(err, self, name, dset=did)
-   end subroutine series_dims
+   end procedure series_dims
 
    !> Append the scalar `x` to the real series `name` of shape (n).
-   module subroutine append_real0(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      real(wp), intent(in), target :: x
-      type(error_t), allocatable, intent(out) :: err
+   module procedure append_real0
       integer(hsize_t) :: slab(0)
       call append_raw(self, name, DTYPE_REAL, slab, c_loc(x), err)
-   end subroutine append_real0
+   end procedure append_real0
 
    !> Append the vector `x` to the real series `name` of shape (size(x), n).
-   module subroutine append_real1(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      real(wp), intent(in), target, contiguous :: x(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure append_real1
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call append_raw(self, name, DTYPE_REAL, int(shape(x), hsize_t), p, err)
-   end subroutine append_real1
+   end procedure append_real1
 
    !> Append the matrix `x` to the real series `name` of shape (size(x,1), size(x,2), n).
-   module subroutine append_real2(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      real(wp), intent(in), target, contiguous :: x(:, :)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure append_real2
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call append_raw(self, name, DTYPE_REAL, int(shape(x), hsize_t), p, err)
-   end subroutine append_real2
+   end procedure append_real2
 
    !> Append the integer vector `x` to the integer series `name` of shape (size(x), n).
-   module subroutine append_int1(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer, intent(in), target, contiguous :: x(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure append_int1
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call append_raw(self, name, DTYPE_INT, int(shape(x), hsize_t), p, err)
-   end subroutine append_int1
+   end procedure append_int1
 
    !> Append the integer(i8) scalar `x` to the 64-bit integer series `name` of shape (n).
-   module subroutine append_int64_0(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer(i8), intent(in), target :: x
-      type(error_t), allocatable, intent(out) :: err
+   module procedure append_int64_0
       integer(hsize_t) :: slab(0)
       call append_raw(self, name, DTYPE_INT64, slab, c_loc(x), err)
-   end subroutine append_int64_0
+   end procedure append_int64_0
 
    !> Grow the series `name` by one slab of Fortran shape `slab` and write the data at `p` into it.
-   module subroutine append_raw(self, name, dtype, slab, p, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer, intent(in) :: dtype
-      integer(hsize_t), intent(in) :: slab(:)
-      type(c_ptr), intent(in) :: p
-      type(error_t), allocatable, intent(out) :: err
+   module procedure append_raw
       integer(hsize_t), allocatable :: dims(:), offset(:), count(:)
       integer(hid_t) :: did, fspace, mspace
       integer :: st, rank
@@ -218,7 +177,7 @@ contains
          end if
       end block steps
       call close_handles(err, self, name, dset=did, space=fspace, space2=mspace)
-   end subroutine append_raw
+   end procedure append_raw
 
    !> True when the link `name` (one level below an existing group, or at the root) exists.
    module logical function file_exists(self, name) result(yes)
@@ -233,11 +192,7 @@ contains
 
    !> Set the number of slabs of the series `name` to `n` (fewer: the slabs beyond are dropped;
    !> more: new slabs, allocated and filled at once when the series was made with a capacity).
-   module subroutine file_resize_series(self, name, n, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer, intent(in) :: n
-      type(error_t), allocatable, intent(out) :: err
+   module procedure file_resize_series
       integer(hsize_t), allocatable :: dims(:)
       integer(hid_t) :: did
       integer :: st
@@ -249,63 +204,42 @@ contains
          if (st < 0) call fail(self, err, 'resize to '//itoa(n)//' slabs', name)
       end if
       call close_handles(err, self, name, dset=did)
-   end subroutine file_resize_series
+   end procedure file_resize_series
 
    !> Remove the link `name` (a dataset or group).
-   module subroutine file_delete(self, name, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      type(error_t), allocatable, intent(out) :: err
+   module procedure file_delete
       integer :: st
       if (.not. check_open(self, 'delete '//name, err)) return
       call h5ldelete_f(self%fid, name, st)
       if (st < 0) call fail(self, err, 'delete', name)
-   end subroutine file_delete
+   end procedure file_delete
 
    !> Read the real dataset `name` whole into x (size(x) elements exactly).
-   module subroutine read_real(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      real(wp), intent(inout), target, contiguous :: x(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure read_real
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call read_raw(self, name, DTYPE_REAL, int(size(x), i8), p, err)
-   end subroutine read_real
+   end procedure read_real
 
    !> Read the integer dataset `name` whole into x (size(x) elements exactly).
-   module subroutine read_int(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer, intent(inout), target, contiguous :: x(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure read_int
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call read_raw(self, name, DTYPE_INT, int(size(x), i8), p, err)
-   end subroutine read_int
+   end procedure read_int
 
    !> Read the 64-bit integer dataset `name` whole into x (size(x) elements exactly).
-   module subroutine read_int64(self, name, x, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer(i8), intent(inout), target, contiguous :: x(:)
-      type(error_t), allocatable, intent(out) :: err
+   module procedure read_int64
       type(c_ptr) :: p
       p = c_null_ptr
       if (size(x) > 0) p = c_loc(x)
       call read_raw(self, name, DTYPE_INT64, int(size(x), i8), p, err)
-   end subroutine read_int64
+   end procedure read_int64
 
    !> Read the whole dataset `name`, which must hold n elements, into the memory at `p`.
-   module subroutine read_raw(self, name, dtype, n, p, err)
-      class(hdf5_file_t), intent(inout) :: self
-      character(len=*), intent(in) :: name
-      integer, intent(in) :: dtype
-      integer(i8), intent(in) :: n
-      type(c_ptr), intent(in) :: p
-      type(error_t), allocatable, intent(out) :: err
+   module procedure read_raw
       integer(hsize_t), allocatable :: dims(:)
       integer(hid_t) :: did
       integer :: st
@@ -321,6 +255,6 @@ contains
          if (st < 0) call fail(self, err, 'read dataset', name)
       end if
       call close_handles(err, self, name, dset=did)
-   end subroutine read_raw
+   end procedure read_raw
 
 end submodule exic_hdf5_file_series

@@ -7,13 +7,7 @@ contains
    !> A problem from connectivity: ix(4, nelem) counter-clockwise nodes, ibody(nelem) >= 1.
    !> ipair(6, npair): slave body, master body, method, detection, passes, rigid master;
    !> ppair(npair): penalty stiffness (method 2). On success h > 0, else h = 0.
-   module subroutine problem_create_mesh(who, nnode, x0, mass, nelem, ix, ibody, npair, ipair, ppair, h, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: nnode, nelem, npair
-      real(wp), intent(in) :: x0(2, nnode), mass(nnode)
-      integer, intent(in) :: ix(4, nelem), ibody(nelem), ipair(6, npair)
-      real(wp), intent(in) :: ppair(npair)
-      integer, intent(out) :: h, ierr
+   module procedure problem_create_mesh
       type(problem_t), allocatable :: p
       integer :: e, k, b
       logical, allocatable :: has_body(:)
@@ -60,19 +54,12 @@ contains
          p%spec%surfaces(k)%ref = b
       end do
       call finish_create(who, p, ppair, h, ierr)
-   end subroutine problem_create_mesh
+   end procedure problem_create_mesh
 
    !> A problem from segments and slave node sets. iseg(3, nseg): node 1, node 2 (body on the
    !> left of 1 -> 2), surface number >= 1; isn(2, nsn): node, surface number of a slave node
    !> set (a surface without segments). ipair as for problem_create_mesh with surface numbers.
-   module subroutine problem_create_segments(who, nnode, x0, mass, nseg, iseg, nsn, isn, npair, ipair, ppair, &
-                                      h, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: nnode, nseg, nsn, npair
-      real(wp), intent(in) :: x0(2, nnode), mass(nnode)
-      integer, intent(in) :: iseg(3, nseg), isn(2, nsn), ipair(6, npair)
-      real(wp), intent(in) :: ppair(npair)
-      integer, intent(out) :: h, ierr
+   module procedure problem_create_segments
       type(problem_t), allocatable :: p
       integer :: k, s, j, nsurf
       logical, allocatable :: has_seg(:), has_node(:), used(:)
@@ -140,7 +127,7 @@ contains
          end associate
       end do
       call finish_create(who, p, ppair, h, ierr)
-   end subroutine problem_create_segments
+   end procedure problem_create_segments
 
    !> Positions, masses and pairs common to both kinds of creation.
    subroutine base_problem(p, nnode, x0, mass, npair, ipair)

@@ -5,11 +5,7 @@ submodule(exic_legacy_problem) exic_legacy_problem_options
 contains
 
    !> ifix(2, nnode): non-zero marks a dof the host prescribes (the corrector leaves it alone).
-   module subroutine problem_set_fixed(who, h, nnode, ifix, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h, nnode
-      integer, intent(in) :: ifix(2, nnode)
-      integer, intent(out) :: ierr
+   module procedure problem_set_fixed
       type(problem_t), pointer :: p
       p => lookup(who, h, ierr)
       if (.not. associated(p)) return
@@ -20,16 +16,11 @@ contains
       end if
       p%fixed = ifix
       call inverse_masses(p)
-   end subroutine problem_set_fixed
+   end procedure problem_set_fixed
 
    !> New options iopt(4) = method, detection, passes, rigid master and penalty stiffness of
    !> pair ipair; the surfaces and passes are rebuilt at the current positions.
-   module subroutine problem_set_pair(who, h, ipair, iopt, pen, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h, ipair
-      integer, intent(in) :: iopt(4)
-      real(wp), intent(in) :: pen
-      integer, intent(out) :: ierr
+   module procedure problem_set_pair
       type(problem_t), pointer :: p
       integer, allocatable :: t(:, :)
       logical, allocatable :: any_surf(:), seg_surf(:)
@@ -57,16 +48,12 @@ contains
       call apply_pair_options(p, ipair, iopt, pen)
       call rebuild(who, p, ierr)
       if (ierr /= IERR_OK) p%message = last_message(0)
-   end subroutine problem_set_pair
+   end procedure problem_set_pair
 
    !> Coulomb friction of pair ipair (doc/friction.md, eq. F12): static coefficient amus, dynamic
    !> amud <= amus, decay with slip speed (0: amus at rest, amud sliding); amus = 0 removes it.
    !> The contact object is rebuilt at the current positions, as for a change of pair options.
-   module subroutine problem_set_friction(who, h, ipair, amus, amud, decay, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h, ipair
-      real(wp), intent(in) :: amus, amud, decay
-      integer, intent(out) :: ierr
+   module procedure problem_set_friction
       type(problem_t), pointer :: p
       p => lookup(who, h, ierr)
       if (.not. associated(p)) return
@@ -89,13 +76,10 @@ contains
       p%spec%pairs(ipair)%decay = decay
       call rebuild(who, p, ierr)
       if (ierr /= IERR_OK) p%message = last_message(0)
-   end subroutine problem_set_friction
+   end procedure problem_set_friction
 
    !> Handle options: OPT_VELOCITY_FORM = 1 (v~(n+1), default) or 2 (v(n+1/2)).
-   module subroutine problem_set_option(who, h, iopt, ival, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h, iopt, ival
-      integer, intent(out) :: ierr
+   module procedure problem_set_option
       type(problem_t), pointer :: p
       p => lookup(who, h, ierr)
       if (.not. associated(p)) return
@@ -113,7 +97,7 @@ contains
          return
       end select
       ierr = IERR_OK
-   end subroutine problem_set_option
+   end procedure problem_set_option
 
    !> The massless contact faces of method-3 pairs (doc/impact.md, section 3; doc/api.md):
    !> mass(nnode) the host's lumped masses after it moved the face nodes' mass to their
@@ -123,44 +107,26 @@ contains
    !> iface(k), columns the global dofs 2 (i-1) + d). The face block must be symmetric; it is
    !> factorized (SuiteSparse LDL) when the contact object is rebuilt here. Both dofs of a face
    !> node are massless.
-   module subroutine problem_set_face(who, h, nnode, mass, nf, iface, irp, ici, val, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h, nnode, nf
-      real(wp), intent(in) :: mass(nnode)
-      integer, intent(in) :: iface(max(nf, 0)), irp(2*max(nf, 0) + 1)
-      integer, intent(in) :: ici(*)
-      real(wp), intent(in) :: val(*)
-      integer, intent(out) :: ierr
+   module procedure problem_set_face
       call set_face(who, h, nnode, spread(mass, 1, 2), nf, iface, spread(spread(1, 1, max(nf, 0)), 1, 2), &
                     irp, ici, val, ierr)
-   end subroutine problem_set_face
+   end procedure problem_set_face
 
    !> problem_set_face with massless dofs per direction (doc/impact.md, eq. I.3a, I.3b):
    !> mass(2, nnode) the host's lumped masses per dof after the transfer of eq. I.3 per direction
    !> (> 0 on every dof with mass, ignored on the massless ones), ifdof(2, nf) 1 where dof d of
    !> iface(k) is massless, 0 where it keeps its mass (every face node has one massless dof at
    !> least); the rows of the dofs with mass are not read.
-   module subroutine problem_set_face_dofs(who, h, nnode, mass, nf, iface, ifdof, irp, ici, val, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h, nnode, nf
-      real(wp), intent(in) :: mass(2, nnode)
-      integer, intent(in) :: iface(max(nf, 0)), ifdof(2, max(nf, 0)), irp(2*max(nf, 0) + 1)
-      integer, intent(in) :: ici(*)
-      real(wp), intent(in) :: val(*)
-      integer, intent(out) :: ierr
+   module procedure problem_set_face_dofs
       call set_face(who, h, nnode, mass, nf, iface, ifdof, irp, ici, val, ierr)
-   end subroutine problem_set_face_dofs
+   end procedure problem_set_face_dofs
 
    !> The massless dofs the deck's rule gives the handle's method-3 surfaces (doc/impact.md,
    !> section 3.1, eq. I.3a and I.3b, at the reference positions): ifdof(d, i) = 1 where dof d of
    !> node i is massless, 0 elsewhere. Rigid and prescribed nodes get none; built from
    !> connectivity, so do the dofs d of elements whose every node would be massless along d
    !> (bodies one element thick); a host that gave segments drops those itself.
-   module subroutine problem_face_rule(who, h, nnode, ifdof, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h, nnode
-      integer, intent(out) :: ifdof(2, nnode)
-      integer, intent(out) :: ierr
+   module procedure problem_face_rule
       type(problem_t), pointer :: p
       logical, allocatable :: dofs(:, :)
       integer :: e, d
@@ -180,7 +146,7 @@ contains
          end do
       end do
       ifdof = merge(1, 0, dofs)
-   end subroutine problem_face_rule
+   end procedure problem_face_rule
 
    !> Both set-ups of the face: mass(2, nnode) per dof, ifdof(2, nf) the massless dofs.
    subroutine set_face(who, h, nnode, mass, nf, iface, ifdof, irp, ici, val, ierr)

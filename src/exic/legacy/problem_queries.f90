@@ -7,25 +7,17 @@ contains
    !> res(6) of pair ipair in the last step: normal force (sum of multipliers), force x, y on
    !> the slave side (normal and friction), active constraints, largest penetration at t(n+1),
    !> largest multiplier.
-   module subroutine problem_pair_results(who, h, ipair, res, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h, ipair
-      real(wp), intent(out) :: res(6)
-      integer, intent(out) :: ierr
+   module procedure problem_pair_results
       call pair_values(who, h, ipair, 0, res, ierr)
-   end subroutine problem_pair_results
+   end procedure problem_pair_results
 
    !> res(4) of pair ipair: friction force (sum of |q| over its constraints) in the last step,
    !> constraints that stick and that slip in it, frictional dissipation since the friction was
    !> set (doc/friction.md, section 7). The friction forces are also in the pair results' force
    !> x, y and in the nodal contact forces of the step.
-   module subroutine problem_pair_friction(who, h, ipair, res, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h, ipair
-      real(wp), intent(out) :: res(4)
-      integer, intent(out) :: ierr
+   module procedure problem_pair_friction
       call pair_values(who, h, ipair, 7, res, ierr)
-   end subroutine problem_pair_friction
+   end procedure problem_pair_friction
 
    !> res(k) = value skip + k of pair ipair's results (contact_t%pair_value), k = 1..size(res),
    !> after checking the handle and the pair number.
@@ -50,27 +42,18 @@ contains
    end subroutine pair_values
 
    !> Number of candidate (Lagrange) constraints of the last step.
-   module subroutine problem_ncon(who, h, ncon, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h
-      integer, intent(out) :: ncon, ierr
+   module procedure problem_ncon
       type(problem_t), pointer :: p
       ncon = 0
       p => lookup(who, h, ierr)
       if (.not. associated(p)) return
       ncon = p%contact%cs%n
-   end subroutine problem_ncon
+   end procedure problem_ncon
 
    !> The candidate constraints of the last step: icon(4, :) = slave, master 1, master 2, pair;
    !> rcon(6, :) = multiplier p (>= 0, compressive), alpha, normal x, y, gap at t(n+1), gap at
    !> t(n+2) after the correction (eq. 3.19 along the frozen normal). mcon >= ncon is required.
-   module subroutine problem_constraints(who, h, mcon, ncon, icon, rcon, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h, mcon
-      integer, intent(out) :: ncon
-      integer, intent(out) :: icon(4, mcon)
-      real(wp), intent(out) :: rcon(6, mcon)
-      integer, intent(out) :: ierr
+   module procedure problem_constraints
       type(problem_t), pointer :: p
       integer :: i, j, nd, s
       real(wp) :: dg
@@ -103,14 +86,10 @@ contains
             if (p%face_set) rcon(6, i) = rcon(6, i) + face_gap(p, i)
          end do
       end associate
-   end subroutine problem_constraints
+   end procedure problem_constraints
 
    !> Work of the contact forces since creation and the largest penetration at t(n+1) seen.
-   module subroutine problem_work(who, h, wcon, penmax, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h
-      real(wp), intent(out) :: wcon, penmax
-      integer, intent(out) :: ierr
+   module procedure problem_work
       type(problem_t), pointer :: p
       wcon = 0.0_wp
       penmax = 0.0_wp
@@ -118,29 +97,23 @@ contains
       if (.not. associated(p)) return
       wcon = p%wcon
       penmax = p%max_pen
-   end subroutine problem_work
+   end procedure problem_work
 
    !> Release handle h.
-   module subroutine problem_free(who, h, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h
-      integer, intent(out) :: ierr
+   module procedure problem_free
       type(problem_t), pointer :: p
       p => lookup(who, h, ierr)
       if (.not. associated(p)) return
       call registry_free(h)
-   end subroutine problem_free
+   end procedure problem_free
 
    !> The message of the last failed call on handle h (of any call when h names no live
    !> problem), blank-padded or cut to len(msg); lmsg is its full length.
-   module subroutine problem_message(h, msg, lmsg)
-      integer, intent(in) :: h
-      character(len=*), intent(out) :: msg
-      integer, intent(out) :: lmsg
+   module procedure problem_message
       character(len=:), allocatable :: m
       m = last_message(h)
       msg = m
       lmsg = len(m)
-   end subroutine problem_message
+   end procedure problem_message
 
 end submodule exic_legacy_problem_queries

@@ -8,29 +8,15 @@ contains
    !> and a(n+1) on exit, dtprev = dt(n) (0 at t = 0), dt = dt(n+1); fcon = nodal contact
    !> forces, nactive = constraints carrying force (eq. 4.4-4.7). The host's arrays go to
    !> contact_t%correct as they are: nothing of size nnode is copied.
-   module subroutine problem_step(who, h, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h, nnode
-      real(wp), intent(in) :: x(2, nnode), v(2, nnode)
-      real(wp), intent(inout) :: a(2, nnode)
-      real(wp), intent(in) :: dtprev, dt
-      real(wp), intent(out) :: fcon(2, nnode)
-      integer, intent(out) :: nactive, ierr
+   module procedure problem_step
       call step_common(who, h, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr)
-   end subroutine problem_step
+   end procedure problem_step
 
    !> The step of a handle with massless contact faces (method 3, doc/impact.md section 3): r =
    !> f_ext - f_int at t(n+1) on the face dofs (eq. I.5); a holds there on exit eq. I.7's.
-   module subroutine problem_step_face(who, h, nnode, x, v, a, r, dtprev, dt, fcon, nactive, ierr)
-      character(len=*), intent(in) :: who
-      integer, intent(in) :: h, nnode
-      real(wp), intent(in) :: x(2, nnode), v(2, nnode), r(2, nnode)
-      real(wp), intent(inout) :: a(2, nnode)
-      real(wp), intent(in) :: dtprev, dt
-      real(wp), intent(out) :: fcon(2, nnode)
-      integer, intent(out) :: nactive, ierr
+   module procedure problem_step_face
       call step_common(who, h, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr, r)
-   end subroutine problem_step_face
+   end procedure problem_step_face
 
    !> Both steps; r present: the face step.
    subroutine step_common(who, h, nnode, x, v, a, dtprev, dt, fcon, nactive, ierr, r)
