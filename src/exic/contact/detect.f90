@@ -410,6 +410,9 @@ contains
       t = at(seg(2, k)) - at(seg(1, k))
       len = sqrt(dot_product(t, t))
       if (.not. (len > 0.0_wp)) return
+      ! the slave faces segment k head-on (within 30 degrees): not a corner of its own body
+      ! meeting the master's corner (two bars of equal height meeting end to end)
+      if (.not. (dot_product(ns, t)**2 <= 0.25_wp*len*len .and. ns(1)*t(2) - ns(2)*t(1) < 0.0_wp)) return
       if (alpha < 0.0_wp .and. -alpha*len <= depth) then
          nbr = link(1, k)
          if (nbr <= 0) return
