@@ -259,6 +259,8 @@ contains
    !> a segment end is put at that end (alpha = 0 or 1, at_end true) and gets the master
    !> node normal: the normalized average of the segment's normal and that of its
    !> neighbour at that node, the neighbour counting only if it passes the facing test.
+   !> Swept mode: a contact point just past an end at a convex corner of the master is held at
+   !> that end under the conditions of past_corner.
    !>
    !> With the slave surface's nsseg segments `sseg` and its node -> segments lists (`shead`,
    !> `ssegs`, node_segments), snrm(:, s) is formed here at x0 (some_node_normals), for the
@@ -395,8 +397,9 @@ contains
    !> off the segment is held at the segment's end (doc/contact-detection.md, "A node at a
    !> master's convex corner"): the contact point within `depth` past an end of k, the segment
    !> across that end turning left from k (a convex corner of the master: its body on the left)
-   !> and failing the facing test with the slave's normal ns (it cannot hold the slave). Positions
-   !> at x0 + tau (x1 - x0).
+   !> and failing the facing test with the slave's normal ns (it cannot hold the slave), and ns
+   !> within 30 degrees of -n_k (a smooth part of the slave's surface facing k head-on, not a
+   !> corner of its own body). Positions at x0 + tau (x1 - x0).
    pure logical function past_corner(nnode, x0, x1, tau, nseg, seg, link, k, alpha, depth, ns, &
                                      facing) result(ok)
       integer, intent(in) :: nnode, nseg, k
