@@ -14,7 +14,7 @@
 !> 1e-3 of W_pm (prescribed_work at the end); with the constant velocity, W_pm equals the
 !> trapezoid rule in time of the reaction (reac,REGIon,2,2 of <stem>.his) times -v to round-off.
 !> A rigid punch driven into a plastic block (plastic_punch): its balance closes with the plastic
-!> work of doc/plasticity.md (J30).
+!> work of doc/plasticity.md (J31).
 module test_punch
    use exic_base_kinds, only: wp
    use exic_base_strings, only: rtoa
@@ -43,8 +43,8 @@ contains
    !> A rigid punch resting on a plastic block (PLAStic MISEs, yield 2e-3 E), driven into it by
    !> MOTIon at v / c = 0.01, DT,CFL,0.95, 4 x 2 elements, NTOS block nodes against the punch
    !> with friction: the worst variant of tools/stress/punch_family.py before the plastic work
-   !> was booked by the trapezoid rule of the stress power (doc/plasticity.md (J30)): drift
-   !> 3.2 % of W_pm with 2x2 MIXEd, 2.8 % with one point (exic 1c14650; with (J30) 5.6e-6 and
+   !> was booked by the trapezoid rule of the stress power (doc/plasticity.md (J31)): drift
+   !> 3.2 % of W_pm with 2x2 MIXEd, 2.8 % with one point (exic 1c14650; with (J31) 5.6e-6 and
    !> 6.1e-6). Asserted: runs without a warning, the block yields, the balance (total of
    !> <stem>.ene) stays within 1e-3 of W_pm: a conservation law, the plastic work being what the
    !> forces did and the block did not store.

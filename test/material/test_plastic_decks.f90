@@ -222,7 +222,7 @@ contains
    !> The energy balance of a run (doc/plasticity.md, section 5.5): every node of the element is
    !> driven, so kinetic + strain + plastic work - W_pm (`total` of <stem>.ene) is constant to
    !> the trapezoid rule's error on the elastic steps before first yield; the plastic work of
-   !> (J30) takes the rest. Asserted: the largest |total(t) - total(0)| within 1e-9 of the work
+   !> (J31) takes the rest. Asserted: the largest |total(t) - total(0)| within 1e-9 of the work
    !> done on the material (strain energy + plastic work at the end; W_pm also holds the driven
    !> nodes' kinetic energy, which falls in the extension), and no step books a negative
    !> plastic work.
@@ -327,11 +327,11 @@ contains
    end subroutine jc_rate
 
    !> JOHNson-cook with SPECific heat: (J17) heats with the kernel's dissipation (J27), the
-   !> balance books the trapezoid rule (J30) (doc/plasticity.md, section 5.5): T - Troom against
+   !> balance books the trapezoid rule (J31) (doc/plasticity.md, section 5.5): T - Troom against
    !> 0.9 W_p/(rho c V0), W_p the plastic work of the .ene (the element is homogeneous; V0 = 1 per
    !> unit thickness, 1/2 per radian for the unit square at r in [0, 1]), within the first-order
    !> difference of the two rules, 0.9 max(dep) sum |dq| /(rho c) (for small elastic strains
-   !> (J27) - (J30) = 1/2 sum dq dep, (J31)). The rise against 0.9 int q dep/(rho c) by
+   !> (J27) - (J31) = 1/2 sum dq dep, (J32)). The rise against 0.9 int q dep/(rho c) by
    !> the backward-Euler sum over the steps, sum q(n+1) dep (the return's Y dep): the dissipation
    !> (J27) is Y dep 3x (x J2 - 3/2 k J3)/(J2 (3 x^2 - k^2 J2)) for the returned deviator k d,
    !> which in axisymmetric extension (d = c diag(-1, 2, -1), c = q/(3 mu x)) is Y dep/(1 + c):
@@ -357,7 +357,7 @@ contains
       n = size(r%t)
       v0 = merge(1.0_wp, 0.5_wp, path == SHEAR)
       rise = r%temp(n) - TROOM
-      ! the heating's (J27) against the balance's (J30): first order in the step, within
+      ! the heating's (J27) against the balance's (J31): first order in the step, within
       ! 0.9/(rho c) max(dep) sum |dq| (1/2 sum dq dep for small elastic strains, doubled)
       tv = 0.0_wp
       depm = 0.0_wp
@@ -368,7 +368,7 @@ contains
       dheat = rise - 0.9_wp*r%wp_end/(RHO_CU*CHEAT*v0)
       bound = 0.9_wp*depm*tv/(RHO_CU*CHEAT)
       call check(s, abs(dheat) <= bound, 'JOHNson '//what//': T - Troom = 0.9 W_p/(rho c V0) '// &
-                 'to the first-order difference of (J27) and (J30), 0.9 max(dep) sum |dq|/(rho c) (rise '// &
+                 'to the first-order difference of (J27) and (J31), 0.9 max(dep) sum |dq|/(rho c) (rise '// &
                  rtoa(rise)//' K, difference '//rtoa(dheat)//' K, bound '//rtoa(bound)//' K)', &
                  'W_p '//rtoa(r%wp_end))
       call lame_from_young(E_CU, NU_CU, lam, mu)

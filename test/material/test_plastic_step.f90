@@ -40,7 +40,7 @@ module test_plastic_step
 
    real(wp), parameter :: YOUNG = 1.0_wp, RHO = 1.3_wp
    integer, parameter :: NPATH = 40
-   !> history values per point of the plastic one-point element: J2 (5) and the booking (J30)
+   !> history values per point of the plastic one-point element: J2 (5) and the booking (J31)
    integer, parameter :: NH = 5 + NBOOK
    !> the speeds w(1:NWCHECK) are asserted, the faster ones reported
    integer, parameter :: NWCHECK = 3

@@ -49,7 +49,7 @@ module exic_element_q4_general
       logical :: plastic = .false.           !< J2 plasticity (ep, T and yield stress outputs)
       integer :: nvar = 0                    !< history values per point of the law (law_t%nvar)
       !> history values per point stored: nvar, and with plasticity the NBOOK values of the
-      !> plastic work's booking after them (q4_plastic_work.f90, doc/plasticity.md (J30))
+      !> plastic work's booking after them (q4_plastic_work.f90, doc/plasticity.md (J31))
       integer :: nhist = 0
       real(wp) :: hg = 0.0_wp
       integer :: hgkind = HOURGLASS_STIFFNESS  !< or HOURGLASS_PHYSICAL (hg its scale; doc/hourglass.md)
@@ -99,7 +99,7 @@ contains
    !> with the stable step, updating the history hist(nhist, nq*nq, nel) of a set with one (not
    !> used otherwise). dt: the step over which u changed (Johnson-Cook's rate). wint: strain
    !> energy, whg: hourglass energy, wdis: plastic work of the step by the trapezoid rule of the
-   !> stress power (J30) (the history keeps what it needs: call once per step); the rest as in
+   !> stress power (J31) (the history keeps what it needs: call once per step); the rest as in
    !> q4_force_2x2.
    pure subroutine q4g_force(o, nel, nnode, conn, x0, u, dt, hist, f, wint, whg, wdis, jmin, ebad, &
                              dt2min, emin, efold, v)
@@ -188,7 +188,7 @@ contains
                wq, dw, ys, yl)
       if (o%mixed) call mixed_stress(wt, js, f11, f12, f21, f22, f33, al, b11, b12, b21, b22, b33, &
                                      p11, p12, p21, p22, p33)
-      ! the plastic work of the step (J30): the stress that works on F (p* with MIXEd) and F
+      ! the plastic work of the step (J31): the stress that works on F (p* with MIXEd) and F
       if (o%plastic) call book_block(4, nb, o%nvar, hist, h0, f11, f12, f21, f22, f33, p11, p12, &
                                      p21, p22, p33, wq, yl, wdis)
       call forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
@@ -392,7 +392,7 @@ contains
       call point_checks(NBLOCK, jac, f33, js, jchk)
       call law(o, 1, nb, dt, hist, h0, h, f11, f12, f21, f22, f33, js, wt, p11, p12, p21, p22, p33, &
                wq, dw, ys, yl)
-      ! the plastic work of the step (J30); the hourglass forces stay elastic and outside it
+      ! the plastic work of the step (J31); the hourglass forces stay elastic and outside it
       if (o%plastic) call book_block(1, nb, o%nvar, hist, h0, f11, f12, f21, f22, f33, p11, p12, &
                                      p21, p22, p33, wq, yl, wdis)
       if (o%axi) then

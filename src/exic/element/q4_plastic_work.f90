@@ -1,12 +1,12 @@
 !> The plastic work of a step booked by the trapezoid rule of the stress power (doc/plasticity.md,
-!> section 5.5, eq. (J30)): for an element in which some point yielded over the step,
+!> section 5.5, eq. (J31)): for an element in which some point yielded over the step,
 !>
-!>     D_e = sum_g [ 1/2 (wP(n) + wP(n+1)) : (F(n+1) - F(n)) - (wW(n+1) - wW(n)) ]          (J30)
+!>     D_e = sum_g [ 1/2 (wP(n) + wP(n+1)) : (F(n+1) - F(n)) - (wW(n+1) - wW(n)) ]          (J31)
 !>
 !> (wP the weighted first Piola stress that works on F, P* of the mean-dilatation element;
 !> wW the weighted stored energy), and 0 for an element whose points all stayed elastic. Since F
 !> is linear in the nodal displacements, sum_g wP : dF is the work of the element's stress forces
-!> over du, so (J30) is that work by the trapezoid rule, the rule by which the balance books
+!> over du, so (J31) is that work by the trapezoid rule, the rule by which the balance books
 !> every force (doc/decisions.md, eq. E.2), less the change of the stored energy: the balance of
 !> a yielding element closes to round-off, that of an elastic one to the trapezoid rule's
 !> O(du^3) error, as in an elastic set.
@@ -39,7 +39,7 @@ contains
       hist(nvar + 5, :, :) = 1.0_wp
    end subroutine book_init
 
-   !> (J30) for the nb elements of a block with np points each (hist(:, :, h0 + k - 1) is lane
+   !> (J31) for the nb elements of a block with np points each (hist(:, :, h0 + k - 1) is lane
    !> k's history, its booking values after nvar): f.. the deformation gradient F(n+1) of every
    !> point (not the mean-dilatation Fbar), p.. the weighted stress that works on it, wq the
    !> weighted stored energy, yl > 0 at a point whose plastic strain grew in the step. wdis gets
