@@ -15,11 +15,12 @@ module exic_session_run
    use exic_parallel_mpi, only: par_or_bits, par_rank
    use exic_base_signals, only: signals_take, SIG_BIT_INT, SIG_BIT_TERM, SIG_BIT_USR1, SIG_BIT_USR2
    use exic_model_model, only: model_t
-   use exic_restart, only: run_position_t, write_restart, read_restart
+   use exic_restart, only: run_position_t, write_restart, read_restart, peek_restart, landing_path
+   use exic_base_posix, only: file_kind, FILE_REGULAR
    use exic_output, only: output_t
    use exic_explicit_assembly, only: energy_balance
    use exic_output_text_report, only: report_preamble
-   use exic_session_program_change, only: adopt_program
+   use exic_session_program_change, only: adopt_program, extends_landed_end
    use exic_explicit_step, only: stepper_t
    use exic_explicit_history_gather, only: decomposition_gather_history
    use exic_explicit_decomposition_nodes, only: decomposition_gather_nodes
@@ -33,6 +34,10 @@ module exic_session_run
 
    !> Steps between two geometric penetration checks besides the field output times and the end.
    integer, parameter :: INSIDE_STEPS = 1000
+   !> A run that saves writes `<stem>.rst.land` after every step from which the end time is
+   !> within this many steps (and one more), until a step is shortened to land on it (DT,CFL
+   !> lands with at most 4; the margin covers a step that grows by 1.5 meanwhile).
+   real(wp), parameter :: LAND_WINDOW = 6.0_wp
 
    abstract interface
       !> Told after the field file is flushed (doc/fields.md, "Batches"): how many output times
@@ -74,15 +79,29 @@ contains
       character(len=*), intent(in) :: base, path
       type(error_t), allocatable, intent(out) :: err
       real(wp), allocatable :: program(:, :)
-      character(len=:), allocatable :: notes, text
+      character(len=:), allocatable :: notes, text, from, landing
       logical :: fresh
+      real(wp) :: landed
+      type(error_t), allocatable :: peek_err
+      ! a later end time than the one the file's last steps landed on: the file written before
+      ! them, when it is there (doc/input-language.md, "Changing the program at a restart")
+      from = path
+      landing = ''
+      call peek_restart(path, landed, program, peek_err)
+      if (.not. allocated(peek_err)) then
+         if (extends_landed_end(model, program, landed) .and. file_kind(landing_path(path)) == FILE_REGULAR) then
+            from = landing_path(path)
+            landing = 'the last steps of '//path//' were shortened to land on its end time '//rtoa(landed)// &
+                      ' (DT,CFL): a later end time continues from '//from//', written before them'
+         end if
+      end if
       call r%stp%init(model%mesh, model%materials, model%contact, err, model%loads)
       if (allocated(err)) return
-      call read_restart(path, model, r%stp, r%out, r%pos, program, err)
+      call read_restart(from, model, r%stp, r%out, r%pos, program, err)
       if (allocated(err)) return
       call adopt_program(model, program, r%pos, r%stp, r%out, notes, err)
       if (allocated(err)) then
-         err%message = "restart file '"//path//"': "//err%message
+         err%message = "restart file '"//from//"': "//err%message
          return
       end if
       call r%out%resume(base, model, r%stp, fresh, err)
@@ -93,7 +112,11 @@ contains
       else
          call r%out%files%say('')
       end if
-      call r%out%files%say('restarted from '//path//' at t = '//rtoa(r%stp%st%t)//', step '// &
+      if (len(landing) > 0) then
+         call r%out%files%say(landing)
+         write (error_unit, '(a)') 'exic: '//landing
+      end if
+      call r%out%files%say('restarted from '//from//' at t = '//rtoa(r%stp%st%t)//', step '// &
                            itoa(int(r%stp%st%step)))
       if (fresh) then
          text = 'new output files start at the restart point (t = '//rtoa(r%stp%st%t)//', step '// &
@@ -109,16 +132,25 @@ contains
       end if
    end subroutine resume
 
-   !> Write the restart file of the state now (the files flushed and measured first).
-   subroutine save_restart(r, model, err)
+   !> Write the restart file of the state now (the files flushed and measured first); with
+   !> `landing`, the file `<stem>.rst.land` of a state before the end time's landing (not said
+   !> in the .out: it is replaced until the landing begins).
+   subroutine save_restart(r, model, err, landing)
       type(run_t), intent(inout) :: r
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: landing
       call decomposition_gather_nodes(r%stp%dd, r%stp%st)
       call r%out%checkpoint(err)
       if (allocated(err)) return
       ! several MPI ranks: the element history of every block from its owner (doc/parallel.md)
       call decomposition_gather_history(r%stp%dd, r%stp%st, r%stp%sets)
+      if (present(landing)) then
+         if (landing) then
+            call write_restart(landing_path(r%rst), model, r%stp, r%out, r%pos, err, keep_previous=.false.)
+            return
+         end if
+      end if
       call write_restart(r%rst, model, r%stp, r%out, r%pos, err)
       if (allocated(err)) return
       r%saved_step = r%stp%st%step
@@ -291,6 +323,15 @@ contains
                               itoa(int(r%stp%st%step)))
       end if
       if (due) call save_restart(r, model, err)
+      if (allocated(err) .or. r%interrupted) return
+      ! DT,CFL shortens the last steps to land on the end time: a run that saves keeps the state
+      ! before them too, from which a later end time continues (session/program_change.f90)
+      associate (stp => r%stp)
+         if (stp%cfl_mode .and. stp%tmax > stp%st%t .and. stp%landed_tmax /= stp%tmax .and. &
+             stp%tmax - stp%st%t <= (LAND_WINDOW + 1.0_wp)*stp%st%dt) then
+            if (any(model%program(:)%name == 'save')) call save_restart(r, model, err, landing=.true.)
+         end if
+      end associate
    end subroutine after_step
 
    !> SIGUSR2: one line on standard error: time, step, dt, energy balance, wall time, ETA.
