@@ -32,7 +32,8 @@ module exic_session_run
    public :: resume, save_restart, init_inside, check_inside, start, step, after_step, &
              finish_progress, pass_messages, gather_nodes_due
 
-   !> Steps between two geometric penetration checks besides the field output times and the end.
+   !> Steps between two geometric penetration checks besides the field output times and the end
+   !> (at most; fewer when bodies that no contact pair couples move fast: `inside_interval`).
    integer, parameter :: INSIDE_STEPS = 1000
    !> A run that saves writes `<stem>.rst.land` after every step from which the end time is
    !> within this many steps (and one more), until a step is shortened to land on it (DT,CFL
@@ -63,6 +64,10 @@ module exic_session_run
       integer(i8) :: saved_step = -1           !< step of the last restart file written
       type(inside_t) :: inside                 !< geometric penetration check (with contact)
       integer(i8) :: inside_step = -1          !< step of its last check
+      integer :: inside_every = INSIDE_STEPS   !< steps from one check to the next
+      !> the smallest element height (area over longest side, reference mesh) when some two
+      !> bodies are coupled by no contact pair (0: not needed), for `inside_interval`
+      real(wp) :: inside_hmin = 0.0_wp
       integer :: inside_eroded = 0             !< eroded elements when it was built (doc/erosion.md)
       procedure(fields_observer), pointer, nopass :: on_fields => null()
    end type run_t
@@ -171,7 +176,46 @@ contains
                          PENETRATION_WARN, err)
       if (allocated(err)) return
       call inside_pairs(r)
+      if (r%inside%uncoupled()) then
+         r%inside_hmin = smallest_height(model%mesh%x, model%mesh%conn)
+         ! the first check (at the first TIME) sets the interval from the speeds
+         if (r%inside_hmin > 0.0_wp) r%inside_every = 1
+      end if
    end subroutine init_inside
+
+   !> The smallest element height over the mesh: area over longest side.
+   pure real(wp) function smallest_height(x, conn) result(h)
+      real(wp), intent(in) :: x(:, :)
+      integer, intent(in) :: conn(:, :)
+      real(wp) :: a2, side
+      integer :: e, k
+      h = huge(1.0_wp)
+      do e = 1, size(conn, 2)
+         associate (p => x(:, conn(:, e)))
+            a2 = (p(1, 3) - p(1, 1))*(p(2, 4) - p(2, 2)) - (p(1, 4) - p(1, 2))*(p(2, 3) - p(2, 1))
+            side = 0.0_wp
+            do k = 1, 4
+               side = max(side, norm2(p(:, mod(k, 4) + 1) - p(:, k)))
+            end do
+         end associate
+         if (side > 0.0_wp .and. a2 > 0.0_wp) h = min(h, 0.5_wp*a2/side)
+      end do
+      if (h == huge(1.0_wp)) h = 0.0_wp
+   end function smallest_height
+
+   !> Steps to the next penetration check when bodies no contact pair couples could pass
+   !> through each other unseen between two checks: two bodies at most 2 vmax apart in speed
+   !> overlap for at least hmin / (2 vmax) (each is at least hmin thick), so checks every
+   !> hmin / (4 vmax dt) steps see every such overlap at least once (doc/decisions.md,
+   !> "Geometric penetration check"). Between 1 and INSIDE_STEPS.
+   pure integer function inside_interval(hmin, vmax, dt) result(n)
+      real(wp), intent(in) :: hmin, vmax, dt
+      real(wp) :: steps
+      n = INSIDE_STEPS
+      if (.not. (vmax*dt > 0.0_wp)) return
+      steps = 0.25_wp*hmin/(vmax*dt)
+      if (steps < real(INSIDE_STEPS, wp)) n = max(1, int(steps))
+   end function inside_interval
 
    !> The pairs of regions the check covers: every two regions (all_pairs), those of the contact
    !> passes allowed to touch.
@@ -239,6 +283,8 @@ contains
       call r%inside%check(r%stp%st%x0 + r%stp%st%u, r%stp%st%t, warn)
       if (len(warn) > 0) call r%stp%messages%add(warn)
       call pass_messages(r)
+      if (r%inside_hmin > 0.0_wp) r%inside_every = inside_interval(r%inside_hmin, &
+                                                                   sqrt(maxval(sum(r%stp%st%v**2, dim=1))), r%stp%st%dt)
    end subroutine check_inside
 
    !> Before a TIME command's outputs: the whole nodal state on every rank when its rows, fields
@@ -246,7 +292,7 @@ contains
    subroutine gather_nodes_due(r)
       type(run_t), intent(inout) :: r
       if (.not. r%stp%dd%nodes) return
-      if (r%out%reads_state(r%stp) .or. (r%inside%active .and. r%stp%st%step - r%inside_step >= INSIDE_STEPS)) &
+      if (r%out%reads_state(r%stp) .or. (r%inside%active .and. r%stp%st%step - r%inside_step >= r%inside_every)) &
          call decomposition_gather_nodes(r%stp%dd, r%stp%st)
    end subroutine gather_nodes_due
 
