@@ -40,7 +40,7 @@ module exic_restart
    public :: run_position_t, write_restart, read_restart, previous_path, code
 
    !> Version of the layout; a file of another version is refused.
-   integer, parameter :: RESTART_FORMAT = 2
+   integer, parameter :: RESTART_FORMAT = 3
 
    !> Where the BATCh interpreter is, and the schedules it keeps.
    type :: run_position_t
@@ -341,6 +341,7 @@ contains
          call ar%item('state.correction0', st%correction0)
          call ar%item('state.dt_residual', st%dt_residual)
          call ar%item('state.dt_booked', st%dt_booked)
+         call ar%item('state.contact_residual', st%contact_residual)
       end associate
       call ar%item('stepper.started', stp%started)
       call ar%item('stepper.cfl_mode', stp%cfl_mode)
