@@ -287,9 +287,9 @@ contains
          st%correction0 = 0.0_wp
          st%dt_booked = st%dt
          st%correction0 = kinetic_correction(st)
-         ! the energy guard's contact part of the correction, 0 at t = 0 (doc/loads.md, eq. P.5)
+         ! the energy guard's contact part of the correction starts from the state before the
+         ! start's corrector: its kick at t = 0 is the first capture (doc/loads.md, eq. P.5)
          st%contact_residual = 0.0_wp
-         if (guard_contact(self)) st%contact_residual = -contact_correction(st)
       end associate
       call check_health(self, err)
    end subroutine stepper_start
