@@ -161,7 +161,7 @@ contains
                                              (m%mixed .and. m%quadrature == 2))
       s%solid = q4g_init(m%quadrature, axi, m%mixed, s%law, m%hourglass, m%hourglass_kind)
       if (s%solid%nvar > 0) then
-         allocate (s%hist(s%solid%nvar, s%nq*s%nq, s%nel))
+         allocate (s%hist(s%solid%nhist, s%nq*s%nq, s%nel))
          call q4g_hist_init(s%solid, s%nel, s%hist)
       else
          allocate (s%hist(1, 1, 1), source=0.0_wp)
