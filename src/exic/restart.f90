@@ -40,7 +40,7 @@ module exic_restart
    public :: run_position_t, write_restart, read_restart, peek_restart, previous_path, landing_path, code
 
    !> Version of the layout; a file of another version is refused.
-   integer, parameter :: RESTART_FORMAT = 3
+   integer, parameter :: RESTART_FORMAT = 4
 
    !> Where the BATCh interpreter is, and the schedules it keeps.
    type :: run_position_t
