@@ -44,11 +44,60 @@ contains
       ! d = -1.1: at x0 + d its top nodes would lie 0.1 inside the block's bottom row, within the
       ! search depth, where the start-up overlap test once saw them (doc/loads.md, section 3)
       call driven_punch(s, 'punch_far', '', 'from t = 0 at 1.1', 1.1_wp)
+      call rigid_punch_corner(s)
       call plastic_punch(s, 'punch_plastic2', '    MIXEd', '2x2 MIXEd')
       call plastic_punch(s, 'punch_plastic1', '    QUADrature 1', 'one point')
       call ramped_rigid_punch(s, 'punch_rigid_ramp', .false.)
       call ramped_rigid_punch(s, 'punch_rigid_ramp_unstable', .true.)
    end subroutine run_punch_tests
+
+   !> Issue 32, item 1: a RIGId punch 0.5 wide resting on the block (touching), driven down at
+   !> v = 0.1 by MOTIon,REGIon, NTOS with the BLOCK's nodes as slaves. The block's nodes under the
+   !> punch's corners are held at the corners (doc/contact-detection.md, "A node at a master's
+   !> convex corner"); before that rule (exic 1c14650) the run stopped at step 6 on the energy
+   !> guard (growth 67 %, "largest contributor: contact pair 1"). Asserted: the run ends with no
+   !> warning, the balance closes within 1e-3 of W_pm, and W_pm is the trapezoid rule of the
+   !> reaction over the punch's displacement (reac,REGIon,2,2 and rigi,2,2 of <stem>.his).
+   subroutine rigid_punch_corner(s)
+      type(suite_t), intent(inout) :: s
+      character(len=*), parameter :: name = 'punch_rigid_corner'
+      character(len=:), allocatable :: deck, msg
+      character(len=64), allocatable :: hn(:), en(:)
+      real(wp), allocatable :: h(:, :), e(:, :)
+      integer :: stage, i, itot, iwpm
+      real(wp) :: wpm, drift, w
+      deck = 'FEAP * * rigid punch touching a block, block nodes as slaves'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1e4 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'MATErial,2'//nl//'  RIGId'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,8,4,1,1,1'//nl//'    1,0,0'//nl//'    2,2,0'//nl// &
+             '    3,2,1'//nl//'    4,0,1'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,2,2,46,33,2'//nl//'    1,0.75,1'//nl//'    2,1.25,1'//nl// &
+             '    3,1.25,1.2'//nl//'    4,0.75,1.2'//nl//nl// &
+             'EBOUndary'//nl//'  2,0,1,1'//nl//nl//'MOTIon,REGIon,2,0,-0.1'//nl//nl// &
+             'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
+             '  PAIR,1,NTOS,1,2'//nl//'END CONTact'//nl//nl//'END'//nl//'BATCh'//nl// &
+             '  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,1000000'//nl//'    TIME,,0.1'//nl// &
+             '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//'  reac,REGIon,2,2'//nl//'  rigi,2,2'//nl//nl//'STOP'
+      call run_deck(name, deck, stage, msg)
+      call check(s, stage == 0, 'a rigid punch touching a block, block nodes as NTOS slaves, runs to the end', msg)
+      if (stage /= 0) return
+      call check(s, .not. file_has(run_dir//'/'//name//'.out', 'warning:'), &
+                 'rigid punch, block nodes as slaves: no warning (energy guard)')
+      call read_table(run_dir//'/'//name//'.ene', en, e)
+      call read_table(run_dir//'/'//name//'.his', hn, h)
+      itot = column(en, 'total')
+      iwpm = column(en, 'prescribed_work')
+      wpm = e(iwpm, size(e, 2))
+      drift = maxval(abs(e(itot, :) - e(itot, 1)))/max(wpm, tiny(1.0_wp))
+      call check(s, wpm > 0.0_wp .and. drift <= 1.0e-3_wp, 'rigid punch, block nodes as slaves: the balance '// &
+                 'closes within 0.1 % of W_pm', 'W_pm '//rtoa(wpm)//', largest drift '//rtoa(drift))
+      w = 0.0_wp
+      do i = 1, size(h, 2) - 1
+         w = w + 0.5_wp*(h(2, i) + h(2, i + 1))*(h(3, i + 1) - h(3, i))
+      end do
+      call check(s, abs(w - wpm) <= 1.0e-6_wp*wpm, 'rigid punch, block nodes as slaves: W_pm = the integral '// &
+                 'of the reaction over the punch''s displacement (.his)', 'int R du '//rtoa(w)//', W_pm '//rtoa(wpm))
+   end subroutine rigid_punch_corner
 
    !> A rigid punch resting on a plastic block (PLAStic MISEs, yield 2e-3 E), driven into it by
    !> MOTIon at v / c = 0.01, DT,CFL,0.95, 4 x 2 elements, NTOS block nodes against the punch

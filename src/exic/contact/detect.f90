@@ -179,27 +179,31 @@ contains
    !> and g(1) <= 0: contact at tau = 0. Deeper at the start, or moving out: no contact.
    !> The contact point alpha (eq. 6.6) is the projection at tau_c and must lie within
    !> [-tol, 1 + tol]. `nf`: the segment's unit normal at the end of the step (x1).
-   pure subroutine swept_pair(xs0, xs1, xa0, xa1, xb0, xb1, depth, hit, tau, alpha, nf)
+   pure subroutine swept_pair(xs0, xs1, xa0, xa1, xb0, xb1, depth, hit, tau, alpha, nf, crossed)
       real(wp), intent(in) :: xs0(2), xs1(2), xa0(2), xa1(2), xb0(2), xb1(2), depth
       logical, intent(out) :: hit
       real(wp), intent(out) :: tau, alpha
       real(wp), intent(out), optional :: nf(2)
+      logical, intent(out), optional :: crossed
       real(wp) :: ni(2), nend(2)
 
       ni = segment_normal(xa0, xb0)
       nend = segment_normal(xa1, xb1)
       if (present(nf)) nf = nend
-      call swept_given(xs0, xs1, xa0, xa1, xb0, xb1, ni, nend, depth, hit, tau, alpha)
+      call swept_given(xs0, xs1, xa0, xa1, xb0, xb1, ni, nend, depth, hit, tau, alpha, crossed)
    end subroutine swept_pair
 
    !> swept_pair with the segment's unit normals ni (at x0) and nf (at x1) given.
-   pure subroutine swept_given(xs0, xs1, xa0, xa1, xb0, xb1, ni, nf, depth, hit, tau, alpha)
+   pure subroutine swept_given(xs0, xs1, xa0, xa1, xb0, xb1, ni, nf, depth, hit, tau, alpha, crossed)
       real(wp), intent(in) :: xs0(2), xs1(2), xa0(2), xa1(2), xb0(2), xb1(2), ni(2), nf(2), depth
       logical, intent(out) :: hit
       real(wp), intent(out) :: tau, alpha
+      !> the gap test passed (hit false then means: the projection alpha lies off the segment)
+      logical, intent(out), optional :: crossed
       real(wp) :: a, b, c, g1
 
       alpha = 0.0_wp
+      if (present(crossed)) crossed = .false.
       call coefficients_given(xs0, xs1, xa0, xa1, ni, nf, a, b, c, g1)
       if (c > 0.0_wp) then
          call first_crossing(a, b, c, g1, hit, tau)
@@ -210,6 +214,7 @@ contains
          if (c < -depth .or. g1 > 0.0_wp) return
          if (all(ni == 0.0_wp)) return
       end if
+      if (present(crossed)) crossed = .true.
       call project(xs0 + tau*(xs1 - xs0), xa0 + tau*(xa1 - xa0), xb0 + tau*(xb1 - xb0), &
                    alpha, hit)
    end subroutine swept_given
@@ -254,6 +259,8 @@ contains
    !> a segment end is put at that end (alpha = 0 or 1, at_end true) and gets the master
    !> node normal: the normalized average of the segment's normal and that of its
    !> neighbour at that node, the neighbour counting only if it passes the facing test.
+   !> Swept mode: a contact point just past an end at a convex corner of the master is held at
+   !> that end under the conditions of past_corner.
    !>
    !> With the slave surface's nsseg segments `sseg` and its node -> segments lists (`shead`,
    !> `ssegs`, node_segments), snrm(:, s) is formed here at x0 (some_node_normals), for the
@@ -288,7 +295,7 @@ contains
       real(wp), intent(out) :: calpha(nslave), cnormal(2, nslave), ctau(nslave), cgap(nslave)
       integer :: j, j0, s, k, node, ma, mb, best, bkey(2), key(2), q, ks
       real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap, w
-      logical :: hit, lazy, have_nrm, cached
+      logical :: hit, lazy, have_nrm, cached, crossed
 
       lazy = present(nsseg) .and. present(sseg) .and. present(shead) .and. present(ssegs)
       cached = lazy .and. mode == DETECT_SWEPT .and. present(stamp) .and. present(mnrm) .and. &
@@ -320,14 +327,14 @@ contains
                   mstamp(k) = stamp
                end if
                call swept_given(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
-                                x1(:, mb), mnrm(1:2, k), mnrm(3:4, k), depth, hit, tau, alpha)
-               if (.not. hit) cycle
+                                x1(:, mb), mnrm(1:2, k), mnrm(3:4, k), depth, hit, tau, alpha, crossed)
+               if (.not. (hit .or. crossed)) cycle
                nf = mnrm(3:4, k)
             else
                ! nf: the normal of the segment at x1, as the swept test formed it
                call swept_pair(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
-                               x1(:, mb), depth, hit, tau, alpha, nf)
-               if (.not. hit) cycle
+                               x1(:, mb), depth, hit, tau, alpha, nf, crossed)
+               if (.not. (hit .or. crossed)) cycle
             end if
             if (.not. have_nrm) then
                if (cached) then
@@ -344,6 +351,13 @@ contains
                have_nrm = .true.
             end if
             if (.not. faces(snrm(:, s), nf, facing)) cycle
+            if (.not. hit) then
+               ! off the segment: caught only just past an end at a convex corner whose other face
+               ! turns away from the slave ("A node at a master's convex corner")
+               if (.not. past_corner(nnode, x0, x1, tau, nseg, seg, link, k, alpha, depth, &
+                                     snrm(:, s), facing)) cycle
+               alpha = merge(0.0_wp, 1.0_wp, alpha < 0.0_wp)
+            end if
             gap = dot_product(x1(:, node) - ((1.0_wp - alpha)*x1(:, ma) + alpha*x1(:, mb)), nf)
             key = [min(ma, mb), max(ma, mb)]
             if (best /= 0) then
@@ -378,6 +392,55 @@ contains
                              cnormal(:, ncon), cgap(ncon))
       end do
    end subroutine detect_pairs
+
+   !> Whether a slave whose gap test passed on segment k at tau but whose contact point alpha lies
+   !> off the segment is held at the segment's end (doc/contact-detection.md, "A node at a
+   !> master's convex corner"): the contact point within `depth` past an end of k, the segment
+   !> across that end turning left from k (a convex corner of the master: its body on the left)
+   !> and failing the facing test with the slave's normal ns (it cannot hold the slave), and ns
+   !> within 30 degrees of -n_k (a smooth part of the slave's surface facing k head-on, not a
+   !> corner of its own body). Positions at x0 + tau (x1 - x0).
+   pure logical function past_corner(nnode, x0, x1, tau, nseg, seg, link, k, alpha, depth, ns, &
+                                     facing) result(ok)
+      integer, intent(in) :: nnode, nseg, k
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), tau, alpha, depth, ns(2), facing
+      integer, intent(in) :: seg(2, nseg), link(2, nseg)
+      real(wp) :: t(2), tn(2), len, turn, pa(2), pb(2)
+      integer :: nbr
+
+      ok = .false.
+      if (ns(1) == 0.0_wp .and. ns(2) == 0.0_wp) return
+      t = at(seg(2, k)) - at(seg(1, k))
+      len = sqrt(dot_product(t, t))
+      if (.not. (len > 0.0_wp)) return
+      ! the slave faces segment k head-on (within 30 degrees): not a corner of its own body
+      ! meeting the master's corner (two bars of equal height meeting end to end)
+      if (.not. (dot_product(ns, t)**2 <= 0.25_wp*len*len .and. ns(1)*t(2) - ns(2)*t(1) < 0.0_wp)) return
+      if (alpha < 0.0_wp .and. -alpha*len <= depth) then
+         nbr = link(1, k)
+         if (nbr <= 0) return
+         pa = at(seg(1, nbr)); pb = at(seg(2, nbr))
+         tn = pb - pa
+         turn = tn(1)*t(2) - tn(2)*t(1)
+      else if (alpha > 1.0_wp .and. (alpha - 1.0_wp)*len <= depth) then
+         nbr = link(2, k)
+         if (nbr <= 0) return
+         pa = at(seg(1, nbr)); pb = at(seg(2, nbr))
+         tn = pb - pa
+         turn = t(1)*tn(2) - t(2)*tn(1)
+      else
+         return
+      end if
+      if (.not. (turn > 0.0_wp)) return
+      ok = .not. faces(ns, segment_normal(pa, pb), facing)
+   contains
+      !> Position of node j at x0 + tau (x1 - x0).
+      pure function at(j) result(p)
+         integer, intent(in) :: j
+         real(wp) :: p(2)
+         p = x0(:, j) + tau*(x1(:, j) - x0(:, j))
+      end function at
+   end function past_corner
 
    !> Unit normals of the segment ma -> mb at x0 (n(1:2)) and at x1 (n(3:4)).
    pure subroutine both_normals(nnode, x0, x1, ma, mb, n)
