@@ -33,6 +33,8 @@ module exic_contact_friction
    real(wp), parameter, public :: FRICTION_TOL = 1.0e-10_wp
    !> Sweeps (normal then tangential problem) before a step is given up as not converged.
    integer, parameter, public :: FRICTION_SWEEPS = 50
+   !> Mirrored candidates (section 4.1): each slave within this share of its segment of the other.
+   real(wp), parameter, public :: MIRROR_TOL = 1.0e-3_wp
 
    !> The tangential problem's matrix, its work arrays and statistics (kept across steps).
    type :: friction_t
@@ -44,6 +46,9 @@ module exic_contact_friction
       integer :: ncalls = 0                  !< steps solved with friction
       integer :: sweep_limit_hits = 0        !< steps that ended at FRICTION_SWEEPS
       integer :: pass_limit_hits = 0         !< tangential problems that ended at max_passes
+      integer :: max_sweeps = 0              !< most sweeps of one step over the run
+      integer :: max_tpasses = 0             !< most pivoting passes of one tangential problem
+      integer :: nmirrors = 0                !< mirrored candidates merged over the run (section 4.1)
       ! work arrays (grown, never shrunk); m candidates, nnode nodes
       real(wp), allocatable :: tng(:, :)     !< (2, m) tangents t = e3 x n
       real(wp), allocatable :: slide0(:)     !< (m) predicted slips ds~ (F6)
@@ -53,6 +58,10 @@ module exic_contact_friction
       integer, allocatable :: side(:)        !< (m) 0 free (stick), +1 / -1 at the bound +beta / -beta
       real(wp), allocatable :: rhs(:), sol(:), pold(:), qold(:), qb(:), zero(:)
       logical, allocatable :: drop(:), infeasible(:)
+      logical, allocatable :: skip(:)        !< (m) the later candidate of a mirrored pair (section 4.1)
+      ! slave node -> its first candidate at a segment end, valid where ostamp is this step's
+      integer, allocatable :: owner(:), ostamp(:)
+      integer :: ogen = 0
       real(wp), allocatable :: ft(:, :)      !< (2, nnode) G_T q
    contains
       procedure :: solve => friction_solve
@@ -105,7 +114,6 @@ contains
       cs%active(1:m) = cs%gap(1:m) < 0.0_wp
       if (.not. any(cs%active(1:m))) return
       self%ncalls = self%ncalls + 1
-      call corr%prepare(cs, nnode, minv, rb)
       call work_arrays(self, m, nnode)
       self%ft = 0.0_wp
       do i = 1, m
@@ -118,7 +126,11 @@ contains
             end associate
          end do
       end do
+      ! a mirrored pair is one contact point (section 4.1): its later candidate leaves the step
+      call merge_mirrors(self, cs, m, nnode, x, xp)
+      where (self%skip(1:m)) cs%active(1:m) = .false.
       if (present(rb)) call rb%tangent_columns(m, cs%node(:, 1:m), cs%w(:, 1:m), self%tng(:, 1:m))
+      call corr%prepare(cs, nnode, minv, rb)
       call self%tt%assemble(m, cs%node(:, 1:m), corr%lnode(:, 1:m), cs%w(:, 1:m), self%tng(:, 1:m), &
                             nnode, minv, corr%nloc, corr%nstart, corr%nlist, corr%nweight, rb, &
                             tangent=.true.)
@@ -130,7 +142,7 @@ contains
          self%qold(1:m) = cs%q(1:m)
          ! (F13) the normal problem with the gaps shifted by the tangential forces, from the last
          ! sweep's active set
-         call corr%pivot(cs, nnode, minv, c, self%geff(1:m), err, rb)
+         call corr%pivot(cs, nnode, minv, c, self%geff(1:m), err, rb, skip=self%skip(1:m))
          if (allocated(err)) return
          ! (F14) the tangential problem with the bounds mu p and b = ds~/c + S_TN p
          if (present(rb)) call rb%accelerations(m, cs%p(1:m))
@@ -158,6 +170,7 @@ contains
          end do
       end do
       self%nsweeps = self%nsweeps + self%sweeps
+      self%max_sweeps = max(self%max_sweeps, self%sweeps)
       ! the forces, the slips of the step (F6) and the state of each candidate
       call apply_tangent(cs, self%tng, cs%q, nnode, self%ft)
       if (present(rb)) call rb%accelerations_nt(m, cs%p(1:m), cs%q(1:m))
@@ -196,10 +209,19 @@ contains
       self%zero(1:m) = 0.0_wp
       call grow(self%drop, m)
       call grow(self%infeasible, m)
+      call grow(self%skip, m)
       if (allocated(self%ft)) then
          if (size(self%ft, 2) /= nnode) deallocate (self%ft)
       end if
       if (.not. allocated(self%ft)) allocate (self%ft(2, nnode))
+      if (allocated(self%ostamp)) then
+         if (size(self%ostamp) /= nnode) deallocate (self%ostamp, self%owner)
+      end if
+      if (.not. allocated(self%ostamp)) then
+         allocate (self%ostamp(nnode), self%owner(nnode))
+         self%ostamp = 0
+         self%ogen = 0
+      end if
    end subroutine work_arrays
 
    !> The box-constrained tangential problem (F15) by block principal pivoting: candidates with
@@ -220,6 +242,7 @@ contains
       pass = 0
       do
          pass = pass + 1
+         self%max_tpasses = max(self%max_tpasses, pass)
          ! the bounded values, moved to the right-hand side: rhs = -b - S_TT q_B
          do i = 1, m
             self%qb(i) = 0.0_wp
@@ -301,6 +324,72 @@ contains
          end if
       end subroutine switch
    end subroutine tangential
+
+   !> Mirrored pairs (doc/friction.md, section 4.1): candidates i < j that join two nodes a and
+   !> b, the slave b of i landed on a segment of a at weight at least 1 - MIRROR_TOL on a, the
+   !> slave a of j on a segment of b at weight at least 1 - MIRROR_TOL on b, with normals that
+   !> face each other (n_i . n_j < 0), as AUTOmatic's two passes find where the nodes of two
+   !> bodies meet node on node. They are one contact point: i becomes the node-to-node
+   !> constraint of b on a (weights 1 and -1) along (n_i - n_j)/|n_i - n_j| (eq. F19), its
+   !> gaps along that normal from x = x(n+1) and xp = x~(n+2) as detection forms them; j is
+   !> skipped (p_j = q_j = 0). Only candidates with friction (mu > 0) are merged. Sets self%skip.
+   subroutine merge_mirrors(self, cs, m, nnode, x, xp)
+      type(friction_t), intent(inout) :: self
+      type(constraints_t), intent(inout) :: cs
+      integer, intent(in) :: m, nnode
+      real(wp), intent(in) :: x(2, nnode), xp(2, nnode)
+      integer :: i, j, a, b, ka
+      real(wp) :: nb(2), len
+
+      self%skip(1:m) = .false.
+      if (self%ogen == huge(self%ogen)) then
+         self%ostamp = 0
+         self%ogen = 0
+      end if
+      self%ogen = self%ogen + 1
+      do i = 1, m
+         if (near_node(i) == 0) cycle
+         a = cs%node(1, i)
+         if (self%ostamp(a) == self%ogen) cycle
+         self%ostamp(a) = self%ogen
+         self%owner(a) = i
+      end do
+      do j = 1, m
+         ka = near_node(j)
+         if (ka == 0) cycle
+         b = cs%node(ka, j)
+         a = cs%node(1, j)
+         if (self%ostamp(b) /= self%ogen) cycle
+         i = self%owner(b)
+         if (i >= j .or. self%skip(i)) cycle
+         ka = near_node(i)
+         if (cs%node(ka, i) /= a) cycle
+         if (.not. dot_product(cs%nrm(:, i), cs%nrm(:, j)) < 0.0_wp) cycle
+         ! (F19) the mean of the two surfaces' normals; i = slave b against node a
+         nb = cs%nrm(:, i) - cs%nrm(:, j)
+         len = norm2(nb)
+         if (.not. len > 0.0_wp) cycle
+         nb = nb/len
+         cs%w(2:3, i) = 0.0_wp
+         cs%w(ka, i) = -1.0_wp
+         cs%nrm(:, i) = nb
+         cs%gap(i) = dot_product(xp(:, b) - xp(:, a), nb)
+         cs%gap_now(i) = dot_product(x(:, b) - x(:, a), nb)
+         cs%active(i) = cs%gap(i) < 0.0_wp
+         self%skip(j) = .true.
+         self%nmirrors = self%nmirrors + 1
+      end do
+   contains
+      !> The index (2 or 3) in candidate k of the master node its slave landed next to, at weight
+      !> at least 1 - MIRROR_TOL, when k has friction; else 0.
+      integer function near_node(k)
+         integer, intent(in) :: k
+         near_node = 0
+         if (.not. cs%mu(k) > 0.0_wp) return
+         if (cs%w(2, k) <= -(1.0_wp - MIRROR_TOL)) near_node = 2
+         if (cs%w(3, k) <= -(1.0_wp - MIRROR_TOL)) near_node = 3
+      end function near_node
+   end subroutine merge_mirrors
 
    !> f = G_T q: the nodal forces of the tangential multipliers q(m) (tng(2, m) the tangents).
    !> Only the candidates' nodes are set: f must be zero at every other node on entry (it is
