@@ -48,7 +48,8 @@ module exic_contact_friction
       integer :: pass_limit_hits = 0         !< tangential problems that ended at max_passes
       integer :: max_sweeps = 0              !< most sweeps of one step over the run
       integer :: max_tpasses = 0             !< most pivoting passes of one tangential problem
-      integer :: nmirrors = 0                !< mirrored candidates merged over the run (section 4.1)
+      integer :: nmirrors = 0                !< mirrored pairs over the run (section 4.1)
+      integer :: nswaps = 0                  !< mirrored pairs whose skipped candidate took the other's place
       ! work arrays (grown, never shrunk); m candidates, nnode nodes
       real(wp), allocatable :: tng(:, :)     !< (2, m) tangents t = e3 x n
       real(wp), allocatable :: slide0(:)     !< (m) predicted slips ds~ (F6)
@@ -58,7 +59,9 @@ module exic_contact_friction
       integer, allocatable :: side(:)        !< (m) 0 free (stick), +1 / -1 at the bound +beta / -beta
       real(wp), allocatable :: rhs(:), sol(:), pold(:), qold(:), qb(:), zero(:)
       logical, allocatable :: drop(:), infeasible(:)
-      logical, allocatable :: skip(:)        !< (m) the later candidate of a mirrored pair (section 4.1)
+      logical, allocatable :: skip(:)        !< (m) the candidate of a mirrored pair left out (section 4.1)
+      logical, allocatable :: swapped(:)     !< (m) the pair has swapped its candidates in this step
+      integer, allocatable :: partner(:)     !< (m) the other candidate of a mirrored pair, or 0
       ! slave node -> its first candidate at a segment end, valid where ostamp is this step's
       integer, allocatable :: owner(:), ostamp(:)
       integer :: ogen = 0
@@ -127,7 +130,7 @@ contains
          end do
       end do
       ! a mirrored pair is one contact point (section 4.1): its later candidate leaves the step
-      call merge_mirrors(self, cs, m, nnode, x, xp)
+      call merge_mirrors(self, cs, m)
       where (self%skip(1:m)) cs%active(1:m) = .false.
       if (present(rb)) call rb%tangent_columns(m, cs%node(:, 1:m), cs%w(:, 1:m), self%tng(:, 1:m))
       call corr%prepare(cs, nnode, minv, rb)
@@ -155,8 +158,11 @@ contains
          if (allocated(err)) return
          pmax = maxval(cs%p(1:m))
          dpq = max(maxval(abs(cs%p(1:m) - self%pold(1:m))), maxval(abs(cs%q(1:m) - self%qold(1:m))))
-         if (k > 1 .and. dpq <= FRICTION_TOL*pmax) exit
-         if (pmax <= 0.0_wp) exit
+         if ((k > 1 .and. dpq <= FRICTION_TOL*pmax) .or. pmax <= 0.0_wp) then
+            ! converged; a skipped mirrored candidate whose gap the step leaves violated takes
+            ! its partner's place, once per pair (section 4.1), and the sweeps go on
+            if (.not. swap_mirrors(self, cs, corr, m, nnode, minv, c, rb)) exit
+         end if
          if (k == FRICTION_SWEEPS) then
             self%sweep_limit_hits = self%sweep_limit_hits + 1
             exit
@@ -210,6 +216,8 @@ contains
       call grow(self%drop, m)
       call grow(self%infeasible, m)
       call grow(self%skip, m)
+      call grow(self%swapped, m)
+      call grow(self%partner, m)
       if (allocated(self%ft)) then
          if (size(self%ft, 2) /= nnode) deallocate (self%ft)
       end if
@@ -333,15 +341,15 @@ contains
    !> constraint of b on a (weights 1 and -1) along (n_i - n_j)/|n_i - n_j| (eq. F19), its
    !> gaps along that normal from x = x(n+1) and xp = x~(n+2) as detection forms them; j is
    !> skipped (p_j = q_j = 0). Only candidates with friction (mu > 0) are merged. Sets self%skip.
-   subroutine merge_mirrors(self, cs, m, nnode, x, xp)
+   subroutine merge_mirrors(self, cs, m)
       type(friction_t), intent(inout) :: self
-      type(constraints_t), intent(inout) :: cs
-      integer, intent(in) :: m, nnode
-      real(wp), intent(in) :: x(2, nnode), xp(2, nnode)
+      type(constraints_t), intent(in) :: cs
+      integer, intent(in) :: m
       integer :: i, j, a, b, ka
-      real(wp) :: nb(2), len
 
       self%skip(1:m) = .false.
+      self%swapped(1:m) = .false.
+      self%partner(1:m) = 0
       if (self%ogen == huge(self%ogen)) then
          self%ostamp = 0
          self%ogen = 0
@@ -365,18 +373,15 @@ contains
          ka = near_node(i)
          if (cs%node(ka, i) /= a) cycle
          if (.not. dot_product(cs%nrm(:, i), cs%nrm(:, j)) < 0.0_wp) cycle
-         ! (F19) the mean of the two surfaces' normals; i = slave b against node a
-         nb = cs%nrm(:, i) - cs%nrm(:, j)
-         len = norm2(nb)
-         if (.not. len > 0.0_wp) cycle
-         nb = nb/len
-         cs%w(2:3, i) = 0.0_wp
-         cs%w(ka, i) = -1.0_wp
-         cs%nrm(:, i) = nb
-         cs%gap(i) = dot_product(xp(:, b) - xp(:, a), nb)
-         cs%gap_now(i) = dot_product(x(:, b) - x(:, a), nb)
-         cs%active(i) = cs%gap(i) < 0.0_wp
-         self%skip(j) = .true.
+         ! the pair is one contact point: the candidate whose predicted gap is the smaller (the
+         ! constraint that binds) stays, the other leaves the step (F19)
+         if (cs%gap(j) < cs%gap(i)) then
+            self%skip(i) = .true.
+         else
+            self%skip(j) = .true.
+         end if
+         self%partner(i) = j
+         self%partner(j) = i
          self%nmirrors = self%nmirrors + 1
       end do
    contains
@@ -390,6 +395,45 @@ contains
          if (cs%w(3, k) <= -(1.0_wp - MIRROR_TOL)) near_node = 3
       end function near_node
    end subroutine merge_mirrors
+
+   !> After the sweeps converged: the corrected gap of every skipped mirrored candidate j,
+   !> g~_j + c [G_N^T M^-1 (G_N p + G_T q)]_j (F7); where it is violated (below -gap_tol) and
+   !> the pair has not swapped yet in this step, j takes its partner's place in the step's
+   !> problem (the partner is skipped, p and q of both restart from 0). True when a pair
+   !> swapped: the sweeps go on. Each pair swaps at most once a step, so this ends.
+   logical function swap_mirrors(self, cs, corr, m, nnode, minv, c, rb) result(any_swap)
+      type(friction_t), intent(inout) :: self
+      type(constraints_t), intent(inout) :: cs
+      type(corrector_t), intent(in) :: corr
+      integer, intent(in) :: m, nnode
+      real(wp), intent(in) :: minv(2, nnode), c
+      type(rigid_dofs_t), intent(inout), optional :: rb
+      integer :: j, i
+      real(wp) :: g
+      any_swap = .false.
+      if (.not. any(self%skip(1:m))) return
+      call apply_tangent(cs, self%tng, cs%q, nnode, self%ft)
+      if (present(rb)) call rb%accelerations_nt(m, cs%p(1:m), cs%q(1:m))
+      do j = 1, m
+         if (.not. self%skip(j)) cycle
+         i = self%partner(j)
+         if (i == 0) cycle
+         if (self%swapped(j)) cycle
+         g = gap_change(cs, j, nnode, minv, corr%fwork) + gap_change(cs, j, nnode, minv, self%ft)
+         if (present(rb)) g = g + rb%gap_part(j)
+         if (.not. cs%gap(j) + c*g < -corr%gap_tol) cycle
+         self%skip(j) = .false.
+         self%skip(i) = .true.
+         self%swapped(i) = .true.
+         self%swapped(j) = .true.
+         cs%p(i) = 0.0_wp
+         cs%q(i) = 0.0_wp
+         cs%active(i) = .false.
+         cs%active(j) = .true.
+         self%nswaps = self%nswaps + 1
+         any_swap = .true.
+      end do
+   end function swap_mirrors
 
    !> f = G_T q: the nodal forces of the tangential multipliers q(m) (tng(2, m) the tangents).
    !> Only the candidates' nodes are set: f must be zero at every other node on entry (it is

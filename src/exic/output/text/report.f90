@@ -163,7 +163,8 @@ contains
                                            ', tangential problems at their pass limit '// &
                                            itoa(c%fr%pass_limit_hits)//' (most passes '// &
                                            itoa(c%fr%max_tpasses)//' of '//itoa(c%fr%max_passes)// &
-                                           '), mirrored candidates merged '//itoa(c%fr%nmirrors)// &
+                                           '), mirrored pairs '//itoa(c%fr%nmirrors)//' (swapped '// &
+                                           itoa(c%fr%nswaps)//')'// &
                                            ', tangential factorizations '// &
                                            itoa(c%fr%tt%nsolves)//' (reused '//itoa(c%fr%tt%nreused)// &
                                            '), frictional dissipation '//rtoa_result(c%dissipation))
