@@ -117,8 +117,12 @@ contains
       cs%active(1:m) = cs%gap(1:m) < 0.0_wp
       if (.not. any(cs%active(1:m))) return
       self%ncalls = self%ncalls + 1
+      call corr%prepare(cs, nnode, minv, rb)
       call work_arrays(self, m, nnode)
       self%ft = 0.0_wp
+      ! a mirrored pair is one contact point (section 4.1): one of its candidates leaves the step
+      call merge_mirrors(self, cs, m)
+      where (self%skip(1:m)) cs%active(1:m) = .false.
       do i = 1, m
          self%tng(:, i) = [-cs%nrm(2, i), cs%nrm(1, i)]
          self%slide0(i) = 0.0_wp
@@ -129,11 +133,7 @@ contains
             end associate
          end do
       end do
-      ! a mirrored pair is one contact point (section 4.1): its later candidate leaves the step
-      call merge_mirrors(self, cs, m)
-      where (self%skip(1:m)) cs%active(1:m) = .false.
       if (present(rb)) call rb%tangent_columns(m, cs%node(:, 1:m), cs%w(:, 1:m), self%tng(:, 1:m))
-      call corr%prepare(cs, nnode, minv, rb)
       call self%tt%assemble(m, cs%node(:, 1:m), corr%lnode(:, 1:m), cs%w(:, 1:m), self%tng(:, 1:m), &
                             nnode, minv, corr%nloc, corr%nstart, corr%nlist, corr%nweight, rb, &
                             tangent=.true.)
