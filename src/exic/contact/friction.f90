@@ -33,7 +33,7 @@ module exic_contact_friction
    real(wp), parameter, public :: FRICTION_TOL = 1.0e-10_wp
    !> Sweeps (normal then tangential problem) before a step is given up as not converged.
    integer, parameter, public :: FRICTION_SWEEPS = 50
-   !> Mirrored candidates (section 4.1): each slave within this share of its segment of the other.
+   !> Mirrored pairs (section 4.1): each slave within this share of its segment of the other node.
    real(wp), parameter, public :: MIRROR_TOL = 0.02_wp
 
    !> The tangential problem's matrix, its work arrays and statistics (kept across steps).
@@ -333,14 +333,13 @@ contains
       end subroutine switch
    end subroutine tangential
 
-   !> Mirrored pairs (doc/friction.md, section 4.1): candidates i < j that join two nodes a and
-   !> b, the slave b of i landed on a segment of a at weight at least 1 - MIRROR_TOL on a, the
-   !> slave a of j on a segment of b at weight at least 1 - MIRROR_TOL on b, with normals that
-   !> face each other (n_i . n_j < 0), as AUTOmatic's two passes find where the nodes of two
-   !> bodies meet node on node. They are one contact point: i becomes the node-to-node
-   !> constraint of b on a (weights 1 and -1) along (n_i - n_j)/|n_i - n_j| (eq. F19), its
-   !> gaps along that normal from x = x(n+1) and xp = x~(n+2) as detection forms them; j is
-   !> skipped (p_j = q_j = 0). Only candidates with friction (mu > 0) are merged. Sets self%skip.
+   !> Mirrored pairs (doc/friction.md, section 4.1, eq. F20): candidates i < j with friction
+   !> (mu > 0) that join two nodes a and b, the slave b of i on a segment of a at weight at least
+   !> 1 - MIRROR_TOL on a, the slave a of j on a segment of b at weight at least 1 - MIRROR_TOL
+   !> on b, with normals that face each other (n_i . n_j < 0), as AUTOmatic's two passes find
+   !> where the nodes of two bodies meet node on node. They are one contact point, whose two
+   !> candidates would make the sweeps drift (eq. F19): the one with the smaller predicted gap
+   !> enters the step, the other is skipped (self%skip; p = q = 0); self%partner links them.
    subroutine merge_mirrors(self, cs, m)
       type(friction_t), intent(inout) :: self
       type(constraints_t), intent(in) :: cs
@@ -374,7 +373,7 @@ contains
          if (cs%node(ka, i) /= a) cycle
          if (.not. dot_product(cs%nrm(:, i), cs%nrm(:, j)) < 0.0_wp) cycle
          ! the pair is one contact point: the candidate whose predicted gap is the smaller (the
-         ! constraint that binds) stays, the other leaves the step (F19)
+         ! constraint that binds) stays, the other leaves the step (F20)
          if (cs%gap(j) < cs%gap(i)) then
             self%skip(i) = .true.
          else
