@@ -2,9 +2,9 @@
 
 A block of nx x ny elements (height 1, element aspect ratio ar), its base fixed by EBOUndary,
 is pressed by a punch two or more elements wide centred on its top face, with Coulomb friction.
-The scenes are those where the sweeps of the frictional corrector met their limit before the
-mirrored candidates were merged (section 4.1): AUTOmatic contact between a deformable punch and
-the block whose nodes meet node on node. Variants:
+The scenes are those where the sweeps of the frictional corrector met their limit before a
+mirrored pair entered the step as one candidate (section 4.1): AUTOmatic contact between a
+deformable punch and the block whose nodes meet node on node, or slide past each other. Variants:
 
   punch    deformable (SOLId, 10 E, its top nodes driven by DISPlacement under a PROPortional
            function: the unit ramp p = t or a sin^2 ramp) or rigid (RIGId, MOTIon,REGIon);
