@@ -40,7 +40,7 @@ module exic_restart
    public :: run_position_t, write_restart, read_restart, peek_restart, previous_path, landing_path, code
 
    !> Version of the layout; a file of another version is refused.
-   integer, parameter :: RESTART_FORMAT = 3
+   integer, parameter :: RESTART_FORMAT = 4
 
    !> Where the BATCh interpreter is, and the schedules it keeps.
    type :: run_position_t
@@ -392,6 +392,7 @@ contains
          call ar%item('state.correction0', st%correction0)
          call ar%item('state.dt_residual', st%dt_residual)
          call ar%item('state.dt_booked', st%dt_booked)
+         call ar%item('state.contact_residual', st%contact_residual)
       end associate
       call ar%item('stepper.started', stp%started)
       call ar%item('stepper.cfl_mode', stp%cfl_mode)
