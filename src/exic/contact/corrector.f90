@@ -250,7 +250,9 @@ contains
    !> the active set cs%active: on return cs%p holds the multipliers, cs%active the candidates
    !> in force and self%fwork = G_N p (see corrector_solve for the pivoting rule); with massless
    !> faces `face` (prepared), face%dx = K_FF^-1 G_F p of the multipliers returned.
-   subroutine corrector_pivot(self, cs, nnode, minv, c, gap0, err, rb, face)
+   !> `skip`: candidates left out of the problem (never active, never infeasible; p = 0), the
+   !> mirrored candidates of the frictional problem (doc/friction.md, section 4.1).
+   subroutine corrector_pivot(self, cs, nnode, minv, c, gap0, err, rb, face, skip)
       class(corrector_t), intent(inout) :: self
       type(constraints_t), intent(inout) :: cs
       integer, intent(in) :: nnode
@@ -260,6 +262,7 @@ contains
       type(error_t), allocatable, intent(out) :: err
       type(rigid_dofs_t), intent(inout), optional :: rb
       type(massless_face_t), intent(inout), optional :: face
+      logical, intent(in), optional :: skip(:)
       integer :: m, nact, pass, k, i, nbad, ninf, last
       type(pivot_rule_t) :: rule
       real(wp) :: g
@@ -299,6 +302,13 @@ contains
          do i = 1, m
             if (cs%active(i)) then
                self%infeasible(i) = cs%p(i) < 0.0_wp
+            else if (present(skip)) then
+               self%infeasible(i) = .false.
+               if (.not. skip(i)) then
+                  g = gap_change(cs, i, nnode, minv, self%fwork)
+                  if (present(rb)) g = g + rb%gap_part(i)
+                  self%infeasible(i) = gap0(i) + c*g < -self%gap_tol
+               end if
             else if (present(face)) then
                ! the face's motion K_FF^-1 G_F p counts in the corrected gap (eq. I.6)
                g = gap_change(cs, i, nnode, minv, self%fwork)

@@ -33,6 +33,8 @@ module exic_contact_friction
    real(wp), parameter, public :: FRICTION_TOL = 1.0e-10_wp
    !> Sweeps (normal then tangential problem) before a step is given up as not converged.
    integer, parameter, public :: FRICTION_SWEEPS = 50
+   !> Mirrored pairs (section 4.1): each slave within this share of its segment of the other node.
+   real(wp), parameter, public :: MIRROR_TOL = 0.02_wp
 
    !> The tangential problem's matrix, its work arrays and statistics (kept across steps).
    type :: friction_t
@@ -44,6 +46,10 @@ module exic_contact_friction
       integer :: ncalls = 0                  !< steps solved with friction
       integer :: sweep_limit_hits = 0        !< steps that ended at FRICTION_SWEEPS
       integer :: pass_limit_hits = 0         !< tangential problems that ended at max_passes
+      integer :: max_sweeps = 0              !< most sweeps of one step over the run
+      integer :: max_tpasses = 0             !< most pivoting passes of one tangential problem
+      integer :: nmirrors = 0                !< mirrored pairs over the run (section 4.1)
+      integer :: nswaps = 0                  !< mirrored pairs whose skipped candidate took the other's place
       ! work arrays (grown, never shrunk); m candidates, nnode nodes
       real(wp), allocatable :: tng(:, :)     !< (2, m) tangents t = e3 x n
       real(wp), allocatable :: slide0(:)     !< (m) predicted slips ds~ (F6)
@@ -53,6 +59,12 @@ module exic_contact_friction
       integer, allocatable :: side(:)        !< (m) 0 free (stick), +1 / -1 at the bound +beta / -beta
       real(wp), allocatable :: rhs(:), sol(:), pold(:), qold(:), qb(:), zero(:)
       logical, allocatable :: drop(:), infeasible(:)
+      logical, allocatable :: skip(:)        !< (m) the candidate of a mirrored pair left out (section 4.1)
+      logical, allocatable :: swapped(:)     !< (m) the pair has swapped its candidates in this step
+      integer, allocatable :: partner(:)     !< (m) the other candidate of a mirrored pair, or 0
+      ! slave node -> its first candidate at a segment end, valid where ostamp is this step's
+      integer, allocatable :: owner(:), ostamp(:)
+      integer :: ogen = 0
       real(wp), allocatable :: ft(:, :)      !< (2, nnode) G_T q
    contains
       procedure :: solve => friction_solve
@@ -108,6 +120,9 @@ contains
       call corr%prepare(cs, nnode, minv, rb)
       call work_arrays(self, m, nnode)
       self%ft = 0.0_wp
+      ! a mirrored pair is one contact point (section 4.1): one of its candidates leaves the step
+      call merge_mirrors(self, cs, m)
+      where (self%skip(1:m)) cs%active(1:m) = .false.
       do i = 1, m
          self%tng(:, i) = [-cs%nrm(2, i), cs%nrm(1, i)]
          self%slide0(i) = 0.0_wp
@@ -130,7 +145,7 @@ contains
          self%qold(1:m) = cs%q(1:m)
          ! (F13) the normal problem with the gaps shifted by the tangential forces, from the last
          ! sweep's active set
-         call corr%pivot(cs, nnode, minv, c, self%geff(1:m), err, rb)
+         call corr%pivot(cs, nnode, minv, c, self%geff(1:m), err, rb, skip=self%skip(1:m))
          if (allocated(err)) return
          ! (F14) the tangential problem with the bounds mu p and b = ds~/c + S_TN p
          if (present(rb)) call rb%accelerations(m, cs%p(1:m))
@@ -143,8 +158,11 @@ contains
          if (allocated(err)) return
          pmax = maxval(cs%p(1:m))
          dpq = max(maxval(abs(cs%p(1:m) - self%pold(1:m))), maxval(abs(cs%q(1:m) - self%qold(1:m))))
-         if (k > 1 .and. dpq <= FRICTION_TOL*pmax) exit
-         if (pmax <= 0.0_wp) exit
+         if ((k > 1 .and. dpq <= FRICTION_TOL*pmax) .or. pmax <= 0.0_wp) then
+            ! converged; a skipped mirrored candidate whose gap the step leaves violated takes
+            ! its partner's place, once per pair (section 4.1), and the sweeps go on
+            if (.not. swap_mirrors(self, cs, corr, m, nnode, minv, c, rb)) exit
+         end if
          if (k == FRICTION_SWEEPS) then
             self%sweep_limit_hits = self%sweep_limit_hits + 1
             exit
@@ -158,6 +176,7 @@ contains
          end do
       end do
       self%nsweeps = self%nsweeps + self%sweeps
+      self%max_sweeps = max(self%max_sweeps, self%sweeps)
       ! the forces, the slips of the step (F6) and the state of each candidate
       call apply_tangent(cs, self%tng, cs%q, nnode, self%ft)
       if (present(rb)) call rb%accelerations_nt(m, cs%p(1:m), cs%q(1:m))
@@ -196,10 +215,21 @@ contains
       self%zero(1:m) = 0.0_wp
       call grow(self%drop, m)
       call grow(self%infeasible, m)
+      call grow(self%skip, m)
+      call grow(self%swapped, m)
+      call grow(self%partner, m)
       if (allocated(self%ft)) then
          if (size(self%ft, 2) /= nnode) deallocate (self%ft)
       end if
       if (.not. allocated(self%ft)) allocate (self%ft(2, nnode))
+      if (allocated(self%ostamp)) then
+         if (size(self%ostamp) /= nnode) deallocate (self%ostamp, self%owner)
+      end if
+      if (.not. allocated(self%ostamp)) then
+         allocate (self%ostamp(nnode), self%owner(nnode))
+         self%ostamp = 0
+         self%ogen = 0
+      end if
    end subroutine work_arrays
 
    !> The box-constrained tangential problem (F15) by block principal pivoting: candidates with
@@ -220,6 +250,7 @@ contains
       pass = 0
       do
          pass = pass + 1
+         self%max_tpasses = max(self%max_tpasses, pass)
          ! the bounded values, moved to the right-hand side: rhs = -b - S_TT q_B
          do i = 1, m
             self%qb(i) = 0.0_wp
@@ -301,6 +332,107 @@ contains
          end if
       end subroutine switch
    end subroutine tangential
+
+   !> Mirrored pairs (doc/friction.md, section 4.1, eq. F20): candidates i < j with friction
+   !> (mu > 0) that join two nodes a and b, the slave b of i on a segment of a at weight at least
+   !> 1 - MIRROR_TOL on a, the slave a of j on a segment of b at weight at least 1 - MIRROR_TOL
+   !> on b, with normals that face each other (n_i . n_j < 0), as AUTOmatic's two passes find
+   !> where the nodes of two bodies meet node on node. They are one contact point, whose two
+   !> candidates would make the sweeps drift (eq. F19): the one with the smaller predicted gap
+   !> enters the step, the other is skipped (self%skip; p = q = 0); self%partner links them.
+   subroutine merge_mirrors(self, cs, m)
+      type(friction_t), intent(inout) :: self
+      type(constraints_t), intent(in) :: cs
+      integer, intent(in) :: m
+      integer :: i, j, a, b, ka
+
+      self%skip(1:m) = .false.
+      self%swapped(1:m) = .false.
+      self%partner(1:m) = 0
+      if (self%ogen == huge(self%ogen)) then
+         self%ostamp = 0
+         self%ogen = 0
+      end if
+      self%ogen = self%ogen + 1
+      do i = 1, m
+         if (near_node(i) == 0) cycle
+         a = cs%node(1, i)
+         if (self%ostamp(a) == self%ogen) cycle
+         self%ostamp(a) = self%ogen
+         self%owner(a) = i
+      end do
+      do j = 1, m
+         ka = near_node(j)
+         if (ka == 0) cycle
+         b = cs%node(ka, j)
+         a = cs%node(1, j)
+         if (self%ostamp(b) /= self%ogen) cycle
+         i = self%owner(b)
+         if (i >= j .or. self%skip(i)) cycle
+         ka = near_node(i)
+         if (cs%node(ka, i) /= a) cycle
+         if (.not. dot_product(cs%nrm(:, i), cs%nrm(:, j)) < 0.0_wp) cycle
+         ! the pair is one contact point: the candidate whose predicted gap is the smaller (the
+         ! constraint that binds) stays, the other leaves the step (F20)
+         if (cs%gap(j) < cs%gap(i)) then
+            self%skip(i) = .true.
+         else
+            self%skip(j) = .true.
+         end if
+         self%partner(i) = j
+         self%partner(j) = i
+         self%nmirrors = self%nmirrors + 1
+      end do
+   contains
+      !> The index (2 or 3) in candidate k of the master node its slave landed next to, at weight
+      !> at least 1 - MIRROR_TOL, when k has friction; else 0.
+      integer function near_node(k)
+         integer, intent(in) :: k
+         near_node = 0
+         if (.not. cs%mu(k) > 0.0_wp) return
+         if (cs%w(2, k) <= -(1.0_wp - MIRROR_TOL)) near_node = 2
+         if (cs%w(3, k) <= -(1.0_wp - MIRROR_TOL)) near_node = 3
+      end function near_node
+   end subroutine merge_mirrors
+
+   !> After the sweeps converged: the corrected gap of every skipped mirrored candidate j,
+   !> g~_j + c [G_N^T M^-1 (G_N p + G_T q)]_j (F7); where it is violated (below -gap_tol) and
+   !> the pair has not swapped yet in this step, j takes its partner's place in the step's
+   !> problem (the partner is skipped, p and q of both restart from 0). True when a pair
+   !> swapped: the sweeps go on. Each pair swaps at most once a step, so this ends.
+   logical function swap_mirrors(self, cs, corr, m, nnode, minv, c, rb) result(any_swap)
+      type(friction_t), intent(inout) :: self
+      type(constraints_t), intent(inout) :: cs
+      type(corrector_t), intent(in) :: corr
+      integer, intent(in) :: m, nnode
+      real(wp), intent(in) :: minv(2, nnode), c
+      type(rigid_dofs_t), intent(inout), optional :: rb
+      integer :: j, i
+      real(wp) :: g
+      any_swap = .false.
+      if (.not. any(self%skip(1:m))) return
+      call apply_tangent(cs, self%tng, cs%q, nnode, self%ft)
+      if (present(rb)) call rb%accelerations_nt(m, cs%p(1:m), cs%q(1:m))
+      do j = 1, m
+         if (.not. self%skip(j)) cycle
+         i = self%partner(j)
+         if (i == 0) cycle
+         if (self%swapped(j)) cycle
+         g = gap_change(cs, j, nnode, minv, corr%fwork) + gap_change(cs, j, nnode, minv, self%ft)
+         if (present(rb)) g = g + rb%gap_part(j)
+         if (.not. cs%gap(j) + c*g < -corr%gap_tol) cycle
+         self%skip(j) = .false.
+         self%skip(i) = .true.
+         self%swapped(i) = .true.
+         self%swapped(j) = .true.
+         cs%p(i) = 0.0_wp
+         cs%q(i) = 0.0_wp
+         cs%active(i) = .false.
+         cs%active(j) = .true.
+         self%nswaps = self%nswaps + 1
+         any_swap = .true.
+      end do
+   end function swap_mirrors
 
    !> f = G_T q: the nodal forces of the tangential multipliers q(m) (tng(2, m) the tangents).
    !> Only the candidates' nodes are set: f must be zero at every other node on entry (it is

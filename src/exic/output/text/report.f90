@@ -16,6 +16,7 @@ module exic_output_text_report
    use exic_explicit_decomposition_nodes, only: decomposition_timing
    use exic_explicit_energy, only: energy_t
    use exic_contact_inside, only: inside_t
+   use exic_contact_friction, only: FRICTION_SWEEPS
    !$ use omp_lib, only: omp_get_max_threads
    implicit none
    private
@@ -156,9 +157,15 @@ contains
                               ' searches, blocks of S in '//itoa(c%corr%nthreaded)//' factorizations')
             ! the frictional corrector (doc/friction.md, section 4)
             if (c%friction) call files%say('friction: steps solved with friction '//itoa(c%fr%ncalls)// &
-                                           ', sweeps '//itoa(c%fr%nsweeps)//', steps at the sweep limit '// &
-                                           itoa(c%fr%sweep_limit_hits)//', tangential problems at their pass '// &
-                                           'limit '//itoa(c%fr%pass_limit_hits)//', tangential factorizations '// &
+                                           ', sweeps '//itoa(c%fr%nsweeps)//' (most in a step '// &
+                                           itoa(c%fr%max_sweeps)//' of '//itoa(FRICTION_SWEEPS)// &
+                                           '), steps at the sweep limit '//itoa(c%fr%sweep_limit_hits)// &
+                                           ', tangential problems at their pass limit '// &
+                                           itoa(c%fr%pass_limit_hits)//' (most passes '// &
+                                           itoa(c%fr%max_tpasses)//' of '//itoa(c%fr%max_passes)// &
+                                           '), mirrored pairs '//itoa(c%fr%nmirrors)//' (swapped '// &
+                                           itoa(c%fr%nswaps)//')'// &
+                                           ', tangential factorizations '// &
                                            itoa(c%fr%tt%nsolves)//' (reused '//itoa(c%fr%tt%nreused)// &
                                            '), frictional dissipation '//rtoa_result(c%dissipation))
             ! the massless contact faces (doc/impact.md, section 3.2)
