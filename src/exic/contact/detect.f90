@@ -269,7 +269,7 @@ contains
    subroutine detect_pairs(mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, link, &
                            ncand, cand, depth, facing, ncon, cslave, cseg, cmaster, &
                            cend, calpha, cnormal, ctau, cgap, nsseg, sseg, shead, ssegs, &
-                           stamp, mnrm, mstamp, snrm_seg, sstamp)
+                           stamp, mnrm, mstamp, snrm_seg, sstamp, fseg, fhead, fsegs)
       integer, intent(in) :: mode, nnode, nslave, nseg, ncand
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), depth, facing
       real(wp), intent(inout) :: snrm(2, nslave)
@@ -282,15 +282,19 @@ contains
       integer, intent(in), optional :: stamp
       real(wp), intent(inout), optional :: mnrm(4, *), snrm_seg(4, *)
       integer, intent(inout), optional :: mstamp(*), sstamp(*)
+      ! the slave surface's segments and node -> segments lists for the side test of the facing
+      ! rule when the lists above are not given (every node normal formed already)
+      integer, intent(in), optional :: fseg(2, *), fhead(*), fsegs(*)
       integer, intent(out) :: ncon
       integer, intent(out) :: cslave(nslave), cseg(nslave), cmaster(2, nslave)
       logical, intent(out) :: cend(nslave)
       real(wp), intent(out) :: calpha(nslave), cnormal(2, nslave), ctau(nslave), cgap(nslave)
       integer :: j, j0, s, k, node, ma, mb, best, bkey(2), key(2), q, ks
       real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap, w
-      logical :: hit, lazy, have_nrm, cached
+      logical :: hit, lazy, have_nrm, cached, sides
 
       lazy = present(nsseg) .and. present(sseg) .and. present(shead) .and. present(ssegs)
+      sides = present(fseg) .and. present(fhead) .and. present(fsegs)
       cached = lazy .and. mode == DETECT_SWEPT .and. present(stamp) .and. present(mnrm) .and. &
                present(mstamp) .and. present(snrm_seg) .and. present(sstamp)
 
@@ -343,7 +347,16 @@ contains
                end if
                have_nrm = .true.
             end if
-            if (.not. faces(snrm(:, s), nf, facing)) cycle
+            if (.not. faces(snrm(:, s), nf, facing)) then
+               ! the facing rule's side test (doc/contact-detection.md, "Facing test")
+               if (lazy) then
+                  if (.not. side_faces(nnode, x0, sseg, shead, ssegs, s, nf, facing)) cycle
+               else if (sides) then
+                  if (.not. side_faces(nnode, x0, fseg, fhead, fsegs, s, nf, facing)) cycle
+               else
+                  cycle
+               end if
+            end if
             gap = dot_product(x1(:, node) - ((1.0_wp - alpha)*x1(:, ma) + alpha*x1(:, mb)), nf)
             key = [min(ma, mb), max(ma, mb)]
             if (best /= 0) then
@@ -378,6 +391,28 @@ contains
                              cnormal(:, ncon), cgap(ncon))
       end do
    end subroutine detect_pairs
+
+   !> The side test of the facing rule (doc/contact-detection.md, "Facing test", eq. F.1): true
+   !> when a segment of the slave surface at slave s (its node -> segments lists head, segs)
+   !> faces the master normal n at x0, n_k . n < facing with n_k the segment's unit normal
+   !> (segment_normal, as the node normal's sum forms it). A convex corner whose node normal is
+   !> tilted too far from n, one face of it turned to the master, is then still paired.
+   pure logical function side_faces(nnode, x0, seg, head, segs, s, n, facing) result(ok)
+      integer, intent(in) :: nnode, seg(2, *), head(*), segs(*), s
+      real(wp), intent(in) :: x0(2, nnode), n(2), facing
+      real(wp) :: nk(2)
+      integer :: q, ks
+      ok = .false.
+      do q = head(s), head(s + 1) - 1
+         ks = segs(q)
+         nk = segment_normal(x0(:, seg(1, ks)), x0(:, seg(2, ks)))
+         if (nk(1) == 0.0_wp .and. nk(2) == 0.0_wp) cycle
+         if (dot_product(nk, n) < facing) then
+            ok = .true.
+            return
+         end if
+      end do
+   end function side_faces
 
    !> Unit normals of the segment ma -> mb at x0 (n(1:2)) and at x1 (n(3:4)).
    pure subroutine both_normals(nnode, x0, x1, ma, mb, n)
@@ -472,7 +507,7 @@ contains
    !> detect_pairs for the arguments and the rules.
    subroutine detect_contacts(cs, mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, &
                               link, ncand, cand, depth, facing, nsseg, sseg, shead, ssegs, &
-                              stamp, mnrm, mstamp, snrm_seg, sstamp)
+                              stamp, mnrm, mstamp, snrm_seg, sstamp, fseg, fhead, fsegs)
       type(contact_set_t), intent(inout) :: cs
       integer, intent(in) :: mode, nnode, nslave, nseg, ncand
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), depth, facing
@@ -483,6 +518,7 @@ contains
       integer, intent(in), optional :: stamp
       real(wp), intent(inout), optional :: mnrm(4, *), snrm_seg(4, *)
       integer, intent(inout), optional :: mstamp(*), sstamp(*)
+      integer, intent(in), optional :: fseg(2, *), fhead(*), fsegs(*)
       integer :: cap
 
       cap = 0
@@ -499,7 +535,7 @@ contains
       call detect_pairs(mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, link, ncand, &
                         cand, depth, facing, cs%n, cs%slave, cs%seg, cs%master, cs%at_end, &
                         cs%alpha, cs%normal, cs%tau, cs%gap, nsseg, sseg, shead, ssegs, &
-                        stamp, mnrm, mstamp, snrm_seg, sstamp)
+                        stamp, mnrm, mstamp, snrm_seg, sstamp, fseg, fhead, fsegs)
    end subroutine detect_contacts
 
 end module exic_contact_detect

@@ -154,7 +154,7 @@ contains
                ! this search formed every normal of the surface
                call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                     sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
-                                    self%depth, FACING)
+                                    self%depth, FACING, fseg=sl%seg, fhead=sl%nhead, fsegs=sl%nsegs)
             else
                ! the normals of the slaves that have a hit and of the segments, formed by the
                ! narrow phase once in this search (another surface than the master: above)
