@@ -35,6 +35,7 @@ contains
       call test_robustness(s)
       call test_thin_target(s)
       call test_corner(s)
+      call test_facing_sides(s)
       call test_broad_random(s)
       call test_broad_kept(s)
       call test_broad_scaling(s)
@@ -537,6 +538,67 @@ contains
       call check(s, cs%n == 1 .and. cs%seg(1) == 2 .and. all(cs%normal(:, 1) == [-1.0_wp, 0.0_wp]), &
                  'slave corner normal (1,1): top face rejected, side face kept')
    end subroutine test_corner
+
+   !> The facing rule's side test (doc/contact-detection.md, "Facing test", F.1): the convex
+   !> corner of a crushed element (scene 82 of seed 20261229) crossing a wall. Master: the wall
+   !> face 1 (0,0) -> 2 (0,1), normal (1,0). Slave surface: the sliver 7 (0.1,0.4) -> 5 -> 6
+   !> (5e-4,0.1) -> 7, whose corner 5 (5e-4,0.5) has the segments 7 -> 5 (normal (1,1)/sqrt 2)
+   !> and 5 -> 6 (normal (-1,0), lying on the wall), so its node normal (-0.38, 0.92) gives
+   !> -0.38 with the wall's: not below cos(120 degrees). Node 5 moves to (-1e-3, 0.52) in the
+   !> step and crosses the wall at tau = 1/3.
+   subroutine test_facing_sides(s)
+      type(suite_t), intent(inout) :: s
+      real(wp), parameter :: FACING = -0.5_wp   ! the contact step's (src/exic/contact/contact.f90)
+      real(wp) :: x0(2, 7), x1(2, 7), snrm(2, 1), r
+      integer :: mseg(2, 1), mlink(2, 1), sseg(2, 3), cand(2, 1), head(2), segs(2)
+      type(contact_set_t) :: cs
+
+      call section(s, 'contact geometry: facing rule, side test at a convex corner')
+      x0 = 0.0_wp
+      x0(:, 1) = [0.0_wp, 0.0_wp]; x0(:, 2) = [0.0_wp, 1.0_wp]
+      x0(:, 5) = [5.0e-4_wp, 0.5_wp]; x0(:, 6) = [5.0e-4_wp, 0.1_wp]; x0(:, 7) = [0.1_wp, 0.4_wp]
+      x1 = x0
+      x1(:, 5) = [-1.0e-3_wp, 0.52_wp]
+      mseg(:, 1) = [1, 2]; mlink = 0
+      sseg(:, 1) = [7, 5]; sseg(:, 2) = [5, 6]; sseg(:, 3) = [6, 7]
+      ! slave 1 (node 5): its segments 1 and 2
+      head = [1, 3]; segs = [1, 2]
+      cand(:, 1) = [1, 1]
+      snrm(:, 1) = average_normal(segment_normal(x0(:, 7), x0(:, 5)), segment_normal(x0(:, 5), x0(:, 6)))
+      call check(s, dot_product(snrm(:, 1), [1.0_wp, 0.0_wp]) > FACING, &
+                 'the corner''s node normal fails the facing limit')
+      call detect_contacts(cs, DETECT_SWEPT, 7, x0, x1, 1, [5], snrm, 1, mseg, mlink, 1, cand, &
+                           0.1_wp, FACING)
+      call check(s, cs%n == 0, 'node normal alone: the crossing is missed')
+      call detect_contacts(cs, DETECT_SWEPT, 7, x0, x1, 1, [5], snrm, 1, mseg, mlink, 1, cand, &
+                           0.1_wp, FACING, fseg=sseg, fhead=head, fsegs=segs)
+      call check(s, cs%n == 1, 'side test (normals given): one contact')
+      if (cs%n == 1) then
+         call check_close(s, cs%tau(1), 1.0_wp/3.0_wp, 1.0e-12_wp, 'side test: tau of the crossing')
+         call check(s, cs%gap(1) < 0.0_wp .and. all(cs%normal(:, 1) == [1.0_wp, 0.0_wp]), &
+                    'side test: the wall normal, gap closed by the corrector')
+      end if
+      snrm = 0.0_wp
+      call detect_contacts(cs, DETECT_SWEPT, 7, x0, x1, 1, [5], snrm, 1, mseg, mlink, 1, cand, &
+                           0.1_wp, FACING, 3, sseg, head, segs)
+      call check(s, cs%n == 1, 'side test (normals formed in the narrow phase): one contact')
+      if (cs%n == 1) call check_close(s, cs%tau(1), 1.0_wp/3.0_wp, 1.0e-12_wp, &
+                                      'side test (normals formed): tau of the crossing')
+      ! equal-height bodies: a block's corner 5 (1.05, 1) sliding in over the other block's top
+      ! face 1 (2,1) -> 2 (1,1), normal (0,1); the corner's segments 5 -> 7 (top, normal (0,1))
+      ! and 6 -> 5 (side, normal (1,0)): neither faces the top face, still rejected
+      x0 = 0.0_wp
+      x0(:, 1) = [2.0_wp, 1.0_wp]; x0(:, 2) = [1.0_wp, 1.0_wp]
+      x0(:, 5) = [1.05_wp, 1.0_wp]; x0(:, 6) = [1.05_wp, 0.0_wp]; x0(:, 7) = [0.05_wp, 1.0_wp]
+      x1 = x0
+      x1(:, 5) = [1.1_wp, 0.99_wp]
+      sseg(:, 1) = [5, 7]; sseg(:, 2) = [6, 5]; sseg(:, 3) = [7, 6]
+      r = sqrt(0.5_wp)
+      snrm(:, 1) = [r, r]
+      call detect_contacts(cs, DETECT_SWEPT, 7, x0, x1, 1, [5], snrm, 1, mseg, mlink, 1, cand, &
+                           0.1_wp, FACING, fseg=sseg, fhead=head, fsegs=segs)
+      call check(s, cs%n == 0, 'block corner over the top face of a block of equal height: rejected')
+   end subroutine test_facing_sides
 
    ! ----------------------------------------------------------- broad phase
 
