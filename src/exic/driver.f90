@@ -15,7 +15,7 @@ module exic_driver
    use exic_model_model, only: model_t
    use exic_model_program, only: MAX_LOOP_DEPTH, loop_end
    use exic_output_text_report, only: report_preamble, report_summary, report_final, console_summary
-   use exic_session_run, only: fields_observer, run_t, INSIDE_STEPS, resume, save_restart, init_inside, &
+   use exic_session_run, only: fields_observer, run_t, resume, save_restart, init_inside, &
                                check_inside, start, step, after_step, finish_progress, pass_messages, &
                               gather_nodes_due
    use exic_explicit_decomposition_nodes, only: decomposition_gather_nodes
@@ -178,7 +178,7 @@ contains
                if (.not. allocated(err) .and. r%out%fields%flushed() > nflushed .and. associated(r%on_fields)) &
                   call r%on_fields(r%out%fields%flushed(), r%out%fields%last_flushed_time())
                if (.not. allocated(err) .and. (r%out%fields%count() > nfields .or. &
-                                               r%stp%st%step - r%inside_step >= INSIDE_STEPS)) call check_inside(r)
+                                               r%stp%st%step - r%inside_step >= r%inside_every)) call check_inside(r)
                if (.not. allocated(err) .and. c%v(1) > 0.0_wp) then
                   r%stp%tmax = c%v(1)
                   if (r%stp%st%t >= r%stp%tmax*(1.0_wp - TIME_TOL) .and. depth > 0) then

@@ -37,7 +37,7 @@ module exic_restart
    implicit none
    private
 
-   public :: run_position_t, write_restart, read_restart, previous_path, code
+   public :: run_position_t, write_restart, read_restart, peek_restart, previous_path, landing_path, code
 
    !> Version of the layout; a file of another version is refused.
    integer, parameter :: RESTART_FORMAT = 2
@@ -79,20 +79,31 @@ contains
       prev = path//'.prev'
    end function previous_path
 
+   !> The restart file written before the steps that landed on the end time beside `path`
+   !> (doc/input-language.md, "Changing the program at a restart").
+   function landing_path(path) result(land)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: land
+      land = path//'.land'
+   end function landing_path
+
    !> Write the restart file `path` of the run: `model`, the stepper, the outputs (their
    !> schedules and lengths, measured by the caller before: output_t%checkpoint) and the
-   !> position `pos` in the program.
-   subroutine write_restart(path, model, stp, out, pos, err)
+   !> position `pos` in the program. With `keep_previous` false the older file is replaced, not
+   !> kept as `<path>.prev`.
+   subroutine write_restart(path, model, stp, out, pos, err, keep_previous)
       character(len=*), intent(in) :: path
       type(model_t), intent(in) :: model
       type(stepper_t), intent(inout) :: stp
       type(output_t), intent(inout) :: out
       type(run_position_t), intent(inout) :: pos
       type(error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: keep_previous
       type(archive_t) :: ar
       type(error_t), allocatable :: err2
       character(len=:), allocatable :: tmp
       integer :: version
+      logical :: keep
 
       tmp = path//'.tmp'
       call ar%h5%create(tmp, err)
@@ -114,7 +125,9 @@ contains
          return
       end if
       ! only a complete file takes the name; the older one stays as <path>.prev
-      if (file_kind(path) == FILE_REGULAR) then
+      keep = .true.
+      if (present(keep_previous)) keep = keep_previous
+      if (keep .and. file_kind(path) == FILE_REGULAR) then
          call rename_file(path, previous_path(path), err)
          if (allocated(err)) return
       end if
@@ -161,6 +174,40 @@ contains
       if (allocated(err)) err%message = "restart file '"//path//"': "//err%message
       if (allocated(ar%program)) call move_alloc(ar%program, program)
    end subroutine read_restart
+
+   !> The end time whose landing shaped the last steps of the restart file `path` (stepper
+   !> `landed_tmax`, -1: none) and its BATCh program (5, commands), read without the rest: to
+   !> choose the file a changed program continues from (session/run.f90 `resume`).
+   subroutine peek_restart(path, landed_tmax, program, err)
+      character(len=*), intent(in) :: path
+      real(wp), intent(out) :: landed_tmax
+      real(wp), allocatable, intent(out) :: program(:, :)
+      type(error_t), allocatable, intent(out) :: err
+      type(archive_t) :: ar
+      type(error_t), allocatable :: err2
+      integer :: np
+      landed_tmax = -1.0_wp
+      if (file_kind(path) /= FILE_REGULAR) then
+         call make_error(err, "restart file '"//path//"' does not exist or is not a regular file")
+         return
+      end if
+      call ar%h5%open(path, .false., err)
+      if (allocated(err)) return
+      ar%saving = .false.
+      call ar%item('stepper.landed_tmax', landed_tmax)
+      np = 0
+      call ar%item('model.commands', np)
+      if (.not. allocated(ar%err)) then
+         allocate (program(5, np))
+         if (np > 0) call ar%item('model.program', program)
+      end if
+      call ar%h5%close(err2)
+      if (allocated(ar%err)) then
+         call move_alloc(ar%err, err)
+      else if (allocated(err2)) then
+         call move_alloc(err2, err)
+      end if
+   end subroutine peek_restart
 
    ! ---------------------------------------------------------------------------- identity
 

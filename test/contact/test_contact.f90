@@ -50,6 +50,8 @@ contains
       call uncoupled_test(s, 'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl// &
                           '    REGIon,2'//nl//'  PAIR,1,SYMMetric,1,2'//nl//'END CONTact'//nl//nl, 2, &
                           'the same with a pair coupling regions 1 and 2')
+      call uncoupled_test(s, '', 3, 'three blocks without CONTact passing through each other and apart at the '// &
+                          'end, no field output (the checks between, every hmin / (4 vmax dt) steps)', through=.true.)
       call section(s, 'contact: self contact of a U-shaped body')
       call self_contact_test(s)
    end subroutine run_contact_tests
@@ -150,12 +152,23 @@ contains
    !> couples them"), `nwarn` = 3, in <stem>.out and on the console. With `cont` a SYMMetric pair
    !> couples A and B: they do not interpenetrate and are never named; the other two pairs warn
    !> (`nwarn` = 2). (The console gets the same lines through the run's messages.)
-   subroutine uncoupled_test(s, cont, nwarn, what)
+   subroutine uncoupled_test(s, cont, nwarn, what, through)
       type(suite_t), intent(inout) :: s
       character(len=*), intent(in) :: cont, what
       integer, intent(in) :: nwarn
-      character(len=:), allocatable :: msg, deck, name
+      !> to t = 3.5, when regions 1 and 3 have passed through the others and left them, with
+      !> no field output
+      logical, intent(in), optional :: through
+      character(len=:), allocatable :: msg, deck, name, batch
       integer :: stage, n12, n13, n23
+      batch = '  OUTPut,HDF5,0.05'//nl//'  LOOP,,100000'//nl//'    TIME,,1'//nl
+      name = 'uncoupled'//itoa(nwarn)
+      if (present(through)) then
+         if (through) then
+            batch = '  LOOP,,100000'//nl//'    TIME,,3.5'//nl
+            name = name//'_through'
+         end if
+      end if
       deck = 'FEAP * * blocks passing through each other'//nl//'0 0 0 2 2 4'//nl// &
              'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 100 0.3'//nl//'    DENSity 1'//nl//nl// &
              'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,4,4,1,1,1'//nl//'    1,0,0'//nl//'    2,1,0'//nl// &
@@ -165,10 +178,8 @@ contains
              'REGIon,3'//nl//'BLOCk'//nl//'  CARTesian,4,4,51,33,1'//nl//'    1,2.4,0'//nl//'    2,3.4,0'//nl// &
              '    3,3.4,1'//nl//'    4,2.4,1'//nl//nl// &
              'INITial,VELOcity'//nl//'  REGIon,1,1,0'//nl//'  REGIon,3,-1,0'//nl//nl//cont// &
-             'END'//nl//'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,10'//nl//'  OUTPut,HDF5,0.05'//nl// &
-             '  LOOP,,100000'//nl//'    TIME,,1'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
-             '  disp,1,1'//nl//nl//'STOP'
-      name = 'uncoupled'//itoa(nwarn)
+             'END'//nl//'BATCh'//nl//'  DT,CFL,0.9'//nl//'  TPLOt,,10'//nl//batch// &
+             '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//'  disp,1,1'//nl//nl//'STOP'
       call run_deck(name, deck, stage, msg)
       call check(s, stage == 0, what//' runs', msg)
       if (stage /= 0) return

@@ -8,6 +8,7 @@ module test_element
    use exic_material_material, only: lame_from_young
    use exic_material_neohookean, only: nh_cauchy, nh_piola, nh_wave_speed2
    use exic_element_q4_stable, only: block_minimum
+   use exic_element_q4_bulk_viscosity, only: q4_bulk_viscosity
    use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
                                  q4_stable_dt, q4_stress, q4_deformation, NBLOCK
    use testing, only: suite_t, check, check_close, section, gradient_error
@@ -55,7 +56,91 @@ contains
       call test_inversion(s)
       call test_block_minimum(s)
       call test_stress_block(s)
+      call test_bulk_viscosity(s)
    end subroutine run_element_tests
+
+   !> VISCosity BULK's kernel (doc/damping.md, section 3) on one distorted quadrilateral under a
+   !> uniform compression v = -alpha x, plane and axisymmetric: its forces are -q dV/dx_a (dV/dx_a
+   !> by central differences of V integrated by 2x2 Gauss, independent of the kernel's closed
+   !> form), q = rho l (q1 l trD^2 - q2 c trD) with trD = -2 alpha (plane) and -3 alpha (the hoop
+   !> rate v_r/r adds -alpha in axisymmetry), and the step ratio c/(Q + sqrt(Q^2 + c^2)).
+   subroutine test_bulk_viscosity(s)
+      type(suite_t), intent(inout) :: s
+      real(wp), parameter :: alpha = 0.01_wp, q1 = 1.5_wp, q2 = 0.06_wp, rho = 2.0_wp, c = 3.0_wp
+      real(wp) :: x0(2, 4), u(2, 4), v(2, 4), a(2, 4), g(2, 4), ratio, area, vol, trd, l, q, qq, xp(2, 4), dv(2, 4)
+      real(wp) :: worst
+      integer :: conn(4, 1), k, i, iax
+      logical :: axi
+      call section(s, 'bulk viscosity kernel, plane and axisymmetric')
+      conn(:, 1) = [1, 2, 3, 4]
+      x0 = reshape([0.3_wp, 0.1_wp, 0.9_wp, 0.0_wp, 1.0_wp, 0.7_wp, 0.2_wp, 0.6_wp], [2, 4])
+      u = 0.0_wp
+      a = 0.0_wp
+      v = -alpha*x0
+      do iax = 0, 1
+         axi = iax == 1
+         g = 0.0_wp
+         ratio = 1.0_wp
+         call q4_bulk_viscosity(1, 4, conn, x0, u, v, a, 1.0e-3_wp, rho, c, q1, q2, axi, g, ratio)
+         area = gauss_measure(x0, .false.)
+         vol = gauss_measure(x0, axi)
+         trd = merge(-3.0_wp, -2.0_wp, axi)*alpha
+         l = sqrt(area)
+         q = rho*l*(q1*l*trd*trd - q2*c*trd)
+         worst = 0.0_wp
+         do k = 1, 4
+            do i = 1, 2
+               xp = x0
+               xp(i, k) = x0(i, k) + 1.0e-6_wp
+               dv(i, k) = gauss_measure(xp, axi)
+               xp(i, k) = x0(i, k) - 1.0e-6_wp
+               dv(i, k) = (dv(i, k) - gauss_measure(xp, axi))/2.0e-6_wp
+               worst = max(worst, abs(g(i, k) + q*dv(i, k)))
+            end do
+         end do
+         call check(s, worst <= 1.0e-9_wp*q, trim(merge('axisymmetric', 'plane       ', axi))// &
+                    ': forces -q dV/dx_a with q of trD = '//trim(merge('-3 alpha', '-2 alpha', axi)), &
+                    'largest difference '//rtoa_(worst)//' of q = '//rtoa_(q))
+         call check(s, abs(sum(g*v) + q*vol*trd) <= 1.0e-12_wp*abs(q*vol*trd), &
+                    trim(merge('axisymmetric', 'plane       ', axi))//': their power is -q V trD')
+         qq = q1*l*abs(trd) + q2*c
+         call check(s, abs(ratio - c/(qq + sqrt(qq*qq + c*c))) <= 1.0e-15_wp, &
+                    trim(merge('axisymmetric', 'plane       ', axi))//': step ratio c/(Q + sqrt(Q^2 + c^2))')
+      end do
+   contains
+      !> int dA (axi false) or int r dA (axi true) over the bilinear quadrilateral x, 2x2 Gauss.
+      real(wp) function gauss_measure(x, axi) result(m)
+         real(wp), intent(in) :: x(2, 4)
+         logical, intent(in) :: axi
+         real(wp), parameter :: gp(2) = [-1.0_wp, 1.0_wp]/sqrt(3.0_wp)
+         real(wp) :: xi, eta, n(4), dxi(4), deta(4), j11, j12, j21, j22
+         integer :: p, r
+         m = 0.0_wp
+         do p = 1, 2
+            do r = 1, 2
+               xi = gp(p)
+               eta = gp(r)
+               n = 0.25_wp*[(1 - xi)*(1 - eta), (1 + xi)*(1 - eta), (1 + xi)*(1 + eta), (1 - xi)*(1 + eta)]
+               dxi = 0.25_wp*[-(1 - eta), (1 - eta), (1 + eta), -(1 + eta)]
+               deta = 0.25_wp*[-(1 - xi), -(1 + xi), (1 + xi), (1 - xi)]
+               j11 = sum(dxi*x(1, :))
+               j12 = sum(dxi*x(2, :))
+               j21 = sum(deta*x(1, :))
+               j22 = sum(deta*x(2, :))
+               if (axi) then
+                  m = m + (j11*j22 - j12*j21)*sum(n*x(1, :))
+               else
+                  m = m + (j11*j22 - j12*j21)
+               end if
+            end do
+         end do
+      end function gauss_measure
+      function rtoa_(x) result(t)
+         real(wp), intent(in) :: x
+         character(len=24) :: t
+         write (t, '(es12.4)') x
+      end function rtoa_
+   end subroutine test_bulk_viscosity
 
    ! ---------------------------------------------------------------- helpers
 

@@ -65,6 +65,7 @@ contains
       call mismatch(s, exic)
       call section(s, 'restart: a later end time, a changed program refused, a new output folder')
       call extended(s, exic)
+      call landed(s, exic)
       call new_folder(s, exic)
       call section(s, 'restart: a write failure (file size limit) ends the run cleanly')
       call write_failure(s, exic)
@@ -209,12 +210,13 @@ contains
       integer :: code
       d = dir//'/other'
       call ex72_in(d)
-      code = shell('cd '//d//' && sed -i "s/tend = 0.3/tend = 0.31/" ex72.inp && '//abs(exic)// &
-                   ' -q ex72.inp --restart ../full/ex72.rst > run.log 2>&1')
+      code = shell('cd '//d//' && sed -i "s/tend = 0.3/tend = 0.31/" ex72.inp && cp ../full/ex72.rst end.rst && '// &
+                   abs(exic)//' -q ex72.inp --restart end.rst > run.log 2>&1')
       call check(s, code == 1 .and. shell('grep -q "the BATCh commands differ where a restart cannot follow '// &
-                                          'them: TIME at .*batch.inc:9 .*shortened to land on the end time" '// &
-                                          d//'/run.log') == 0, 'another end time from the file of the end of a '// &
-                 'DT,CFL run (its last steps landed on the end time): refused (exit 1), the TIME named', d//'/run.log')
+                                          'them: TIME at .*batch.inc:9 .*shortened to land on the end time.*'// &
+                                          'rst.land" '//d//'/run.log') == 0, 'another end time from the file of '// &
+                 'the end of a DT,CFL run (its last steps landed on the end time) without its .land file: '// &
+                 'refused (exit 1), the TIME and the .land file named', d//'/run.log')
       code = shell('cd '//d//' && sed -i "s/tend = 0.31/tend = 0.3/" ex72.inp && '// &
                    'sed -i "s|^    1,0,-hgt/2|    1,-0.01,-hgt/2|" common/ex72_mesh.inc && '//abs(exic)// &
                    ' -q ex72.inp --restart ../full/ex72.rst > run2.log 2>&1')
@@ -252,6 +254,29 @@ contains
                  d//'/run.log')
       call same_outputs(s, dir//'/full/ex72', d//'/ex72', 'end time 0.2 -> 0.3 at t = 0.15')
    end subroutine extended
+
+   !> Seed 7.2 to t = 0.2 (DT,CFL) with SAVE after the loop only: its end file (the last steps
+   !> landed on 0.2) with the end time 0.3 continues from <file>.land, the step before the
+   !> landing: the outputs of the run to 0.3 from the start (dir/full), bit for bit.
+   subroutine landed(s, exic)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: exic
+      character(len=:), allocatable :: d
+      integer :: code
+      d = dir//'/landed'
+      call ex72_in(d)
+      code = shell('cd '//d//' && sed -i "/SAVE,,0.15/d; s/^  NEXT$/  NEXT\n  SAVE/" common/batch.inc && '// &
+                   'sed -i "s/tend = 0.3/tend = 0.2/" ex72.inp && '//abs(exic)//' -q ex72.inp > short.log 2>&1')
+      call check(s, code == 0 .and. shell('test -f '//d//'/ex72.rst.land -a ! -e '//d//'/ex72.rst.prev') == 0 .and. &
+                 shell('grep -q "^  SAVE$" '//d//'/common/batch.inc') == 0, 'the run to 0.2 with SAVE at its '// &
+                 'end writes <stem>.rst and <stem>.rst.land (the step before the landing on 0.2)', d//'/short.log')
+      code = shell('cd '//d//' && sed -i "s/tend = 0.2/tend = 0.3/" ex72.inp && '//abs(exic)// &
+                   ' -q ex72.inp --restart ex72.rst > run.log 2>&1')
+      call check(s, code == 0 .and. shell('grep -q "a later end time continues from ex72.rst.land" '//d// &
+                                          '/run.log') == 0, 'the end time 0.2 -> 0.3 from the end file: '// &
+                 'continued from ex72.rst.land, said on the console', d//'/run.log')
+      call same_outputs(s, dir//'/full/ex72', d//'/ex72', 'end file of a DT,CFL run, end time 0.2 -> 0.3')
+   end subroutine landed
 
    !> The restart file of t = 0.15 (extended) alone in a new folder with the deck to 0.3: new
    !> .his, .ene and .h5 from the restart point, whose rows and output times are those of the

@@ -17,12 +17,16 @@ the run that had P2 from its start:
     folder    the restart file alone in a new folder with the deck (new files from the restart
               point: the rows and output times of the P2 run from there)
     end_fixed the restart file of the end of a DT,,dt run, a later end time
+    end_landed the restart file of the end of a DT,CFL run with its <file>.land beside it (the
+              step before the landing on the end time), a later end time
+    end_save  SAVE after the loop's NEXT only (no interval): its end file, a later end time
   refused  (exit 1, the message naming the command and its file:line)
     dt        another DT value (ran before the restart point)
     shorter   an end time before the restart point
     fewer     a LOOP count below the passes made
     added     a command added
-    landed    the restart file of the end of a DT,CFL run whose last steps landed on the end time
+    landed    the restart file of the end of a DT,CFL run whose last steps landed on the end time,
+              without its <file>.land
     partial   a folder holding the .his but not the .ene
 
 Compared: .his and .ene byte for byte (whole files in the same folder; from the restart point
@@ -52,7 +56,8 @@ def batch(p):
     lines.append('  DT,CFL,%s' % p['cfl'] if p.get('cfl') else '  DT,,%s' % p['dt'])
     lines.append('  TPLOt,,%d' % p['tplot'])
     lines.append('  OUTPut,HDF5,%s' % p['tout'])
-    lines.append('  SAVE,,%s' % p['save'])
+    if not p.get('save_end'):
+        lines.append('  SAVE,,%s' % p['save'])
     lines.append('  PRINt,ENERgy,%d' % p.get('print', 100000))
     lines.append('  CHECk,ENERgy,%s,%s' % p.get('guard', (0.5, 0.9)))
     if p.get('added'):
@@ -61,6 +66,8 @@ def batch(p):
     lines.append('    TIME,,%s' % p['tend'])
     lines.append('    FORM,EXPLicit')
     lines.append('  NEXT')
+    if p.get('save_end'):
+        lines.append('  SAVE')
     lines.append('END')
     return '\n'.join(lines) + '\n'
 
@@ -391,8 +398,40 @@ def main():
                     if code == 0 else 'exit %d: %s' % (code, log.strip()[-300:])
                 record('%s end_fixed same' % tag, diff == '', diff)
             else:
-                ok = code == 1 and 'TIME at a.inp:' in log and 'shortened to land' in log
+                # without the file of the step before the landing: refused, naming the TIME
+                ok = code == 1 and 'TIME at a.inp:' in log and 'shortened to land' in log and '.land' in log
                 record('%s refused landed' % tag, ok, '' if ok else 'exit %d: %s' % (code, log.strip()[-300:]))
+                # with it beside the end file: continued from it, the longer run's bits
+                d = os.path.join(work, '%s_f%g_end_landed' % (bname, f))
+                shutil.rmtree(d, ignore_errors=True)
+                shutil.copytree(src, d)
+                R.write_case(d, base, dict(p1f, tend=T2))
+                shutil.copy(end, os.path.join(d, 'from.rst'))
+                shutil.copy(end + '.land', os.path.join(d, 'from.rst.land'))
+                code, log = R.run(d, '--restart', 'from.rst')
+                land = os.path.join(d, 'from.rst.land')
+                diff = compare(reference(bname, dict(p1f, tend=T2)), d, h5_number(land, '/state.t'), True, None) \
+                    if code == 0 else 'exit %d: %s' % (code, log.strip()[-300:])
+                if diff == '' and 'continues from from.rst.land' not in log:
+                    diff = 'the console does not say that the run continues from from.rst.land'
+                record('%s end_landed same' % tag, diff == '', diff)
+            # SAVE after the loop only (the restart file of the end): a later end time continues
+            # (from its .land file after a DT,CFL landing) with the longer run's bits
+            p1e = dict(p1f, save_end=True)
+            srce = os.path.join(work, '%s_f%g_endsave_src' % (bname, f))
+            shutil.rmtree(srce, ignore_errors=True)
+            R.write_case(srce, base, p1e)
+            code, log = R.run(srce)
+            d = os.path.join(work, '%s_f%g_endsave' % (bname, f))
+            shutil.rmtree(d, ignore_errors=True)
+            if code == 0:
+                shutil.copytree(srce, d)
+                R.write_case(d, base, dict(p1e, tend=T2))
+                code, log = R.run(d, '--restart', 'a.rst')
+            from_file = os.path.join(srce, 'a.rst' if fixed else 'a.rst.land')
+            diff = compare(reference(bname, dict(p1e, tend=T2)), d, h5_number(from_file, '/state.t'), True, None) \
+                if code == 0 else 'exit %d: %s' % (code, log.strip()[-300:])
+            record('%s end_save extended' % tag, diff == '', diff)
             # refused changes, from the interval file
             refused = {
                 'dt': (dict(p1f, tend=T2, **({'dt': repr(float(p1['dt']) * 0.9)} if fixed else

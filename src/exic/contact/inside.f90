@@ -94,6 +94,7 @@ module exic_contact_inside
       procedure :: allow_auto => inside_allow_auto
       procedure :: check => inside_check
       procedure :: report => inside_report
+      procedure :: uncoupled => inside_uncoupled
    end type inside_t
 
 contains
@@ -286,6 +287,25 @@ contains
       end if
       yes = search_sorted(self%lkey, pair_key(self%nbody, i, j)) > 0
    end function checked
+
+   !> True when two bodies exist that no contact pass couples (checked only with all_pairs); with
+   !> more than UNCOUPLED_SCAN bodies assumed without looking (the scan is O(nbody^2)).
+   logical function inside_uncoupled(self) result(yes)
+      class(inside_t), intent(inout) :: self
+      integer, parameter :: UNCOUPLED_SCAN = 512
+      integer :: i, j
+      yes = .false.
+      if (.not. (self%active .and. self%all_pairs) .or. self%nbody < 2) return
+      yes = .true.
+      if (self%nbody > UNCOUPLED_SCAN) return
+      if (.not. self%settled) call settle(self)
+      do j = 2, self%nbody
+         do i = 1, j - 1
+            if (.not. (checked(self, i, j) .or. checked(self, j, i))) return
+         end do
+      end do
+      yes = .false.
+   end function inside_uncoupled
 
    !> Check the positions x(2, nnode) at time t. `last` gets the deepest node, `worst` the deepest
    !> over the run; a pair of bodies with a node deeper than `fraction` edges adds one warning to

@@ -124,8 +124,7 @@ contains
                return
             end if
             call general_path(s, m, mesh%axisymmetric)
-            call dissipation_init(s, m, st, mesh%axisymmetric, err)
-            if (allocated(err)) return
+            call dissipation_init(s, m, st, mesh%axisymmetric)
             if (m%plastic .and. m%kind == MAT_SOLID) st%has_plastic = .true.
             call set_ranges(s, nn)
             st%active(reshape(s%conn, [4*s%nel])) = .true.
@@ -170,14 +169,13 @@ contains
    end subroutine general_path
 
    !> The dissipations of set s (doc/damping.md): DAMPing MASS (the set's nodes and their shares
-   !> of the lumped mass) and VISCosity BULK (refused in axisymmetry); the state's nodal force
+   !> of the lumped mass) and VISCosity BULK (plane or axisymmetric); the state's nodal force
    !> arrays of the dissipations in use.
-   subroutine dissipation_init(s, m, st, axi, err)
+   subroutine dissipation_init(s, m, st, axi)
       type(element_set_t), intent(inout) :: s
       type(material_t), intent(in) :: m
       type(state_t), intent(inout) :: st
       logical, intent(in) :: axi
-      type(error_t), allocatable, intent(out) :: err
       real(wp), allocatable :: share(:)
       integer :: i
       if (m%kind /= MAT_SOLID) return
@@ -191,12 +189,8 @@ contains
          if (.not. allocated(st%gdamp)) allocate (st%gdamp(2, st%nnode), source=0.0_wp)
       end if
       if (m%bulk) then
-         if (axi) then
-            call make_error(err, 'VISCosity BULK is not available for AXISymmetric solids (the hoop '// &
-                            'rate v_r/r is not in its kernel, doc/damping.md section 3)', m%where)
-            return
-         end if
          s%bulk = .true.
+         s%bulk_axi = axi
          s%q1 = m%bulk_q1
          s%q2 = m%bulk_q2
          s%wave = sqrt((m%lambda + 2.0_wp*m%mu)/m%rho)
@@ -464,7 +458,7 @@ contains
                               s%hgkind, v)
          end if
          if (present(g)) call q4_bulk_viscosity(n, nnode, s%conn(:, e1:e1 + n - 1), x0, u, v, a, dt, s%rho, &
-                                                s%wave, s%q1, s%q2, g, pq(r))
+                                                s%wave, s%q1, s%q2, s%bulk_axi, g, pq(r))
       end subroutine range_forces
    end subroutine set_forces
 

@@ -719,7 +719,7 @@ contains
             bw(3, q) = 0.0_wp
          end if
          if (s%bulk) call q4_bulk_viscosity(n, st%nnode, s%conn(:, e0:e0 + n - 1), st%x0, st%u, st%v, st%a, &
-                                            st%dt_prev, s%rho, s%wave, s%q1, s%q2, st%gbulk, bq(q))
+                                            st%dt_prev, s%rho, s%wave, s%q1, s%q2, s%bulk_axi, st%gbulk, bq(q))
       end do
    end subroutine range_blocks
 

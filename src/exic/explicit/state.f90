@@ -45,8 +45,9 @@ module exic_explicit_state
       real(wp) :: damping = 0.0_wp, damping_end = huge(1.0_wp)
       integer, allocatable :: dnodes(:)
       real(wp), allocatable :: dmass(:)
-      !> VISCosity BULK q1 q2 (doc/damping.md, section 3) and the dilatational wave speed
-      logical :: bulk = .false.
+      !> VISCosity BULK q1 q2 (doc/damping.md, section 3) and the dilatational wave speed;
+      !> bulk_axi: an axisymmetric set (the volume per radian, section 3.1)
+      logical :: bulk = .false., bulk_axi = .false.
       real(wp) :: q1 = 0.0_wp, q2 = 0.0_wp, wave = 0.0_wp
    end type element_set_t
 

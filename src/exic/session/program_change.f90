@@ -23,14 +23,15 @@ module exic_session_program_change
    implicit none
    private
 
-   public :: adopt_program
+   public :: adopt_program, extends_landed_end
 
    !> Commands whose value only says what is written or checked: a change applies from the
    !> restart point on.
    character(len=4), parameter :: SETTINGS(5) = ['tplo', 'outp', 'save', 'prin', 'chec']
    !> Commands that may run between the last step and the end without changing the state
-   !> (rows and fields they write are written once: output_t keeps track).
-   character(len=4), parameter :: PURE(5) = ['loop', 'next', 'time', 'tran', 'prop']
+   !> (rows and fields they write are written once: output_t keeps track). SAVE, which wrote
+   !> the file there, may too: its schedule is undone (`adopt_program`).
+   character(len=4), parameter :: PURE(6) = ['loop', 'next', 'time', 'tran', 'prop', 'save']
 
 contains
 
@@ -49,6 +50,7 @@ contains
       type(error_t), allocatable, intent(out) :: err
       integer :: n, k, d, depth, loops(MAX_LOOP_DEPTH), pass(MAX_LOOP_DEPTH), remaining(MAX_LOOP_DEPTH)
       logical, allocatable :: ran(:)
+      logical :: saved_after
       character(len=:), allocatable :: refused, what
       real(wp) :: t
 
@@ -70,7 +72,9 @@ contains
          ran(k) = has_run(model, k, pos%form_pc, depth, loops, pass)
       end do
       refused = ''
-      if (pos%pc /= pos%form_pc) call after_last_step(model, saved, pos, t, refused)
+      saved_after = .false.
+      if (pos%pc /= pos%form_pc) call after_last_step(model, saved, pos, t, refused, saved_after)
+      if (saved_after) call undo_end_save(model, ran, pos, refused)
       do k = 1, n
          associate (c => model%program(k))
             if (all(saved(3:5, k) == c%v)) cycle
@@ -245,7 +249,8 @@ contains
 
    !> A changed TIME that ran before the restart point: allowed when no loop was left through it
    !> (its innermost loop is open, entered once), no step was shortened to land on its old end
-   !> time (step.f90, DT,CFL) and the new end time is after the restart point.
+   !> time (step.f90, DT,CFL: session/run.f90 `resume` then takes `<stem>.rst.land` when it is
+   !> there) and the new end time is after the restart point.
    subroutine end_time(model, k, depth, loops, pass, t, landed, what, notes, refused)
       type(model_t), intent(in) :: model
       integer, intent(in) :: k, depth, loops(:), pass(:)
@@ -277,8 +282,8 @@ contains
       else if (landed) then
          refused = refused//'; '//what//': the last steps before the restart point were shortened to '// &
                    'land on the end time (DT,CFL), so the state there is not that of a run with the '// &
-                   'new end time; continue from a restart file written before them (SAVE,,dt: '// &
-                   '<stem>.rst.prev)'
+                   'new end time; continue from a restart file written before them (<stem>.rst.land, '// &
+                   'which a run that saves writes beside <stem>.rst; or <stem>.rst.prev of SAVE,,dt)'
       else if (.not. (t < tnew*(1.0_wp - TIME_TOL))) then
          refused = refused//'; '//what//': the end time is not after the restart point t = '//rtoa(t)
       else
@@ -288,12 +293,14 @@ contains
 
    !> The file was written at the end of its run: the commands that ran after the last step
    !> (followed with the restart file's values from the FORM of that step) must not have
-   !> changed the state, since a changed program resumes at that FORM.
-   subroutine after_last_step(model, saved, pos, t, refused)
+   !> changed the state, since a changed program resumes at that FORM. `saved_after`: a SAVE
+   !> was among them.
+   subroutine after_last_step(model, saved, pos, t, refused, saved_after)
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: saved(:, :), t
       type(run_position_t), intent(in) :: pos
       character(len=:), allocatable, intent(inout) :: refused
+      logical, intent(inout) :: saved_after
       integer :: pc, depth, remaining(MAX_LOOP_DEPTH), guard
       character(len=4) :: name
       pc = pos%form_pc + 1
@@ -309,6 +316,8 @@ contains
             return
          end if
          select case (name)
+         case ('save')
+            saved_after = .true.
          case ('loop')
             depth = depth + 1
             remaining(depth) = nint(saved(3, pc))
@@ -332,6 +341,46 @@ contains
          pc = pc + 1
       end do
    end subroutine after_last_step
+
+   !> A SAVE that ran after the last step (the one that wrote a file at the end of its run) set
+   !> the SAVE schedule the file holds; a run with the changed program reaches it after its
+   !> later steps only. When no SAVE ran before the restart point the schedule is the one before
+   !> any SAVE (none: SAVE runs again at the end); else which values held is not known here.
+   subroutine undo_end_save(model, ran, pos, refused)
+      type(model_t), intent(in) :: model
+      logical, intent(in) :: ran(:)
+      type(run_position_t), intent(inout) :: pos
+      character(len=:), allocatable, intent(inout) :: refused
+      integer :: k
+      do k = 1, size(model%program)
+         if (ran(k) .and. model%program(k)%name == 'save') then
+            refused = refused//'; SAVE at '//where(model%program(k))//' ran before the last step and '// &
+                      'another SAVE after it, at the end of the run that wrote the file; continue from '// &
+                      'a restart file written during the run (SAVE,,dt) to change its program'
+            return
+         end if
+      end do
+      pos%save_on = .false.
+      pos%save_dt = 0.0_wp
+      pos%save_next = 0.0_wp
+      pos%save_t0 = 0.0_wp
+   end subroutine undo_end_save
+
+   !> Whether the deck changes the end time of a TIME command whose old value `landed_tmax`
+   !> shaped the last steps of the restart file (step.f90, DT,CFL): such a file cannot be
+   !> extended, the one written before those steps (restart.f90 `landing_path`) can.
+   logical function extends_landed_end(model, saved, landed_tmax) result(r)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: saved(:, :), landed_tmax
+      integer :: k
+      r = .false.
+      if (landed_tmax <= 0.0_wp .or. size(saved, 2) /= size(model%program)) return
+      do k = 1, size(model%program)
+         associate (c => model%program(k))
+            if (c%name == 'time' .and. saved(3, k) == landed_tmax .and. c%v(1) /= saved(3, k)) r = .true.
+         end associate
+      end do
+   end function extends_landed_end
 
    !> v(1:3) of every command, (3, commands).
    function program_values(model) result(v)

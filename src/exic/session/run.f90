@@ -15,11 +15,12 @@ module exic_session_run
    use exic_parallel_mpi, only: par_or_bits, par_rank
    use exic_base_signals, only: signals_take, SIG_BIT_INT, SIG_BIT_TERM, SIG_BIT_USR1, SIG_BIT_USR2
    use exic_model_model, only: model_t
-   use exic_restart, only: run_position_t, write_restart, read_restart
+   use exic_restart, only: run_position_t, write_restart, read_restart, peek_restart, landing_path
+   use exic_base_posix, only: file_kind, FILE_REGULAR
    use exic_output, only: output_t
    use exic_explicit_assembly, only: energy_balance
    use exic_output_text_report, only: report_preamble
-   use exic_session_program_change, only: adopt_program
+   use exic_session_program_change, only: adopt_program, extends_landed_end
    use exic_explicit_step, only: stepper_t
    use exic_explicit_history_gather, only: decomposition_gather_history
    use exic_explicit_decomposition_nodes, only: decomposition_gather_nodes
@@ -31,8 +32,13 @@ module exic_session_run
    public :: resume, save_restart, init_inside, check_inside, start, step, after_step, &
              finish_progress, pass_messages, gather_nodes_due
 
-   !> Steps between two geometric penetration checks besides the field output times and the end.
+   !> Steps between two geometric penetration checks besides the field output times and the end
+   !> (at most; fewer when bodies that no contact pair couples move fast: `inside_interval`).
    integer, parameter :: INSIDE_STEPS = 1000
+   !> A run that saves writes `<stem>.rst.land` after every step from which the end time is
+   !> within this many steps (and one more), until a step is shortened to land on it (DT,CFL
+   !> lands with at most 4; the margin covers a step that grows by 1.5 meanwhile).
+   real(wp), parameter :: LAND_WINDOW = 6.0_wp
 
    abstract interface
       !> Told after the field file is flushed (doc/fields.md, "Batches"): how many output times
@@ -58,6 +64,10 @@ module exic_session_run
       integer(i8) :: saved_step = -1           !< step of the last restart file written
       type(inside_t) :: inside                 !< geometric penetration check (with contact)
       integer(i8) :: inside_step = -1          !< step of its last check
+      integer :: inside_every = INSIDE_STEPS   !< steps from one check to the next
+      !> the smallest element height (area over longest side, reference mesh) when some two
+      !> bodies are coupled by no contact pair (0: not needed), for `inside_interval`
+      real(wp) :: inside_hmin = 0.0_wp
       integer :: inside_eroded = 0             !< eroded elements when it was built (doc/erosion.md)
       procedure(fields_observer), pointer, nopass :: on_fields => null()
    end type run_t
@@ -74,15 +84,29 @@ contains
       character(len=*), intent(in) :: base, path
       type(error_t), allocatable, intent(out) :: err
       real(wp), allocatable :: program(:, :)
-      character(len=:), allocatable :: notes, text
+      character(len=:), allocatable :: notes, text, from, landing
       logical :: fresh
+      real(wp) :: landed
+      type(error_t), allocatable :: peek_err
+      ! a later end time than the one the file's last steps landed on: the file written before
+      ! them, when it is there (doc/input-language.md, "Changing the program at a restart")
+      from = path
+      landing = ''
+      call peek_restart(path, landed, program, peek_err)
+      if (.not. allocated(peek_err)) then
+         if (extends_landed_end(model, program, landed) .and. file_kind(landing_path(path)) == FILE_REGULAR) then
+            from = landing_path(path)
+            landing = 'the last steps of '//path//' were shortened to land on its end time '//rtoa(landed)// &
+                      ' (DT,CFL): a later end time continues from '//from//', written before them'
+         end if
+      end if
       call r%stp%init(model%mesh, model%materials, model%contact, err, model%loads)
       if (allocated(err)) return
-      call read_restart(path, model, r%stp, r%out, r%pos, program, err)
+      call read_restart(from, model, r%stp, r%out, r%pos, program, err)
       if (allocated(err)) return
       call adopt_program(model, program, r%pos, r%stp, r%out, notes, err)
       if (allocated(err)) then
-         err%message = "restart file '"//path//"': "//err%message
+         err%message = "restart file '"//from//"': "//err%message
          return
       end if
       call r%out%resume(base, model, r%stp, fresh, err)
@@ -93,7 +117,11 @@ contains
       else
          call r%out%files%say('')
       end if
-      call r%out%files%say('restarted from '//path//' at t = '//rtoa(r%stp%st%t)//', step '// &
+      if (len(landing) > 0) then
+         call r%out%files%say(landing)
+         write (error_unit, '(a)') 'exic: '//landing
+      end if
+      call r%out%files%say('restarted from '//from//' at t = '//rtoa(r%stp%st%t)//', step '// &
                            itoa(int(r%stp%st%step)))
       if (fresh) then
          text = 'new output files start at the restart point (t = '//rtoa(r%stp%st%t)//', step '// &
@@ -109,16 +137,25 @@ contains
       end if
    end subroutine resume
 
-   !> Write the restart file of the state now (the files flushed and measured first).
-   subroutine save_restart(r, model, err)
+   !> Write the restart file of the state now (the files flushed and measured first); with
+   !> `landing`, the file `<stem>.rst.land` of a state before the end time's landing (not said
+   !> in the .out: it is replaced until the landing begins).
+   subroutine save_restart(r, model, err, landing)
       type(run_t), intent(inout) :: r
       type(model_t), intent(in) :: model
       type(error_t), allocatable, intent(out) :: err
+      logical, intent(in), optional :: landing
       call decomposition_gather_nodes(r%stp%dd, r%stp%st)
       call r%out%checkpoint(err)
       if (allocated(err)) return
       ! several MPI ranks: the element history of every block from its owner (doc/parallel.md)
       call decomposition_gather_history(r%stp%dd, r%stp%st, r%stp%sets)
+      if (present(landing)) then
+         if (landing) then
+            call write_restart(landing_path(r%rst), model, r%stp, r%out, r%pos, err, keep_previous=.false.)
+            return
+         end if
+      end if
       call write_restart(r%rst, model, r%stp, r%out, r%pos, err)
       if (allocated(err)) return
       r%saved_step = r%stp%st%step
@@ -139,7 +176,46 @@ contains
                          PENETRATION_WARN, err)
       if (allocated(err)) return
       call inside_pairs(r)
+      if (r%inside%uncoupled()) then
+         r%inside_hmin = smallest_height(model%mesh%x, model%mesh%conn)
+         ! the first check (at the first TIME) sets the interval from the speeds
+         if (r%inside_hmin > 0.0_wp) r%inside_every = 1
+      end if
    end subroutine init_inside
+
+   !> The smallest element height over the mesh: area over longest side.
+   pure real(wp) function smallest_height(x, conn) result(h)
+      real(wp), intent(in) :: x(:, :)
+      integer, intent(in) :: conn(:, :)
+      real(wp) :: a2, side
+      integer :: e, k
+      h = huge(1.0_wp)
+      do e = 1, size(conn, 2)
+         associate (p => x(:, conn(:, e)))
+            a2 = (p(1, 3) - p(1, 1))*(p(2, 4) - p(2, 2)) - (p(1, 4) - p(1, 2))*(p(2, 3) - p(2, 1))
+            side = 0.0_wp
+            do k = 1, 4
+               side = max(side, norm2(p(:, mod(k, 4) + 1) - p(:, k)))
+            end do
+         end associate
+         if (side > 0.0_wp .and. a2 > 0.0_wp) h = min(h, 0.5_wp*a2/side)
+      end do
+      if (h == huge(1.0_wp)) h = 0.0_wp
+   end function smallest_height
+
+   !> Steps to the next penetration check when bodies no contact pair couples could pass
+   !> through each other unseen between two checks: two bodies at most 2 vmax apart in speed
+   !> overlap for at least hmin / (2 vmax) (each is at least hmin thick), so checks every
+   !> hmin / (4 vmax dt) steps see every such overlap at least once (doc/decisions.md,
+   !> "Geometric penetration check"). Between 1 and INSIDE_STEPS.
+   pure integer function inside_interval(hmin, vmax, dt) result(n)
+      real(wp), intent(in) :: hmin, vmax, dt
+      real(wp) :: steps
+      n = INSIDE_STEPS
+      if (.not. (vmax*dt > 0.0_wp)) return
+      steps = 0.25_wp*hmin/(vmax*dt)
+      if (steps < real(INSIDE_STEPS, wp)) n = max(1, int(steps))
+   end function inside_interval
 
    !> The pairs of regions the check covers: every two regions (all_pairs), those of the contact
    !> passes allowed to touch.
@@ -207,6 +283,8 @@ contains
       call r%inside%check(r%stp%st%x0 + r%stp%st%u, r%stp%st%t, warn)
       if (len(warn) > 0) call r%stp%messages%add(warn)
       call pass_messages(r)
+      if (r%inside_hmin > 0.0_wp) r%inside_every = inside_interval(r%inside_hmin, &
+                                                                   sqrt(maxval(sum(r%stp%st%v**2, dim=1))), r%stp%st%dt)
    end subroutine check_inside
 
    !> Before a TIME command's outputs: the whole nodal state on every rank when its rows, fields
@@ -214,7 +292,7 @@ contains
    subroutine gather_nodes_due(r)
       type(run_t), intent(inout) :: r
       if (.not. r%stp%dd%nodes) return
-      if (r%out%reads_state(r%stp) .or. (r%inside%active .and. r%stp%st%step - r%inside_step >= INSIDE_STEPS)) &
+      if (r%out%reads_state(r%stp) .or. (r%inside%active .and. r%stp%st%step - r%inside_step >= r%inside_every)) &
          call decomposition_gather_nodes(r%stp%dd, r%stp%st)
    end subroutine gather_nodes_due
 
@@ -291,6 +369,15 @@ contains
                               itoa(int(r%stp%st%step)))
       end if
       if (due) call save_restart(r, model, err)
+      if (allocated(err) .or. r%interrupted) return
+      ! DT,CFL shortens the last steps to land on the end time: a run that saves keeps the state
+      ! before them too, from which a later end time continues (session/program_change.f90)
+      associate (stp => r%stp)
+         if (stp%cfl_mode .and. stp%tmax > stp%st%t .and. stp%landed_tmax /= stp%tmax .and. &
+             stp%tmax - stp%st%t <= (LAND_WINDOW + 1.0_wp)*stp%st%dt) then
+            if (any(model%program(:)%name == 'save')) call save_restart(r, model, err, landing=.true.)
+         end if
+      end associate
    end subroutine after_step
 
    !> SIGUSR2: one line on standard error: time, step, dt, energy balance, wall time, ETA.
