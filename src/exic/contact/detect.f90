@@ -193,13 +193,18 @@ contains
    end subroutine swept_pair
 
    !> swept_pair with the segment's unit normals ni (at x0) and nf (at x1) given.
-   pure subroutine swept_given(xs0, xs1, xa0, xa1, xb0, xb1, ni, nf, depth, hit, tau, alpha)
+   !> `crossed` (optional): the gap condition held (a crossing at tau, or in contact from the
+   !> start), whatever the projection; alpha is then the projection at tau even when it falls
+   !> outside the segment (hit false), as the vertex rule of detect_pairs reads it.
+   pure subroutine swept_given(xs0, xs1, xa0, xa1, xb0, xb1, ni, nf, depth, hit, tau, alpha, crossed)
       real(wp), intent(in) :: xs0(2), xs1(2), xa0(2), xa1(2), xb0(2), xb1(2), ni(2), nf(2), depth
       logical, intent(out) :: hit
       real(wp), intent(out) :: tau, alpha
+      logical, intent(out), optional :: crossed
       real(wp) :: a, b, c, g1
 
       alpha = 0.0_wp
+      if (present(crossed)) crossed = .false.
       call coefficients_given(xs0, xs1, xa0, xa1, ni, nf, a, b, c, g1)
       if (c > 0.0_wp) then
          call first_crossing(a, b, c, g1, hit, tau)
@@ -210,6 +215,7 @@ contains
          if (c < -depth .or. g1 > 0.0_wp) return
          if (all(ni == 0.0_wp)) return
       end if
+      if (present(crossed)) crossed = .true.
       call project(xs0 + tau*(xs1 - xs0), xa0 + tau*(xa1 - xa0), xb0 + tau*(xb1 - xb0), &
                    alpha, hit)
    end subroutine swept_given
@@ -291,7 +297,7 @@ contains
       real(wp), intent(out) :: calpha(nslave), cnormal(2, nslave), ctau(nslave), cgap(nslave)
       integer :: j, j0, s, k, node, ma, mb, best, bkey(2), key(2), q, ks
       real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap, w
-      logical :: hit, lazy, have_nrm, cached, sides
+      logical :: hit, lazy, have_nrm, cached, sides, crossed
 
       lazy = present(nsseg) .and. present(sseg) .and. present(shead) .and. present(ssegs)
       sides = present(fseg) .and. present(fhead) .and. present(fsegs)
@@ -324,14 +330,24 @@ contains
                   mstamp(k) = stamp
                end if
                call swept_given(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
-                                x1(:, mb), mnrm(1:2, k), mnrm(3:4, k), depth, hit, tau, alpha)
-               if (.not. hit) cycle
+                                x1(:, mb), mnrm(1:2, k), mnrm(3:4, k), depth, hit, tau, alpha, crossed)
+               if (.not. hit) then
+                  if (.not. crossed) cycle
+                  call vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, alpha, hit)
+                  if (.not. hit) cycle
+               end if
                nf = mnrm(3:4, k)
             else
                ! nf: the normal of the segment at x1, as the swept test formed it
-               call swept_pair(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
-                               x1(:, mb), depth, hit, tau, alpha, nf)
-               if (.not. hit) cycle
+               nf = segment_normal(x1(:, ma), x1(:, mb))
+               call swept_given(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
+                                x1(:, mb), segment_normal(x0(:, ma), x0(:, mb)), nf, depth, hit, tau, &
+                                alpha, crossed)
+               if (.not. hit) then
+                  if (.not. crossed) cycle
+                  call vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, alpha, hit)
+                  if (.not. hit) cycle
+               end if
             end if
             if (.not. have_nrm) then
                if (cached) then
@@ -391,6 +407,49 @@ contains
                              cnormal(:, ncon), cgap(ncon))
       end do
    end subroutine detect_pairs
+
+   !> The vertex rule (doc/contact-detection.md, "Vertex rule", V.1-V.3): slave `node` crossed the
+   !> line of segment k (swept test, at tau, projection alpha) but projects past its end node m;
+   !> when the slave also crossed the line of the neighbour segment at m and projects past m on
+   !> it, it is behind both lines next to m, inside the master at its corner m: a hit at
+   !> m (alpha 0 or 1, so finish_contact gives the master node normal), at the later of the two
+   !> crossing times. On return hit tells whether the rule holds; tau and alpha are then set.
+   pure subroutine vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, alpha, hit)
+      integer, intent(in) :: nnode, node, k, nseg, seg(2, nseg), link(2, nseg)
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), depth
+      real(wp), intent(inout) :: tau, alpha
+      logical, intent(out) :: hit
+      real(wp) :: taun, alphan
+      integer :: nb, m, na, nbb
+      logical :: crossed, inside
+
+      hit = .false.
+      if (.not. (alpha < 0.0_wp .or. alpha > 1.0_wp)) return
+      if (alpha < 0.0_wp) then
+         nb = link(1, k)
+         m = seg(1, k)
+      else
+         nb = link(2, k)
+         m = seg(2, k)
+      end if
+      if (nb <= 0) return
+      na = seg(1, nb); nbb = seg(2, nb)
+      if (na == node .or. nbb == node) return
+      call swept_given(x0(:, node), x1(:, node), x0(:, na), x1(:, na), x0(:, nbb), x1(:, nbb), &
+                       segment_normal(x0(:, na), x0(:, nbb)), segment_normal(x1(:, na), x1(:, nbb)), &
+                       depth, inside, taun, alphan, crossed)
+      if (.not. crossed) return
+      ! past m on the neighbour too (V.2); within it, the neighbour's own test pairs the slave
+      if (alpha < 0.0_wp) then
+         if (.not. (alphan > 1.0_wp)) return
+         alpha = 0.0_wp
+      else
+         if (.not. (alphan < 0.0_wp)) return
+         alpha = 1.0_wp
+      end if
+      tau = max(tau, taun)
+      hit = .true.
+   end subroutine vertex_entry
 
    !> The side test of the facing rule (doc/contact-detection.md, "Facing test", eq. F.1): true
    !> when a segment of the slave surface at slave s (its node -> segments lists head, segs)
