@@ -408,7 +408,7 @@ contains
       end do
    end subroutine detect_pairs
 
-   !> The vertex rule (doc/contact-detection.md, "Vertex rule", V.1-V.3): slave `node` crossed the
+   !> The vertex rule (doc/contact-detection.md, "Vertex rule", V.1-V.2): slave `node` crossed the
    !> line of segment k (swept test, at tau, projection alpha) but projects past its end node m;
    !> when the slave also crossed the line of the neighbour segment at m and projects past m on
    !> it, it is behind both lines next to m, inside the master at its corner m: a hit at
