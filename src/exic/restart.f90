@@ -40,7 +40,7 @@ module exic_restart
    public :: run_position_t, write_restart, read_restart, peek_restart, previous_path, landing_path, code
 
    !> Version of the layout; a file of another version is refused.
-   integer, parameter :: RESTART_FORMAT = 2
+   integer, parameter :: RESTART_FORMAT = 4
 
    !> Where the BATCh interpreter is, and the schedules it keeps.
    type :: run_position_t
@@ -148,16 +148,10 @@ contains
       real(wp), allocatable, intent(out) :: program(:, :)
       type(error_t), allocatable, intent(out) :: err
       type(archive_t) :: ar
-      type(error_t), allocatable :: err2
       integer :: version
 
-      if (file_kind(path) /= FILE_REGULAR) then
-         call make_error(err, "restart file '"//path//"' does not exist or is not a regular file")
-         return
-      end if
-      call ar%h5%open(path, .false., err)
+      call open_to_load(path, ar, err)
       if (allocated(err)) return
-      ar%saving = .false.
       version = -1
       call ar%item('format', version)
       if (.not. allocated(ar%err) .and. version /= RESTART_FORMAT) &
@@ -165,15 +159,36 @@ contains
                          itoa(RESTART_FORMAT))
       if (.not. allocated(ar%err)) call identity(ar, model, stp)
       if (.not. allocated(ar%err)) call visit(ar, stp, out, pos)
+      call close_loaded(ar, err)
+      if (allocated(err)) err%message = "restart file '"//path//"': "//err%message
+      if (allocated(ar%program)) call move_alloc(ar%program, program)
+   end subroutine read_restart
+
+   !> Open the restart file `path` to load items from it.
+   subroutine open_to_load(path, ar, err)
+      character(len=*), intent(in) :: path
+      type(archive_t), intent(inout) :: ar
+      type(error_t), allocatable, intent(out) :: err
+      if (file_kind(path) /= FILE_REGULAR) then
+         call make_error(err, "restart file '"//path//"' does not exist or is not a regular file")
+         return
+      end if
+      call ar%h5%open(path, .false., err)
+      ar%saving = .false.
+   end subroutine open_to_load
+
+   !> Close an archive loaded from; `err`: the first failure of its items, else of the closing.
+   subroutine close_loaded(ar, err)
+      type(archive_t), intent(inout) :: ar
+      type(error_t), allocatable, intent(out) :: err
+      type(error_t), allocatable :: err2
       call ar%h5%close(err2)
       if (allocated(ar%err)) then
          call move_alloc(ar%err, err)
       else if (allocated(err2)) then
          call move_alloc(err2, err)
       end if
-      if (allocated(err)) err%message = "restart file '"//path//"': "//err%message
-      if (allocated(ar%program)) call move_alloc(ar%program, program)
-   end subroutine read_restart
+   end subroutine close_loaded
 
    !> The end time whose landing shaped the last steps of the restart file `path` (stepper
    !> `landed_tmax`, -1: none) and its BATCh program (5, commands), read without the rest: to
@@ -184,16 +199,10 @@ contains
       real(wp), allocatable, intent(out) :: program(:, :)
       type(error_t), allocatable, intent(out) :: err
       type(archive_t) :: ar
-      type(error_t), allocatable :: err2
       integer :: np
       landed_tmax = -1.0_wp
-      if (file_kind(path) /= FILE_REGULAR) then
-         call make_error(err, "restart file '"//path//"' does not exist or is not a regular file")
-         return
-      end if
-      call ar%h5%open(path, .false., err)
+      call open_to_load(path, ar, err)
       if (allocated(err)) return
-      ar%saving = .false.
       call ar%item('stepper.landed_tmax', landed_tmax)
       np = 0
       call ar%item('model.commands', np)
@@ -201,12 +210,7 @@ contains
          allocate (program(5, np))
          if (np > 0) call ar%item('model.program', program)
       end if
-      call ar%h5%close(err2)
-      if (allocated(ar%err)) then
-         call move_alloc(ar%err, err)
-      else if (allocated(err2)) then
-         call move_alloc(err2, err)
-      end if
+      call close_loaded(ar, err)
    end subroutine peek_restart
 
    ! ---------------------------------------------------------------------------- identity
@@ -388,6 +392,7 @@ contains
          call ar%item('state.correction0', st%correction0)
          call ar%item('state.dt_residual', st%dt_residual)
          call ar%item('state.dt_booked', st%dt_booked)
+         call ar%item('state.contact_residual', st%contact_residual)
       end associate
       call ar%item('stepper.started', stp%started)
       call ar%item('stepper.cfl_mode', stp%cfl_mode)

@@ -4,7 +4,7 @@
 module test_element
    use exic_material_law, only: neohookean_law
    use exic_base_kinds, only: wp
-   use exic_base_strings, only: itoa
+   use exic_base_strings, only: itoa, rtoa
    use exic_material_material, only: lame_from_young
    use exic_material_neohookean, only: nh_cauchy, nh_piola, nh_wave_speed2
    use exic_element_q4_stable, only: block_minimum
@@ -100,7 +100,7 @@ contains
          end do
          call check(s, worst <= 1.0e-9_wp*q, trim(merge('axisymmetric', 'plane       ', axi))// &
                     ': forces -q dV/dx_a with q of trD = '//trim(merge('-3 alpha', '-2 alpha', axi)), &
-                    'largest difference '//rtoa_(worst)//' of q = '//rtoa_(q))
+                    'largest difference '//rtoa(worst)//' of q = '//rtoa(q))
          call check(s, abs(sum(g*v) + q*vol*trd) <= 1.0e-12_wp*abs(q*vol*trd), &
                     trim(merge('axisymmetric', 'plane       ', axi))//': their power is -q V trD')
          qq = q1*l*abs(trd) + q2*c
@@ -135,11 +135,6 @@ contains
             end do
          end do
       end function gauss_measure
-      function rtoa_(x) result(t)
-         real(wp), intent(in) :: x
-         character(len=24) :: t
-         write (t, '(es12.4)') x
-      end function rtoa_
    end subroutine test_bulk_viscosity
 
    ! ---------------------------------------------------------------- helpers

@@ -101,7 +101,7 @@ contains
       prm%hiso = 5.0_wp
       o = q4g_init(nq, axi, mixed, law_make(merge(LAW_J2, LAW_NEOHOOKEAN, plastic), lam, mu, 1.0_wp, prm), 0.1_wp)
       if (plastic) then
-         allocate (hist(o%nvar, nq*nq, ne))
+         allocate (hist(o%nhist, nq*nq, ne))
          call q4g_hist_init(o, ne, hist)
       else
          allocate (hist(1, 1, 1), source=0.0_wp)

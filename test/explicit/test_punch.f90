@@ -13,6 +13,16 @@
 !> Asserted: the run ends with no warning; the balance of <stem>.ene (total) stays within
 !> 1e-3 of W_pm (prescribed_work at the end); with the constant velocity, W_pm equals the
 !> trapezoid rule in time of the reaction (reac,REGIon,2,2 of <stem>.his) times -v to round-off.
+!>
+!> A rigid punch driven into a plastic block (plastic_punch): its balance closes with the plastic
+!> work of doc/plasticity.md (J31).
+!>
+!> A rigid punch touching a block at t = 0, its MOTIon velocity ramped from 0 by a table
+!> (variant v341 of tools/stress/punch_family.py: AUTOmatic contact, one-point elastic block
+!> 6 x 4, nu = 0, CFL 0.95): exic 1c14650 warned at step 3 (1.62 % of the energy put in, "element
+!> 26"): the guard lacked the contact force's part of the kinetic correction (doc/loads.md, eq.
+!> P.5). Asserted: no warning and the balance within 1e-3 of W_pm; the same deck switched to
+!> DT,,0.0056 (2.5 times its stable step) after t = 0.02 must still be stopped by the guard.
 module test_punch
    use exic_base_kinds, only: wp
    use exic_base_strings, only: rtoa
@@ -34,7 +44,104 @@ contains
       ! d = -1.1: at x0 + d its top nodes would lie 0.1 inside the block's bottom row, within the
       ! search depth, where the start-up overlap test once saw them (doc/loads.md, section 3)
       call driven_punch(s, 'punch_far', '', 'from t = 0 at 1.1', 1.1_wp)
+      call plastic_punch(s, 'punch_plastic2', '    MIXEd', '2x2 MIXEd')
+      call plastic_punch(s, 'punch_plastic1', '    QUADrature 1', 'one point')
+      call ramped_rigid_punch(s, 'punch_rigid_ramp', .false.)
+      call ramped_rigid_punch(s, 'punch_rigid_ramp_unstable', .true.)
    end subroutine run_punch_tests
+
+   !> A rigid punch resting on a plastic block (PLAStic MISEs, yield 2e-3 E), driven into it by
+   !> MOTIon at v / c = 0.01, DT,CFL,0.95, 4 x 2 elements, NTOS block nodes against the punch
+   !> with friction: the worst variant of tools/stress/punch_family.py before the plastic work
+   !> was booked by the trapezoid rule of the stress power (doc/plasticity.md (J31)): drift
+   !> 3.2 % of W_pm with 2x2 MIXEd, 2.8 % with one point (exic 1c14650; with (J31) 5.6e-6 and
+   !> 6.1e-6). Asserted: runs without a warning, the block yields, the balance (total of
+   !> <stem>.ene) stays within 1e-3 of W_pm: a conservation law, the plastic work being what the
+   !> forces did and the block did not store.
+   subroutine plastic_punch(s, name, element, what)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name, element, what
+      character(len=:), allocatable :: deck, msg
+      character(len=64), allocatable :: en(:)
+      real(wp), allocatable :: e(:, :)
+      integer :: stage, itot, iwpm, iwp
+      real(wp) :: wpm, drift
+      deck = 'FEAP * * rigid punch into a plastic block'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1e4 0.3'//nl//'    DENSity 1'//nl// &
+             '    PLAStic MISEs 20'//nl//element//nl//nl//'MATErial,2'//nl//'  RIGId'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,2,2,1,1,2'//nl//'    1,0.5,1'//nl//'    2,1.5,1'//nl// &
+             '    3,1.5,1.2'//nl//'    4,0.5,1.2'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,4,2,10,5,1'//nl//'    1,0,0'//nl//'    2,2,0'//nl// &
+             '    3,2,1'//nl//'    4,0,1'//nl//nl//'EBOUndary'//nl//'  2,0,1,1'//nl//nl// &
+             'MOTIon,REGIon,1,0,-1.16'//nl// &
+             'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,2'//nl//'  SURFace,2'//nl//'    REGIon,1'//nl// &
+             '  PAIR,1,NTOS,1,2'//nl//'    FRICtion,COULomb,0.3'//nl//'END CONTact'//nl//nl//'END'//nl// &
+             'BATCh'//nl//'  DT,CFL,0.95'//nl//'  TPLOt,,1'//nl//'  LOOP,,1000000'//nl//'    TIME,,0.0517'//nl// &
+             '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//'  reac,REGIon,1,2'//nl//nl//'STOP'
+      call run_deck(name, deck, stage, msg)
+      call check(s, stage == 0, 'a rigid punch driven into a plastic block ('//what//') runs to the end', msg)
+      if (stage /= 0) return
+      call check(s, .not. file_has(run_dir//'/'//name//'.out', 'warning:'), &
+                 'plastic block, '//what//': no warning (energy guard)')
+      call read_table(run_dir//'/'//name//'.ene', en, e)
+      itot = column(en, 'total')
+      iwpm = column(en, 'prescribed_work')
+      iwp = column(en, 'plastic_work')
+      wpm = e(iwpm, size(e, 2))
+      drift = maxval(abs(e(itot, :) - e(itot, 1)))/max(wpm, tiny(1.0_wp))
+      call check(s, wpm > 0.0_wp .and. e(iwp, size(e, 2)) > 0.1_wp*wpm .and. drift <= 1.0e-3_wp, &
+                 'plastic block, '//what//': it yields (plastic work above 10 % of W_pm) and the balance '// &
+                 'closes within 0.1 % of W_pm', 'W_pm '//rtoa(wpm)//', plastic work '// &
+                 rtoa(e(iwp, size(e, 2)))//', largest drift '//rtoa(drift))
+   end subroutine plastic_punch
+
+   !> The rigid punch touching at t = 0 under a ramped MOTIon (the module header); `unstable`:
+   !> the step raised to 2.5 times the stable one after t = 0.02.
+   subroutine ramped_rigid_punch(s, name, unstable)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name
+      logical, intent(in) :: unstable
+      character(len=:), allocatable :: deck, msg, batch
+      character(len=64), allocatable :: en(:)
+      real(wp), allocatable :: e(:, :)
+      integer :: stage, itot, iwpm
+      real(wp) :: wpm, drift
+      if (unstable) then
+         batch = '  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,1000000'//nl//'    TIME,,0.02'//nl// &
+                 '    FORM,EXPLicit'//nl//'  NEXT'//nl//'  DT,,0.0056'//nl//'  LOOP,,1000000'//nl// &
+                 '    TIME,,0.28'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl
+      else
+         batch = '  DT,CFL,0.95'//nl//'  TPLOt,,1'//nl//'  LOOP,,1000000'//nl//'    TIME,,0.28'//nl// &
+                 '    FORM,EXPLicit'//nl//'  NEXT'//nl
+      end if
+      deck = 'FEAP * * rigid punch touching, ramped MOTIon'//nl//'  0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 10000 0'//nl//'    DENSity 1'//nl// &
+             '    QUADrature 1'//nl//nl//'MATErial,2'//nl//'  RIGId'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,2,2,1,1,2'//nl//'    1,1,1'//nl//'    2,2,1'//nl// &
+             '    3,2,1.2'//nl//'    4,1,1.2'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,6,4,10,5,1'//nl//'    1,0,0'//nl//'    2,3,0'//nl// &
+             '    3,3,1'//nl//'    4,0,1'//nl//nl//'EBOUndary'//nl//'  2,0,1,1'//nl//nl// &
+             'MOTIon,REGIon,1,0,-0.1,0,1'//nl//'CONTact'//nl//'  AUTOmatic'//nl//'END CONTact'//nl//nl// &
+             'END'//nl//'BATCh'//nl//'  PROPortional,,1'//nl//batch//'END'//nl// &
+             '2, 0'//nl//'0, 0, 0.07, 1'//nl//nl//'  reac,REGIon,1,2'//nl//nl//'STOP'
+      call run_deck(name, deck, stage, msg)
+      if (unstable) then
+         call check(s, stage == 2 .and. index(msg, 'exceeds the energy put in') > 0, &
+                    'a ramped rigid punch at 2.5 times the stable step is stopped by the energy guard', msg)
+         return
+      end if
+      call check(s, stage == 0, 'a rigid punch touching a block under a ramped MOTIon runs to the end', msg)
+      if (stage /= 0) return
+      call check(s, .not. file_has(run_dir//'/'//name//'.out', 'warning:'), &
+                 'ramped rigid punch touching: no warning (energy guard, doc/loads.md eq. P.5)')
+      call read_table(run_dir//'/'//name//'.ene', en, e)
+      itot = column(en, 'total')
+      iwpm = column(en, 'prescribed_work')
+      wpm = e(iwpm, size(e, 2))
+      drift = maxval(abs(e(itot, :) - e(itot, 1)))/max(wpm, tiny(1.0_wp))
+      call check(s, wpm > 0.0_wp .and. drift <= 1.0e-3_wp, 'ramped rigid punch touching: the balance closes '// &
+                 'within 0.1 % of the work of the prescribed motion', 'W_pm '//rtoa(wpm)//', largest drift '//rtoa(drift))
+   end subroutine ramped_rigid_punch
 
    !> The deck with function 1 given by `fn` (blank: the unit ramp) and its checks.
    subroutine driven_punch(s, name, fn, what, speed)

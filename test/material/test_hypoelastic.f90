@@ -100,7 +100,7 @@ contains
       x0 = reshape([0.0_wp, 0.0_wp, 1.0_wp, 0.0_wp, 1.0_wp, 1.0_wp, 0.0_wp, 1.0_wp], [2, 4])
       conn(:, 1) = [1, 2, 3, 4]
       o = q4g_init(nq, .false., .false., law_make(LAW_HYPOELASTIC, lam, mu, 1.0_wp), 0.1_wp)
-      allocate (hist(o%nvar, nq*nq, 1))
+      allocate (hist(o%nhist, nq*nq, 1))
       call q4g_hist_init(o, 1, hist)
       do k = 1, n
          t = real(k, wp)/real(n, wp)

@@ -12,7 +12,7 @@ module test_plastic_decks
    use exic_material_j2_hardening, only: j2_param_t, J2_POWER, J2_JOHNSON_COOK
    use test_plasticity_ref, only: ref_t, ref_step
    use testing, only: suite_t, check, section
-   use deck_runner, only: run_dir, run_deck, read_table
+   use deck_runner, only: run_dir, run_deck, read_table, column
    implicit none
    private
 
@@ -37,6 +37,10 @@ module test_plastic_decks
       logical :: ok = .false.
       real(wp), allocatable :: t(:), f(:, :), svm(:), jac(:), ep(:), temp(:), ys(:)
       real(wp) :: wp_end = 0.0_wp   !< plastic work at the end (.ene, per unit thickness/radian)
+      !> the work done on the material at the end, strain energy + plastic work (.ene)
+      real(wp) :: wmat = 0.0_wp
+      real(wp) :: drift = huge(1.0_wp)  !< max |total(t) - total(0)| / wmat (.ene)
+      real(wp) :: wp_min = 0.0_wp   !< the smallest increment of the plastic work over a row
    end type run_t
 
 contains
@@ -140,7 +144,7 @@ contains
       character(len=:), allocatable :: msg
       character(len=64), allocatable :: names(:), en(:)
       real(wp), allocatable :: d(:, :), e(:, :)
-      integer :: stage, n, i, k
+      integer :: stage, n, i, k, itot, istr
       call run_deck(name, deck(path, law, nq, mixed), stage, msg)
       if (stage /= 0) then
          print '(a)', '   deck '//name//' failed: '//msg
@@ -168,6 +172,11 @@ contains
          if (trim(en(i)) == 'plastic_work') k = i
       end do
       if (k > 0) r%wp_end = e(k, size(e, 2))
+      if (k > 0) r%wp_min = minval(e(k, 2:) - e(k, :size(e, 2) - 1))
+      itot = column(en, 'total')
+      istr = column(en, 'strain')
+      r%wmat = e(istr, size(e, 2)) + r%wp_end
+      if (r%wmat > 0.0_wp) r%drift = maxval(abs(e(itot, :) - e(itot, 1)))/r%wmat
       r%ok = n == NSTEPS + 1 .and. k > 0 .and. abs(r%t(n) - TEND) <= 1.0e-12_wp*TEND
       if (.not. r%ok) print '(a)', '   deck '//name//': '//rtoa(real(n, wp))//' rows'
    end function run
@@ -210,6 +219,24 @@ contains
 
    ! ---------------------------------------------------------------- tests
 
+   !> The energy balance of a run (doc/plasticity.md, section 5.5): every node of the element is
+   !> driven, so kinetic + strain + plastic work - W_pm (`total` of <stem>.ene) is constant to
+   !> the trapezoid rule's error on the elastic steps before first yield; the plastic work of
+   !> (J31) takes the rest. Asserted: the largest |total(t) - total(0)| within 1e-9 of the work
+   !> done on the material (strain energy + plastic work at the end; W_pm also holds the driven
+   !> nodes' kinetic energy, which falls in the extension), and no step books a negative
+   !> plastic work.
+   subroutine balance(s, r, what)
+      type(suite_t), intent(inout) :: s
+      type(run_t), intent(in) :: r
+      character(len=*), intent(in) :: what
+      call check(s, r%wmat > 0.0_wp .and. r%drift <= 1.0e-9_wp .and. r%wp_min >= 0.0_wp, what// &
+                 ': the energy balance closes (kinetic + strain + plastic work - W_pm within 1e-9 of '// &
+                 'the work on the material; plastic work never decreasing)', 'strain + plastic work '// &
+                 rtoa(r%wmat)//', largest drift '// &
+                 rtoa(r%drift)//', smallest step of the plastic work '//rtoa(r%wp_min))
+   end subroutine balance
+
    !> POWEr: at every plastic row the Kirchhoff von Mises stress J sigma_vm and the output yield
    !> stress (component 10) equal A + B ep^n of the row's ep, to 1e-12 of A (the return solves
    !> (J21) to round-off, section 5.2; the output is printed with 17 digits); the run follows the
@@ -227,6 +254,7 @@ contains
       r = run(trim(name), path, LAW_POWER, nq, mixed)
       call check(s, r%ok, 'POWEr deck runs ('//what//')')
       if (.not. r%ok) return
+      call balance(s, r, 'POWEr '//what)
       eq = 0.0_wp
       ey = 0.0_wp
       npl = 0
@@ -270,6 +298,7 @@ contains
       r = run(trim(name), SHEAR, LAW_JC, nq, mixed)
       call check(s, r%ok, 'JOHNson-cook deck runs ('//what//')')
       if (.not. r%ok) return
+      call balance(s, r, 'JOHNson-cook '//what)
       fac = 1.0_wp + JC_C*log(GDOT/(sqrt(3.0_wp)*EDOT0))
       est = 0.0_wp
       ess = 0.0_wp
@@ -297,9 +326,12 @@ contains
                  'the driven F to 1e-10', 'largest difference '//rtoa(eref))
    end subroutine jc_rate
 
-   !> JOHNson-cook with SPECific heat: (J17) T - Troom = 0.9 W_p/(rho c V0), W_p the plastic
-   !> work of the .ene (the element is homogeneous; V0 = 1 per unit thickness, 1/2 per radian
-   !> for the unit square at r in [0, 1]), to 1e-12. The rise against 0.9 int q dep/(rho c) by
+   !> JOHNson-cook with SPECific heat: (J17) heats with the kernel's dissipation (J27), the
+   !> balance books the trapezoid rule (J31) (doc/plasticity.md, section 5.5): T - Troom against
+   !> 0.9 W_p/(rho c V0), W_p the plastic work of the .ene (the element is homogeneous; V0 = 1 per
+   !> unit thickness, 1/2 per radian for the unit square at r in [0, 1]), within the first-order
+   !> difference of the two rules, 0.9 max(dep) sum |dq| /(rho c) (for small elastic strains
+   !> (J27) - (J31) = 1/2 sum dq dep, (J32)). The rise against 0.9 int q dep/(rho c) by
    !> the backward-Euler sum over the steps, sum q(n+1) dep (the return's Y dep): the dissipation
    !> (J27) is Y dep 3x (x J2 - 3/2 k J3)/(J2 (3 x^2 - k^2 J2)) for the returned deviator k d,
    !> which in axisymmetric extension (d = c diag(-1, 2, -1), c = q/(3 mu x)) is Y dep/(1 + c):
@@ -314,18 +346,30 @@ contains
       logical, intent(in) :: mixed
       character(len=*), intent(in) :: what
       type(run_t) :: r
-      real(wp) :: v0, rise, wq, est, eref, rate, y, soft, lam, mu, q, tol
+      real(wp) :: v0, rise, wq, est, eref, rate, y, soft, lam, mu, q, tol, tv, depm, dheat, bound
       integer :: i, n
       character(len=16) :: name
       write (name, '(a,i0,i0)') 'pdeck_jch', path, nq
       r = run(trim(name), path, LAW_JC_HEAT, nq, mixed)
       call check(s, r%ok, 'JOHNson-cook deck with SPECific heat runs ('//what//')')
       if (.not. r%ok) return
+      call balance(s, r, 'JOHNson-cook with SPECific heat, '//what)
       n = size(r%t)
       v0 = merge(1.0_wp, 0.5_wp, path == SHEAR)
       rise = r%temp(n) - TROOM
-      call check(s, abs(rise - 0.9_wp*r%wp_end/(RHO_CU*CHEAT*v0)) <= 1.0e-12_wp*rise, 'JOHNson '// &
-                 what//': T - Troom = 0.9 W_p/(rho c V0) (rise '//rtoa(rise)//' K)', &
+      ! the heating's (J27) against the balance's (J31): first order in the step, within
+      ! 0.9/(rho c) max(dep) sum |dq| (1/2 sum dq dep for small elastic strains, doubled)
+      tv = 0.0_wp
+      depm = 0.0_wp
+      do i = 2, n
+         tv = tv + abs(r%svm(i)*r%jac(i) - r%svm(i - 1)*r%jac(i - 1))
+         depm = max(depm, r%ep(i) - r%ep(i - 1))
+      end do
+      dheat = rise - 0.9_wp*r%wp_end/(RHO_CU*CHEAT*v0)
+      bound = 0.9_wp*depm*tv/(RHO_CU*CHEAT)
+      call check(s, abs(dheat) <= bound, 'JOHNson '//what//': T - Troom = 0.9 W_p/(rho c V0) '// &
+                 'to the first-order difference of (J27) and (J31), 0.9 max(dep) sum |dq|/(rho c) (rise '// &
+                 rtoa(rise)//' K, difference '//rtoa(dheat)//' K, bound '//rtoa(bound)//' K)', &
                  'W_p '//rtoa(r%wp_end))
       call lame_from_young(E_CU, NU_CU, lam, mu)
       wq = 0.0_wp

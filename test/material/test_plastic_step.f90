@@ -29,6 +29,7 @@ module test_plastic_step
    use exic_material_law, only: law_make, LAW_J2, LAW_NEOHOOKEAN
    use exic_element_quad4, only: q4_lumped_mass
    use exic_element_q4_general, only: q4_solid_t, q4g_init, q4g_force, q4g_hist_init
+   use exic_element_q4_plastic_work, only: NBOOK
    use exic_linalg_lapack, only: dsygv
    use testing, only: suite_t, check, section
    use, intrinsic :: iso_fortran_env, only: output_unit
@@ -39,6 +40,8 @@ module test_plastic_step
 
    real(wp), parameter :: YOUNG = 1.0_wp, RHO = 1.3_wp
    integer, parameter :: NPATH = 40
+   !> history values per point of the plastic one-point element: J2 (5) and the booking (J31)
+   integer, parameter :: NH = 5 + NBOOK
    !> the speeds w(1:NWCHECK) are asserted, the faster ones reported
    integer, parameter :: NWCHECK = 3
 
@@ -125,7 +128,7 @@ contains
       logical, intent(out) :: ok
       type(q4_solid_t) :: o, oel
       type(j2_param_t) :: prm, pel
-      real(wp) :: x0(2, 4), xm(2, 4), ua(2, 4), ub(2, 4), v(2, 4), d(2, 4), hist(5, 1, 1), h0(5, 1, 1)
+      real(wp) :: x0(2, 4), xm(2, 4), ua(2, 4), ub(2, 4), v(2, 4), d(2, 4), hist(NH, 1, 1), h0(NH, 1, 1)
       real(wp) :: m(4), lam, mu, c, fm(2, 2), rot(2, 2), dt0, dta, exa, exb, ell
       integer :: conn(4, 1), k, it
       logical :: plastic, phys
@@ -241,11 +244,11 @@ contains
       type(q4_solid_t), intent(in) :: o
       real(wp), intent(in) :: x0(2, 4), u(2, 4)
       integer, intent(in) :: conn(4, 1)
-      real(wp), intent(inout) :: hist(5, 1, 1)
+      real(wp), intent(inout) :: hist(NH, 1, 1)
       logical, intent(in) :: keep
       real(wp), intent(out), optional :: f(2, 4), d2
       real(wp), intent(in), optional :: v(2, 4)
-      real(wp) :: ft(2, 4), h(5, 1, 1), w, whg, wd, jm, dd
+      real(wp) :: ft(2, 4), h(NH, 1, 1), w, whg, wd, jm, dd
       integer :: eb, em, ef
       h = hist
       ft = 0.0_wp
@@ -262,10 +265,10 @@ contains
    !> exic's step from the state (x0 + u, history h), with the velocities v when given.
    real(wp) function step(o, x0, conn, u, h, v) result(dt)
       type(q4_solid_t), intent(in) :: o
-      real(wp), intent(in) :: x0(2, 4), u(2, 4), h(5, 1, 1)
+      real(wp), intent(in) :: x0(2, 4), u(2, 4), h(NH, 1, 1)
       integer, intent(in) :: conn(4, 1)
       real(wp), intent(in), optional :: v(2, 4)
-      real(wp) :: ht(5, 1, 1), d2
+      real(wp) :: ht(NH, 1, 1), d2
       ht = h
       call forces(o, x0, conn, u, ht, .false., d2=d2, v=v)
       dt = sqrt(d2)
@@ -276,10 +279,10 @@ contains
    !> eigenproblem fails.
    logical function exact(oel, x0, conn, u, h, m, dtx) result(ok)
       type(q4_solid_t), intent(in) :: oel
-      real(wp), intent(in) :: x0(2, 4), u(2, 4), h(5, 1, 1), m(4)
+      real(wp), intent(in) :: x0(2, 4), u(2, 4), h(NH, 1, 1), m(4)
       integer, intent(in) :: conn(4, 1)
       real(wp), intent(out) :: dtx
-      real(wp) :: k(8, 8), mm(8, 8), ev(8), work(64), ub(2, 4), fp(2, 4), fm(2, 4), ht(5, 1, 1), hh, d2
+      real(wp) :: k(8, 8), mm(8, 8), ev(8), work(64), ub(2, 4), fp(2, 4), fm(2, 4), ht(NH, 1, 1), hh, d2
       integer :: j, info
       ok = .false.
       dtx = 0.0_wp

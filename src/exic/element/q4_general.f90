@@ -27,6 +27,7 @@ module exic_element_q4_general
                                   asqbi_forces => q4b_asqbi_forces
    use exic_element_q4_stable, only: q4_stable_dt, stable_block, block_minimum
    use exic_element_q4_barrier, only: corner_barrier, barrier_limit
+   use exic_element_q4_plastic_work, only: NBOOK, book_init, book_block
    implicit none
    private
 
@@ -46,7 +47,10 @@ module exic_element_q4_general
       logical :: axi = .false.               !< GLOBal AXISymmetric
       logical :: mixed = .false.             !< MIXEd: mean dilatation (2x2 only)
       logical :: plastic = .false.           !< J2 plasticity (ep, T and yield stress outputs)
-      integer :: nvar = 0                    !< history values per point stored (law_t%nvar)
+      integer :: nvar = 0                    !< history values per point of the law (law_t%nvar)
+      !> history values per point stored: nvar, and with plasticity the NBOOK values of the
+      !> plastic work's booking after them (q4_plastic_work.f90, doc/plasticity.md (J31))
+      integer :: nhist = 0
       real(wp) :: hg = 0.0_wp
       integer :: hgkind = HOURGLASS_STIFFNESS  !< or HOURGLASS_PHYSICAL (hg its scale; doc/hourglass.md)
       type(law_t) :: law                     !< the material law (material/law.f90)
@@ -69,10 +73,13 @@ contains
       o%law = law
       o%plastic = law%id == LAW_J2
       o%nvar = law%nvar
+      o%nhist = law%nvar
+      if (o%plastic) o%nhist = law%nvar + NBOOK
       o%hg = hg
    end function q4g_init
 
-   !> The initial history of nel elements: hist(nvar, nq*nq, nel) (law_init_history).
+   !> The initial history of nel elements: hist(nhist, nq*nq, nel) (law_init_history, and the
+   !> reference state of the plastic work's booking, book_init).
    pure subroutine q4g_hist_init(o, nel, hist)
       type(q4_solid_t), intent(in) :: o
       integer, intent(in) :: nel
@@ -85,12 +92,14 @@ contains
             hist(1:o%nvar, g, e) = h(1, 1:o%nvar)
          end do
       end do
+      if (o%nhist > o%nvar) call book_init(o%nvar, hist)
    end subroutine q4g_hist_init
 
    !> Internal forces of nel elements (the general path of q4_force_2x2/q4_force_1pt), fused
-   !> with the stable step, updating the history hist(nvar, nq*nq, nel) of a plastic set (not
+   !> with the stable step, updating the history hist(nhist, nq*nq, nel) of a set with one (not
    !> used otherwise). dt: the step over which u changed (Johnson-Cook's rate). wint: strain
-   !> energy, whg: hourglass energy, wdis: plastic dissipation of the step; the rest as in
+   !> energy, whg: hourglass energy, wdis: plastic work of the step by the trapezoid rule of the
+   !> stress power (J31) (the history keeps what it needs: call once per step); the rest as in
    !> q4_force_2x2.
    pure subroutine q4g_force(o, nel, nnode, conn, x0, u, dt, hist, f, wint, whg, wdis, jmin, ebad, &
                              dt2min, emin, efold, v)
@@ -150,9 +159,9 @@ contains
       integer, intent(inout) :: ebad, emin, efold
       real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, f11, f12, f21, f22, jac, js, wt, i11, i12, &
                                         i21, i22, p11, p12, p21, p22, p33, wq, fx, fy, f33, rg, jchk, &
-                                        b11, b12, b21, b22, b33, bj, al, dw, ys
+                                        b11, b12, b21, b22, b33, bj, al, dw, ys, yl
       real(wp), dimension(NBLOCK, 4, NVMAX) :: h
-      real(wp) :: dt2(NBLOCK), good(NBLOCK), we(NBLOCK), wd(NBLOCK), nn(4, 4), p0(2, NBLOCK, 4), &
+      real(wp) :: dt2(NBLOCK), good(NBLOCK), we(NBLOCK), nn(4, 4), p0(2, NBLOCK, 4), &
                   pu(2, NBLOCK, 4)
       integer :: k, g, a
 
@@ -176,9 +185,12 @@ contains
       bj = js
       if (o%mixed) call mean_dilatation(wt, js, f33, al, b11, b12, b21, b22, b33, bj)
       call law(o, 4, nb, dt, hist, h0, h, b11, b12, b21, b22, b33, bj, wt, p11, p12, p21, p22, p33, &
-               wq, dw, ys)
+               wq, dw, ys, yl)
       if (o%mixed) call mixed_stress(wt, js, f11, f12, f21, f22, f33, al, b11, b12, b21, b22, b33, &
                                      p11, p12, p21, p22, p33)
+      ! the plastic work of the step (J31): the stress that works on F (p* with MIXEd) and F
+      if (o%plastic) call book_block(4, nb, o%nvar, hist, h0, f11, f12, f21, f22, f33, p11, p12, &
+                                     p21, p22, p33, wq, yl, wdis)
       call forces_2x2(p11, p12, p21, p22, i11, i12, i21, i22, fx, fy)
       if (o%axi) then
          ! hoop forces (A4)
@@ -191,10 +203,8 @@ contains
       end if
       do k = 1, NBLOCK
          we(k) = ((wq(k, 1) + wq(k, 2)) + wq(k, 3)) + wq(k, 4)
-         wd(k) = ((dw(k, 1) + dw(k, 2)) + dw(k, 3)) + dw(k, 4)
       end do
       wint = wint + lane_sum(nb, we)
-      wdis = wdis + lane_sum(nb, wd)
       call check_points(nb, 4, off, jchk, jmin, ebad)
       call current(xe, ye, uxe, uye)
       call stable_block(2, xe, ye, uxe, uye, o%law, dt2, good)
@@ -307,16 +317,18 @@ contains
 
    !> The law at the np x NBLOCK points of a block (law_piola_general) with the block's history
    !> copied in from hist(:, :, h0 + k - 1) (lanes 1..nb; the padding lanes repeat lane nb) and
-   !> back after the call, for a law with history; the virgin history for one without.
+   !> back after the call, for a law with history; the virgin history for one without. yl: 1 at
+   !> a point whose plastic strain grew (a plastic set), else 0.
    pure subroutine law(o, np, nb, dt, hist, h0, h, f11, f12, f21, f22, f33, js, wt, p11, p12, p21, &
-                       p22, p33, wq, dw, ys)
+                       p22, p33, wq, dw, ys, yl)
       type(q4_solid_t), intent(in) :: o
       integer, intent(in) :: np, nb, h0
       real(wp), intent(in) :: dt
       real(wp), intent(inout) :: hist(:, :, :)
       real(wp), intent(out) :: h(NBLOCK, np, NVMAX)
       real(wp), intent(in), dimension(NBLOCK, np) :: f11, f12, f21, f22, f33, js, wt
-      real(wp), intent(out), dimension(NBLOCK, np) :: p11, p12, p21, p22, p33, wq, dw, ys
+      real(wp), intent(out), dimension(NBLOCK, np) :: p11, p12, p21, p22, p33, wq, dw, ys, yl
+      real(wp) :: ep0(NBLOCK, np)
       integer :: k, g, v
       if (o%nvar > 0) then
          do g = 1, np
@@ -330,6 +342,7 @@ contains
       else
          call law_init_history(o%law, np*NBLOCK, h)
       end if
+      if (o%plastic) ep0 = h(:, :, 5)
       call law_piola_general(o%law, np*NBLOCK, dt, f11, f12, f21, f22, f33, js, wt, h, p11, p12, &
                              p21, p22, p33, wq, dw, ys)
       if (o%nvar > 0) then
@@ -341,6 +354,8 @@ contains
             end do
          end do
       end if
+      yl = 0.0_wp
+      if (o%plastic) yl = merge(1.0_wp, 0.0_wp, h(:, :, 5) > ep0)
    end subroutine law
 
    !> One block of the one-point general path: F at the centroid with F33 = r_c/R_c and the
@@ -356,7 +371,7 @@ contains
       integer, intent(inout) :: ebad, emin, efold
       real(wp), dimension(NBLOCK, 4) :: xe, ye, uxe, uye, fx, fy, hx, hy
       real(wp), dimension(NBLOCK) :: f11, f12, f21, f22, jac, js, a0, r0, p11, p12, p21, p22, p33, &
-                                     wq, eh, dt2, good, f33, rc, wt, jchk, dw, ys, zero, ob
+                                     wq, eh, dt2, good, f33, rc, wt, jchk, dw, ys, zero, ob, yl
       real(wp), intent(in), optional :: v(2, nnode)
       real(wp) :: h(NBLOCK, 1, NVMAX), kh
       integer :: k, a
@@ -376,7 +391,10 @@ contains
       end if
       call point_checks(NBLOCK, jac, f33, js, jchk)
       call law(o, 1, nb, dt, hist, h0, h, f11, f12, f21, f22, f33, js, wt, p11, p12, p21, p22, p33, &
-               wq, dw, ys)
+               wq, dw, ys, yl)
+      ! the plastic work of the step (J31); the hourglass forces stay elastic and outside it
+      if (o%plastic) call book_block(1, nb, o%nvar, hist, h0, f11, f12, f21, f22, f33, p11, p12, &
+                                     p21, p22, p33, wq, yl, wdis)
       if (o%axi) then
          ! mean part with the ring weights, hourglass part of the plane element times R_c
          zero = 0.0_wp
@@ -404,7 +422,6 @@ contains
          call forces_1pt(xe, ye, uxe, uye, r0, p11, p12, p21, p22, kh, fx, fy, eh)
       end if
       wint = wint + lane_sum(nb, wq)
-      wdis = wdis + lane_sum(nb, dw)
       call check_points(nb, 1, off, jchk, jmin, ebad)
       call current(xe, ye, uxe, uye)
       ! the corner barrier (doc/hourglass.md section 5), times R_c in axisymmetry
@@ -574,7 +591,7 @@ contains
             sig(:, e) = 0.0_wp
             do g = 1, ng
                call law_init_history(o%law, 1, h)
-               if (o%nvar > 0) h(1, 1:o%nvar) = hist(:, g, e)
+               if (o%nvar > 0) h(1, 1:o%nvar) = hist(1:o%nvar, g, e)
                if (jchk(k, g) > 0.0_wp) then
                   fb = [b11(k, g), b12(k, g), b21(k, g), b22(k, g), b33(k, g)]
                   call law_cauchy_general(o%law, 1, fb(1:1), fb(2:2), fb(3:3), fb(4:4), fb(5:5), h, &

@@ -22,7 +22,7 @@ module exic_explicit_assembly
    use exic_material_material, only: material_t, MAT_SOLID, MAT_RIGID, material_law
    use exic_material_law, only: law_has_history
    use exic_explicit_state, only: state_t, element_set_t, plus_zero
-   use exic_explicit_central, only: cd_kinetic, cd_kinetic_power, cd_zero
+   use exic_explicit_central, only: cd_kinetic, cd_kinetic_power, cd_zero, cd_contact_power
    use exic_explicit_dissipation, only: mass_damping, half_work, damped_step
    use exic_element_q4_bulk_viscosity, only: q4_bulk_viscosity
    use exic_element_quad4, only: q4_check_reference, q4_force_2x2, q4_force_1pt, q4_lumped_mass, &
@@ -33,7 +33,7 @@ module exic_explicit_assembly
    private
 
    public :: assembly_init, internal_forces, stable_step, kinetic_energy, kinetic_correction, element_stress, &
-             energy_balance, &
+             energy_balance, contact_correction, book_contact_change, &
              book_step_change, all_stresses, forces_open, set_damping, forces_close
    public :: set_ranges, NSIG
 
@@ -161,7 +161,7 @@ contains
                                              (m%mixed .and. m%quadrature == 2))
       s%solid = q4g_init(m%quadrature, axi, m%mixed, s%law, m%hourglass, m%hourglass_kind)
       if (s%solid%nvar > 0) then
-         allocate (s%hist(s%solid%nvar, s%nq*s%nq, s%nel))
+         allocate (s%hist(s%solid%nhist, s%nq*s%nq, s%nel))
          call q4g_hist_init(s%solid, s%nel, s%hist)
       else
          allocate (s%hist(1, 1, 1), source=0.0_wp)
@@ -516,6 +516,23 @@ contains
       type(state_t), intent(in) :: st
       c = -0.125_wp*st%dt*st%dt*kinetic_power(st) + st%dt_residual - st%correction0
    end function kinetic_correction
+
+   !> The contact part of the energy guard's kinetic correction (doc/loads.md, section 3, eq.
+   !> P.5): -dt(n+1)^2/8 S(n), S = fcon . a over the free dofs with mass, plus the sum booked at
+   !> the changes of the step, less its value at t = 0 (both in st%contact_residual).
+   real(wp) function contact_correction(st) result(c)
+      type(state_t), intent(in) :: st
+      c = -0.125_wp*st%dt*st%dt*cd_contact_power(st%nnode, st%minv, st%fcon, st%a) + st%contact_residual
+   end function contact_correction
+
+   !> Before book_step_change, when the step to come differs from the one booked: the contact
+   !> part of eq. E.4, (dt_new^2 - dt_old^2)/8 S(n) (doc/loads.md, eq. P.5).
+   subroutine book_contact_change(st)
+      type(state_t), intent(inout) :: st
+      if (st%dt == st%dt_booked) return
+      st%contact_residual = st%contact_residual + &
+                            0.125_wp*(st%dt*st%dt - st%dt_booked*st%dt_booked)*cd_contact_power(st%nnode, st%minv, st%fcon, st%a)
+   end subroutine book_contact_change
 
    !> The energy balance of <stem>.ene (explicit/energy.f90, energy_total): the total with the
    !> change of the kinetic correction since t = 0 (doc/decisions.md, "Energy balance", eq. E.3),

@@ -25,7 +25,7 @@ module exic_explicit_central
    public :: cd_displacement, cd_predictor, cd_velocity, positions, cd_zero, cd_kinetic
    public :: cd_kinetic_power, cd_displacement_plain, cd_update_plain
    public :: cd_displacement_plain_at, cd_update_plain_chunks, cd_plain_fold
-   public :: positions_at, predictor_velocity_at
+   public :: positions_at, predictor_velocity_at, cd_contact_power
 
    !> Nodes per chunk (fixed: the order of the additions of a sum must not depend on threads).
    integer, parameter, public :: CHUNK = 1024
@@ -544,6 +544,21 @@ contains
          call power_range(m, minv(1, i0), fext(1, i0), fint(1, i0), a(1, i0), pr(c))
       end subroutine power_chunk
    end function cd_kinetic_power
+
+   !> S = fcon . a over the free dofs with mass (minv > 0): the contact force's part of the
+   !> energy guard's kinetic correction, -dt^2/8 S (doc/loads.md, section 3, eq. P.5). One serial
+   !> pass in node order (the same bits for every number of threads).
+   pure function cd_contact_power(n, minv, fcon, a) result(s)
+      integer, intent(in) :: n
+      real(wp), intent(in), dimension(2, n) :: minv, fcon, a
+      real(wp) :: s
+      integer :: k
+      s = 0.0_wp
+      do k = 1, n
+         s = s + merge(fcon(1, k), 0.0_wp, minv(1, k) > 0.0_wp)*a(1, k) + &
+             merge(fcon(2, k), 0.0_wp, minv(2, k) > 0.0_wp)*a(2, k)
+      end do
+   end function cd_contact_power
 
    !> Q of cd_kinetic_power over m nodes (lane_sum).
    pure subroutine power_range(m, minv, fext, fint, a, s)

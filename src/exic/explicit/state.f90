@@ -94,6 +94,9 @@ module exic_explicit_state
       real(wp) :: correction0 = 0.0_wp          !< the correction at t = 0
       real(wp) :: dt_residual = 0.0_wp          !< its sum over the changes of the step (E.4)
       real(wp) :: dt_booked = 0.0_wp            !< the step that sum is made for
+      !> the energy guard's contact part of the correction (doc/loads.md, eq. P.5): its value at t = 0
+      !> with the sign changed plus its sum over the changes of the step
+      real(wp) :: contact_residual = 0.0_wp
       logical :: axisymmetric = .false.         !< GLOBal AXISymmetric: quantities per radian
       logical :: has_plastic = .false.          !< a set is plastic (outputs name ep, T, Y)
       real(wp) :: momentum(2) = 0.0_wp

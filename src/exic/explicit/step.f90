@@ -37,7 +37,7 @@ module exic_explicit_step
    use exic_contact_contact, only: contact_t
    use exic_explicit_state, only: state_t, element_set_t, plus_zero
    use exic_explicit_assembly, only: assembly_init, internal_forces, force_result_t, stable_step, kinetic_energy, &
-                                     kinetic_correction, book_step_change
+                                     kinetic_correction, book_step_change, contact_correction, book_contact_change
    use exic_explicit_central, only: cd_displacement, cd_predictor, cd_velocity, cd_displacement_plain, &
                                     cd_update_plain, positions, positions_at, predictor_velocity_at
    use exic_explicit_loads, only: load_spec_t
@@ -287,6 +287,9 @@ contains
          st%correction0 = 0.0_wp
          st%dt_booked = st%dt
          st%correction0 = kinetic_correction(st)
+         ! the energy guard's contact part of the correction starts from the state before the
+         ! start's corrector: its kick at t = 0 is the first capture (doc/loads.md, eq. P.5)
+         st%contact_residual = 0.0_wp
       end associate
       call check_health(self, err)
    end subroutine stepper_start
@@ -317,6 +320,7 @@ contains
       if (self%path == 0 .or. (associated(self%hook) .neqv. self%path_hook)) call choose_path(self, err)
       if (allocated(err)) return
       ! a step set between steps (BATCh DT) enters the kinetic correction (eq. E.4)
+      if (guard_contact(self)) call book_contact_change(self%st)
       call book_step_change(self%st)
       ! 1. x(n+1) = x(n) + dt(n) v(n) + dt(n)^2/2 a(n)
       call displacement(self)
@@ -346,6 +350,7 @@ contains
       end if
       ! 7. energies of the bodies and health; dt(n+1) enters the kinetic correction (eq. E.4)
       if (self%ld%active) call self%ld%energy(self%st)
+      if (guard_contact(self)) call book_contact_change(self%st)
       if (power_q) then
          call book_step_change(self%st, qnodes)
       else
@@ -354,6 +359,13 @@ contains
       self%time_steps = self%time_steps + (wall_time() - t0)
       call check_health(self, err)
    end subroutine advance_step
+
+   !> The energy guard measures the contact part of the kinetic correction: loads or prescribed
+   !> motion and contact (doc/loads.md, section 3, eq. P.5).
+   pure logical function guard_contact(self) result(yes)
+      type(stepper_t), intent(in) :: self
+      yes = self%ld%active .and. self%has_contact()
+   end function guard_contact
 
    !> The kernels of the steps to come, from what the model has (contact, loads, masses per dof,
    !> divided nodes, a host's hook): chosen at the start and when a hook is attached.

@@ -33,6 +33,9 @@ contains
             ! correction (doc/loads.md, section 3, eq. P.4), against the larger of two estimates
             ! of their work (loading.f90)
             e = e + kinetic_correction(st)
+            ! the contact forces' part of it: the energy conserved across a closed contact
+            ! (doc/loads.md, section 3, eq. P.5)
+            if (self%has_contact()) e = e + contact_correction(st)
             w_in = self%ld%work_in(st)
             put_in = abs(st%energy%total0) + max(abs(st%energy%wext) + abs(st%energy%wpm), abs(w_in))
          else
