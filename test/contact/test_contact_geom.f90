@@ -35,6 +35,8 @@ contains
       call test_robustness(s)
       call test_thin_target(s)
       call test_corner(s)
+      call test_facing_sides(s)
+      call test_vertex_rule(s)
       call test_broad_random(s)
       call test_broad_kept(s)
       call test_broad_scaling(s)
@@ -537,6 +539,111 @@ contains
       call check(s, cs%n == 1 .and. cs%seg(1) == 2 .and. all(cs%normal(:, 1) == [-1.0_wp, 0.0_wp]), &
                  'slave corner normal (1,1): top face rejected, side face kept')
    end subroutine test_corner
+
+   !> The facing rule's side test (doc/contact-detection.md, "Facing test", F.1): the convex
+   !> corner of a crushed element (scene 82 of seed 20261229) crossing a wall. Master: the wall
+   !> face 1 (0,0) -> 2 (0,1), normal (1,0). Slave surface: the sliver 7 (0.1,0.4) -> 5 -> 6
+   !> (5e-4,0.1) -> 7, whose corner 5 (5e-4,0.5) has the segments 7 -> 5 (normal (1,1)/sqrt 2)
+   !> and 5 -> 6 (normal (-1,0), lying on the wall), so its node normal (-0.38, 0.92) gives
+   !> -0.38 with the wall's: not below cos(120 degrees). Node 5 moves to (-1e-3, 0.52) in the
+   !> step and crosses the wall at tau = 1/3.
+   subroutine test_facing_sides(s)
+      type(suite_t), intent(inout) :: s
+      real(wp), parameter :: FACING = -0.5_wp   ! the contact step's (src/exic/contact/contact.f90)
+      real(wp) :: x0(2, 7), x1(2, 7), snrm(2, 1), r
+      integer :: mseg(2, 1), mlink(2, 1), sseg(2, 3), cand(2, 1), head(2), segs(2)
+      type(contact_set_t) :: cs
+
+      call section(s, 'contact geometry: facing rule, side test at a convex corner')
+      x0 = 0.0_wp
+      x0(:, 1) = [0.0_wp, 0.0_wp]; x0(:, 2) = [0.0_wp, 1.0_wp]
+      x0(:, 5) = [5.0e-4_wp, 0.5_wp]; x0(:, 6) = [5.0e-4_wp, 0.1_wp]; x0(:, 7) = [0.1_wp, 0.4_wp]
+      x1 = x0
+      x1(:, 5) = [-1.0e-3_wp, 0.52_wp]
+      mseg(:, 1) = [1, 2]; mlink = 0
+      sseg(:, 1) = [7, 5]; sseg(:, 2) = [5, 6]; sseg(:, 3) = [6, 7]
+      ! slave 1 (node 5): its segments 1 and 2
+      head = [1, 3]; segs = [1, 2]
+      cand(:, 1) = [1, 1]
+      snrm(:, 1) = average_normal(segment_normal(x0(:, 7), x0(:, 5)), segment_normal(x0(:, 5), x0(:, 6)))
+      call check(s, dot_product(snrm(:, 1), [1.0_wp, 0.0_wp]) > FACING, &
+                 'the corner''s node normal fails the facing limit')
+      call detect_contacts(cs, DETECT_SWEPT, 7, x0, x1, 1, [5], snrm, 1, mseg, mlink, 1, cand, &
+                           0.1_wp, FACING)
+      call check(s, cs%n == 0, 'node normal alone: the crossing is missed')
+      call detect_contacts(cs, DETECT_SWEPT, 7, x0, x1, 1, [5], snrm, 1, mseg, mlink, 1, cand, &
+                           0.1_wp, FACING, fseg=sseg, fhead=head, fsegs=segs)
+      call check(s, cs%n == 1, 'side test (normals given): one contact')
+      if (cs%n == 1) then
+         call check_close(s, cs%tau(1), 1.0_wp/3.0_wp, 1.0e-12_wp, 'side test: tau of the crossing')
+         call check(s, cs%gap(1) < 0.0_wp .and. all(cs%normal(:, 1) == [1.0_wp, 0.0_wp]), &
+                    'side test: the wall normal, gap closed by the corrector')
+      end if
+      snrm = 0.0_wp
+      call detect_contacts(cs, DETECT_SWEPT, 7, x0, x1, 1, [5], snrm, 1, mseg, mlink, 1, cand, &
+                           0.1_wp, FACING, 3, sseg, head, segs)
+      call check(s, cs%n == 1, 'side test (normals formed in the narrow phase): one contact')
+      if (cs%n == 1) call check_close(s, cs%tau(1), 1.0_wp/3.0_wp, 1.0e-12_wp, &
+                                      'side test (normals formed): tau of the crossing')
+      ! equal-height bodies: a block's corner 5 (1.05, 1) sliding in over the other block's top
+      ! face 1 (2,1) -> 2 (1,1), normal (0,1); the corner's segments 5 -> 7 (top, normal (0,1))
+      ! and 6 -> 5 (side, normal (1,0)): neither faces the top face, still rejected
+      x0 = 0.0_wp
+      x0(:, 1) = [2.0_wp, 1.0_wp]; x0(:, 2) = [1.0_wp, 1.0_wp]
+      x0(:, 5) = [1.05_wp, 1.0_wp]; x0(:, 6) = [1.05_wp, 0.0_wp]; x0(:, 7) = [0.05_wp, 1.0_wp]
+      x1 = x0
+      x1(:, 5) = [1.1_wp, 0.99_wp]
+      sseg(:, 1) = [5, 7]; sseg(:, 2) = [6, 5]; sseg(:, 3) = [7, 6]
+      r = sqrt(0.5_wp)
+      snrm(:, 1) = [r, r]
+      call detect_contacts(cs, DETECT_SWEPT, 7, x0, x1, 1, [5], snrm, 1, mseg, mlink, 1, cand, &
+                           0.1_wp, FACING, fseg=sseg, fhead=head, fsegs=segs)
+      call check(s, cs%n == 0, 'block corner over the top face of a block of equal height: rejected')
+   end subroutine test_facing_sides
+
+   !> The vertex rule (doc/contact-detection.md, "Vertex rule", V.1-V.2). (a) The corner of a
+   !> projectile in the dent it made in a plate (the erosion family's 2x2 elastic plates): the
+   !> plate's surface 1 (0,1) -> 2 (0,0) -> 3 (-1,0) (body x > 0 or y < 0, a concave corner at
+   !> 2); slave 4 at (1e-4, -1e-4), behind both lines, moving to (2e-4, -3e-4), projects past
+   !> node 2 on both segments (alpha 1 + 1e-4 and -1e-4): paired with node 2 along the master
+   !> node normal. (b) A block's convex corner 2 (0,0) of the surface 1 (0,-1) -> 2 -> 3 (-1,0)
+   !> (body x < 0 and y < 0); slave 4 passing it outside, (1e-4, 1e-4) -> (1e-4, -2e-4), crosses
+   !> the top face's line past node 2 but not the side face's: no contact.
+   subroutine test_vertex_rule(s)
+      type(suite_t), intent(inout) :: s
+      real(wp) :: x0(2, 4), x1(2, 4), snrm(2, 1), r
+      integer :: seg(2, 2), link(2, 2), cand(2, 2)
+      type(contact_set_t) :: cs
+
+      call section(s, 'contact geometry: vertex rule at a master node')
+      r = sqrt(0.5_wp)
+      seg(:, 1) = [1, 2]; seg(:, 2) = [2, 3]
+      call segment_links(2, seg, link)
+      cand(:, 1) = [1, 1]; cand(:, 2) = [1, 2]
+      snrm = 0.0_wp
+      x0(:, 1) = [0.0_wp, 1.0_wp]; x0(:, 2) = [0.0_wp, 0.0_wp]; x0(:, 3) = [-1.0_wp, 0.0_wp]
+      x0(:, 4) = [1.0e-4_wp, -1.0e-4_wp]
+      x1 = x0
+      x1(:, 4) = [2.0e-4_wp, -3.0e-4_wp]
+      call detect_contacts(cs, DETECT_SWEPT, 4, x0, x1, 1, [4], snrm, 2, seg, link, 2, cand, &
+                           0.1_wp, FACING_LIMIT)
+      call check(s, cs%n == 1, 'past node 2 on both segments, behind both lines: one contact')
+      if (cs%n == 1) then
+         call check(s, cs%at_end(1) .and. cs%master(nint(1.0_wp + cs%alpha(1)), 1) == 2, &
+                    'the contact point is the master node 2')
+         call check(s, maxval(abs(cs%normal(:, 1) - [-r, r])) < 1.0e-15_wp, 'the master node normal')
+         call check_close(s, cs%gap(1), dot_product(x1(:, 4), [-r, r]), 1.0e-18_wp, &
+                          'predicted gap from node 2 along it')
+         call check(s, cs%tau(1) == 0.0_wp, 'in contact from the start of the step')
+      end if
+      x0(:, 1) = [0.0_wp, -1.0_wp]; x0(:, 2) = [0.0_wp, 0.0_wp]; x0(:, 3) = [-1.0_wp, 0.0_wp]
+      x0(:, 4) = [1.0e-4_wp, 1.0e-4_wp]
+      x1 = x0
+      x1(:, 4) = [1.0e-4_wp, -2.0e-4_wp]
+      call detect_contacts(cs, DETECT_SWEPT, 4, x0, x1, 1, [4], snrm, 2, seg, link, 2, cand, &
+                           0.1_wp, FACING_LIMIT)
+      call check(s, cs%n == 0, 'a slave passing a convex corner outside it: no contact')
+   end subroutine test_vertex_rule
 
    ! ----------------------------------------------------------- broad phase
 

@@ -40,6 +40,11 @@
 !>   with 11 % growth (the release build of ed34b8b). With the barrier's entry bound
 !>   (doc/hourglass.md (H20)) it ends at its final time and the physical energy never exceeds
 !>   the energy put in.
+!> - scene 82 of seed 20261229: a plastic disk between two fixed rigid walls; the convex corner
+!>   node of a crushed element (node normal 67 degrees from the wall's) failed the facing test
+!>   and crossed the wall, 0.42 edges deep when element 227 inverted at step 355. With the facing
+!>   rule's side test (doc/contact-detection.md, "Facing test") the run ends at its final time
+!>   with no node inside a wall. (Saved under its own name, as scene 101 of seed 20261123.)
 module test_stress_decks
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
@@ -117,6 +122,16 @@ contains
                  'the summary counts the checks that found the ring through itself', &
                  line_with(out, 'through itself'))
       call check_final_time(s, out, 1.1227209_wp, 'runs to its final time 1.1227')
+      call section(s, 'stress decks: scene 82 of seed 20261229, a crushed corner against a rigid wall')
+      call run_saved(s, 'facing_side_20261229_0082', out)
+      call check_final_time(s, out, 0.20316527_wp, 'final time 0.2032 (stopped at 0.0672, element 227 '// &
+                            'inverted, a node 0.42 edges inside the wall)')
+      v = number_after(line_with(out, 'largest penetration'), ' by ')
+      if (index(line_with(out, 'largest penetration'), '(geometric, at') > 0) v = 0.0_wp   ! no node inside
+      call check(s, v >= 0.0_wp .and. v < 1.0e-3_wp, 'deepest node inside another body < 1e-3 edges '// &
+                 '(was 0.42)', line_with(out, 'largest penetration'))
+      call check(s, index(out, 'warning: at t') == 0, 'no penetration warning')
+      call check_growth(s, out, 'energy growth below the warning limit of 1 %')
    end subroutine run_stress_decks_tests
 
    !> The run's largest energy growth (<stem>.out) is below the warning limit of 1 %.

@@ -194,6 +194,9 @@ contains
    end subroutine swept_pair
 
    !> swept_pair with the segment's unit normals ni (at x0) and nf (at x1) given.
+   !> `crossed` (optional): the gap condition held (a crossing at tau, or in contact from the
+   !> start), whatever the projection; alpha is then the projection at tau even when it falls
+   !> outside the segment (hit false), as the vertex rule of detect_pairs reads it.
    pure subroutine swept_given(xs0, xs1, xa0, xa1, xb0, xb1, ni, nf, depth, hit, tau, alpha, crossed)
       real(wp), intent(in) :: xs0(2), xs1(2), xa0(2), xa1(2), xb0(2), xb1(2), ni(2), nf(2), depth
       logical, intent(out) :: hit
@@ -276,7 +279,7 @@ contains
    subroutine detect_pairs(mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, link, &
                            ncand, cand, depth, facing, ncon, cslave, cseg, cmaster, &
                            cend, calpha, cnormal, ctau, cgap, nsseg, sseg, shead, ssegs, &
-                           stamp, mnrm, mstamp, snrm_seg, sstamp)
+                           stamp, mnrm, mstamp, snrm_seg, sstamp, fseg, fhead, fsegs)
       integer, intent(in) :: mode, nnode, nslave, nseg, ncand
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), depth, facing
       real(wp), intent(inout) :: snrm(2, nslave)
@@ -289,15 +292,19 @@ contains
       integer, intent(in), optional :: stamp
       real(wp), intent(inout), optional :: mnrm(4, *), snrm_seg(4, *)
       integer, intent(inout), optional :: mstamp(*), sstamp(*)
+      ! the slave surface's segments and node -> segments lists for the side test of the facing
+      ! rule when the lists above are not given (every node normal formed already)
+      integer, intent(in), optional :: fseg(2, *), fhead(*), fsegs(*)
       integer, intent(out) :: ncon
       integer, intent(out) :: cslave(nslave), cseg(nslave), cmaster(2, nslave)
       logical, intent(out) :: cend(nslave)
       real(wp), intent(out) :: calpha(nslave), cnormal(2, nslave), ctau(nslave), cgap(nslave)
       integer :: j, j0, s, k, node, ma, mb, best, bkey(2), key(2), q, ks
       real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap, w
-      logical :: hit, lazy, have_nrm, cached, crossed
+      logical :: hit, lazy, have_nrm, cached, sides, crossed
 
       lazy = present(nsseg) .and. present(sseg) .and. present(shead) .and. present(ssegs)
+      sides = present(fseg) .and. present(fhead) .and. present(fsegs)
       cached = lazy .and. mode == DETECT_SWEPT .and. present(stamp) .and. present(mnrm) .and. &
                present(mstamp) .and. present(snrm_seg) .and. present(sstamp)
 
@@ -329,12 +336,15 @@ contains
                call swept_given(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
                                 x1(:, mb), mnrm(1:2, k), mnrm(3:4, k), depth, hit, tau, alpha, crossed)
                if (.not. (hit .or. crossed)) cycle
+               ! at a master node both of whose lines it crossed: paired with the node (vertex rule)
+               if (.not. hit) call vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, alpha, hit)
                nf = mnrm(3:4, k)
             else
                ! nf: the normal of the segment at x1, as the swept test formed it
                call swept_pair(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
                                x1(:, mb), depth, hit, tau, alpha, nf, crossed)
                if (.not. (hit .or. crossed)) cycle
+               if (.not. hit) call vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, alpha, hit)
             end if
             if (.not. have_nrm) then
                if (cached) then
@@ -350,7 +360,16 @@ contains
                end if
                have_nrm = .true.
             end if
-            if (.not. faces(snrm(:, s), nf, facing)) cycle
+            if (.not. faces(snrm(:, s), nf, facing)) then
+               ! the facing rule's side test (doc/contact-detection.md, "Facing test")
+               if (lazy) then
+                  if (.not. side_faces(nnode, x0, sseg, shead, ssegs, s, nf, facing)) cycle
+               else if (sides) then
+                  if (.not. side_faces(nnode, x0, fseg, fhead, fsegs, s, nf, facing)) cycle
+               else
+                  cycle
+               end if
+            end if
             if (.not. hit) then
                ! off the segment: caught only just past an end at a convex corner whose other face
                ! turns away from the slave ("A node at a master's convex corner")
@@ -441,6 +460,71 @@ contains
          p = x0(:, j) + tau*(x1(:, j) - x0(:, j))
       end function at
    end function past_corner
+
+   !> The vertex rule (doc/contact-detection.md, "Vertex rule", V.1-V.2): slave `node` crossed the
+   !> line of segment k (swept test, at tau, projection alpha) but projects past its end node m;
+   !> when the slave also crossed the line of the neighbour segment at m and projects past m on
+   !> it, it is behind both lines next to m, inside the master at its corner m: a hit at
+   !> m (alpha 0 or 1, so finish_contact gives the master node normal), at the later of the two
+   !> crossing times. On return hit tells whether the rule holds; tau and alpha are then set.
+   pure subroutine vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, alpha, hit)
+      integer, intent(in) :: nnode, node, k, nseg, seg(2, nseg), link(2, nseg)
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), depth
+      real(wp), intent(inout) :: tau, alpha
+      logical, intent(out) :: hit
+      real(wp) :: taun, alphan
+      integer :: nb, m, na, nbb
+      logical :: crossed, inside
+
+      hit = .false.
+      if (.not. (alpha < 0.0_wp .or. alpha > 1.0_wp)) return
+      if (alpha < 0.0_wp) then
+         nb = link(1, k)
+         m = seg(1, k)
+      else
+         nb = link(2, k)
+         m = seg(2, k)
+      end if
+      if (nb <= 0) return
+      na = seg(1, nb); nbb = seg(2, nb)
+      if (na == node .or. nbb == node) return
+      call swept_given(x0(:, node), x1(:, node), x0(:, na), x1(:, na), x0(:, nbb), x1(:, nbb), &
+                       segment_normal(x0(:, na), x0(:, nbb)), segment_normal(x1(:, na), x1(:, nbb)), &
+                       depth, inside, taun, alphan, crossed)
+      if (.not. crossed) return
+      ! past m on the neighbour too (V.2); within it, the neighbour's own test pairs the slave
+      if (alpha < 0.0_wp) then
+         if (.not. (alphan > 1.0_wp)) return
+         alpha = 0.0_wp
+      else
+         if (.not. (alphan < 0.0_wp)) return
+         alpha = 1.0_wp
+      end if
+      tau = max(tau, taun)
+      hit = .true.
+   end subroutine vertex_entry
+
+   !> The side test of the facing rule (doc/contact-detection.md, "Facing test", eq. F.1): true
+   !> when a segment of the slave surface at slave s (its node -> segments lists head, segs)
+   !> faces the master normal n at x0, n_k . n < facing with n_k the segment's unit normal
+   !> (segment_normal, as the node normal's sum forms it). A convex corner whose node normal is
+   !> tilted too far from n, one face of it turned to the master, is then still paired.
+   pure logical function side_faces(nnode, x0, seg, head, segs, s, n, facing) result(ok)
+      integer, intent(in) :: nnode, seg(2, *), head(*), segs(*), s
+      real(wp), intent(in) :: x0(2, nnode), n(2), facing
+      real(wp) :: nk(2)
+      integer :: q, ks
+      ok = .false.
+      do q = head(s), head(s + 1) - 1
+         ks = segs(q)
+         nk = segment_normal(x0(:, seg(1, ks)), x0(:, seg(2, ks)))
+         if (nk(1) == 0.0_wp .and. nk(2) == 0.0_wp) cycle
+         if (dot_product(nk, n) < facing) then
+            ok = .true.
+            return
+         end if
+      end do
+   end function side_faces
 
    !> Unit normals of the segment ma -> mb at x0 (n(1:2)) and at x1 (n(3:4)).
    pure subroutine both_normals(nnode, x0, x1, ma, mb, n)
@@ -535,7 +619,7 @@ contains
    !> detect_pairs for the arguments and the rules.
    subroutine detect_contacts(cs, mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, &
                               link, ncand, cand, depth, facing, nsseg, sseg, shead, ssegs, &
-                              stamp, mnrm, mstamp, snrm_seg, sstamp)
+                              stamp, mnrm, mstamp, snrm_seg, sstamp, fseg, fhead, fsegs)
       type(contact_set_t), intent(inout) :: cs
       integer, intent(in) :: mode, nnode, nslave, nseg, ncand
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), depth, facing
@@ -546,6 +630,7 @@ contains
       integer, intent(in), optional :: stamp
       real(wp), intent(inout), optional :: mnrm(4, *), snrm_seg(4, *)
       integer, intent(inout), optional :: mstamp(*), sstamp(*)
+      integer, intent(in), optional :: fseg(2, *), fhead(*), fsegs(*)
       integer :: cap
 
       cap = 0
@@ -562,7 +647,7 @@ contains
       call detect_pairs(mode, nnode, x0, x1, nslave, slaves, snrm, nseg, seg, link, ncand, &
                         cand, depth, facing, cs%n, cs%slave, cs%seg, cs%master, cs%at_end, &
                         cs%alpha, cs%normal, cs%tau, cs%gap, nsseg, sseg, shead, ssegs, &
-                        stamp, mnrm, mstamp, snrm_seg, sstamp)
+                        stamp, mnrm, mstamp, snrm_seg, sstamp, fseg, fhead, fsegs)
    end subroutine detect_contacts
 
 end module exic_contact_detect

@@ -150,11 +150,17 @@ contains
                call node_normals(nnode, x, sl%nseg, sl%seg, sl%nnode, sl%where, sl%nrm)
                sl%nrm_stamp = self%stamp
             end if
-            if (sl%nrm_stamp == self%stamp) then
-               ! this search formed every normal of the surface
+            if (sl%nrm_stamp == self%stamp .and. ps%slave == ps%master) then
+               ! self contact: the node normal alone (the side test pairs a node with its own
+               ! body's faces across a corner; doc/contact-detection.md, "Facing test")
                call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                     sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
                                     self%depth, FACING)
+            else if (sl%nrm_stamp == self%stamp) then
+               ! this search formed every normal of the surface
+               call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
+                                    sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
+                                    self%depth, FACING, fseg=sl%seg, fhead=sl%nhead, fsegs=sl%nsegs)
             else
                ! the normals of the slaves that have a hit and of the segments, formed by the
                ! narrow phase once in this search (another surface than the master: above)
