@@ -337,14 +337,16 @@ contains
                                 x1(:, mb), mnrm(1:2, k), mnrm(3:4, k), depth, hit, tau, alpha, crossed)
                if (.not. (hit .or. crossed)) cycle
                ! at a master node both of whose lines it crossed: paired with the node (vertex rule)
-               if (.not. hit) call vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, alpha, hit)
+               if (.not. hit) call vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, &
+                                                alpha, hit)
                nf = mnrm(3:4, k)
             else
                ! nf: the normal of the segment at x1, as the swept test formed it
                call swept_pair(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
                                x1(:, mb), depth, hit, tau, alpha, nf, crossed)
                if (.not. (hit .or. crossed)) cycle
-               if (.not. hit) call vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, alpha, hit)
+               if (.not. hit) call vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, &
+                                                alpha, hit)
             end if
             if (.not. have_nrm) then
                if (cached) then
@@ -414,7 +416,8 @@ contains
 
    !> Whether a slave whose gap test passed on segment k at tau but whose contact point alpha lies
    !> off the segment is held at the segment's end (doc/contact-detection.md, "A node at a
-   !> master's convex corner"): the contact point within `depth` past an end of k, the segment
+   !> master's convex corner"): the contact point within HOLD_PAST of k's length past an end of
+   !> k, the segment
    !> across that end turning left from k (a convex corner of the master: its body on the left)
    !> and failing the facing test with the slave's normal ns (it cannot hold the slave), and ns
    !> within 30 degrees of -n_k (a smooth part of the slave's surface facing k head-on, not a
@@ -424,6 +427,10 @@ contains
       integer, intent(in) :: nnode, nseg, k
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), tau, alpha, depth, ns(2), facing
       integer, intent(in) :: seg(2, nseg), link(2, nseg)
+      !> how far past the end a slave is held, in lengths of k: a node that drifted off the
+      !> corner by round-off or a micrometre (the punch's), not one sliding past it (colliding
+      !> bodies, whose hold made energy)
+      real(wp), parameter :: HOLD_PAST = 1.0e-2_wp
       real(wp) :: t(2), tn(2), len, turn, pa(2), pb(2)
       integer :: nbr
 
@@ -435,13 +442,13 @@ contains
       ! the slave faces segment k head-on (within 30 degrees): not a corner of its own body
       ! meeting the master's corner (two bars of equal height meeting end to end)
       if (.not. (dot_product(ns, t)**2 <= 0.25_wp*len*len .and. ns(1)*t(2) - ns(2)*t(1) < 0.0_wp)) return
-      if (alpha < 0.0_wp .and. -alpha*len <= depth) then
+      if (alpha < 0.0_wp .and. -alpha <= HOLD_PAST) then
          nbr = link(1, k)
          if (nbr <= 0) return
          pa = at(seg(1, nbr)); pb = at(seg(2, nbr))
          tn = pb - pa
          turn = tn(1)*t(2) - tn(2)*t(1)
-      else if (alpha > 1.0_wp .and. (alpha - 1.0_wp)*len <= depth) then
+      else if (alpha > 1.0_wp .and. alpha - 1.0_wp <= HOLD_PAST) then
          nbr = link(2, k)
          if (nbr <= 0) return
          pa = at(seg(1, nbr)); pb = at(seg(2, nbr))
