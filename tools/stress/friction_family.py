@@ -43,6 +43,8 @@ import subprocess
 import sys
 import tempfile
 
+from variants import draw, read_table
+
 E, RHO = 1.0e4, 1.0
 
 
@@ -126,15 +128,6 @@ def deck(p):
     return text
 
 
-def read_table(path):
-    rows = []
-    for line in open(path):
-        if line.startswith("#") or not line.strip():
-            continue
-        rows.append([float(t) for t in line.split()])
-    return rows
-
-
 def run(exic, p, tmp, name):
     path = os.path.join(tmp, name + ".inp")
     with open(path, "w") as f:
@@ -167,7 +160,7 @@ def run(exic, p, tmp, name):
     if proc.returncode == 0 and os.path.exists(his):
         mus = float(p["law"].split(",")[0])
         worst = 0.0
-        for r in read_table(his):
+        for r in read_table(his)[1]:
             if r[1] > 0.0:
                 worst = max(worst, r[2] / (mus * r[1]))
             elif r[2] > 0.0:
@@ -206,12 +199,7 @@ def variants(seed, count):
                         motion=rng.choice(opts["motion"]), quad=rng.choice(opts["quad"]),
                         order=rng.choice(opts["order"]), nu=rng.choice(opts["nu"]),
                         cfl=rng.choice(opts["cfl"]), speed=rng.choice(opts["speed"]), nx=nx, ny=ny, ar=ar))
-    for _ in range(count):
-        nx, ny, ar = rng.choice(opts["mesh"])
-        q = {key: rng.choice(vals) for key, vals in opts.items() if key != "mesh"}
-        q.update(nx=nx, ny=ny, ar=ar)
-        out.append(q)
-    return out
+    return out + draw(rng, opts, count)
 
 
 def tag(p):

@@ -34,6 +34,8 @@ import subprocess
 import sys
 import tempfile
 
+from variants import draw, read_table
+
 E, RHO = 1.0e4, 1.0
 Y0 = 2.0e-3 * E
 
@@ -100,17 +102,6 @@ def deck(p):
     return text
 
 
-def read_table(path):
-    names, rows = [], []
-    for line in open(path):
-        if line.startswith("#"):
-            names = line[1:].split()
-            continue
-        if line.strip():
-            rows.append([float(t) for t in line.split()])
-    return names, rows
-
-
 def run(exic, p, tmp, name):
     """Run variant p: the failures (list of text) and the measures."""
     path = os.path.join(tmp, name + ".inp")
@@ -172,12 +163,7 @@ def variants(seed, count):
                                 dir=OPTS["dir"][(i // 2) % 2], nu=OPTS["nu"][i % 4], cfl=OPTS["cfl"][(i // 4) % 4],
                                 speed=OPTS["speed"][i % 3], nx=nx, ny=ny, ar=ar))
                 i += 1
-    for _ in range(count):
-        nx, ny, ar = rng.choice(OPTS["mesh"])
-        q = {key: rng.choice(vals) for key, vals in OPTS.items() if key != "mesh"}
-        q.update(nx=nx, ny=ny, ar=ar)
-        out.append(q)
-    return out
+    return out + draw(rng, OPTS, count)
 
 
 def tag(p):

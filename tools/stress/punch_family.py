@@ -58,6 +58,8 @@ import subprocess
 import sys
 import tempfile
 
+from variants import draw, read_table
+
 E, RHO = 1.0e4, 1.0
 
 
@@ -214,17 +216,6 @@ def deck(p, deep=False, unstable=0.0):
     return text, dist
 
 
-def read_table(path):
-    names, rows = [], []
-    for line in open(path):
-        if line.startswith("#"):
-            names = line[1:].split()
-            continue
-        if line.strip():
-            rows.append([float(t) for t in line.split()])
-    return names, rows
-
-
 def run(exic, p, tmp, name, deep=False):
     """Run variant p; the failures (list of text) and the measures."""
     text, dist = deck(p, deep)
@@ -313,12 +304,7 @@ def variants(quick, seed, count):
                         order=opts["order"][(i // 2) % 2], nu=rng.choice(opts["nu"]),
                         cfl=rng.choice(opts["cfl"]), speed=rng.choice(opts["speed"]), nx=nx, ny=ny, ar=ar))
     # ... and random others on top
-    for _ in range(count):
-        nx, ny, ar = rng.choice(opts["mesh"])
-        q = {key: rng.choice(vals) for key, vals in opts.items() if key != "mesh"}
-        q.update(nx=nx, ny=ny, ar=ar)
-        out.append(q)
-    return out
+    return out + draw(rng, opts, count)
 
 
 def tag(p):
