@@ -605,18 +605,17 @@ contains
    !> projectile in the dent it made in a plate (the erosion family's 2x2 elastic plates): the
    !> plate's surface 1 (0,1) -> 2 (0,0) -> 3 (-1,0) (body x > 0 or y < 0, a concave corner at
    !> 2); slave 4 at (1e-4, -1e-4), behind both lines, moving to (2e-4, -3e-4), projects past
-   !> node 2 on both segments (alpha 1 + 1e-4 and -1e-4): paired with node 2 along the master
-   !> node normal. (b) A block's convex corner 2 (0,0) of the surface 1 (0,-1) -> 2 -> 3 (-1,0)
+   !> node 2 on both segments (alpha 1 + 1e-4 and -1e-4): paired with node 2, along the unit
+   !> vector from its predicted position to node 2 (the concave rule's C.3). (b) A block's convex corner 2 (0,0) of the surface 1 (0,-1) -> 2 -> 3 (-1,0)
    !> (body x < 0 and y < 0); slave 4 passing it outside, (1e-4, 1e-4) -> (1e-4, -2e-4), crosses
    !> the top face's line past node 2 but not the side face's: no contact.
    subroutine test_vertex_rule(s)
       type(suite_t), intent(inout) :: s
-      real(wp) :: x0(2, 4), x1(2, 4), snrm(2, 1), r
+      real(wp) :: x0(2, 4), x1(2, 4), snrm(2, 1)
       integer :: seg(2, 2), link(2, 2), cand(2, 2)
       type(contact_set_t) :: cs
 
       call section(s, 'contact geometry: vertex rule at a master node')
-      r = sqrt(0.5_wp)
       seg(:, 1) = [1, 2]; seg(:, 2) = [2, 3]
       call segment_links(2, seg, link)
       cand(:, 1) = [1, 1]; cand(:, 2) = [1, 2]
@@ -631,9 +630,10 @@ contains
       if (cs%n == 1) then
          call check(s, cs%at_end(1) .and. cs%master(nint(1.0_wp + cs%alpha(1)), 1) == 2, &
                     'the contact point is the master node 2')
-         call check(s, maxval(abs(cs%normal(:, 1) - [-r, r])) < 1.0e-15_wp, 'the master node normal')
-         call check_close(s, cs%gap(1), dot_product(x1(:, 4), [-r, r]), 1.0e-18_wp, &
-                          'predicted gap from node 2 along it')
+         call check(s, maxval(abs(cs%normal(:, 1) - [-2.0_wp, 3.0_wp]/sqrt(13.0_wp))) < 1.0e-15_wp, &
+                    'the normal from the predicted slave to node 2, in the cone of the two normals (C.3)')
+         call check_close(s, cs%gap(1), -sqrt(13.0e-8_wp), 1.0e-18_wp, &
+                          'predicted gap from node 2 along it: minus the distance')
          call check(s, cs%tau(1) == 0.0_wp, 'in contact from the start of the step')
       end if
       x0(:, 1) = [0.0_wp, -1.0_wp]; x0(:, 2) = [0.0_wp, 0.0_wp]; x0(:, 3) = [-1.0_wp, 0.0_wp]

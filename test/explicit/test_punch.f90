@@ -25,8 +25,8 @@
 !> DT,,0.0056 (2.5 times its stable step) after t = 0.02 must still be stopped by the guard.
 module test_punch
    use exic_base_kinds, only: wp
-   use exic_base_strings, only: rtoa
-   use testing, only: suite_t, check
+   use exic_base_strings, only: rtoa, itoa
+   use testing, only: suite_t, check, file_text
    use deck_runner, only: run_dir, run_deck, read_table, column, file_has
    implicit none
    private
@@ -49,7 +49,87 @@ contains
       call plastic_punch(s, 'punch_plastic1', '    QUADrature 1', 'one point')
       call ramped_rigid_punch(s, 'punch_rigid_ramp', .false.)
       call ramped_rigid_punch(s, 'punch_rigid_ramp_unstable', .true.)
+      ! v1 and v48 of tools/stress/punch_family.py (rounded): the punch's corner slides into the
+      ! block's concave corner (C.1) or rides on the block's node at it (C.3)
+      call concave_corner_punch(s, 'punch_concave_offset', 8, 4, .true., '0.49', '0.8425', '1.3425', &
+                                '46,33', '12.41', '', '0.5', '0.0145', '4e-4')
+      call concave_corner_punch(s, 'punch_concave_aligned', 4, 2, .false., '0.3', '0.5', '1.5', &
+                                '16,9', '3.48', '0, 0, 0.00905, 0, 0.00905, 1', '0.95', '0.0724', '4.5e-3')
    end subroutine run_punch_tests
+
+   !> Issue 32, item 1, the punch's nodes as one-pass slaves (`PAIR,1,NTOS,punch,block`): a RIGId
+   !> punch (2 x 2 elements, 0.2 high, from xa to xb) resting on a block 2 x 1 of nx x ny
+   !> neo-Hookean elements (E = 1e4, nu, one point when q1) driven down at v by MOTIon (from t = 0,
+   !> or at rest until a table `late` switches it on). The block's surface under the punch's
+   !> corner makes a concave corner (flat under the punch, rising or falling beside it) into which
+   !> the corner node, a slave, slides (doc/contact-detection.md, "A node sliding into a master's
+   !> concave corner"). exic 0461a1e left the corner node 1.9e-3 (offset) and 2.8e-3 element edges
+   !> (aligned) inside the block, clamped to the block's node with the averaged normal. Field
+   !> output every `dt` runs the geometric penetration check at each (doc/decisions.md).
+   !> Asserted: the run ends with no warning, the deepest node of the check over the run is below
+   !> its warning limit of 1e-3 element edges, and the balance closes within 1e-3 of W_pm.
+   subroutine concave_corner_punch(s, name, nx, ny, q1, nu, xa, xb, nodes, v, late, cfl, tend, dt)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name, nu, xa, xb, nodes, v, late, cfl, tend, dt
+      integer, intent(in) :: nx, ny
+      logical, intent(in) :: q1
+      character(len=:), allocatable :: deck, msg, out, line, motion, fn, quad, prop
+      character(len=64), allocatable :: en(:)
+      real(wp), allocatable :: e(:, :)
+      integer :: stage, itot, iwpm, at, k, ios
+      real(wp) :: wpm, drift, edges
+      motion = 'MOTIon,REGIon,2,0,-'//v
+      fn = ''
+      prop = ''
+      if (len(late) > 0) then
+         motion = motion//',0,1'
+         fn = '2, 0'//nl//late//nl//nl
+         prop = '  PROPortional,,1'//nl
+      end if
+      quad = ''
+      if (q1) quad = '    QUADrature 1'//nl
+      deck = 'FEAP * * rigid punch, its nodes as slaves'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1e4 '//nu//nl//'    DENSity 1'//nl// &
+             quad//nl// &
+             'MATErial,2'//nl//'  RIGId'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,'//itoa(nx)//','//itoa(ny)//',1,1,1'//nl// &
+             '    1,0,0'//nl//'    2,2,0'//nl//'    3,2,1'//nl//'    4,0,1'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,2,2,'//nodes//',2'//nl//'    1,'//xa//',1'//nl// &
+             '    2,'//xb//',1'//nl//'    3,'//xb//',1.2'//nl//'    4,'//xa//',1.2'//nl//nl// &
+             'EBOUndary'//nl//'  2,0,1,1'//nl//nl//motion//nl//nl// &
+             'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
+             '  PAIR,1,NTOS,2,1'//nl//'END CONTact'//nl//nl//'END'//nl//'BATCh'//nl// &
+             prop// &
+             '  OUTPut,HDF5,'//dt//nl//'  DT,CFL,'//cfl//nl//'  TPLOt,,1'//nl//'  LOOP,,1000000'//nl// &
+             '    TIME,,'//tend//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//fn// &
+             '  reac,REGIon,2,2'//nl//nl//'STOP'
+      call run_deck(name, deck, stage, msg)
+      call check(s, stage == 0, name//': a rigid punch, its nodes as slaves, runs to the end', msg)
+      if (stage /= 0) return
+      out = file_text(run_dir//'/'//name//'.out')
+      call check(s, index(out, 'warning:') == 0, name//': no warning (geometric penetration check)')
+      ! "geometric penetration check: deepest node N of region R, X edges (...)": none when no node
+      ! was inside
+      edges = 0.0_wp
+      at = index(out, 'geometric penetration check: deepest node')
+      if (at > 0) then
+         line = out(at:)
+         k = index(line, new_line('a'))
+         if (k > 0) line = line(:k - 1)
+         line = line(index(line, ',') + 1:)
+         read (line(:index(line, 'edges') - 1), *, iostat=ios) edges
+         if (ios /= 0) edges = huge(1.0_wp)
+      end if
+      call check(s, edges < 1.0e-3_wp, name//': the punch''s corner stays outside the block (deepest node '// &
+                 'of the check over the run below 1e-3 element edges)', 'deepest '//rtoa(edges)//' edges')
+      call read_table(run_dir//'/'//name//'.ene', en, e)
+      itot = column(en, 'total')
+      iwpm = column(en, 'prescribed_work')
+      wpm = e(iwpm, size(e, 2))
+      drift = maxval(abs(e(itot, :) - e(itot, 1)))/max(wpm, tiny(1.0_wp))
+      call check(s, wpm > 0.0_wp .and. drift <= 1.0e-3_wp, name//': the balance closes within 0.1 % of '// &
+                 'the work of the prescribed motion', 'W_pm '//rtoa(wpm)//', largest drift '//rtoa(drift))
+   end subroutine concave_corner_punch
 
    !> Issue 32, item 1: a RIGId punch 0.5 wide resting on the block (touching), driven down at
    !> v = 0.1 by MOTIon,REGIon, NTOS with the BLOCK's nodes as slaves. The block's nodes under the

@@ -39,7 +39,12 @@ Asserted for every variant (doc/loads.md, section 3; doc/decisions.md, "Energy g
     kinetic energy W_pm books, doc/loads.md eq. P.3, and the balance checks it).
 
     python3 tools/stress/punch_family.py --exic BIN [--quick] [--seed N] [--count N] [--keep DIR] [--deep]
-                                         [--unstable N]
+                                         [--unstable N] [--checks N]
+
+The geometric penetration check (a warning past 1e-3 element edges) runs at the end of each run;
+`--checks N` runs it N times more, at field output (OUTPut,HDF5) every 1/N of the run, so that a
+node inside the other body during the run and out of it at the end is seen too. The deepest node
+of the check (`<stem>.out`) is reported as a measure.
 
 `--unstable N` adds N variants (every 384/N-th) whose step becomes DT,,k h/c (k = 2.5, 3, 4; h the
 smallest element side) after a quarter of the run: each must stop with an error (the energy guard
@@ -80,7 +85,7 @@ def travel(motion, v, t_end):
     raise ValueError(motion)
 
 
-def deck(p, deep=False, unstable=0.0):
+def deck(p, deep=False, unstable=0.0, checks=0):
     """The deck text of variant p (a dict) and what the checks need; `deep`: to the nominal end,
     without the bound on the travel; `unstable` > 0: after a quarter of the run the step becomes
     DT,,unstable times the 1-D bound h / c of the smallest element side (an unstable step)."""
@@ -206,6 +211,9 @@ def deck(p, deep=False, unstable=0.0):
                  "  DT,,%.17g\n  LOOP,,10000000\n    TIME,,%.17g\n    FORM,EXPLicit\n  NEXT\nEND\n"
                  % (p["cfl"], 0.25 * t_stop, unstable * h_c, t_stop))
     else:
+        if checks > 0:
+            # not below the step (at most h / c)
+            text += "  OUTPut,HDF5,%.17g\n" % max(t_stop / checks, min(hx, hy) / c)
         text += ("  DT,CFL,%.17g\n  TPLOt,,1\n  LOOP,,10000000\n    TIME,,%.17g\n    FORM,EXPLicit\n  NEXT\nEND\n"
                  % (p["cfl"], t_stop))
     text += "".join(s + "\n" for s in props)
@@ -216,9 +224,9 @@ def deck(p, deep=False, unstable=0.0):
     return text, dist
 
 
-def run(exic, p, tmp, name, deep=False):
+def run(exic, p, tmp, name, deep=False, checks=0):
     """Run variant p; the failures (list of text) and the measures."""
-    text, dist = deck(p, deep)
+    text, dist = deck(p, deep, checks=checks)
     path = os.path.join(tmp, name + ".inp")
     with open(path, "w") as f:
         f.write(text)
@@ -226,7 +234,7 @@ def run(exic, p, tmp, name, deep=False):
     out = proc.stdout + proc.stderr
     fails = []
     m = {"drift": float("nan"), "work": float("nan"), "growth": float("nan"), "wpm": float("nan"),
-         "travel": float("nan")}
+         "travel": float("nan"), "pen": float("nan")}
     report = os.path.join(tmp, name + ".out")
     rep = open(report).read() if os.path.exists(report) else ""
     if proc.returncode != 0:
@@ -234,6 +242,8 @@ def run(exic, p, tmp, name, deep=False):
     warn = [ln for ln in (out + rep).splitlines() if re.search(r"\bwarning:", ln)]
     if warn:
         fails.append("warning: " + warn[0][:300])
+    g = re.search(r"geometric penetration check: deepest node \d+ of region \d+, (\S+) edges", rep)
+    m["pen"] = float(g.group(1)) if g else 0.0
     g = re.search(r"largest growth of the physical energy over the energy put in (\S+) %", rep)
     if g:
         m["growth"] = float(g.group(1)) / 100.0
@@ -324,17 +334,21 @@ def main():
     ap.add_argument("--unstable", type=int, default=0,
                     help="also run this many variants (every 384/N-th) at an unstable step after a quarter of "
                          "the run: each must stop with an error")
+    ap.add_argument("--checks", type=int, default=0,
+                    help="field output (OUTPut,HDF5) every 1/N of the run, so that the geometric penetration "
+                         "check runs N times instead of at the end only")
     ap.add_argument("--deep", action="store_true",
                     help="no bound on the travel: every run to its nominal end (the crushed-mesh regime)")
     a = ap.parse_args()
     vs = variants(a.quick, a.seed, 0 if a.quick else a.count)
     nfail = 0
-    worst = {"drift": (0.0, None), "work": (0.0, None), "growth": (-1e300, None), "travel": (0.0, None)}
+    worst = {"drift": (0.0, None), "work": (0.0, None), "growth": (-1e300, None), "travel": (0.0, None),
+             "pen": (0.0, None)}
     with tempfile.TemporaryDirectory() as scratch:
         tmp = a.keep or scratch
         os.makedirs(tmp, exist_ok=True)
         for i, p in enumerate(vs):
-            fails, m = run(a.exic, p, tmp, "v%d" % i, a.deep)
+            fails, m = run(a.exic, p, tmp, "v%d" % i, a.deep, a.checks)
             if fails:
                 nfail += 1
                 print("FAIL v%d %s: %s" % (i, tag(p), "; ".join(fails)), flush=True)
@@ -346,6 +360,7 @@ def main():
     print("worst |int R du - W_pm| / W_pm %.3g (%s)" % worst["work"])
     print("largest growth of the energy guard %.3g of the energy put in (%s)" % worst["growth"])
     print("largest error of the rigid punch's travel at the end %.3g of it (%s)" % worst["travel"])
+    print("deepest node of the geometric penetration check %.3g element edges (%s)" % worst["pen"])
     if a.unstable:
         nfail += unstable_runs(a, vs)
     return 1 if nfail else 0

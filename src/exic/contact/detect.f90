@@ -37,6 +37,7 @@ module exic_contact_detect
    use exic_base_kinds, only: wp
    use exic_contact_spec, only: DETECT_SWEPT, DETECT_STATIC
    use exic_mesh_boundary, only: segment_normal, average_normal, some_node_normals, node_normal_from
+   use exic_contact_concave_rule, only: concave_neighbour, concave_entry, concave_vertex_normal
    implicit none
    private
 
@@ -339,6 +340,8 @@ contains
                ! at a master node both of whose lines it crossed: paired with the node (vertex rule)
                if (.not. hit) call vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, &
                                                 alpha, hit)
+               ! entering a segment from the master's concave corner at its end (concave rule)
+               if (.not. hit) call concave_entry(nnode, x1, node, nseg, seg, link, k, ALPHA_TOL, alpha, hit)
                nf = mnrm(3:4, k)
             else
                ! nf: the normal of the segment at x1, as the swept test formed it
@@ -347,6 +350,8 @@ contains
                if (.not. (hit .or. crossed)) cycle
                if (.not. hit) call vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, &
                                                 alpha, hit)
+               ! entering a segment from the master's concave corner at its end (concave rule)
+               if (.not. hit) call concave_entry(nnode, x1, node, nseg, seg, link, k, ALPHA_TOL, alpha, hit)
             end if
             if (.not. have_nrm) then
                if (cached) then
@@ -395,6 +400,17 @@ contains
          end do
          j0 = j
          if (best == 0) cycle
+         ! a node in contact from the start whose predicted position lies past an end of its
+         ! segment in a concave corner of the master: paired with the segment it slides onto
+         ! (doc/contact-detection.md, "A node sliding into a master's concave corner")
+         if (mode == DETECT_SWEPT .and. btau < TAU_BLEND) then
+            call concave_neighbour(nnode, x0, x1, btau, node, snrm(:, s), nseg, seg, link, best, &
+                                   facing, ALPHA_TOL, k, alpha)
+            if (k > 0) then
+               best = k
+               balpha = alpha
+            end if
+         end if
          ncon = ncon + 1
          cslave(ncon) = node
          cseg(ncon) = best
@@ -605,6 +621,8 @@ contains
             if (faces(ns, nb, facing)) then
                navg = average_normal(n, nb)
                if (any(navg /= 0.0_wp)) n = navg
+               ! in a concave corner: towards the corner from the predicted position (concave rule)
+               call concave_vertex_normal(nnode, x1, node, nseg, seg, k, nbr, alpha == 0.0_wp, n)
             end if
          end if
       end if
