@@ -344,6 +344,7 @@ def main():
     nfail = 0
     worst = {"drift": (0.0, None), "work": (0.0, None), "growth": (-1e300, None), "travel": (0.0, None),
              "pen": (0.0, None)}
+    deepest = {}                  # the deepest node per contact option
     with tempfile.TemporaryDirectory() as scratch:
         tmp = a.keep or scratch
         os.makedirs(tmp, exist_ok=True)
@@ -355,12 +356,15 @@ def main():
             for key in worst:
                 if m[key] == m[key] and m[key] > worst[key][0]:
                     worst[key] = (m[key], "v%d %s" % (i, tag(p)))
+            if m["pen"] == m["pen"] and m["pen"] >= deepest.get(p["contact"], (-1.0, None))[0]:
+                deepest[p["contact"]] = (m["pen"], "v%d" % i)
     print("punch family: %d variants, %d failures" % (len(vs), nfail))
     print("worst balance drift %.3g of W_pm (%s)" % worst["drift"])
     print("worst |int R du - W_pm| / W_pm %.3g (%s)" % worst["work"])
     print("largest growth of the energy guard %.3g of the energy put in (%s)" % worst["growth"])
     print("largest error of the rigid punch's travel at the end %.3g of it (%s)" % worst["travel"])
     print("deepest node of the geometric penetration check %.3g element edges (%s)" % worst["pen"])
+    print("deepest node by contact: " + ", ".join("%s %.3g (%s)" % (k, v[0], v[1]) for k, v in sorted(deepest.items())))
     if a.unstable:
         nfail += unstable_runs(a, vs)
     return 1 if nfail else 0
