@@ -73,6 +73,19 @@ contains
          call check(s, maxval(abs(cs%normal(:, 1) - navg)) < 1.0e-15_wp, 'the averaged normal')
       end if
 
+      ! A concave turn of 1e-12 (node 1 at (1, 1e-12), node 3 at (-1, 0)) is straight (below 1e-8): on
+      ! segment 1 at (0.02, 0), predicted at (-0.01, -0.006), past node 2, clamped to it as before.
+      call section(s, 'concave rule: a turn within the resolution of the coordinates is straight')
+      x0(:, 1) = [1.0_wp, 1.0e-12_wp]
+      x0(:, 4) = [0.02_wp, 0.0_wp]
+      x1 = x0
+      x1(:, 4) = [-0.01_wp, -0.006_wp]
+      call detect_contacts(cs, DETECT_SWEPT, 4, x0, x1, 1, [4], snrm, 2, seg, link, 2, cand, &
+                           0.1_wp, FACING_LIMIT)
+      call check(s, cs%n == 1, 'one contact')
+      if (cs%n == 1) call check(s, cs%seg(1) == 1 .and. cs%at_end(1) .and. cs%alpha(1) == 1.0_wp, &
+                                'on segment 1, clamped to node 2')
+
       ! A right-angled valley, 1 (1, 1) -> 2 (0, 0) -> 3 (-1, 1).
       x0(:, 1) = [1.0_wp, 1.0_wp]; x0(:, 3) = [-1.0_wp, 1.0_wp]
 
