@@ -9,6 +9,7 @@ program exic_tests
    use test_linalg, only: run_linalg_tests
    use test_corrector, only: run_corrector_tests
    use test_contact_geom, only: run_contact_geom_tests
+   use test_nearest_face, only: run_nearest_face_tests
    use test_element, only: run_element_tests
    use test_hourglass, only: run_hourglass_tests
    use test_fields, only: run_fields_tests
@@ -54,6 +55,7 @@ program exic_tests
    call r%run('math', run_math_tests)
    call r%run('corrector', run_corrector_tests)
    call r%run('contact_geom', run_contact_geom_tests)
+   call r%run('nearest_face', run_nearest_face_tests)
    call r%run('inside', run_inside_tests)
    call r%run('element', run_element_tests)
    call r%run('hourglass', run_hourglass_tests)

@@ -383,8 +383,8 @@ contains
             if (within .and. tau == 0.0_wp .and. mode /= DETECT_STATIC) then
                ! behind k from the start, but another candidate segment that does not hold it is
                ! nearer: k is not its nearest face ("Nearest face of a slave behind a segment")
-               if (nearer_face(nnode, x0, x1, node, k, nseg, seg, link, jend - j0 + 1, cand(2, j0:jend), &
-                               alpha, depth, snrm(:, s), facing)) cycle
+               if (nearer_face(nnode, x0, x1, node, k, nseg, seg, link, ncand, cand, j0, jend, alpha, &
+                               depth, snrm(:, s), facing)) cycle
             end if
             if (.not. hit) then
                ! off the segment: caught only just past an end at a convex corner whose other face
@@ -528,19 +528,19 @@ contains
    !> The nearest-face rule (doc/contact-detection.md, "Nearest face of a slave behind a segment",
    !> N.1-N.3): slave `node` is behind segment k at x0 (gap c0 = (xs - xa) . n_k < 0, within
    !> depth: a contact from the start of the step, tau_c = 0) with contact point alpha on k. True
-   !> when another candidate segment k2 of the slave (cands: the segments of its candidate pairs)
+   !> when another candidate segment k2 of the slave (cand(2, j0:jend): its candidate pairs)
    !> lies nearer to it, abs(g2_0) < -c0 with g2_0 its gap at x0, faces it (ns . n2_f < facing),
    !> has its projection at x0 (within the tolerance of a hit) and does not hold it from the start
    !> itself, because the slave is
    !>   (N.2) behind k2 and leaving it (g2_0 <= 0 < g2_1, g2_1 its gap at x1), or
    !>   (N.3) in front of k2 (g2_0 > 0), k2 the neighbour of k across a convex corner of the master;
    !> k is then not the slave's nearest face and the test of k2 decides (a crossing of k2 later in
-   !> the step, or no contact for a slave leaving the master through k2 or outside it). A k2 holding
-   !> the node of k that the contact point is snapped to is not counted (the master node normal
-   !> takes both faces).
-   pure logical function nearer_face(nnode, x0, x1, node, k, nseg, seg, link, ncands, cands, alpha, &
-                                     depth, ns, facing) result(ok)
-      integer, intent(in) :: nnode, node, k, nseg, seg(2, nseg), link(2, nseg), ncands, cands(ncands)
+   !> the step, or no contact for a slave leaving the master through k2 or outside it). A k2 through
+   !> the node of k that the contact point is snapped to is not counted when the slave lies at that
+   !> node (within ALPHA_TOL of k's length across k as well): the master node normal takes both.
+   pure logical function nearer_face(nnode, x0, x1, node, k, nseg, seg, link, ncand, cand, j0, jend, &
+                                     alpha, depth, ns, facing) result(ok)
+      integer, intent(in) :: nnode, node, k, nseg, seg(2, nseg), link(2, nseg), ncand, cand(2, ncand), j0, jend
       real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), alpha, depth, ns(2), facing
       real(wp) :: nk(2), n0(2), n1(2), t(2), tn(2), c0, g0, g1, al, turn
       integer :: q, k2, pa, pb, snapped
@@ -550,11 +550,15 @@ contains
       nk = segment_normal(x0(:, seg(1, k)), x0(:, seg(2, k)))
       c0 = dot_product(x0(:, node) - x0(:, seg(1, k)), nk)
       if (.not. (c0 < 0.0_wp .and. c0 >= -depth)) return
+      ! a slave at the node of k that its contact point is snapped to (within ALPHA_TOL of k's
+      ! length along k and across it) takes the master node normal of both faces already
       snapped = 0
-      if (alpha <= ALPHA_TOL) snapped = seg(1, k)
-      if (alpha >= 1.0_wp - ALPHA_TOL) snapped = seg(2, k)
-      do q = 1, ncands
-         k2 = cands(q)
+      if (-c0 <= ALPHA_TOL*norm2(x0(:, seg(2, k)) - x0(:, seg(1, k)))) then
+         if (alpha <= ALPHA_TOL) snapped = seg(1, k)
+         if (alpha >= 1.0_wp - ALPHA_TOL) snapped = seg(2, k)
+      end if
+      do q = j0, jend
+         k2 = cand(2, q)
          if (k2 == k) cycle
          pa = seg(1, k2); pb = seg(2, k2)
          if (pa == node .or. pb == node .or. pa == snapped .or. pb == snapped) cycle
