@@ -10,6 +10,7 @@ program exic_tests
    use test_corrector, only: run_corrector_tests
    use test_contact_geom, only: run_contact_geom_tests
    use test_contact_concave, only: run_contact_concave_tests
+   use test_nearest_face, only: run_nearest_face_tests
    use test_element, only: run_element_tests
    use test_hourglass, only: run_hourglass_tests
    use test_fields, only: run_fields_tests
@@ -56,6 +57,7 @@ program exic_tests
    call r%run('corrector', run_corrector_tests)
    call r%run('contact_geom', run_contact_geom_tests)
    call r%run('contact_concave', run_contact_concave_tests)
+   call r%run('nearest_face', run_nearest_face_tests)
    call r%run('inside', run_inside_tests)
    call r%run('element', run_element_tests)
    call r%run('hourglass', run_hourglass_tests)

@@ -50,6 +50,12 @@
 !>   and crossed the wall, 0.42 edges deep when element 227 inverted at step 355. With the facing
 !>   rule's side test (doc/contact-detection.md, "Facing test") the run ends at its final time
 !>   with no node inside a wall. (Saved under its own name, as scene 101 of seed 20261123.)
+!> - variant 144 of tools/stress/uncoupled_family.py --seed 7: four elastic blocks meeting at the
+!>   centre; a node sliding on a face toward the master's convex corner started a step 2e-9 in
+!>   front of it and 0.07 behind the side face across the corner, which won (tau_c = 0 before a
+!>   crossing) and pushed it out through the side: 47 % growth, the energy guard stopped the run
+!>   at t = 0.802. With the nearest-face rule (doc/contact-detection.md) it ends at its final time
+!>   with no growth.
 module test_stress_decks
    use exic_base_kinds, only: wp
    use exic_base_error, only: error_t
@@ -137,6 +143,13 @@ contains
                  '(was 0.42)', line_with(out, 'largest penetration'))
       call check(s, index(out, 'warning: at t') == 0, 'no penetration warning')
       call check_growth(s, out, 'energy growth below the warning limit of 1 %')
+      call section(s, 'stress decks: four blocks meeting at the centre, a node at a convex corner (uncoupled family)')
+      call run_saved(s, 'nearest_face_uncoupled_7_144', out)
+      call check_final_time(s, out, 2.6_wp, 'final time 2.6 (stopped at 0.802 by the energy guard, 47 % growth)')
+      v = number_after(out, 'largest growth of the physical energy over the energy put in ')
+      call check(s, v >= 0.0_wp .and. v < 1.0e-3_wp, 'physical energy never above the energy put in by '// &
+                 '1e-3 % (was 47 %: contact work 150 in one step)', line_with(out, 'energy guard'))
+      call check(s, index(out, 'warning:') == 0, 'no warning in <stem>.out (no node inside another body)')
    end subroutine run_stress_decks_tests
 
    !> The run's largest energy growth (<stem>.out) is below the warning limit of 1 %.

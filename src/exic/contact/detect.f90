@@ -300,9 +300,9 @@ contains
       integer, intent(out) :: cslave(nslave), cseg(nslave), cmaster(2, nslave)
       logical, intent(out) :: cend(nslave)
       real(wp), intent(out) :: calpha(nslave), cnormal(2, nslave), ctau(nslave), cgap(nslave)
-      integer :: j, j0, s, k, node, ma, mb, best, bkey(2), key(2), q, ks
+      integer :: j, j0, jend, s, k, node, ma, mb, best, bkey(2), key(2), q, ks
       real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap, w
-      logical :: hit, lazy, have_nrm, cached, sides, crossed
+      logical :: hit, lazy, have_nrm, cached, sides, crossed, within
 
       lazy = present(nsseg) .and. present(sseg) .and. present(shead) .and. present(ssegs)
       sides = present(fseg) .and. present(fhead) .and. present(fsegs)
@@ -317,6 +317,11 @@ contains
          best = 0
          btau = 0.0_wp; balpha = 0.0_wp; bgap = 0.0_wp; bkey = 0
          have_nrm = .not. lazy
+         jend = j0
+         do while (jend < ncand)
+            if (cand(1, jend + 1) /= s) exit
+            jend = jend + 1
+         end do
          j = j0
          do while (j <= ncand)
             if (cand(1, j) /= s) exit
@@ -324,6 +329,7 @@ contains
             j = j + 1
             ma = seg(1, k); mb = seg(2, k)
             if (ma == node .or. mb == node) cycle
+            within = .false.
             if (mode == DETECT_STATIC) then
                call static_pair(x1(:, node), x1(:, ma), x1(:, mb), depth, hit, alpha, gap)
                tau = 1.0_wp
@@ -337,6 +343,7 @@ contains
                call swept_given(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
                                 x1(:, mb), mnrm(1:2, k), mnrm(3:4, k), depth, hit, tau, alpha, crossed)
                if (.not. (hit .or. crossed)) cycle
+               within = hit
                ! at a master node both of whose lines it crossed: paired with the node (vertex rule)
                if (.not. hit) call vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, &
                                                 alpha, hit)
@@ -348,6 +355,7 @@ contains
                call swept_pair(x0(:, node), x1(:, node), x0(:, ma), x1(:, ma), x0(:, mb), &
                                x1(:, mb), depth, hit, tau, alpha, nf, crossed)
                if (.not. (hit .or. crossed)) cycle
+               within = hit
                if (.not. hit) call vertex_entry(nnode, x0, x1, node, k, nseg, seg, link, depth, tau, &
                                                 alpha, hit)
                ! entering a segment from the master's concave corner at its end (concave rule)
@@ -376,6 +384,12 @@ contains
                else
                   cycle
                end if
+            end if
+            if (within .and. tau == 0.0_wp .and. mode /= DETECT_STATIC) then
+               ! behind k from the start, but another candidate segment that does not hold it is
+               ! nearer: k is not its nearest face ("Nearest face of a slave behind a segment")
+               if (nearer_face(nnode, x0, x1, node, k, nseg, seg, link, ncand, cand, j0, jend, alpha, &
+                               depth, snrm(:, s), facing)) cycle
             end if
             if (.not. hit) then
                ! off the segment: caught only just past an end at a convex corner whose other face
@@ -526,6 +540,74 @@ contains
       tau = max(tau, taun)
       hit = .true.
    end subroutine vertex_entry
+
+   !> The nearest-face rule (doc/contact-detection.md, "Nearest face of a slave behind a segment",
+   !> N.1-N.3): slave `node` is behind segment k at x0 (gap c0 = (xs - xa) . n_k < 0, within
+   !> depth: a contact from the start of the step, tau_c = 0) with contact point alpha on k. True
+   !> when another candidate segment k2 of the slave (cand(2, j0:jend): its candidate pairs)
+   !> lies nearer to it, abs(g2_0) < -c0 with g2_0 its gap at x0, faces it (ns . n2_f < facing),
+   !> has its projection at x0 (within the tolerance of a hit) and does not hold it from the start
+   !> itself, because the slave is
+   !>   (N.2) behind k2 and leaving it (g2_0 <= 0 < g2_1, g2_1 its gap at x1), or
+   !>   (N.3) in front of k2 (g2_0 > 0), k2 the neighbour of k across a convex corner of the master;
+   !> k is then not the slave's nearest face and the test of k2 decides (a crossing of k2 later in
+   !> the step, or no contact for a slave leaving the master through k2 or outside it). A k2 through
+   !> the node of k that the contact point is snapped to is not counted when the slave lies at that
+   !> node (within ALPHA_TOL of k's length across k as well): the master node normal takes both.
+   pure logical function nearer_face(nnode, x0, x1, node, k, nseg, seg, link, ncand, cand, j0, jend, &
+                                     alpha, depth, ns, facing) result(ok)
+      integer, intent(in) :: nnode, node, k, nseg, seg(2, nseg), link(2, nseg), ncand, cand(2, ncand), j0, jend
+      real(wp), intent(in) :: x0(2, nnode), x1(2, nnode), alpha, depth, ns(2), facing
+      real(wp) :: nk(2), n0(2), n1(2), t(2), tn(2), c0, g0, g1, al, turn
+      integer :: q, k2, pa, pb, snapped
+      logical :: inside
+
+      ok = .false.
+      nk = segment_normal(x0(:, seg(1, k)), x0(:, seg(2, k)))
+      c0 = dot_product(x0(:, node) - x0(:, seg(1, k)), nk)
+      if (.not. (c0 < 0.0_wp .and. c0 >= -depth)) return
+      ! a slave at the node of k that its contact point is snapped to (within ALPHA_TOL of k's
+      ! length along k and across it) takes the master node normal of both faces already
+      snapped = 0
+      if (-c0 <= ALPHA_TOL*norm2(x0(:, seg(2, k)) - x0(:, seg(1, k)))) then
+         if (alpha <= ALPHA_TOL) snapped = seg(1, k)
+         if (alpha >= 1.0_wp - ALPHA_TOL) snapped = seg(2, k)
+      end if
+      do q = j0, jend
+         k2 = cand(2, q)
+         if (k2 == k) cycle
+         pa = seg(1, k2); pb = seg(2, k2)
+         if (pa == node .or. pb == node .or. pa == snapped .or. pb == snapped) cycle
+         n0 = segment_normal(x0(:, pa), x0(:, pb))
+         if (n0(1) == 0.0_wp .and. n0(2) == 0.0_wp) cycle
+         g0 = dot_product(x0(:, node) - x0(:, pa), n0)
+         if (.not. (abs(g0) < -c0)) cycle
+         n1 = segment_normal(x1(:, pa), x1(:, pb))
+         if (.not. faces(ns, n1, facing)) cycle
+         if (g0 <= 0.0_wp) then
+            ! (N.2): behind k2 too; held by it from the start (g2_1 <= 0), the hits are ranked by
+            ! their predicted gaps
+            g1 = dot_product(x1(:, node) - x1(:, pa), n1)
+            if (.not. (g1 > 0.0_wp)) cycle
+         else
+            ! (N.3): in front of k2, outside the master, when k2 is k's neighbour at a convex corner
+            t = x0(:, seg(2, k)) - x0(:, seg(1, k))
+            tn = x0(:, pb) - x0(:, pa)
+            if (k2 == link(1, k)) then
+               turn = tn(1)*t(2) - tn(2)*t(1)
+            else if (k2 == link(2, k)) then
+               turn = t(1)*tn(2) - t(2)*tn(1)
+            else
+               cycle
+            end if
+            if (.not. (turn > 0.0_wp)) cycle
+         end if
+         call project(x0(:, node), x0(:, pa), x0(:, pb), al, inside)
+         if (.not. inside) cycle
+         ok = .true.
+         return
+      end do
+   end function nearer_face
 
    !> The side test of the facing rule (doc/contact-detection.md, "Facing test", eq. F.1): true
    !> when a segment of the slave surface at slave s (its node -> segments lists head, segs)
