@@ -19,9 +19,10 @@ Measured per variant:
   - from <stem>.ene: the largest |drift| of the energy balance over the run (the balance includes
     the column `eroded`, doc/erosion.md (R3)); the number of eroded elements from <stem>.out;
   - from <stem>.h5 (OUTPut,HDF5 every 1/100 of the run): at every output time every node of the
-    projectile's live elements is tested against the plate's live elements (the element value
-    `status`): the deepest one inside, as its distance to the plate's free boundary over the
-    length of the nearest boundary edge (tools/stress/analyse.py, inside_depth).
+    projectile's live elements is tested against each of the plate's live elements (the element
+    value `status`; each element on its own, so that a node inside two elements where the plate
+    has passed through itself counts): the deepest one inside, as its distance to the plate's
+    free boundary over the length of the nearest boundary edge (inside_live).
 
 Prints one line per variant and the worst of each measure; exits 1 when a run fails, a drift
 exceeds --limit (default 0.01, the 1 % of issue 33) or a depth exceeds --depth-limit (when given).
@@ -101,6 +102,32 @@ DEFORMABLE = ("  SOLId\n    ELAStic NEOHookean 2e6 0.3\n    DENSity 2\n    QUADr
               "    EROSion INVErted\n")
 
 
+def inside_live(points, x, conn, edges):
+    """For each point: its depth inside the live elements `conn` (nelem, 4) of the plate, 0 when
+    it lies in none of them (each element tested on its own, the even-odd rule on its four
+    edges, so that where the plate has passed through itself a point inside two overlapping
+    elements still counts), as its distance to the nearest free boundary edge of those elements
+    (`edges`), and the length of that edge."""
+    q = x[conn]                                      # (nelem, 4, 2)
+    a, b = q, np.roll(q, -1, axis=1)
+    px = points[:, 0][:, None, None]
+    py = points[:, 1][:, None, None]
+    ax, ay = a[None, :, :, 0], a[None, :, :, 1]
+    bx, by = b[None, :, :, 0], b[None, :, :, 1]
+    cond = (ay > py) != (by > py)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        xint = ax + (py - ay) * (bx - ax) / (by - ay)
+    inside = (np.sum(cond & (px < xint), axis=2) % 2 == 1).any(axis=1)
+    ea, eb = x[edges[:, 0]], x[edges[:, 1]]
+    d = eb - ea
+    l2 = np.maximum(np.sum(d * d, axis=1), 1e-300)
+    t = np.clip(((points[:, 0][:, None] - ea[:, 0]) * d[:, 0] + (points[:, 1][:, None] - ea[:, 1]) * d[:, 1]) / l2,
+                0.0, 1.0)
+    dist = np.hypot(points[:, 0][:, None] - (ea[:, 0] + t * d[:, 0]), points[:, 1][:, None] - (ea[:, 1] + t * d[:, 1]))
+    j = np.argmin(dist, axis=1)
+    return np.where(inside, dist[np.arange(len(points)), j], 0.0), np.sqrt(l2[j])
+
+
 def deepest(h5_path, plate=1, projectile=2):
     """The deepest node of the projectile's live elements inside the plate's live elements over
     the output times: (depth in lengths of the nearest plate boundary edge, time)."""
@@ -130,7 +157,7 @@ def deepest(h5_path, plate=1, projectile=2):
         sel = np.all((pts >= lo) & (pts <= hi), axis=1)
         if not sel.any():
             continue
-        depth, elen = analyse.inside_depth(pts[sel], x, edges)
+        depth, elen = inside_live(pts[sel], x, conn[pel], edges)
         rel = float(np.max(depth / elen))
         if rel > best[0]:
             best = (rel, float(times[k]))
@@ -165,7 +192,7 @@ def entries(h5_path, limit=0.05, plate=1, projectile=2):
         edges = analyse.boundary_edges(conn[(region == plate) & live])
         keys = set(map(tuple, np.sort(edges, axis=1)))
         nodes = np.unique(conn[(region == projectile) & live])
-        depth, elen = analyse.inside_depth(x[nodes], x, edges)
+        depth, elen = inside_live(x[nodes], x, conn[(region == plate) & live], edges)
         a, b = x[edges[:, 0]], x[edges[:, 1]]
         now = set()
         for i in np.where(depth / elen > limit)[0]:
