@@ -54,10 +54,12 @@ module exic_contact_detect
    !> the contact point moves linearly from that to the seed's alpha(tau_c), so that rounding of
    !> tau_c near 0 never switches between the two (doc/contact-detection.md).
    real(wp), parameter, public :: TAU_BLEND = 0.01_wp
-   !> Wedge rule (doc/contact-detection.md, "A slave between two faces"): a slave's second hit
-   !> is a second contact when its segment's normal turns from the chosen one's by more than
-   !> 30 degrees (n1 . n2 < cos 30 degrees); MAX_HITS hits of a slave are kept for it.
-   real(wp), parameter :: WEDGE_COS = 0.8660254037844386_wp
+   !> Wedge rule (doc/contact-detection.md, "A slave between two faces", W.1): a slave's other
+   !> hit on a segment that shares no node with the chosen one is a second contact when the
+   !> slave, moved onto the chosen segment's line along its normal, would still be behind the
+   !> other segment's line by more than WEDGE_TOL of its length; MAX_HITS hits of a slave are
+   !> kept for it.
+   real(wp), parameter :: WEDGE_TOL = 1.0e-3_wp
    integer, parameter :: MAX_HITS = 8
 
    !> Accepted contacts of one detection pass, in slave order: one per slave node, two for a
@@ -271,8 +273,9 @@ contains
    !> neighbour at that node, the neighbour counting only if it passes the facing test.
    !> Swept mode: a contact point just past an end at a convex corner of the master is held at
    !> that end under the conditions of past_corner. Wedge rule (swept mode): of the slave's other
-   !> hits, the first by the same keys whose segment normal at x1 turns by more than 30 degrees
-   !> from the chosen one's (WEDGE_COS) is a second contact, written after the first.
+   !> hits on segments sharing no node with the chosen one, the first by the same keys that the
+   !> chosen contact would leave behind its line (W.1, WEDGE_TOL) is a second contact, written
+   !> after the first.
    !>
    !> With the slave surface's nsseg segments `sseg` and its node -> segments lists (`shead`,
    !> `ssegs`, node_segments), snrm(:, s) is formed here at x0 (some_node_normals), for the
@@ -428,12 +431,17 @@ contains
          if (best == 0) cycle
          call emit(best, btau, balpha)
          ! the wedge rule (doc/contact-detection.md, "A slave between two faces", W.1): the first
-         ! by the same keys of the other hits whose line turns by more than WEDGE_TURN from the
-         ! chosen one is a second contact of the slave
+         ! by the same keys of the other hits that the chosen contact leaves behind their line is
+         ! a second contact of the slave
          i2 = 0
          do i = 1, nh
             if (hk(i) == best) cycle
-            if (dot_product(hnf(:, i), bnf) >= WEDGE_COS) cycle
+            ! two faces that meet at a master node: that node's own constraints (the vertex rule,
+            ! the master node normal, its pass as a slave) hold the corner
+            if (any(seg(:, hk(i)) == seg(1, best)) .or. any(seg(:, hk(i)) == seg(2, best))) cycle
+            ! still behind the line of hk(i) once moved onto the chosen segment's line (W.1)
+            if (hgap(i) - bgap*dot_product(hnf(:, i), bnf) >= -WEDGE_TOL*norm2(x1(:, seg(2, hk(i))) - &
+                                                                         x1(:, seg(1, hk(i))))) cycle
             if (i2 /= 0) then
                if (.not. before(htau(i), hgap(i), hkey(:, i), htau(i2), hgap(i2), hkey(:, i2))) cycle
             end if
