@@ -12,6 +12,7 @@ module test_contact_geom
    use exic_contact_detect, only: gap_coefficients, first_crossing, swept_pair, static_pair, &
                                   contact_set_t, detect_contacts, ALPHA_TOL, FACING_LIMIT
    use testing, only: suite_t, check, check_close, section
+   use test_wedge, only: test_wedge_rule
    implicit none
    private
 
@@ -37,6 +38,7 @@ contains
       call test_corner(s)
       call test_facing_sides(s)
       call test_vertex_rule(s)
+      call test_wedge_rule(s)
       call test_broad_random(s)
       call test_broad_kept(s)
       call test_broad_scaling(s)

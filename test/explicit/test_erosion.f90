@@ -13,6 +13,7 @@ module test_erosion
    use exic_explicit_assembly, only: energy_balance
    use exic_explicit_step, only: stepper_t
    use exic_explicit_erosion, only: ERODED_INVERTED, ERODED_TIMESTEP, ERODED_STRAIN, element_strain
+   use exic_contact_inside, only: point_in_quad
    use testing, only: suite_t, check, section, error_text
    use deck_runner, only: run_dir, write_text
    implicit none
@@ -30,6 +31,8 @@ contains
       call projectile(s)
       call section(s, 'erosion: the energy booked at each erosion (doc/erosion.md (R3a))')
       call booking(s)
+      call section(s, 'erosion: no projectile node inside the remaining plate (doc/erosion.md, section 4)')
+      call no_entry(s)
       call section(s, 'erosion: records')
       call records(s)
    end subroutine run_erosion_tests
@@ -229,6 +232,110 @@ contains
                  'sum of |change| '//rtoa(jumps/e0)//' of E(0)')
       call check(s, worst < 0.01_wp, 'the thin plate: the largest |drift| of the run is below 1 %', rtoa(worst))
    end subroutine booking
+
+   !> The variant of tools/stress/erosion_family.py whose projectile went deepest into the plate
+   !> (v 1500, plate 4 x 0.4 of 40 x 4 elements, QUADrature 2, DT,CFL 0.5, rigid projectile): after
+   !> plate element 101 erodes, element 61 folds onto element 100 and its exposed face sweeps over
+   !> the projectile's corner 1003, which element 100's face holds; with one contact per slave the
+   !> corner went 1.13 element edges into element 61 (step 1154, t = 3.07e-3, release build of
+   !> 0461a1e). With the wedge rule (doc/contact-detection.md, W.1) the release build stays within
+   !> 0.017 edges (the corner in the dent, doc/erosion.md section 4). A crushed plate is chaotic:
+   !> the suite's build follows another trajectory (fewer elements eroded by t = 3.3e-3), so this
+   !> deck guards the issue's contract on the family's worst variant; the rule itself is checked
+   !> in the contact_geom suite ("wedge rule"). Checked after every step to t = 3.3e-3: no
+   !> projectile node inside a live plate element deeper than 0.05 of the nearest free edge of the
+   !> live plate; the energy balance within 1 %.
+   subroutine no_entry(s)
+      type(suite_t), intent(inout) :: s
+      type(stepper_t) :: stp
+      type(model_t) :: model
+      type(error_t), allocatable :: err
+      real(wp) :: worst, d, total, drift, tw
+      integer :: nstep, node, wnode, wstep
+      character(len=:), allocatable :: text
+      text = deck(1500.0_wp, 2, '    EROSion INVErted')
+      call write_text(run_dir//'/erosion_entry.inp', text)
+      call read_deck(run_dir//'/erosion_entry.inp', model, err)
+      if (.not. allocated(err)) call stp%init(model%mesh, model%materials, model%contact, err, model%loads)
+      if (.not. allocated(err)) call stp%set_cfl(0.5_wp, 'test', err)
+      if (.not. allocated(err)) call stp%start(err)
+      call check(s, .not. allocated(err), 'the projectile deck at CFL 0.5 starts', error_text(err))
+      if (allocated(err)) return
+      worst = 0.0_wp
+      wnode = 0
+      wstep = 0
+      tw = 0.0_wp
+      nstep = 0
+      do while (.not. allocated(err) .and. stp%st%t < 3.3e-3_wp)
+         call stp%advance(err)
+         if (allocated(err)) exit
+         nstep = nstep + 1
+         do node = 1001, 1015
+            d = depth_in_plate(stp%x(:, node))
+            if (d > worst) then
+               worst = d
+               wnode = node
+               wstep = nstep
+               tw = stp%st%t
+            end if
+         end do
+      end do
+      call check(s, .not. allocated(err), 'CFL 0.5: the run reaches t = 3.3e-3', error_text(err))
+      if (allocated(err)) return
+      call check(s, stp%st%neroded > 0, 'CFL 0.5: elements eroded', itoa(stp%st%neroded))
+      call check(s, worst < 0.05_wp, 'CFL 0.5: no projectile node inside the live plate deeper than 0.05 '// &
+                 'edges after any of the '//itoa(nstep)//' steps (deepest '//rtoa(worst)//', node '// &
+                 itoa(wnode)//', step '//itoa(wstep)//', '//itoa(stp%st%neroded)//' eroded)', 't '//rtoa(tw))
+      call energy_balance(stp%st, total, drift)
+      call check(s, abs(drift) < 0.01_wp, 'CFL 0.5: the energy balance closes within 1 %', rtoa(drift))
+   contains
+      !> Depth of point p inside the plate's live elements (region 1, status 0): 0 outside them,
+      !> else its distance to the nearest free edge of the live plate over that edge's length.
+      real(wp) function depth_in_plate(p) result(rel)
+         real(wp), intent(in) :: p(2)
+         integer :: e, f, k, l, a, b, kk, ll
+         real(wp) :: q(2, 4), t(2), w, dist, best
+         logical :: inside, free
+         rel = 0.0_wp
+         inside = .false.
+         do e = 1, size(model%mesh%conn, 2)
+            if (model%mesh%region(e) /= 1 .or. stp%st%status(e) /= 0) cycle
+            q = stp%x(:, model%mesh%conn(:, e))
+            if (point_in_quad(p, q)) then
+               inside = .true.
+               exit
+            end if
+         end do
+         if (.not. inside) return
+         best = huge(1.0_wp)
+         do e = 1, size(model%mesh%conn, 2)
+            if (model%mesh%region(e) /= 1 .or. stp%st%status(e) /= 0) cycle
+            do k = 1, 4
+               l = mod(k, 4) + 1
+               a = model%mesh%conn(k, e)
+               b = model%mesh%conn(l, e)
+               ! a free edge: no other live plate element has it
+               free = .true.
+               do f = 1, size(model%mesh%conn, 2)
+                  if (f == e .or. model%mesh%region(f) /= 1 .or. stp%st%status(f) /= 0) cycle
+                  do kk = 1, 4
+                     ll = mod(kk, 4) + 1
+                     if (model%mesh%conn(kk, f) == b .and. model%mesh%conn(ll, f) == a) free = .false.
+                  end do
+                  if (.not. free) exit
+               end do
+               if (.not. free) cycle
+               t = stp%x(:, b) - stp%x(:, a)
+               w = min(max(dot_product(p - stp%x(:, a), t)/dot_product(t, t), 0.0_wp), 1.0_wp)
+               dist = norm2(p - stp%x(:, a) - w*t)
+               if (dist < best) then
+                  best = dist
+                  rel = dist/norm2(t)
+               end if
+            end do
+         end do
+      end function depth_in_plate
+   end subroutine no_entry
 
    !> Bad EROSion records: errors naming file:line; a deck with the records reads them.
    subroutine records(s)

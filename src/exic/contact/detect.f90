@@ -55,8 +55,16 @@ module exic_contact_detect
    !> the contact point moves linearly from that to the seed's alpha(tau_c), so that rounding of
    !> tau_c near 0 never switches between the two (doc/contact-detection.md).
    real(wp), parameter, public :: TAU_BLEND = 0.01_wp
+   !> Wedge rule (doc/contact-detection.md, "A slave between two faces", W.1): a slave's other
+   !> hit on a segment that shares no node with the chosen one is a second contact when the
+   !> slave, moved onto the chosen segment's line along its normal, would still be behind the
+   !> other segment's line by more than WEDGE_TOL of its length; MAX_HITS hits of a slave are
+   !> kept for it.
+   real(wp), parameter :: WEDGE_TOL = 1.0e-3_wp
+   integer, parameter :: MAX_HITS = 8
 
-   !> Accepted contacts of one detection pass, at most one per slave node, in slave order.
+   !> Accepted contacts of one detection pass, in slave order: one per slave node, two for a
+   !> slave between two faces (swept mode, the wedge rule of detect_pairs).
    type :: contact_set_t
       integer :: n = 0                        !< number of contacts
       integer, allocatable :: slave(:)        !< slave node number
@@ -248,7 +256,8 @@ contains
    end function faces
 
    !> Narrow phase over candidate pairs cand(:, 1:ncand) (slave index, segment index),
-   !> sorted by slave: at most one contact per slave, written in slave order.
+   !> sorted by slave: one contact per slave (two under the wedge rule below), written in slave
+   !> order (at most 2 nslave).
    !>
    !> mode is DETECT_SWEPT or DETECT_STATIC. snrm(:, s) is the outward normal of slave s
    !> on its own surface (zero to skip the facing test); a pair is kept only if
@@ -264,7 +273,10 @@ contains
    !> node normal: the normalized average of the segment's normal and that of its
    !> neighbour at that node, the neighbour counting only if it passes the facing test.
    !> Swept mode: a contact point just past an end at a convex corner of the master is held at
-   !> that end under the conditions of past_corner.
+   !> that end under the conditions of past_corner. Wedge rule (swept mode): of the slave's other
+   !> hits on segments sharing no node with the chosen one, the first by the same keys that the
+   !> chosen contact would leave behind its line (W.1, WEDGE_TOL) is a second contact, written
+   !> after the first.
    !>
    !> With the slave surface's nsseg segments `sseg` and its node -> segments lists (`shead`,
    !> `ssegs`, node_segments), snrm(:, s) is formed here at x0 (some_node_normals), for the
@@ -297,12 +309,15 @@ contains
       ! rule when the lists above are not given (every node normal formed already)
       integer, intent(in), optional :: fseg(2, *), fhead(*), fsegs(*)
       integer, intent(out) :: ncon
-      integer, intent(out) :: cslave(nslave), cseg(nslave), cmaster(2, nslave)
-      logical, intent(out) :: cend(nslave)
-      real(wp), intent(out) :: calpha(nslave), cnormal(2, nslave), ctau(nslave), cgap(nslave)
+      integer, intent(out) :: cslave(2*nslave), cseg(2*nslave), cmaster(2, 2*nslave)
+      logical, intent(out) :: cend(2*nslave)
+      real(wp), intent(out) :: calpha(2*nslave), cnormal(2, 2*nslave), ctau(2*nslave), cgap(2*nslave)
       integer :: j, j0, jend, s, k, node, ma, mb, best, bkey(2), key(2), q, ks
       real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap, w
-      logical :: hit, lazy, have_nrm, cached, sides, crossed, within
+      logical :: hit, lazy, have_nrm, cached, sides, crossed, within, swapped
+      ! the slave's hits for the wedge rule (swept mode): segment, tau, alpha, gap, key, normal
+      integer :: nh, hk(MAX_HITS), hkey(2, MAX_HITS), i, i2, iw
+      real(wp) :: htau(MAX_HITS), halpha(MAX_HITS), hgap(MAX_HITS), hnf(2, MAX_HITS), bnf(2)
 
       lazy = present(nsseg) .and. present(sseg) .and. present(shead) .and. present(ssegs)
       sides = present(fseg) .and. present(fhead) .and. present(fsegs)
@@ -316,6 +331,8 @@ contains
          node = slaves(s)
          best = 0
          btau = 0.0_wp; balpha = 0.0_wp; bgap = 0.0_wp; bkey = 0
+         bnf = 0.0_wp
+         nh = 0
          have_nrm = .not. lazy
          jend = j0
          do while (jend < ncand)
@@ -400,6 +417,23 @@ contains
             end if
             gap = dot_product(x1(:, node) - ((1.0_wp - alpha)*x1(:, ma) + alpha*x1(:, mb)), nf)
             key = [min(ma, mb), max(ma, mb)]
+            if (mode == DETECT_SWEPT) then
+               ! kept for the wedge rule: the MAX_HITS first by the keys below
+               if (nh < MAX_HITS) then
+                  nh = nh + 1
+                  iw = nh
+               else
+                  iw = 1
+                  do i = 2, nh
+                     if (before(htau(iw), hgap(iw), hkey(:, iw), htau(i), hgap(i), hkey(:, i))) iw = i
+                  end do
+                  if (before(htau(iw), hgap(iw), hkey(:, iw), tau, gap, key)) iw = 0
+               end if
+               if (iw > 0) then
+                  hk(iw) = k; htau(iw) = tau; halpha(iw) = alpha; hgap(iw) = gap
+                  hkey(:, iw) = key; hnf(:, iw) = nf
+               end if
+            end if
             if (best /= 0) then
                if (tau > btau) cycle
                if (tau == btau) then
@@ -410,39 +444,86 @@ contains
                   end if
                end if
             end if
-            best = k; btau = tau; balpha = alpha; bgap = gap; bkey = key
+            best = k; btau = tau; balpha = alpha; bgap = gap; bkey = key; bnf = nf
          end do
          j0 = j
          if (best == 0) cycle
          ! a node in contact from the start whose predicted position lies past an end of its
          ! segment in a concave corner of the master: paired with the segment it slides onto
          ! (doc/contact-detection.md, "A node sliding into a master's concave corner")
+         swapped = .false.
          if (mode == DETECT_SWEPT .and. btau < TAU_BLEND) then
             call concave_neighbour(nnode, x0, x1, btau, node, snrm(:, s), nseg, seg, link, best, &
                                    facing, ALPHA_TOL, k, alpha)
             if (k > 0) then
                best = k
                balpha = alpha
+               swapped = .true.
             end if
          end if
+         call emit(best, btau, balpha)
+         ! a slave the concave rule moved onto the neighbour segment has its contact (C.1)
+         if (swapped) cycle
+         ! the wedge rule (doc/contact-detection.md, "A slave between two faces", W.1): the first
+         ! by the same keys of the other hits that the chosen contact leaves behind their line is
+         ! a second contact of the slave
+         i2 = 0
+         do i = 1, nh
+            if (hk(i) == best) cycle
+            ! two faces that meet at a master node: that node's own constraints (the vertex rule,
+            ! the master node normal, its pass as a slave) hold the corner
+            if (any(seg(:, hk(i)) == seg(1, best)) .or. any(seg(:, hk(i)) == seg(2, best))) cycle
+            ! still behind the line of hk(i) once moved onto the chosen segment's line (W.1)
+            if (hgap(i) - bgap*dot_product(hnf(:, i), bnf) >= -WEDGE_TOL*norm2(x1(:, seg(2, hk(i))) - &
+                                                                         x1(:, seg(1, hk(i))))) cycle
+            if (i2 /= 0) then
+               if (.not. before(htau(i), hgap(i), hkey(:, i), htau(i2), hgap(i2), hkey(:, i2))) cycle
+            end if
+            i2 = i
+         end do
+         if (i2 /= 0) call emit(hk(i2), htau(i2), halpha(i2))
+      end do
+   contains
+      !> Write the contact of slave s (node) with segment kk at tau tc, contact point al.
+      subroutine emit(kk, tc, al_in)
+         integer, intent(in) :: kk
+         real(wp), intent(in) :: tc, al_in
+         real(wp) :: al
+         al = al_in
          ncon = ncon + 1
          cslave(ncon) = node
-         cseg(ncon) = best
-         cmaster(:, ncon) = seg(:, best)
-         ctau(ncon) = btau
+         cseg(ncon) = kk
+         cmaster(:, ncon) = seg(:, kk)
+         ctau(ncon) = tc
          ! the normal at the time of contact tau_c (doc/contact-detection.md, "Frozen normal");
          ! a node in contact from the start: the contact point of its predicted position,
          ! blended into the seed's alpha(tau_c) over tau_c < TAU_BLEND (continuous in tau_c)
-         if (mode == DETECT_SWEPT .and. btau < TAU_BLEND) then
-            w = 1.0_wp - btau/TAU_BLEND
-            balpha = (1.0_wp - w)*balpha + &
-                     w*end_point(x1(:, node), x1(:, cmaster(1, ncon)), x1(:, cmaster(2, ncon)), balpha)
+         if (mode == DETECT_SWEPT .and. tc < TAU_BLEND) then
+            w = 1.0_wp - tc/TAU_BLEND
+            al = (1.0_wp - w)*al + &
+                 w*end_point(x1(:, node), x1(:, cmaster(1, ncon)), x1(:, cmaster(2, ncon)), al)
          end if
-         call finish_contact(nnode, x0, x1, merge(btau, 1.0_wp, mode == DETECT_SWEPT), node, snrm(:, s), &
-                             nseg, seg, link, best, balpha, facing, cend(ncon), calpha(ncon), &
+         call finish_contact(nnode, x0, x1, merge(tc, 1.0_wp, mode == DETECT_SWEPT), node, snrm(:, s), &
+                             nseg, seg, link, kk, al, facing, cend(ncon), calpha(ncon), &
                              cnormal(:, ncon), cgap(ncon))
-      end do
+      end subroutine emit
    end subroutine detect_pairs
+
+   !> Whether hit 1 (tau, predicted gap, sorted node pair) comes before hit 2 by the keys of
+   !> detect_pairs: the smaller tau, then the larger gap, then the lower node pair.
+   pure logical function before(tau1, gap1, key1, tau2, gap2, key2)
+      real(wp), intent(in) :: tau1, gap1, tau2, gap2
+      integer, intent(in) :: key1(2), key2(2)
+      if (tau1 /= tau2) then
+         before = tau1 < tau2
+      else if (gap1 /= gap2) then
+         before = gap1 > gap2
+      else if (key1(1) /= key2(1)) then
+         before = key1(1) < key2(1)
+      else
+         before = key1(2) < key2(2)
+      end if
+   end function before
 
    !> Whether a slave whose gap test passed on segment k at tau but whose contact point alpha lies
    !> off the segment is held at the segment's end (doc/contact-detection.md, "A node at a
@@ -742,12 +823,12 @@ contains
 
       cap = 0
       if (allocated(cs%slave)) cap = size(cs%slave)
-      if (cap < nslave .or. cap == 0) then
+      if (cap < 2*nslave .or. cap == 0) then
          if (allocated(cs%slave)) then
             deallocate (cs%slave, cs%master, cs%seg, cs%at_end, cs%alpha, cs%normal, &
                         cs%tau, cs%gap)
          end if
-         cap = max(nslave, 1)
+         cap = max(2*nslave, 1)
          allocate (cs%slave(cap), cs%master(2, cap), cs%seg(cap), cs%at_end(cap), &
                    cs%alpha(cap), cs%normal(2, cap), cs%tau(cap), cs%gap(cap))
       end if
