@@ -39,7 +39,7 @@ Asserted for every variant (doc/loads.md, section 3; doc/decisions.md, "Energy g
     kinetic energy W_pm books, doc/loads.md eq. P.3, and the balance checks it).
 
     python3 tools/stress/punch_family.py --exic BIN [--quick] [--seed N] [--count N] [--keep DIR] [--deep]
-                                         [--unstable N]
+                                         [--unstable N] [--only I,J,...]
 
 `--unstable N` adds N variants (every 384/N-th) whose step becomes DT,,k h/c (k = 2.5, 3, 4; h the
 smallest element side) after a quarter of the run: each must stop with an error (the energy guard
@@ -326,14 +326,18 @@ def main():
                          "the run: each must stop with an error")
     ap.add_argument("--deep", action="store_true",
                     help="no bound on the travel: every run to its nominal end (the crushed-mesh regime)")
+    ap.add_argument("--only", help="run only these variants, numbers of the full list (e.g. 11,56)")
     a = ap.parse_args()
     vs = variants(a.quick, a.seed, 0 if a.quick else a.count)
+    only = set(int(w) for w in a.only.split(",")) if a.only else None
     nfail = 0
     worst = {"drift": (0.0, None), "work": (0.0, None), "growth": (-1e300, None), "travel": (0.0, None)}
     with tempfile.TemporaryDirectory() as scratch:
         tmp = a.keep or scratch
         os.makedirs(tmp, exist_ok=True)
         for i, p in enumerate(vs):
+            if only is not None and i not in only:
+                continue
             fails, m = run(a.exic, p, tmp, "v%d" % i, a.deep)
             if fails:
                 nfail += 1

@@ -264,6 +264,8 @@ contains
    !> neighbour at that node, the neighbour counting only if it passes the facing test.
    !> Swept mode: a contact point just past an end at a convex corner of the master is held at
    !> that end under the conditions of past_corner.
+   !> A hit at tau = 0 of a slave behind a segment's line that the side test alone paired with it
+   !> is dropped where the slave lies on the face across a convex corner (beside_corner).
    !>
    !> With the slave surface's nsseg segments `sseg` and its node -> segments lists (`shead`,
    !> `ssegs`, node_segments), snrm(:, s) is formed here at x0 (some_node_normals), for the
@@ -301,7 +303,7 @@ contains
       real(wp), intent(out) :: calpha(nslave), cnormal(2, nslave), ctau(nslave), cgap(nslave)
       integer :: j, j0, s, k, node, ma, mb, best, bkey(2), key(2), q, ks
       real(wp) :: tau, alpha, gap, nf(2), btau, balpha, bgap, w
-      logical :: hit, lazy, have_nrm, cached, sides, crossed
+      logical :: hit, lazy, have_nrm, cached, sides, crossed, by_side
 
       lazy = present(nsseg) .and. present(sseg) .and. present(shead) .and. present(ssegs)
       sides = present(fseg) .and. present(fhead) .and. present(fsegs)
@@ -362,7 +364,8 @@ contains
                end if
                have_nrm = .true.
             end if
-            if (.not. faces(snrm(:, s), nf, facing)) then
+            by_side = .not. faces(snrm(:, s), nf, facing)
+            if (by_side) then
                ! the facing rule's side test (doc/contact-detection.md, "Facing test")
                if (lazy) then
                   if (.not. side_faces(nnode, x0, sseg, shead, ssegs, s, nf, facing)) cycle
@@ -371,6 +374,12 @@ contains
                else
                   cycle
                end if
+            end if
+            ! paired with k by the side test only, behind k's line at the start, but on the face
+            ! across k's end at a convex corner (doc/contact-detection.md, "A node beside a master's
+            ! convex corner")
+            if (by_side .and. hit .and. mode == DETECT_SWEPT .and. tau == 0.0_wp) then
+               if (beside_corner(nnode, x0, nseg, seg, link, k, node, alpha, snrm(:, s), facing)) cycle
             end if
             if (.not. hit) then
                ! off the segment: caught only just past an end at a convex corner whose other face
@@ -467,6 +476,46 @@ contains
          p = x0(:, j) + tau*(x1(:, j) - x0(:, j))
       end function at
    end function past_corner
+
+   !> Whether a hit of a slave on segment k at tau = 0 (a slave behind k's line at x0, g_k < 0),
+   !> which k's facing test passed by the side test only, is dropped because the slave lies
+   !> beside the master's convex corner at k's end v nearest its projection alpha
+   !> (doc/contact-detection.md, "A node beside a master's convex corner"): k', the segment
+   !> across v, turns left from k (convex at v), faces the slave's normal ns, the slave projects
+   !> onto k', and it is less deep behind the line of k' than behind k's, g_k' > g_k (in front
+   !> of it, or nearer it: near v the master is the intersection of the two half-planes and k'
+   !> its nearest face). Positions at x0.
+   pure logical function beside_corner(nnode, x0, nseg, seg, link, k, node, alpha, ns, facing) result(drop)
+      integer, intent(in) :: nnode, nseg, k, node
+      real(wp), intent(in) :: x0(2, nnode), alpha, ns(2), facing
+      integer, intent(in) :: seg(2, nseg), link(2, nseg)
+      real(wp) :: t(2), tn(2), g, gn, turn, nn(2), an
+      integer :: nbr, ma, mb
+      logical :: inside
+
+      drop = .false.
+      ma = seg(1, k); mb = seg(2, k)
+      g = dot_product(x0(:, node) - x0(:, ma), segment_normal(x0(:, ma), x0(:, mb)))
+      if (.not. (g < 0.0_wp)) return
+      nbr = merge(link(1, k), link(2, k), alpha < 0.5_wp)
+      if (nbr <= 0) return
+      if (seg(1, nbr) == node .or. seg(2, nbr) == node) return
+      t = x0(:, mb) - x0(:, ma)
+      tn = x0(:, seg(2, nbr)) - x0(:, seg(1, nbr))
+      if (alpha < 0.5_wp) then
+         turn = tn(1)*t(2) - tn(2)*t(1)
+      else
+         turn = t(1)*tn(2) - t(2)*tn(1)
+      end if
+      if (.not. (turn > 0.0_wp)) return
+      nn = segment_normal(x0(:, seg(1, nbr)), x0(:, seg(2, nbr)))
+      if (.not. faces(ns, nn, facing)) return
+      ! the slave projects onto k' (its nearest point on the master is on k', not past its far end)
+      call project(x0(:, node), x0(:, seg(1, nbr)), x0(:, seg(2, nbr)), an, inside)
+      if (.not. inside) return
+      gn = dot_product(x0(:, node) - x0(:, seg(1, nbr)), nn)
+      drop = gn > g
+   end function beside_corner
 
    !> The vertex rule (doc/contact-detection.md, "Vertex rule", V.1-V.2): slave `node` crossed the
    !> line of segment k (swept test, at tau, projection alpha) but projects past its end node m;
