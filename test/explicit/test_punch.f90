@@ -14,6 +14,11 @@
 !> 1e-3 of W_pm (prescribed_work at the end); with the constant velocity, W_pm equals the
 !> trapezoid rule in time of the reaction (reac,REGIon,2,2 of <stem>.his) times -v to round-off.
 !>
+!> A rigid punch 0.075 above the block, at rest, then driven down at v / c = 0.03 (variant v128 of
+!> tools/stress/punch_family.py, punch_rigid_beside_corner): a block node under the punch's
+!> corner is held by the bottom face, not by the side face it lies behind (doc/contact-detection.md,
+!> "A node beside a master's convex corner"); exic 0461a1e stopped at step 119 (13.8 %).
+!>
 !> A rigid punch driven into a plastic block (plastic_punch): its balance closes with the plastic
 !> work of doc/plasticity.md (J31).
 !>
@@ -45,6 +50,7 @@ contains
       ! search depth, where the start-up overlap test once saw them (doc/loads.md, section 3)
       call driven_punch(s, 'punch_far', '', 'from t = 0 at 1.1', 1.1_wp)
       call rigid_punch_corner(s)
+      call rigid_punch_beside_corner(s)
       call plastic_punch(s, 'punch_plastic2', '    MIXEd', '2x2 MIXEd')
       call plastic_punch(s, 'punch_plastic1', '    QUADrature 1', 'one point')
       call ramped_rigid_punch(s, 'punch_rigid_ramp', .false.)
@@ -140,12 +146,7 @@ contains
    !> reaction over the punch's displacement (reac,REGIon,2,2 and rigi,2,2 of <stem>.his).
    subroutine rigid_punch_corner(s)
       type(suite_t), intent(inout) :: s
-      character(len=*), parameter :: name = 'punch_rigid_corner'
-      character(len=:), allocatable :: deck, msg
-      character(len=64), allocatable :: hn(:), en(:)
-      real(wp), allocatable :: h(:, :), e(:, :)
-      integer :: stage, i, itot, iwpm
-      real(wp) :: wpm, drift, w
+      character(len=:), allocatable :: deck
       deck = 'FEAP * * rigid punch touching a block, block nodes as slaves'//nl//'0 0 0 2 2 4'//nl// &
              'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1e4 0.3'//nl//'    DENSity 1'//nl//nl// &
              'MATErial,2'//nl//'  RIGId'//nl//nl// &
@@ -158,26 +159,70 @@ contains
              '  PAIR,1,NTOS,1,2'//nl//'END CONTact'//nl//nl//'END'//nl//'BATCh'//nl// &
              '  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,1000000'//nl//'    TIME,,0.1'//nl// &
              '    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl//'  reac,REGIon,2,2'//nl//'  rigi,2,2'//nl//nl//'STOP'
+      call rigid_punch_checks(s, 'punch_rigid_corner', deck, 'block nodes as slaves')
+   end subroutine rigid_punch_corner
+
+   !> Variant v128 of tools/stress/punch_family.py: the rigid punch 0.075 above the block (8 x 4,
+   !> nu = 0.3), at rest, then driven down at v / c = 0.03 from t0 = 0.0147 (MOTIon times a
+   !> table: the velocity jumps), DT,CFL,0.7, NTOS with the block's nodes as slaves. A block node
+   !> under the punch's corner, on the bottom face and 0.022 inside the side face's line (within
+   !> the search depth), was caught by the side face at tau_c = 0 (its crossing of the bottom face
+   !> came 1e-16 later) and pushed 0.022 sideways: exic 0461a1e warned at step 97 and stopped at
+   !> step 119 (growth 13.8 % of the energy put in, "contact pair 1"). With the rule of
+   !> doc/contact-detection.md, "A node beside a master's convex corner", the bottom face holds it.
+   !> Asserted as for punch_rigid_corner.
+   subroutine rigid_punch_beside_corner(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: deck
+      deck = 'FEAP * * rigid punch apart, late, block nodes as slaves'//nl//'0 0 0 2 2 4'//nl// &
+             'MATErial,1'//nl//'  SOLId'//nl//'    ELAStic NEOHookean 1e4 0.3'//nl//'    DENSity 1'//nl//nl// &
+             'MATErial,2'//nl//'  RIGId'//nl//nl// &
+             'REGIon,1'//nl//'BLOCk'//nl//'  CARTesian,8,4,1,1,1'//nl//'    1,0,0'//nl//'    2,2,0'//nl// &
+             '    3,2,1'//nl//'    4,0,1'//nl//nl// &
+             'REGIon,2'//nl//'BLOCk'//nl//'  CARTesian,2,2,46,33,2'//nl//'    1,0.75,1.075'//nl// &
+             '    2,1.25,1.075'//nl//'    3,1.25,1.2749999999999999'//nl// &
+             '    4,0.75,1.2749999999999999'//nl//nl// &
+             'EBOUndary'//nl//'  2,0,1,1'//nl//nl//'MOTIon,REGIon,2,0,-3.4807161066919283,0,1'//nl// &
+             'CONTact'//nl//'  SURFace,1'//nl//'    REGIon,1'//nl//'  SURFace,2'//nl//'    REGIon,2'//nl// &
+             '  PAIR,1,NTOS,1,2'//nl//'END CONTact'//nl//nl//'END'//nl//'BATCh'//nl// &
+             '  PROPortional,,1'//nl//'  DT,CFL,0.7'//nl//'  TPLOt,,1'//nl//'  LOOP,,1000000'//nl// &
+             '    TIME,,0.10807761634933466'//nl//'    FORM,EXPLicit'//nl//'  NEXT'//nl//'END'//nl// &
+             '2, 0'//nl//'0, 0, 0.014706025550773397, 0, 0.014706025550773397, 1'//nl//nl// &
+             '  reac,REGIon,2,2'//nl//'  rigi,2,2'//nl//nl//'STOP'
+      call rigid_punch_checks(s, 'punch_rigid_beside_corner', deck, 'block node beside the corner')
+   end subroutine rigid_punch_beside_corner
+
+   !> Run a rigid punch's deck (`reac,REGIon,2,2` and `rigi,2,2` its two histories) and check: it
+   !> ends with no warning, the balance closes within 1e-3 of W_pm, and W_pm is the trapezoid
+   !> rule of the reaction over the punch's displacement.
+   subroutine rigid_punch_checks(s, name, deck, what)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name, deck, what
+      character(len=:), allocatable :: msg
+      character(len=64), allocatable :: hn(:), en(:)
+      real(wp), allocatable :: h(:, :), e(:, :)
+      integer :: stage, i, itot, iwpm
+      real(wp) :: wpm, drift, w
       call run_deck(name, deck, stage, msg)
-      call check(s, stage == 0, 'a rigid punch touching a block, block nodes as NTOS slaves, runs to the end', msg)
+      call check(s, stage == 0, 'a rigid punch driven into a block ('//what//') runs to the end', msg)
       if (stage /= 0) return
       call check(s, .not. file_has(run_dir//'/'//name//'.out', 'warning:'), &
-                 'rigid punch, block nodes as slaves: no warning (energy guard)')
+                 'rigid punch, '//what//': no warning (energy guard)')
       call read_table(run_dir//'/'//name//'.ene', en, e)
       call read_table(run_dir//'/'//name//'.his', hn, h)
       itot = column(en, 'total')
       iwpm = column(en, 'prescribed_work')
       wpm = e(iwpm, size(e, 2))
       drift = maxval(abs(e(itot, :) - e(itot, 1)))/max(wpm, tiny(1.0_wp))
-      call check(s, wpm > 0.0_wp .and. drift <= 1.0e-3_wp, 'rigid punch, block nodes as slaves: the balance '// &
+      call check(s, wpm > 0.0_wp .and. drift <= 1.0e-3_wp, 'rigid punch, '//what//': the balance '// &
                  'closes within 0.1 % of W_pm', 'W_pm '//rtoa(wpm)//', largest drift '//rtoa(drift))
       w = 0.0_wp
       do i = 1, size(h, 2) - 1
          w = w + 0.5_wp*(h(2, i) + h(2, i + 1))*(h(3, i + 1) - h(3, i))
       end do
-      call check(s, abs(w - wpm) <= 1.0e-6_wp*wpm, 'rigid punch, block nodes as slaves: W_pm = the integral '// &
+      call check(s, abs(w - wpm) <= 1.0e-6_wp*wpm, 'rigid punch, '//what//': W_pm = the integral '// &
                  'of the reaction over the punch''s displacement (.his)', 'int R du '//rtoa(w)//', W_pm '//rtoa(wpm))
-   end subroutine rigid_punch_corner
+   end subroutine rigid_punch_checks
 
    !> A rigid punch resting on a plastic block (PLAStic MISEs, yield 2e-3 E), driven into it by
    !> MOTIon at v / c = 0.01, DT,CFL,0.95, 4 x 2 elements, NTOS block nodes against the punch

@@ -39,7 +39,7 @@ Asserted for every variant (doc/loads.md, section 3; doc/decisions.md, "Energy g
     kinetic energy W_pm books, doc/loads.md eq. P.3, and the balance checks it).
 
     python3 tools/stress/punch_family.py --exic BIN [--quick] [--seed N] [--count N] [--keep DIR] [--deep]
-                                         [--unstable N] [--checks N]
+                                         [--unstable N] [--checks N] [--only I,J,...]
 
 The geometric penetration check (a warning past 1e-3 element edges) runs at the end of each run;
 `--checks N` runs it N times more, at field output (OUTPut,HDF5) every 1/N of the run, so that a
@@ -339,8 +339,10 @@ def main():
                          "check runs N times instead of at the end only")
     ap.add_argument("--deep", action="store_true",
                     help="no bound on the travel: every run to its nominal end (the crushed-mesh regime)")
+    ap.add_argument("--only", help="run only these variants, numbers of the full list (e.g. 11,56)")
     a = ap.parse_args()
     vs = variants(a.quick, a.seed, 0 if a.quick else a.count)
+    only = set(int(w) for w in a.only.split(",")) if a.only else None
     nfail = 0
     worst = {"drift": (0.0, None), "work": (0.0, None), "growth": (-1e300, None), "travel": (0.0, None),
              "pen": (0.0, None)}
@@ -349,6 +351,8 @@ def main():
         tmp = a.keep or scratch
         os.makedirs(tmp, exist_ok=True)
         for i, p in enumerate(vs):
+            if only is not None and i not in only:
+                continue
             fails, m = run(a.exic, p, tmp, "v%d" % i, a.deep, a.checks)
             if fails:
                 nfail += 1
