@@ -80,9 +80,7 @@ contains
       integer, intent(in) :: nx, ny
       logical, intent(in) :: q1
       character(len=:), allocatable :: deck, msg, out, line, motion, fn, quad, prop
-      character(len=64), allocatable :: en(:)
-      real(wp), allocatable :: e(:, :)
-      integer :: stage, itot, iwpm, at, k, ios
+      integer :: stage, at, k, ios
       real(wp) :: wpm, drift, edges
       motion = 'MOTIon,REGIon,2,0,-'//v
       fn = ''
@@ -128,11 +126,7 @@ contains
       end if
       call check(s, edges < 1.0e-3_wp, name//': the punch''s corner stays outside the block (deepest node '// &
                  'of the check over the run below 1e-3 element edges)', 'deepest '//rtoa(edges)//' edges')
-      call read_table(run_dir//'/'//name//'.ene', en, e)
-      itot = column(en, 'total')
-      iwpm = column(en, 'prescribed_work')
-      wpm = e(iwpm, size(e, 2))
-      drift = maxval(abs(e(itot, :) - e(itot, 1)))/max(wpm, tiny(1.0_wp))
+      call punch_balance(name, wpm, drift)
       call check(s, wpm > 0.0_wp .and. drift <= 1.0e-3_wp, name//': the balance closes within 0.1 % of '// &
                  'the work of the prescribed motion', 'W_pm '//rtoa(wpm)//', largest drift '//rtoa(drift))
    end subroutine concave_corner_punch
@@ -199,21 +193,17 @@ contains
       type(suite_t), intent(inout) :: s
       character(len=*), intent(in) :: name, deck, what
       character(len=:), allocatable :: msg
-      character(len=64), allocatable :: hn(:), en(:)
-      real(wp), allocatable :: h(:, :), e(:, :)
-      integer :: stage, i, itot, iwpm
+      character(len=64), allocatable :: hn(:)
+      real(wp), allocatable :: h(:, :)
+      integer :: stage, i
       real(wp) :: wpm, drift, w
       call run_deck(name, deck, stage, msg)
       call check(s, stage == 0, 'a rigid punch driven into a block ('//what//') runs to the end', msg)
       if (stage /= 0) return
       call check(s, .not. file_has(run_dir//'/'//name//'.out', 'warning:'), &
                  'rigid punch, '//what//': no warning (energy guard)')
-      call read_table(run_dir//'/'//name//'.ene', en, e)
       call read_table(run_dir//'/'//name//'.his', hn, h)
-      itot = column(en, 'total')
-      iwpm = column(en, 'prescribed_work')
-      wpm = e(iwpm, size(e, 2))
-      drift = maxval(abs(e(itot, :) - e(itot, 1)))/max(wpm, tiny(1.0_wp))
+      call punch_balance(name, wpm, drift)
       call check(s, wpm > 0.0_wp .and. drift <= 1.0e-3_wp, 'rigid punch, '//what//': the balance '// &
                  'closes within 0.1 % of W_pm', 'W_pm '//rtoa(wpm)//', largest drift '//rtoa(drift))
       w = 0.0_wp
@@ -276,9 +266,7 @@ contains
       character(len=*), intent(in) :: name
       logical, intent(in) :: unstable
       character(len=:), allocatable :: deck, msg, batch
-      character(len=64), allocatable :: en(:)
-      real(wp), allocatable :: e(:, :)
-      integer :: stage, itot, iwpm
+      integer :: stage
       real(wp) :: wpm, drift
       if (unstable) then
          batch = '  DT,CFL,0.9'//nl//'  TPLOt,,1'//nl//'  LOOP,,1000000'//nl//'    TIME,,0.02'//nl// &
@@ -308,11 +296,7 @@ contains
       if (stage /= 0) return
       call check(s, .not. file_has(run_dir//'/'//name//'.out', 'warning:'), &
                  'ramped rigid punch touching: no warning (energy guard, doc/loads.md eq. P.5)')
-      call read_table(run_dir//'/'//name//'.ene', en, e)
-      itot = column(en, 'total')
-      iwpm = column(en, 'prescribed_work')
-      wpm = e(iwpm, size(e, 2))
-      drift = maxval(abs(e(itot, :) - e(itot, 1)))/max(wpm, tiny(1.0_wp))
+      call punch_balance(name, wpm, drift)
       call check(s, wpm > 0.0_wp .and. drift <= 1.0e-3_wp, 'ramped rigid punch touching: the balance closes '// &
                  'within 0.1 % of the work of the prescribed motion', 'W_pm '//rtoa(wpm)//', largest drift '//rtoa(drift))
    end subroutine ramped_rigid_punch
@@ -323,9 +307,9 @@ contains
       character(len=*), intent(in) :: name, fn, what
       real(wp), intent(in), optional :: speed    !< d = -speed (1 when absent)
       character(len=:), allocatable :: deck, msg
-      character(len=64), allocatable :: hn(:), en(:)
-      real(wp), allocatable :: h(:, :), e(:, :)
-      integer :: stage, i, itot, iwpm
+      character(len=64), allocatable :: hn(:)
+      real(wp), allocatable :: h(:, :)
+      integer :: stage, i
       real(wp) :: wpm, drift, w
       real(wp) :: v
       character(len=:), allocatable :: d
@@ -351,12 +335,8 @@ contains
       if (stage /= 0) return
       call check(s, .not. file_has(run_dir//'/'//name//'.out', 'warning:'), &
                  'driven '//what//': no warning (energy guard)')
-      call read_table(run_dir//'/'//name//'.ene', en, e)
       call read_table(run_dir//'/'//name//'.his', hn, h)
-      itot = column(en, 'total')
-      iwpm = column(en, 'prescribed_work')
-      wpm = e(iwpm, size(e, 2))
-      drift = maxval(abs(e(itot, :) - e(itot, 1)))/max(wpm, tiny(1.0_wp))
+      call punch_balance(name, wpm, drift)
       call check(s, wpm > 0.0_wp .and. drift <= 1.0e-3_wp, 'driven '//what//': the balance closes within '// &
                  '0.1 % of the work of the prescribed motion', 'W_pm '//rtoa(wpm)//', largest drift '//rtoa(drift))
       if (len(fn) > 0) return
@@ -368,6 +348,21 @@ contains
       call check(s, abs(w - wpm) <= 1.0e-9_wp*wpm, 'driven '//what//': W_pm = the integral of the reaction '// &
                  'times the velocity (.his)', 'int R v dt '//rtoa(w)//', W_pm '//rtoa(wpm))
    end subroutine driven_punch
+
+   !> W_pm, the work of the prescribed motion at the end of run `name` (`prescribed_work` of its
+   !> .ene), and the largest drift of its `total` from the first row over W_pm (doc/loads.md,
+   !> section 3).
+   subroutine punch_balance(name, wpm, drift)
+      character(len=*), intent(in) :: name
+      real(wp), intent(out) :: wpm, drift
+      character(len=64), allocatable :: en(:)
+      real(wp), allocatable :: e(:, :)
+      integer :: itot
+      call read_table(run_dir//'/'//name//'.ene', en, e)
+      itot = column(en, 'total')
+      wpm = e(column(en, 'prescribed_work'), size(e, 2))
+      drift = maxval(abs(e(itot, :) - e(itot, 1)))/max(wpm, tiny(1.0_wp))
+   end subroutine punch_balance
 
    !> The data of function 1 with its closing blank record (blank alone: the unit ramp p = t).
    function fn_data(fn) result(text)
