@@ -39,11 +39,10 @@ import math
 import os
 import random
 import re
-import subprocess
 import sys
 import tempfile
 
-from variants import draw, read_table
+from variants import block_and_punch, draw, read_table, run_deck
 
 E, RHO = 1.0e4, 1.0
 
@@ -68,32 +67,8 @@ def deck(p):
     indent = 0.02
     t_touch = gap / v
     t_end = 1.5 * t_touch + max(indent / v, 6.0 / c)
-    nblock_nodes = (nx + 1) * (ny + 1)
-    npunch_nodes = (k + 1) * 3
-    if p["order"] == "block":
-        rb, rp = 1, 2
-        bn, be = 1, 1
-        pn, pe = nblock_nodes + 1, nx * ny + 1
-    else:
-        rp, rb = 1, 2
-        pn, pe = 1, 1
-        bn, be = npunch_nodes + 1, 2 * k + 1
-    mat_block = "MATErial,1\n  SOLId\n    ELAStic NEOHookean %.17g %.17g\n    DENSity %g\n" % (E, nu, RHO)
-    if p["quad"] == 1:
-        mat_block += "    QUADrature 1\n"
-    mat_block += "\n"
-    if p["punch"] == "rigid":
-        mat_punch = "MATErial,2\n  RIGId\n\n"
-    else:
-        mat_punch = "MATErial,2\n  SOLId\n    ELAStic NEOHookean %.17g %.17g\n    DENSity %g\n\n" % (10 * E, 0.3, RHO)
-    block = ("REGIon,%d\nBLOCk\n  CARTesian,%d,%d,%d,%d,1\n" % (rb, nx, ny, bn, be) +
-             "    1,0,0\n    2,%.17g,0\n    3,%.17g,1\n    4,0,1\n\n" % (width, width))
-    punch = ("REGIon,%d\nBLOCk\n  CARTesian,%d,2,%d,%d,2\n" % (rp, k, pn, pe) +
-             "    1,%.17g,%.17g\n    2,%.17g,%.17g\n    3,%.17g,%.17g\n    4,%.17g,%.17g\n\n"
-             % (xa, y0, xb, y0, xb, y0 + hp, xa, y0 + hp))
-    regions = block + punch if p["order"] == "block" else punch + block
-    text = "FEAP * * frictional punch family\n  0 0 0 2 2 4\n" + mat_block + mat_punch + regions
-    text += "EBOUndary\n  2,0,1,1\n\n"
+    text, rb, rp, pn = block_and_punch(p, "frictional punch family", nx, ny, k, width, xa, xb, y0, hp, nu,
+                                       E, RHO)
     props = []
     vx = p["slide"] * v
     if p["punch"] == "rigid":
@@ -129,17 +104,11 @@ def deck(p):
 
 
 def run(exic, p, tmp, name):
-    path = os.path.join(tmp, name + ".inp")
-    with open(path, "w") as f:
-        f.write(deck(p))
-    proc = subprocess.run([exic, "-q", "-o", tmp, path], capture_output=True, text=True, timeout=600)
-    out = proc.stdout + proc.stderr
-    rep_path = os.path.join(tmp, name + ".out")
-    rep = open(rep_path).read() if os.path.exists(rep_path) else ""
+    out, code, rep = run_deck(exic, deck(p), tmp, name)
     fails, other = [], []
     m = {"sweeps": 0, "passes": 0, "ratio": 0.0, "mirrors": 0}
-    if proc.returncode != 0:
-        other.append("exit code %d: %s" % (proc.returncode, out.strip().splitlines()[-1][:200] if out.strip() else ""))
+    if code != 0:
+        other.append("exit code %d: %s" % (code, out.strip().splitlines()[-1][:200] if out.strip() else ""))
     for ln in (out + rep).splitlines():
         if not re.search(r"\bwarning:", ln):
             continue
@@ -154,10 +123,10 @@ def run(exic, p, tmp, name):
         m["sweeps"], m["passes"], m["mirrors"] = int(f.group(1)), int(f.group(5)), int(f.group(7))
         if int(f.group(3)) or int(f.group(4)):
             fails.append("sweep limit %s steps, pass limit %s problems" % (f.group(3), f.group(4)))
-    elif proc.returncode == 0:
+    elif code == 0:
         fails.append("no friction line in %s.out" % name)
     his = os.path.join(tmp, name + ".his")
-    if proc.returncode == 0 and os.path.exists(his):
+    if code == 0 and os.path.exists(his):
         mus = float(p["law"].split(",")[0])
         worst = 0.0
         for r in read_table(his)[1]:

@@ -30,11 +30,10 @@ import math
 import os
 import random
 import re
-import subprocess
 import sys
 import tempfile
 
-from variants import draw, read_table
+from variants import draw, read_table, run_deck
 
 E, RHO = 1.0e4, 1.0
 Y0 = 2.0e-3 * E
@@ -104,22 +103,16 @@ def deck(p):
 
 def run(exic, p, tmp, name):
     """Run variant p: the failures (list of text) and the measures."""
-    path = os.path.join(tmp, name + ".inp")
-    with open(path, "w") as f:
-        f.write(deck(p))
-    proc = subprocess.run([exic, "-q", "-o", tmp, path], capture_output=True, text=True, timeout=600)
-    out = proc.stdout + proc.stderr
-    rep_path = os.path.join(tmp, name + ".out")
-    rep = open(rep_path).read() if os.path.exists(rep_path) else ""
+    out, code, rep = run_deck(exic, deck(p), tmp, name)
     fails = []
     m = {"drift": float("nan"), "wpm": float("nan"), "wp": float("nan"), "dwp_min": float("nan")}
-    if proc.returncode != 0:
-        fails.append("exit code %d: %s" % (proc.returncode, out.strip().splitlines()[-1][:300] if out.strip() else ""))
+    if code != 0:
+        fails.append("exit code %d: %s" % (code, out.strip().splitlines()[-1][:300] if out.strip() else ""))
     warn = [ln for ln in (out + rep).splitlines() if re.search(r"\bwarning:", ln)]
     if warn:
         fails.append("warning: " + warn[0][:300])
     ene = os.path.join(tmp, name + ".ene")
-    if proc.returncode == 0 and os.path.exists(ene):
+    if code == 0 and os.path.exists(ene):
         names, rows = read_table(ene)
         itot, iwpm, iwp = names.index("total"), names.index("prescribed_work"), names.index("plastic_work")
         wpm, wp = rows[-1][iwpm], rows[-1][iwp]

@@ -63,7 +63,7 @@ import subprocess
 import sys
 import tempfile
 
-from variants import draw, read_table
+from variants import block_and_punch, draw, read_table, run_deck
 
 E, RHO = 1.0e4, 1.0
 
@@ -134,37 +134,13 @@ def deck(p, deep=False, unstable=0.0, checks=0):
             else:
                 lo = mid
         t_stop = lo
-    # numbering: the block first or the punch first
-    nblock_nodes = (nx + 1) * (ny + 1)
-    npunch_nodes = (npx + 1) * 3
-    if p["order"] == "block":
-        rb, rp = 1, 2
-        bn, be = 1, 1
-        pn, pe = nblock_nodes + 1, nx * ny + 1
-    else:
-        rp, rb = 1, 2
-        pn, pe = 1, 1
-        bn, be = npunch_nodes + 1, 2 * npx + 1
-    mat_block = "MATErial,1\n  SOLId\n    ELAStic NEOHookean %.17g %.17g\n    DENSity %g\n" % (E, nu, RHO)
-    if p["quad"] == 1:
-        mat_block += "    QUADrature 1\n"
+    plastic = ""
     if p["plastic"]:
-        mat_block += "    PLAStic MISEs %.17g\n" % (2e-3 * E)
+        plastic = "    PLAStic MISEs %.17g\n" % (2e-3 * E)
         if p["quad"] == 2:
-            mat_block += "    MIXEd\n"
-    mat_block += "\n"
-    if p["punch"] == "rigid":
-        mat_punch = "MATErial,2\n  RIGId\n\n"
-    else:
-        mat_punch = "MATErial,2\n  SOLId\n    ELAStic NEOHookean %.17g %.17g\n    DENSity %g\n\n" % (10 * E, 0.3, RHO)
-    block = ("REGIon,%d\nBLOCk\n  CARTesian,%d,%d,%d,%d,1\n" % (rb, nx, ny, bn, be) +
-             "    1,0,0\n    2,%.17g,0\n    3,%.17g,1\n    4,0,1\n\n" % (width, width))
-    punch = ("REGIon,%d\nBLOCk\n  CARTesian,%d,2,%d,%d,2\n" % (rp, npx, pn, pe) +
-             "    1,%.17g,%.17g\n    2,%.17g,%.17g\n    3,%.17g,%.17g\n    4,%.17g,%.17g\n\n"
-             % (xa, y0, xb, y0, xb, y0 + hp, xa, y0 + hp))
-    regions = block + punch if p["order"] == "block" else punch + block
-    text = "FEAP * * driven punch family\n  0 0 0 2 2 4\n" + mat_block + mat_punch + regions
-    text += "EBOUndary\n  2,0,1,1\n\n"
+            plastic += "    MIXEd\n"
+    text, rb, rp, pn = block_and_punch(p, "driven punch family", nx, ny, npx, width, xa, xb, y0, hp, nu,
+                                       E, RHO, plastic)
     props = []                    # PROPortional data after END
     if p["punch"] == "rigid":
         if motion == "const":
@@ -227,18 +203,12 @@ def deck(p, deep=False, unstable=0.0, checks=0):
 def run(exic, p, tmp, name, deep=False, checks=0):
     """Run variant p; the failures (list of text) and the measures."""
     text, dist = deck(p, deep, checks=checks)
-    path = os.path.join(tmp, name + ".inp")
-    with open(path, "w") as f:
-        f.write(text)
-    proc = subprocess.run([exic, "-q", "-o", tmp, path], capture_output=True, text=True, timeout=600)
-    out = proc.stdout + proc.stderr
+    out, code, rep = run_deck(exic, text, tmp, name)
     fails = []
     m = {"drift": float("nan"), "work": float("nan"), "growth": float("nan"), "wpm": float("nan"),
          "travel": float("nan"), "pen": float("nan")}
-    report = os.path.join(tmp, name + ".out")
-    rep = open(report).read() if os.path.exists(report) else ""
-    if proc.returncode != 0:
-        fails.append("exit code %d: %s" % (proc.returncode, out.strip().splitlines()[-1][:300] if out.strip() else ""))
+    if code != 0:
+        fails.append("exit code %d: %s" % (code, out.strip().splitlines()[-1][:300] if out.strip() else ""))
     warn = [ln for ln in (out + rep).splitlines() if re.search(r"\bwarning:", ln)]
     if warn:
         fails.append("warning: " + warn[0][:300])
@@ -249,7 +219,7 @@ def run(exic, p, tmp, name, deep=False, checks=0):
         m["growth"] = float(g.group(1)) / 100.0
     ene = os.path.join(tmp, name + ".ene")
     his = os.path.join(tmp, name + ".his")
-    if proc.returncode == 0 and os.path.exists(ene) and os.path.exists(his):
+    if code == 0 and os.path.exists(ene) and os.path.exists(his):
         names, rows = read_table(ene)
         it, itot, iwpm = names.index("t"), names.index("total"), names.index("prescribed_work")
         wpm = rows[-1][iwpm]
