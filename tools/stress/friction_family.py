@@ -42,16 +42,14 @@ import re
 import sys
 import tempfile
 
-from variants import block_and_punch, draw, read_table, run_deck
+from variants import dilatational_speed, block_and_punch, draw, read_table, run_deck
 
 E, RHO = 1.0e4, 1.0
 
 
 def deck(p):
     nu = p["nu"]
-    lam = E * nu / ((1 + nu) * (1 - 2 * nu))
-    mu = E / (2 * (1 + nu))
-    c = math.sqrt((lam + 2 * mu) / RHO)
+    c = dilatational_speed(E, nu, RHO)
     nx, ny, ar = p["nx"], p["ny"], p["ar"]
     hy = 1.0 / ny
     hx = ar * hy

@@ -33,7 +33,7 @@ import re
 import sys
 import tempfile
 
-from variants import draw, read_table, run_deck
+from variants import dilatational_speed, draw, read_table, run_deck
 
 E, RHO = 1.0e4, 1.0
 Y0 = 2.0e-3 * E
@@ -58,9 +58,7 @@ def law_lines(law):
 def deck(p):
     """The deck text of variant p (a dict)."""
     nu = p["nu"]
-    lam = E * nu / ((1 + nu) * (1 - 2 * nu))
-    mu = E / (2 * (1 + nu))
-    c = math.sqrt((lam + 2 * mu) / RHO)
+    c = dilatational_speed(E, nu, RHO)
     nx, ny, ar = p["nx"], p["ny"], p["ar"]
     hy = 1.0 / ny
     width = nx * ar * hy

@@ -63,7 +63,7 @@ import subprocess
 import sys
 import tempfile
 
-from variants import block_and_punch, draw, read_table, run_deck
+from variants import dilatational_speed, block_and_punch, draw, read_table, run_deck
 
 E, RHO = 1.0e4, 1.0
 
@@ -90,9 +90,7 @@ def deck(p, deep=False, unstable=0.0, checks=0):
     without the bound on the travel; `unstable` > 0: after a quarter of the run the step becomes
     DT,,unstable times the 1-D bound h / c of the smallest element side (an unstable step)."""
     nu = p["nu"]
-    lam = E * nu / ((1 + nu) * (1 - 2 * nu))
-    mu = E / (2 * (1 + nu))
-    c = math.sqrt((lam + 2 * mu) / RHO)
+    c = dilatational_speed(E, nu, RHO)
     ny, nx, ar = p["ny"], p["nx"], p["ar"]
     hy = 1.0 / ny
     hx = ar * hy

@@ -2,6 +2,7 @@
 
 Plain Python (no numpy): the generators run with the system's python3.
 """
+import math
 import os
 import subprocess
 
@@ -29,6 +30,13 @@ def draw(rng, opts, count):
         q.update(nx=nx, ny=ny, ar=ar)
         out.append(q)
     return out
+
+
+def dilatational_speed(E, nu, rho):
+    """The dilatational wave speed c = sqrt((lambda + 2 mu) / rho) of a material E, nu, rho."""
+    lam = E * nu / ((1 + nu) * (1 - 2 * nu))
+    mu = E / (2 * (1 + nu))
+    return math.sqrt((lam + 2 * mu) / rho)
 
 
 def block_and_punch(p, title, nx, ny, npx, width, xa, xb, y0, hp, nu, E, rho, block_extra=""):
