@@ -13,7 +13,7 @@ module test_friction
    use exic_input_deck, only: read_deck
    use testing, only: suite_t, check, section, skip, have_command, error_text, file_text
    use h5dump_reader, only: h5dump
-   use deck_runner, only: run_dir, run_deck, read_table, column, write_text
+   use deck_runner, only: run_dir, run_deck, read_table, column, write_text, replace_first
    implicit none
    private
 
@@ -249,7 +249,7 @@ contains
       end if
       deck = head//mats//floor//unit_block//'INITial,VELOcity'//nl//'  REGIon,1,1,0'//nl//nl// &
              'GRAVity,0,-10'//nl//contact('  FRICtion,COULomb,0.5'//nl)//batch('1e-4', '0.1', requests())
-      deck = replace(deck, '  TPLOt,,1', '  TPLOt,,1'//nl//'  OUTPut,HDF5,0.05')
+      deck = replace_first(deck, '  TPLOt,,1', '  TPLOt,,1'//nl//'  OUTPut,HDF5,0.05')
       call run_deck('slide_fields', deck, stage, msg)
       call check(s, stage == 0, 'sliding block with field output runs', msg)
       if (stage /= 0) return
@@ -352,7 +352,7 @@ contains
       integer :: stage, i, n, iroll, kk, kd, ndec, nland
       real(wp), parameter :: rr = 0.5_wp, v0 = 2.0_wp
       real(wp) :: worst, lost, diss
-      deck = head//mats//replace(floor, 'CARTesian,8,1,101,2,2', 'CARTesian,8,1,3001,1025,2')// &
+      deck = head//mats//replace_first(floor, 'CARTesian,8,1,101,2,2', 'CARTesian,8,1,3001,1025,2')// &
              'SHIFt,0,0.5'//nl//'REGIon,1'//nl//'BLOCk'//nl//'  POLAr,1,1024,1,1,1'//nl// &
              '    1,0.1,270'//nl//'    2,0.5,270'//nl//'    3,0.5,630'//nl//'    4,0.1,630'//nl//nl// &
              'INITial,VELOcity'//nl//'  REGIon,1,2,0'//nl//nl//'GRAVity,0,-10'//nl// &
@@ -526,7 +526,7 @@ contains
                'COULomb')
       call bad('fr_record', base//contact('  STICky,0.3'//nl)//batch('1e-4', '0.1', ''), 'STICky', &
                'unknown CONTact record "STICky"')
-      call write_text(run_dir//'/fr_warn.inp', replace(base//contact('')//batch('1e-4', '0.1', ''), &
+      call write_text(run_dir//'/fr_warn.inp', replace_first(base//contact('')//batch('1e-4', '0.1', ''), &
                                                        'DT,,1e-4', 'DT,,1e-4,42'))
       call read_deck(run_dir//'/fr_warn.inp', m, err)
       call check(s, .not. allocated(err), 'an unused field outside the contact block is not an error', error_text(err))
@@ -562,15 +562,5 @@ contains
          if (text(i:i) == nl) line = line + 1
       end do
    end function line_of
-
-   !> `text` with the first `old` replaced by `new`.
-   function replace(text, old, new) result(out)
-      character(len=*), intent(in) :: text, old, new
-      character(len=:), allocatable :: out
-      integer :: k
-      k = index(text, old)
-      out = text
-      if (k > 0) out = text(:k - 1)//new//text(k + len(old):)
-   end function replace
 
 end module test_friction

@@ -15,7 +15,7 @@ module test_erosion
    use exic_explicit_erosion, only: ERODED_INVERTED, ERODED_TIMESTEP, ERODED_STRAIN, element_strain
    use exic_contact_inside, only: point_in_quad
    use testing, only: suite_t, check, section, error_text
-   use deck_runner, only: run_dir, write_text
+   use deck_runner, only: run_dir, write_text, replace_first
    implicit none
    private
 
@@ -61,27 +61,15 @@ contains
              'BATCh'//nl//'  TRANsient,EXPLicit'//nl//'  DT,CFL,0.9'//nl//'END'//nl//nl//'STOP'//nl
       if (present(thin)) then
          if (thin) then
-            text = replace(text, 'CARTesian,40,4,0,0,1'//nl//'    1,0,0'//nl//'    2,4,0'//nl//'    3,4,0.4'//nl// &
+            text = replace_first(text, 'CARTesian,40,4,0,0,1'//nl//'    1,0,0'//nl//'    2,4,0'//nl//'    3,4,0.4'//nl// &
                            '    4,0,0.4', 'CARTesian,20,2,0,0,1'//nl//'    1,0,0'//nl//'    2,4,0'//nl// &
                            '    3,4,0.2'//nl//'    4,0,0.2')
-            text = replace(text, '1,1.9,0.41'//nl//'    2,2.1,0.41'//nl//'    3,2.1,0.81'//nl//'    4,1.9,0.81', &
+            text = replace_first(text, '1,1.9,0.41'//nl//'    2,2.1,0.41'//nl//'    3,2.1,0.81'//nl//'    4,1.9,0.81', &
                            '1,1.9,0.21'//nl//'    2,2.1,0.21'//nl//'    3,2.1,0.61'//nl//'    4,1.9,0.61')
          end if
       end if
    end function deck
 
-   !> text with its first `old` replaced by `new`
-   function replace(text, old, new) result(out)
-      character(len=*), intent(in) :: text, old, new
-      character(len=:), allocatable :: out
-      integer :: i
-      i = index(text, old)
-      if (i == 0) then
-         out = text
-      else
-         out = text(:i - 1)//new//text(i + len(old):)
-      end if
-   end function replace
 
    !> Run `text` (as run_dir/<name>.inp) to t_end; err: the stepper's error, if any.
    subroutine run_to(name, text, t_end, stp, model, err, dt_floor)

@@ -8,7 +8,7 @@ module deck_runner
    implicit none
    private
 
-   public :: run_dir, write_text, run_deck, read_table, column, file_has
+   public :: run_dir, write_text, run_deck, read_table, column, file_has, replace_first
 
    !> Where test runs write their decks and outputs.
    character(len=*), parameter :: run_dir = 'build/test_runs'
@@ -121,5 +121,15 @@ contains
       end do
       close (u)
    end function file_has
+
+   !> `text` with its first `old` replaced by `new` (unchanged when absent): a variant of a deck.
+   function replace_first(text, old, new) result(out)
+      character(len=*), intent(in) :: text, old, new
+      character(len=:), allocatable :: out
+      integer :: k
+      k = index(text, old)
+      out = text
+      if (k > 0) out = text(:k - 1)//new//text(k + len(old):)
+   end function replace_first
 
 end module deck_runner
