@@ -458,7 +458,7 @@ contains
    subroutine visit_contact(ar, c)
       type(archive_t), intent(inout) :: ar
       type(contact_t), intent(inout) :: c
-      integer :: k
+      integer :: k, n
       character(len=:), allocatable :: p
       if (.not. c%active) return
       do k = 1, size(c%results)
@@ -502,6 +502,18 @@ contains
          end do
          call visit_pair_history(ar, c%auto_hist)
       end if
+      do k = 1, c%nfixed
+         ! the corners each corner pass held at the last step (contact_step, eq. K.2)
+         if (.not. c%passes(k)%corners) cycle
+         p = 'contact.pass'//itoa(k)//'.corners_held'
+         n = size(c%passes(k)%held)
+         call ar%item(p//'.n', n)
+         if (.not. ar%saving) then
+            deallocate (c%passes(k)%held)
+            allocate (c%passes(k)%held(max(n, 0)))
+         end if
+         if (n > 0) call ar%item(p, c%passes(k)%held)
+      end do
       call ar%item('contact.max_penetration', c%max_penetration)
       call ar%item('contact.nredundant', c%nredundant)
       call ar%item('contact.time_search', c%time_search)

@@ -13,6 +13,7 @@ module test_contact_geom
                                   contact_set_t, detect_contacts, ALPHA_TOL, FACING_LIMIT
    use testing, only: suite_t, check, check_close, section
    use test_wedge, only: test_wedge_rule
+   use test_corner_pass, only: test_corner_turns
    implicit none
    private
 
@@ -39,6 +40,7 @@ contains
       call test_facing_sides(s)
       call test_vertex_rule(s)
       call test_wedge_rule(s)
+      call test_corner_turns(s)
       call test_broad_random(s)
       call test_broad_kept(s)
       call test_broad_scaling(s)

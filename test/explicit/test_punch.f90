@@ -61,7 +61,33 @@ contains
                                 '46,33', '12.41', '', '0.5', '0.0145', '4e-4')
       call concave_corner_punch(s, 'punch_concave_aligned', 4, 2, .false., '0.3', '0.5', '1.5', &
                                 '16,9', '3.48', '0, 0, 0.00905, 0, 0.00905, 1', '0.95', '0.0724', '4.5e-3')
+      ! the corner pass of an NTOS pair (doc/contact-detection.md, "Corner pass of a one-pass pair")
+      call rigid_punch_checks(s, 'corner_pass_punch_56', file_text('test/data/stress/corner_pass_punch_56.inp'), &
+                              'corner pass, rigid punch (v56)')
+      call corner_pass_punch(s, 'corner_pass_punch_372', 'a deformable punch''s corner (v372)')
+      call corner_pass_punch(s, 'corner_pass_peak_358', 'a block''s peak inside the punch (v358, K.2)')
    end subroutine run_punch_tests
+
+   !> Decks of tools/stress/punch_family.py saved in test/data/stress (their first comment lines
+   !> say what each showed): the block's nodes as NTOS slaves under a deformable punch's corner
+   !> (v372: exic 6847b2b stopped at step 4469, growth 46 times the energy put in), and the
+   !> punch's nodes as slaves over a plastic block whose crushed peak lies inside the punch (v358:
+   !> the corner pass without its rule K.2 stopped at step 134, 2.8 times the energy put in).
+   !> Asserted: the run ends with no warning and the balance closes within 1e-3 of W_pm.
+   subroutine corner_pass_punch(s, name, what)
+      type(suite_t), intent(inout) :: s
+      character(len=*), intent(in) :: name, what
+      character(len=:), allocatable :: msg
+      integer :: stage
+      real(wp) :: wpm, drift
+      call run_deck(name, file_text('test/data/stress/'//name//'.inp'), stage, msg)
+      call check(s, stage == 0, name//': '//what//' runs to the end', msg)
+      if (stage /= 0) return
+      call check(s, .not. file_has(run_dir//'/'//name//'.out', 'warning:'), name//': no warning')
+      call punch_balance(name, wpm, drift)
+      call check(s, wpm > 0.0_wp .and. drift <= 1.0e-3_wp, name//': the balance closes within 0.1 % of W_pm', &
+                 'W_pm '//rtoa(wpm)//', largest drift '//rtoa(drift))
+   end subroutine corner_pass_punch
 
    !> Issue 32, item 1, the punch's nodes as one-pass slaves (`PAIR,1,NTOS,punch,block`): a RIGId
    !> punch (2 x 2 elements, 0.2 high, from xa to xb) resting on a block 2 x 1 of nx x ny

@@ -27,7 +27,7 @@ module exic_contact_broad
    private
 
    public :: broad_t, broad_search, broad_search_kept, broad_brute, swept_box, surfaces_apart, &
-             boxes_overlap, drop_flat_fixed
+             boxes_overlap, drop_flat_fixed, keep_convex_corners
 
    !> Skin of the kept list (broad_search_kept): SKIN_SHARE of the mean segment length, or
    !> SKIN_STEPS times the largest motion of one step if that is larger.
@@ -35,6 +35,10 @@ module exic_contact_broad
    !> A node may move up to SKIN_USE x skin from its positions at the build (the rest of the
    !> skin absorbs the rounding of the box tests).
    real(wp), parameter :: SKIN_USE = 0.75_wp
+
+   !> Turn of a surface at a node (radians) from which the node is a convex corner that the
+   !> corner pass of a one-pass pair makes a slave (keep_convex_corners): 30 degrees.
+   real(wp), parameter :: CORNER_TURN = 0.5235987755982988_wp
 
    !> Work space and result of the broad phase; reuse one per contact pair across steps.
    type :: broad_t
@@ -295,14 +299,58 @@ contains
             flat = abs(t1(1)*t2(2) - t1(2)*t2(1)) <= 1.0e-9_wp*hypot(t1(1), t1(2))*hypot(t2(1), t2(2)) &
                    .and. dot_product(t1, t2) > 0.0_wp
          end if
-         if (flat) cycle
-         n = n + 1
-         if (n == k) cycle
-         bw%cand(1, n) = bw%cand(1, k)
-         bw%cand(2, n) = bw%cand(2, k)
+         if (.not. flat) call keep_candidate(bw, n, k)
       end do
       bw%ncand = n
    end subroutine drop_flat_fixed
+
+   !> Keep of bw's candidates only the slaves at which their own surface turns convex by
+   !> CORNER_TURN or more: the slave has two segments, t1 into it and t2 out of it (the body on
+   !> the left), t1 x t2 > 0 and the angle from t1 to t2, atan2(t1 x t2, t1 . t2), at least
+   !> CORNER_TURN (doc/contact-detection.md, "Corner pass of a one-pass pair"). A node with one
+   !> segment (the end of an open surface) is not kept: the body's turn there is not known. The
+   !> pairs left keep their order.
+   pure subroutine keep_convex_corners(bw, nnode, x, nslave, slaves, seg, head, segs)
+      type(broad_t), intent(inout) :: bw
+      integer, intent(in) :: nnode, nslave
+      real(wp), intent(in) :: x(2, nnode)
+      integer, intent(in) :: slaves(nslave), seg(:, :), head(nslave + 1), segs(:)
+      integer :: k, n, s, node, j, prev, next
+      real(wp) :: t1(2), t2(2)
+      logical :: corner
+
+      n = 0
+      do k = 1, bw%ncand
+         s = bw%cand(1, k)
+         node = slaves(s)
+         corner = head(s + 1) - head(s) == 2
+         if (corner) then
+            prev = 0
+            next = 0
+            do j = head(s), head(s) + 1
+               if (seg(2, segs(j)) == node) prev = seg(1, segs(j))
+               if (seg(1, segs(j)) == node) next = seg(2, segs(j))
+            end do
+            corner = prev /= 0 .and. next /= 0
+         end if
+         if (corner) then
+            t1 = x(:, node) - x(:, prev)
+            t2 = x(:, next) - x(:, node)
+            corner = atan2(t1(1)*t2(2) - t1(2)*t2(1), dot_product(t1, t2)) >= CORNER_TURN
+         end if
+         if (corner) call keep_candidate(bw, n, k)
+      end do
+      bw%ncand = n
+   end subroutine keep_convex_corners
+
+   !> Keep candidate k of bw as the next of the n kept so far (n < k: moved down, in order).
+   pure subroutine keep_candidate(bw, n, k)
+      type(broad_t), intent(inout) :: bw
+      integer, intent(inout) :: n
+      integer, intent(in) :: k
+      n = n + 1
+      if (n < k) bw%cand(:, n) = bw%cand(:, k)
+   end subroutine keep_candidate
 
    !> True when the slave of some candidate cand(:, 1:n) has no inverse mass in either direction
    !> (drop_flat_fixed's first test).

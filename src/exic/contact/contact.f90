@@ -1,9 +1,11 @@
 !> Contact in the time step: surfaces, passes, search and the implicit corrector (seed 3-6).
 !>
-!> Each PAIR becomes one pass (NTOS, SELF) or two (SYMMetric: each surface's nodes against the
-!> other's segments); AUTOmatic makes a surface of every region's free boundary and pairs every
-!> two of them: one search over all its surfaces per step makes the passes of the pairs found
-!> near (src/exic/contact/broad_all.f90), Lagrange or penalty. Per step and pass: predicted
+!> Each PAIR becomes one pass (SELF), two (SYMMetric: each surface's nodes against the other's
+!> segments) or, for NTOS, its pass and a corner pass (the master's convex corners, turning by 30
+!> degrees or more, against the slave surface's segments; doc/contact-detection.md, "Corner
+!> pass of a one-pass pair"); AUTOmatic makes a surface of every region's free boundary and
+!> pairs every two of them: one search over all its surfaces per step makes the passes of the
+!> pairs found near (src/exic/contact/broad_all.f90), Lagrange or penalty. Per step and pass: predicted
 !> positions x~(n+2) (eq. 4.4), the broad phase on swept boxes, swept (or static)
 !> node-to-segment detection (eq. 6.1-6.6), and candidate constraints with the predicted gap
 !> of eq. 3.19 at t(n+2) and a frozen normal. All Lagrange candidates of all passes are solved
@@ -29,7 +31,7 @@ module exic_contact_contact
    use exic_base_text_buffer, only: text_buffer_t
    use exic_contact_spec, only: METHOD_LAGRANGE, METHOD_PENALTY, DETECT_SWEPT, contact_spec_t
    use exic_mesh_boundary, only: node_normals, bodies_elements
-   use exic_contact_broad, only: broad_t, broad_search_kept, drop_flat_fixed
+   use exic_contact_broad, only: broad_t, broad_search_kept, drop_flat_fixed, keep_convex_corners
    use exic_contact_broad_all, only: broad_all_t
    use exic_contact_detect, only: contact_set_t, detect_contacts
    use exic_contact_corrector, only: constraints_t, corrector_t
@@ -56,6 +58,13 @@ module exic_contact_contact
    !> behind it by the slope change times the slide: far above rounding, yet a tiny share of the
    !> segment. A node deeper than this is taken to be on the far side of the surface.
    real(wp), parameter :: DEPTH_SHARE = 0.1_wp
+   !> The same share for the corner pass of an NTOS pair (a master's convex corner as a slave):
+   !> a corner that slides in contact across a kink of the slave surface ends a step behind it
+   !> by the slide times the kink, far below this; a corner found deeper at the start of a step
+   !> entered the slave's body between its nodes before it was a corner (one-pass contact lets
+   !> a master's node do so) and is left to the pass whose slaves those nodes are, not pushed
+   !> out in one step (doc/contact-detection.md, "Corner pass of a one-pass pair").
+   real(wp), parameter :: CORNER_DEPTH_SHARE = 0.01_wp
 
    !> A contact surface: segments (body on the left of n1 -> n2) and its nodes.
    type :: surface_t
@@ -88,6 +97,12 @@ module exic_contact_contact
       real(wp), allocatable :: pen(:), fn(:), f(:, :), q(:)
       integer, allocatable :: state(:)
       logical :: auto = .false.                !< AUTOmatic: candidates from the search over all surfaces
+      !> corner pass of a one-pass (NTOS) pair: the master's convex corners as slaves of the slave
+      !> surface's segments (keep_convex_corners; doc/contact-detection.md, "Corner pass")
+      logical :: corners = .false.
+      !> corner pass: the slaves it held at the last step, increasing (contact_step: a corner found
+      !> behind the slave surface at the start of a step is held only when it was held before)
+      integer, allocatable :: held(:)
       type(broad_t) :: broad
       type(contact_set_t) :: hits
    end type pass_t
@@ -139,6 +154,7 @@ module exic_contact_contact
       real(wp), allocatable :: fres(:, :)      !< (2, nnode) f_ext - f_int for the face's free solve
       real(wp) :: lref = 1.0_wp                !< mean segment length
       real(wp) :: depth = 0.0_wp               !< penetration accepted at the start of a step (DEPTH_SHARE x lref)
+      real(wp) :: depth_corner = 0.0_wp        !< the same for the corner passes (CORNER_DEPTH_SHARE x lref)
       real(wp), allocatable :: xp(:, :)           !< (2, nnode) predicted positions x~(n+2)
       real(wp) :: max_penetration = 0.0_wp     !< largest over the run
       real(wp) :: time_search = 0.0_wp         !< wall time in search (broad + narrow phase)
@@ -333,6 +349,7 @@ contains
             call buf%add('contact pass '//itoa(k)//' of pair '//itoa(self%results(ps%pair)%id)// &
                          ': nodes of surface '//itoa(ps%slave)//' against segments of surface '// &
                          itoa(ps%master)//', '//trim(methods(ps%method))//', '//trim(detections(ps%detection)))
+            if (ps%corners) call buf%add(', the convex corners of surface '//itoa(ps%slave)//' only')
             if (ps%energy) call buf%add(', massless faces (ENERgy)')
             if (ps%friction) call buf%add(', Coulomb friction mus '//rtoa(ps%law(1))//' mud '// &
                                           rtoa(ps%law(2))//' decay '//rtoa(ps%law(3)))

@@ -37,6 +37,7 @@ contains
       end do
       if (nlen > 0) self%lref = len_sum/nlen
       self%depth = DEPTH_SHARE*self%lref
+      self%depth_corner = CORNER_DEPTH_SHARE*self%lref
       self%corr%gap_tol = 1.0e-13_wp*self%lref
       allocate (self%xp(2, nnode), source=0.0_wp)
       call contact_nodes(self, nnode)
@@ -169,7 +170,7 @@ contains
       ns = 0
       if (allocated(spec%surfaces)) ns = size(spec%surfaces)
       nauto = size(self%surfaces) - ns
-      allocate (p(2*npair + 1))
+      allocate (p(2*npair + 1))   ! two passes a pair at most, and AUTOmatic's
       maxid = 0
       np = 0
       allocate (self%results(npair + merge(1, 0, nauto > 0)))
@@ -190,6 +191,13 @@ contains
             select case (ps%kind)
             case (PAIR_NTOS)
                call add_pass(p, np, k, i, j, ps)
+               if (self%surfaces(i)%nseg > 0 .and. i /= j .and. ps%method == METHOD_LAGRANGE) then
+                  ! the corner pass: a convex corner of the master can enter the slave surface
+                  ! between its nodes, where the first pass does not look (doc/contact-detection.md,
+                  ! "Corner pass of a one-pass pair")
+                  call add_pass(p, np, k, j, i, ps)
+                  p(np)%corners = .true.
+               end if
             case (PAIR_SYMMETRIC)
                call add_pass(p, np, k, i, j, ps)
                call add_pass(p, np, k, j, i, ps)
@@ -213,7 +221,17 @@ contains
             call self%auto%add_surface(self%surfaces(i)%nodes, self%surfaces(i)%seg)
          end do
       end if
-      npass = np
+      ! a corner pass whose surfaces another pass already pairs in its direction (a SYMMetric pair,
+      ! or NTOS pairs written both ways) adds nothing: dropped
+      npass = 0
+      do k = 1, np
+         if (p(k)%corners) then
+            if (any([(.not. p(i)%corners .and. p(i)%slave == p(k)%slave .and. p(i)%master == p(k)%master, &
+                      i=1, np)])) cycle
+         end if
+         npass = npass + 1
+         if (npass < k) p(npass) = p(k)
+      end do
       self%nfixed = npass
       self%npass = npass
       allocate (self%passes(npass))
@@ -227,6 +245,8 @@ contains
          self%passes(k)%detection = p(k)%detection
          self%passes(k)%k = p(k)%k
          self%passes(k)%law = p(k)%law
+         self%passes(k)%corners = p(k)%corners
+         if (p(k)%corners) allocate (self%passes(k)%held(0))
       end do
    end subroutine build_passes
 
@@ -287,6 +307,8 @@ contains
             call surface_normals(self, sl, nnode, x)
             if (.not. ps%auto) call broad_search(ps%broad, nnode, x, x, sl%nnode, sl%nodes, ms%nseg, ms%seg, &
                                                  0.5_wp*self%lref)
+            if (ps%corners) call keep_convex_corners(ps%broad, nnode, x, sl%nnode, sl%nodes, sl%seg, sl%nhead, &
+                                                     sl%nsegs)
             call detect_contacts(ps%hits, DETECT_STATIC, nnode, x, x, sl%nnode, sl%nodes, &
                                  sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
                                  0.5_wp*self%lref, FACING)

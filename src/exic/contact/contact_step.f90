@@ -6,6 +6,7 @@ submodule(exic_contact_contact) exic_contact_contact_step
    use exic_base_error, only: make_error
    use exic_base_clock, only: wall_time
    use exic_base_grow, only: grow
+   use exic_base_sort, only: search_sorted, sorted_unique
    use exic_contact_spec, only: DETECT_STATIC
    use exic_contact_broad, only: broad_search
    use exic_contact_friction, only: coulomb_mu
@@ -16,7 +17,8 @@ contains
 
    !> The contact correction of one step (interface: contact.f90).
    module procedure contact_correct
-      integer :: k, j, i, node
+      integer :: k, j, i, node, nheld
+      integer, allocatable :: held(:)
       real(wp) :: c, gnow, pen, t0, t1, mu
       logical :: touched
 
@@ -69,13 +71,27 @@ contains
                cycle
             end if
             if (self%any_penalty) call narrow_passes(self, nnode, x, minv, k, k)
-            if (ps%broad%ncand == 0) cycle
+            nheld = 0
+            if (ps%broad%ncand == 0) then
+               if (ps%corners) ps%held = [integer ::]
+               cycle
+            end if
             do j = 1, ps%hits%n
                node = ps%hits%slave(j)
                associate (m1 => ps%hits%master(1, j), m2 => ps%hits%master(2, j), &
                           al => ps%hits%alpha(j), nr => ps%hits%normal(:, j))
                   ! gap at t(n+1) along the frozen normal (eq. 3.19)
                   gnow = dot_product(x(:, node) - (1.0_wp - al)*x(:, m1) - al*x(:, m2), nr)
+                  if (ps%corners) then
+                     ! a corner behind the slave surface at the start of the step, neither
+                     ! crossing it in the step nor held at the last step, entered the slave's
+                     ! body between its nodes before it was a corner: not held (eq. K.2)
+                     if (ps%hits%tau(j) <= 0.0_wp .and. gnow < -self%corr%gap_tol .and. &
+                         search_sorted(ps%held, node) <= 0) cycle
+                     nheld = nheld + 1
+                     call grow(held, nheld)
+                     held(nheld) = node
+                  end if
                   if (ps%friction) then
                      ! the step's coefficient from the slave's last state (eq. F12)
                      mu = coulomb_mu(ps%law(1), ps%law(2), ps%law(3), self%vslip(node))
@@ -85,6 +101,7 @@ contains
                   end if
                end associate
             end do
+            if (ps%corners) ps%held = sorted_unique(held(1:nheld))
          end associate
       end do
       t1 = wall_time()

@@ -118,6 +118,8 @@ contains
                                                    ms%nseg, ms%seg, self%depth)
          if (ps%auto) call drop_flat_fixed(ps%broad, nnode, x, minv, sl%nnode, sl%nodes, sl%seg, sl%nhead, &
                                            sl%nsegs)
+         if (ps%corners) call keep_convex_corners(ps%broad, nnode, x, sl%nnode, sl%nodes, sl%seg, sl%nhead, &
+                                                  sl%nsegs)
       end associate
    end subroutine candidates
 
@@ -141,10 +143,12 @@ contains
       integer, intent(in) :: ks(:), nnode
       real(wp), intent(in) :: x(2, nnode)
       integer :: i
+      real(wp) :: depth
       do i = 1, size(ks)
          associate (ps => self%passes(ks(i)), sl => self%surfaces(self%passes(ks(i))%slave), &
                     ms => self%surfaces(self%passes(ks(i))%master))
             if (ps%broad%ncand == 0) cycle
+            depth = merge(self%depth_corner, self%depth, ps%corners)
             if (ps%slave == ps%master .and. sl%nrm_stamp /= self%stamp) then
                ! every node normal of the surface, once per search (surface_normals)
                call node_normals(nnode, x, sl%nseg, sl%seg, sl%nnode, sl%where, sl%nrm)
@@ -155,18 +159,18 @@ contains
                ! body's faces across a corner; doc/contact-detection.md, "Facing test")
                call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                     sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
-                                    self%depth, FACING)
+                                    depth, FACING)
             else if (sl%nrm_stamp == self%stamp) then
                ! this search formed every normal of the surface
                call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                     sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
-                                    self%depth, FACING, fseg=sl%seg, fhead=sl%nhead, fsegs=sl%nsegs)
+                                    depth, FACING, fseg=sl%seg, fhead=sl%nhead, fsegs=sl%nsegs)
             else
                ! the normals of the slaves that have a hit and of the segments, formed by the
                ! narrow phase once in this search (another surface than the master: above)
                call detect_contacts(ps%hits, ps%detection, nnode, x, self%xp, sl%nnode, sl%nodes, &
                                     sl%nrm, ms%nseg, ms%seg, ms%link, ps%broad%ncand, ps%broad%cand, &
-                                    self%depth, FACING, sl%nseg, sl%seg, sl%nhead, sl%nsegs, &
+                                    depth, FACING, sl%nseg, sl%seg, sl%nhead, sl%nsegs, &
                                     self%stamp, ms%sn, ms%sn_stamp, sl%sn, sl%sn_stamp)
             end if
          end associate

@@ -226,8 +226,11 @@ contains
       if (.not. r%stp%contact%active) return
       associate (c => r%stp%contact)
          ! the passes of the PAIRs, and every pair of AUTOmatic surfaces (whose passes are made
-         ! per step for the surfaces found near), given surface by surface
+         ! per step for the surfaces found near), given surface by surface; not the corner pass
+         ! of an NTOS pair, which holds the master's convex corners only: the master's other
+         ! nodes may enter the slave's body between its nodes, as one-pass contact allows
          do k = 1, c%nfixed
+            if (c%passes(k)%corners) cycle
             call r%inside%allow(c%surfaces(c%passes(k)%slave)%nodes, c%surfaces(c%passes(k)%master)%nodes)
          end do
          if (c%auto_pass%auto) then
