@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Family of restarts that change the BATCh program or the output folder (issue 32, items 3-4).
 
-For every base deck (decks of inputs/ and the restart suite's plastic block with friction, each
+For every base deck (decks of inputs/, the restart suite's plastic block with friction and the corner
+pass's punch of test/data/stress, each
 with its BATCh program written from a template) and every restart point (the last interval
 restart file of runs with SAVE,,ts for several ts: before and after first contact), the run with
 the short program P1 is continued with --restart under a changed program P2 and compared with
@@ -106,6 +107,14 @@ def base_decks():
     req = '  disp,1+(nr+1)*nz,2\n  disp,nr+1,1\n  stre,1,8\n  cont,1,1\n\nSTOP\n'
     bases['taylor'] = ({'common/taylor_rod.inc': rod}, head, req,
                        dict(cfl=0.9, tplot=3, tout=4e-6, loop=1000000, tend=3e-5))
+    # a deformable punch driven into a block, NTOS with the block's nodes as slaves: the corner
+    # pass holds the punch's corners, the corners it held kept in the restart file
+    # (doc/contact-detection.md, "Corner pass of a one-pass pair", K.2;
+    # test/data/stress/corner_pass_punch_372.inp)
+    cp = read(os.path.join(ROOT, 'test/data/stress/corner_pass_punch_372.inp'))
+    bases['corner'] = ({}, cp[:cp.index('\nEND\nBATCh')] + '\n', cp[cp.index('NEXT\nEND\n') + len('NEXT\nEND\n'):],
+                       dict(cfl=0.5, tplot=1, tout=0.05, loop=10000000, tend=0.82911956610730242,
+                            pre=['PROPortional,,1']))
     # a plastic block sliding with Coulomb friction on a rigid floor (suite restart)
     fp = FRICTION_PLASTIC
     bases['friction'] = ({}, fp[:fp.index('END\nBATCh')], fp[fp.index('NEXT\nEND\n') + len('NEXT\nEND\n'):],
