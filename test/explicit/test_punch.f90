@@ -66,13 +66,17 @@ contains
                               'corner pass, rigid punch (v56)')
       call corner_pass_punch(s, 'corner_pass_punch_372', 'a deformable punch''s corner (v372)')
       call corner_pass_punch(s, 'corner_pass_peak_358', 'a block''s peak inside the punch (v358, K.2)')
+      ! the guard's contact part at a deformable punch's first contact (doc/loads.md, eq. P.6)
+      call corner_pass_punch(s, 'guard_first_contact_272', 'a deformable punch''s first contact (v272, P.6)')
    end subroutine run_punch_tests
 
    !> Decks of tools/stress/punch_family.py saved in test/data/stress (their first comment lines
    !> say what each showed): the block's nodes as NTOS slaves under a deformable punch's corner
    !> (v372: exic 6847b2b stopped at step 4469, growth 46 times the energy put in), and the
    !> punch's nodes as slaves over a plastic block whose crushed peak lies inside the punch (v358:
-   !> the corner pass without its rule K.2 stopped at step 134, 2.8 times the energy put in).
+   !> the corner pass without its rule K.2 stopped at step 134, 2.8 times the energy put in), and
+   !> a deformable punch's first contact (v272: the guard with the whole C_con of doc/loads.md
+   !> eq. P.5 warned at step 3870, 1.34 %; eq. P.6 takes it where it lowers the measure).
    !> Asserted: the run ends with no warning and the balance closes within 1e-3 of W_pm.
    subroutine corner_pass_punch(s, name, what)
       type(suite_t), intent(inout) :: s

@@ -34,8 +34,9 @@ contains
             ! of their work (loading.f90)
             e = e + kinetic_correction(st)
             ! the contact forces' part of it: the energy conserved across a closed contact
-            ! (doc/loads.md, section 3, eq. P.5)
-            if (self%has_contact()) e = e + contact_correction(st)
+            ! (doc/loads.md, section 3, eq. P.5), where it lowers the measure; a rise is the
+            ! one-step transient of a contact force that appears or vanishes (P.6)
+            if (self%has_contact()) e = e + min(contact_correction(st), 0.0_wp)
             w_in = self%ld%work_in(st)
             put_in = abs(st%energy%total0) + max(abs(st%energy%wext) + abs(st%energy%wpm), abs(w_in))
          else
