@@ -57,9 +57,28 @@ contains
       call sliding_block(s, 'PENAlty,1e6', 'penalty')
       call section(s, 'friction: a punch meeting a block node on node (AUTOmatic, mirrored pairs)')
       call mirrored_punch(s)
+      call mirrored_corner(s)
       call section(s, 'friction: deck records and errors')
       call deck_records(s)
    end subroutine run_friction_tests
+
+   !> Variant 181 of tools/stress/friction_family.py (test/data/stress/mirror_corner_f181.inp): a
+   !> rigid punch's corner rides on a block node that slides along the punch's face to 2-5 % of
+   !> its segment from the corner (AUTOmatic, mu = 0.1). With MIRROR_TOL = 0.02 the pair was not
+   !> taken as mirrored and 7 steps met the sweep limit (doc/friction.md, section 4.1). Asserted:
+   !> no step at the sweep limit and mirrored pairs found.
+   subroutine mirrored_corner(s)
+      type(suite_t), intent(inout) :: s
+      character(len=:), allocatable :: msg, report
+      integer :: stage
+      call run_deck('mirror_corner_f181', file_text('test/data/stress/mirror_corner_f181.inp'), stage, msg)
+      call check(s, stage == 0, 'a punch''s corner on a sliding block node runs', msg)
+      if (stage /= 0) return
+      report = file_text(run_dir//'/mirror_corner_f181.out')
+      call check(s, index(report, 'steps at the sweep limit 0,') > 0 .and. &
+                 index(report, 'mirrored pairs 0 ') == 0 .and. index(report, 'mirrored pairs ') > 0, &
+                 'a punch''s corner on a sliding block node: mirrored pairs, no step at the sweep limit')
+   end subroutine mirrored_corner
 
    !> A deformable punch (2 x 2 elements, 10 E) pressed by DISPlacement of its top nodes into a
    !> 4 x 2 block whose top nodes it meets node on node, AUTOmatic contact with

@@ -673,7 +673,7 @@ def _saved_readme():
         return
     lines = ["# Decks saved by the stress suite", "",
              "Written by `make stress` (tools/stress/, doc/stability.md): the worst random scenes of each "
-             "kind of failure, the fuzzed decks that failed, and the decks of the long runs (flat_corner_*.inp, hourglass_*.inp, barrier_*.inp, plastic1pt_*.inp, impulse_*.inp, rest_on_wall_*.inp, ring_self_*.inp, facing_side_*.inp, nearest_face_*.inp, corner_pass_*.inp and guard_first_contact_*.inp are kept by hand: regression decks). Each deck's "
+             "kind of failure, the fuzzed decks that failed, and the decks of the long runs (flat_corner_*.inp, hourglass_*.inp, barrier_*.inp, plastic1pt_*.inp, impulse_*.inp, rest_on_wall_*.inp, ring_self_*.inp, facing_side_*.inp, nearest_face_*.inp, corner_pass_*.inp, guard_first_contact_*.inp and mirror_corner_*.inp are kept by hand: regression decks). Each deck's "
              "first comment line (`! stress...`) says what it showed when it was saved. Scenes and long "
              "runs are self-contained (`exic test/data/stress/NAME.inp -o out`); a fuzzed deck is a "
              "mutant of a deck of inputs/ and may INCLude that deck's `common/` files: copy it next to "

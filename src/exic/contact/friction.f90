@@ -34,7 +34,7 @@ module exic_contact_friction
    !> Sweeps (normal then tangential problem) before a step is given up as not converged.
    integer, parameter, public :: FRICTION_SWEEPS = 50
    !> Mirrored pairs (section 4.1): each slave within this share of its segment of the other node.
-   real(wp), parameter, public :: MIRROR_TOL = 0.02_wp
+   real(wp), parameter, public :: MIRROR_TOL = 0.05_wp
 
    !> The tangential problem's matrix, its work arrays and statistics (kept across steps).
    type :: friction_t
