@@ -54,7 +54,7 @@ OPTS = {
 
 
 def deck(p):
-    """The deck of variant p and its end time."""
+    """The deck of variant p: the punch travels gap + min(hx, hy) by its end time."""
     nx, ny = p["mesh"]
     hx, hy = 2.0 / nx, 1.0 / ny
     c = dilatational_speed(E, p["nu"], RHO)
