@@ -9,7 +9,7 @@
 
 !> Create a contact problem from element connectivity: one surface per body (its free
 !> boundary edges), pairs IPAIR(6, NPAIR) = slave body, master body, method (1 Lagrange,
-!> 2 penalty), detection (1 swept, 2 static), passes (1 one pass, 2 two passes), rigid
+!> 2 penalty), detection (1 swept, 2 static), passes (1 one pass with its corner pass, 2 two passes), rigid
 !> master (0, 1); PPAIR = penalty stiffness. Method 3: Lagrange with massless contact faces. Returns the handle IH (0 on failure).
 subroutine exic_contact_create_mesh(nnode, x0, amass, nelem, ix, ibody, npair, ipair, ppair, ih, ierr)
    use exic_legacy_problem, only: problem_create_mesh
