@@ -40,11 +40,7 @@ contains
       ! Before the rule: clamped to node 2 along the average of the two normals.
       call section(s, 'concave rule: sliding past a concave corner onto the next segment (C.1)')
       x0(:, 1) = [1.0_wp, 0.5_wp]; x0(:, 3) = [-1.0_wp, 0.0_wp]
-      x0(:, 4) = [0.02_wp, 0.01_wp]
-      x1 = x0
-      x1(:, 4) = [-0.01_wp, -0.006_wp]
-      call detect_contacts(cs, DETECT_SWEPT, 4, x0, x1, 1, [4], snrm, 2, seg, link, 2, cand, &
-                           0.1_wp, FACING_LIMIT)
+      call slave_moves([0.02_wp, 0.01_wp], [-0.01_wp, -0.006_wp])
       call check(s, cs%n == 1, 'one contact')
       if (cs%n == 1) then
          call check(s, cs%seg(1) == 2 .and. .not. cs%at_end(1), 'on segment 2, not at its end')
@@ -59,11 +55,7 @@ contains
       ! clamped to node 2 along the average of the two normals (0.5, 1) / sqrt 1.25 and (0, 1).
       call section(s, 'concave rule: a convex corner is left as it was')
       x0(:, 1) = [1.0_wp, -0.5_wp]
-      x0(:, 4) = [0.02_wp, -0.01_wp]
-      x1 = x0
-      x1(:, 4) = [-0.01_wp, -0.006_wp]
-      call detect_contacts(cs, DETECT_SWEPT, 4, x0, x1, 1, [4], snrm, 2, seg, link, 2, cand, &
-                           0.1_wp, FACING_LIMIT)
+      call slave_moves([0.02_wp, -0.01_wp], [-0.01_wp, -0.006_wp])
       call check(s, cs%n == 1, 'one contact')
       if (cs%n == 1) then
          call check(s, cs%seg(1) == 1 .and. cs%at_end(1) .and. cs%alpha(1) == 1.0_wp, &
@@ -77,11 +69,7 @@ contains
       ! segment 1 at (0.02, 0), predicted at (-0.01, -0.006), past node 2, clamped to it as before.
       call section(s, 'concave rule: a turn within the resolution of the coordinates is straight')
       x0(:, 1) = [1.0_wp, 1.0e-12_wp]
-      x0(:, 4) = [0.02_wp, 0.0_wp]
-      x1 = x0
-      x1(:, 4) = [-0.01_wp, -0.006_wp]
-      call detect_contacts(cs, DETECT_SWEPT, 4, x0, x1, 1, [4], snrm, 2, seg, link, 2, cand, &
-                           0.1_wp, FACING_LIMIT)
+      call slave_moves([0.02_wp, 0.0_wp], [-0.01_wp, -0.006_wp])
       call check(s, cs%n == 1, 'one contact')
       if (cs%n == 1) call check(s, cs%seg(1) == 1 .and. cs%at_end(1) .and. cs%alpha(1) == 1.0_wp, &
                                 'on segment 1, clamped to node 2')
@@ -94,11 +82,7 @@ contains
       ! cone of the wedge at node 2. Contact at node 2 along -d / |d| = (-0.2, 1) / sqrt(1.04),
       ! gap -|d| (the averaged normal (0, 1) left the slave 0.002 from node 2, behind segment 1).
       call section(s, 'concave rule: pressed into the corner, the normal towards the node (C.3)')
-      x0(:, 4) = [0.001_wp, 0.001_wp]
-      x1 = x0
-      x1(:, 4) = [0.002_wp, -0.01_wp]
-      call detect_contacts(cs, DETECT_SWEPT, 4, x0, x1, 1, [4], snrm, 2, seg, link, 2, cand, &
-                           0.1_wp, FACING_LIMIT)
+      call slave_moves([0.001_wp, 0.001_wp], [0.002_wp, -0.01_wp])
       call check(s, cs%n == 1, 'one contact')
       if (cs%n == 1) then
          call check(s, cs%at_end(1) .and. cs%master(nint(1.0_wp + cs%alpha(1)), 1) == 2, &
@@ -114,11 +98,7 @@ contains
       ! and its predicted position projects on segment 1 at 0.9975, behind it. Caught on segment 1
       ! at 0.9975, normal (-1, 1) / sqrt 2, gap (0.0015, -0.0015) . n. Before the rule: no contact.
       call section(s, 'concave rule: entering a segment from the corner (C.2)')
-      x0(:, 4) = [-0.003_wp, -0.001_wp]
-      x1 = x0
-      x1(:, 4) = [0.004_wp, 0.001_wp]
-      call detect_contacts(cs, DETECT_SWEPT, 4, x0, x1, 1, [4], snrm, 2, seg, link, 2, cand, &
-                           0.1_wp, FACING_LIMIT)
+      call slave_moves([-0.003_wp, -0.001_wp], [0.004_wp, 0.001_wp])
       call check(s, cs%n == 1, 'one contact')
       if (cs%n == 1) then
          call check(s, cs%seg(1) == 1 .and. .not. cs%at_end(1), 'on segment 1, not at its end')
@@ -130,6 +110,17 @@ contains
          call check_close(s, cs%gap(1), -0.003_wp*r, 1.0e-16_wp, 'predicted gap along it')
       end if
 
+   contains
+      !> The contacts of slave node 4 moving from a to b over the step (the master's nodes at
+      !> rest at x0), into cs.
+      subroutine slave_moves(a, b)
+         real(wp), intent(in) :: a(2), b(2)
+         x0(:, 4) = a
+         x1 = x0
+         x1(:, 4) = b
+         call detect_contacts(cs, DETECT_SWEPT, 4, x0, x1, 1, [4], snrm, 2, seg, link, 2, cand, &
+                              0.1_wp, FACING_LIMIT)
+      end subroutine slave_moves
    end subroutine run_contact_concave_tests
 
 end module test_contact_concave

@@ -315,33 +315,44 @@ contains
       integer, intent(in) :: nnode, nslave
       real(wp), intent(in) :: x(2, nnode)
       integer, intent(in) :: slaves(nslave), seg(:, :), head(nslave + 1), segs(:)
-      integer :: k, n, s, node, j, prev, next
-      real(wp) :: t1(2), t2(2)
+      integer :: k, n, s, last
       logical :: corner
 
       n = 0
+      last = 0
+      corner = .false.
       do k = 1, bw%ncand
          s = bw%cand(1, k)
-         node = slaves(s)
-         corner = head(s + 1) - head(s) == 2
-         if (corner) then
-            prev = 0
-            next = 0
-            do j = head(s), head(s) + 1
-               if (seg(2, segs(j)) == node) prev = seg(1, segs(j))
-               if (seg(1, segs(j)) == node) next = seg(2, segs(j))
-            end do
-            corner = prev /= 0 .and. next /= 0
-         end if
-         if (corner) then
-            t1 = x(:, node) - x(:, prev)
-            t2 = x(:, next) - x(:, node)
-            corner = atan2(t1(1)*t2(2) - t1(2)*t2(1), dot_product(t1, t2)) >= CORNER_TURN
+         ! a slave's candidates come one after another: its turn is formed once for them
+         if (s /= last) then
+            last = s
+            corner = convex_corner(nnode, x, slaves(s), seg, segs(head(s):head(s + 1) - 1))
          end if
          if (corner) call keep_candidate(bw, n, k)
       end do
       bw%ncand = n
    end subroutine keep_convex_corners
+
+   !> True when the surface turns convex by CORNER_TURN or more at `node`, whose segments are
+   !> `mine` (keep_convex_corners): two of them, one ending and one starting at the node.
+   pure logical function convex_corner(nnode, x, node, seg, mine) result(corner)
+      integer, intent(in) :: nnode, node, seg(:, :), mine(:)
+      real(wp), intent(in) :: x(2, nnode)
+      integer :: j, prev, next
+      real(wp) :: t1(2), t2(2)
+      corner = .false.
+      if (size(mine) /= 2) return
+      prev = 0
+      next = 0
+      do j = 1, 2
+         if (seg(2, mine(j)) == node) prev = seg(1, mine(j))
+         if (seg(1, mine(j)) == node) next = seg(2, mine(j))
+      end do
+      if (prev == 0 .or. next == 0) return
+      t1 = x(:, node) - x(:, prev)
+      t2 = x(:, next) - x(:, node)
+      corner = atan2(t1(1)*t2(2) - t1(2)*t2(1), dot_product(t1, t2)) >= CORNER_TURN
+   end function convex_corner
 
    !> Keep candidate k of bw as the next of the n kept so far (n < k: moved down, in order).
    pure subroutine keep_candidate(bw, n, k)
